@@ -1,0 +1,49 @@
+"""impactlab: models of a ball leaving a striking face, side by side."""
+
+from ._version import __version__
+from .errors import FieldError, ImpactLabError, ModelInputError, ModelNotFoundError, StudyError
+from .materials import BALL_PRESETS, FACE_PRESETS, MATERIAL_PRESETS, Ball, Face, Material
+from .model import ImpactModel
+from .scene import Contact, Impact, Scene
+
+__all__ = [
+    "__version__", "Ball", "Face", "Material", "Contact", "Impact", "Scene", "ImpactModel",
+    "BALL_PRESETS", "FACE_PRESETS", "MATERIAL_PRESETS",
+    "ImpactLabError", "FieldError", "StudyError", "ModelInputError", "ModelNotFoundError",
+    "load_study", "run_study", "open_results", "get_model", "available_models",
+]
+
+
+def load_study(source, *, file=None):
+    """Read and validate a study from a YAML path, YAML text or mapping (see :mod:`impactlab.study`)."""
+    from .study import load_study as _load
+
+    return _load(source, file=file)
+
+
+def run_study(study, *, progress=None):
+    """Run a study (path, mapping or :class:`~impactlab.study.Study`) and return one xarray Dataset."""
+    from .runner import run_study as _run
+
+    return _run(study, progress=progress)
+
+
+def open_results(path):
+    """Open a result file written by ``impactlab run`` as an xarray Dataset (loaded into memory)."""
+    from .results_io import open_results as _open
+
+    return _open(path)
+
+
+def get_model(name):
+    """The registered model class called ``name``."""
+    from .registry import get_model as _get
+
+    return _get(name)
+
+
+def available_models():
+    """Registered model classes by name."""
+    from .registry import available
+
+    return available()

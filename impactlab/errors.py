@@ -1,0 +1,111 @@
+"""Exceptions and warnings that carry a message fit to show a user.
+
+Every error impactlab raises for bad input derives from :class:`ImpactLabError`.
+Its ``str`` is the whole message the CLI prints: where (file, line, field
+path), what was expected, what was given and, where there is a finite set,
+the choices.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+
+class ImpactLabError(Exception):
+    """Base class of every user-facing impactlab error."""
+
+
+class FieldError(ImpactLabError, ValueError):
+    """A value that does not fit its field.
+
+    Parameters
+    ----------
+    path : str
+        Dotted path of the field (``ball.radius``); may be extended by callers
+        as the error travels outwards (see :meth:`at`).
+    expected : str
+        What the field accepts, in words.
+    given : object
+        What was given (shown with ``repr`` unless already a string).
+    choices : iterable of str, optional
+        The allowed values, listed in the message; the closest one to
+        ``given`` is suggested.
+    """
+
+    def __init__(self, path: str, expected: str, given: object = None, choices: Iterable[str] | None = None,
+                 file: str | None = None, line: int | None = None):
+        self.path = path
+        self.expected = expected
+        self.given = given
+        self.choices = tuple(choices) if choices is not None else None
+        self.file = file
+        self.line = line
+        super().__init__(self._message())
+
+    def _message(self) -> str:
+        where = ""
+        if self.file:
+            where = f"{self.file}:{self.line}: " if self.line else f"{self.file}: "
+        given = self.given if isinstance(self.given, str) else repr(self.given)
+        text = f"{where}{self.path or '<top>'}: expected {self.expected}, got {given}"
+        if self.choices:
+            text += f". Choices: {', '.join(self.choices)}"
+            close = closest(str(self.given), self.choices)
+            if close:
+                text += f" (did you mean {close!r}?)"
+        return text
+
+    def at(self, prefix: str | None = None, file: str | None = None, line: int | None = None) -> "FieldError":
+        """Return a copy located under ``prefix`` and in ``file`` at ``line``."""
+        path = self.path
+        if prefix:
+            path = f"{prefix}.{path}" if path else prefix
+        return FieldError(path, self.expected, self.given, self.choices,
+                          file=file or self.file, line=line or self.line)
+
+    def __reduce__(self):
+        return (FieldError, (self.path, self.expected, self.given, self.choices, self.file, self.line))
+
+
+class StudyError(ImpactLabError):
+    """A study that cannot be read or run (file missing, YAML syntax...)."""
+
+
+class ModelNotFoundError(ImpactLabError, KeyError):
+    """An unknown model name."""
+
+    def __init__(self, name: str, available: Iterable[str]):
+        self.name = name
+        self.available = tuple(sorted(available))
+        text = f"unknown model {name!r}. Choices: {', '.join(self.available) or '(none registered)'}"
+        close = closest(name, self.available)
+        if close:
+            text += f" (did you mean {close!r}?)"
+        self.message = text
+        super().__init__(text)
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return self.message
+
+
+class ModelInputError(ImpactLabError):
+    """A model was asked to run without an input it declares as required."""
+
+
+class ModelContractError(ImpactLabError):
+    """A model's hook broke the plugin contract (wrong keys, shapes...)."""
+
+
+class PluginWarning(UserWarning):
+    """A plugin could not be loaded or clashes with another; it was skipped."""
+
+
+class ValidityWarning(UserWarning):
+    """A result was computed outside a model's stated assumptions."""
+
+
+def closest(word: str, choices: Iterable[str]) -> str | None:
+    """The choice closest to ``word``, or None when nothing is close."""
+    match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return match[0] if match else None

@@ -1,0 +1,137 @@
+"""Ball, face and material value objects shared by every model, and presets.
+
+All values are SI. Objects are frozen: a study sweep makes new objects
+(``attrs.evolve``) rather than changing shared ones.
+"""
+
+from __future__ import annotations
+
+import math
+
+import attrs
+
+from ._validate import in_range, positive, positive_or_inf, to_float
+from .errors import FieldError
+
+#: Largest possible I/(m R^2) of a sphere whose mass lies within its radius
+#: (all mass in a thin shell at R).
+MAX_INERTIA_FACTOR = 2.0 / 3.0
+
+
+@attrs.frozen
+class Material:
+    """Isotropic linear-elastic material.
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa], positive and finite.
+    poisson_ratio : float
+        Poisson's ratio nu [1], -1 < nu <= 0.5 (0.5: incompressible).
+    name, source : str
+        Label and where the numbers come from.
+    """
+
+    youngs_modulus: float = attrs.field(converter=to_float, validator=positive("a positive, finite modulus in Pa"))
+    poisson_ratio: float = attrs.field(
+        converter=to_float, validator=in_range(-1.0, 0.5, "a Poisson ratio with -1 < nu <= 0.5", low_open=True))
+    name: str = ""
+    source: str = ""
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + nu)) [Pa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@attrs.frozen
+class Ball:
+    """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) [1] and, for compliant models, its material."""
+
+    radius: float = attrs.field(converter=to_float, validator=positive("a positive, finite radius in m"))
+    mass: float = attrs.field(converter=to_float, validator=positive("a positive, finite mass in kg"))
+    inertia_factor: float = attrs.field(
+        default=0.4, converter=to_float,
+        validator=in_range(0.0, MAX_INERTIA_FACTOR,
+                           "an inertia factor I/(m R^2) with 0 < K^2 <= 2/3 (0.4 = uniform solid sphere)",
+                           low_open=True))
+    material: Material | None = None
+    name: str = ""
+    source: str = ""
+
+    @property
+    def moment_of_inertia(self) -> float:
+        """I = K^2 m R^2 [kg m^2]."""
+        return self.inertia_factor * self.mass * self.radius**2
+
+
+@attrs.frozen
+class Face:
+    """The striking face: a material, or rigid; and the club-head mass behind it.
+
+    Parameters
+    ----------
+    material : Material, optional
+        Elastic face. Leave out for a rigid face or for models that need none.
+    rigid : bool
+        True for a face that does not deform; excludes ``material``.
+    mass : float
+        Club-head mass M [kg]; ``inf`` (default) for a face fixed in space.
+    """
+
+    material: Material | None = None
+    rigid: bool = attrs.field(default=False, validator=attrs.validators.instance_of(bool))
+    mass: float = attrs.field(default=math.inf, converter=to_float,
+                              validator=positive_or_inf("a positive club-head mass in kg (inf: a fixed face)"))
+    name: str = ""
+    source: str = ""
+
+    def __attrs_post_init__(self):
+        if self.rigid and self.material is not None:
+            raise FieldError("rigid", "either rigid: true or a face material, not both", "rigid: true with a material")
+
+
+_BALL_SOURCE = ("Size and mass at the Rules of Golf limits (R >= 21.335 mm, m <= 45.93 g). Ball moduli are not "
+                "published; {E} with nu = {nu} puts the Hertz contact time against a steel face near the "
+                "450-500 us measured at club speeds (Henrikson et al. 2020, physics brief section 1). K^2 = 0.4: a "
+                "multi-layer ball is close to a uniform sphere.")
+
+MATERIAL_PRESETS: dict[str, Material] = {
+    "urethane_cover": Material(136e6, 0.45, "urethane-cover ball (equivalent)",
+                               _BALL_SOURCE.format(E="E = 136 MPa", nu=0.45)),
+    "surlyn_cover": Material(160e6, 0.45, "surlyn-cover ball (equivalent)",
+                             _BALL_SOURCE.format(E="E = 160 MPa (a firmer, distance ball)", nu=0.45)),
+    "steel": Material(196e9, 0.272, "17-4PH stainless steel",
+                      "Typical handbook values for 17-4PH (H900): E = 196 GPa, nu = 0.272 (ASM handbook)."),
+    "titanium": Material(113.8e9, 0.342, "Ti-6Al-4V",
+                         "Typical handbook values for annealed Ti-6Al-4V: E = 113.8 GPa, nu = 0.342 (ASM handbook)."),
+}
+
+BALL_PRESETS: dict[str, Ball] = {
+    "urethane_tour": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["urethane_cover"], "urethane tour ball",
+                          MATERIAL_PRESETS["urethane_cover"].source),
+    "surlyn_distance": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["surlyn_cover"], "surlyn distance ball",
+                            MATERIAL_PRESETS["surlyn_cover"].source),
+}
+
+FACE_PRESETS: dict[str, Face] = {
+    "rigid": Face(rigid=True, name="rigid face", source="Idealisation: the face does not deform."),
+    "steel": Face(MATERIAL_PRESETS["steel"], name="steel face", source=MATERIAL_PRESETS["steel"].source),
+    "titanium": Face(MATERIAL_PRESETS["titanium"], name="titanium face", source=MATERIAL_PRESETS["titanium"].source),
+}
+
+
+def ball_preset(name: str) -> Ball:
+    """The ball preset called ``name``."""
+    try:
+        return BALL_PRESETS[name]
+    except (KeyError, TypeError):
+        raise FieldError("preset", "a ball preset name", name, choices=BALL_PRESETS) from None
+
+
+def face_preset(name: str) -> Face:
+    """The face preset called ``name``."""
+    try:
+        return FACE_PRESETS[name]
+    except (KeyError, TypeError):
+        raise FieldError("preset", "a face preset name", name, choices=FACE_PRESETS) from None

@@ -1,0 +1,282 @@
+"""The base class of impact models: the plugin contract.
+
+Writing a model means subclassing :class:`ImpactModel`, declaring what it
+needs and gives, and filling one hook. The base class's public
+:meth:`ImpactModel.compute` does the rest.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Iterable, Mapping
+from typing import Any, ClassVar
+
+import attrs
+import numpy as np
+import xarray as xr
+
+from ._version import __version__
+from .errors import FieldError, ModelContractError, ModelInputError
+from .planning import OutputPlan, plan_outputs
+from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after_impact
+from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM
+
+
+@attrs.frozen
+class NoOptions:
+    """Options of a model that has none."""
+
+
+class ImpactModel:
+    """Base class of every impact model.
+
+    The contract, in numbered rules:
+
+    1. **Declarations are class attributes.** ``name`` (a Python identifier,
+       the registry key and the study's ``models[].name``), ``label`` (a few
+       words), ``references`` (tuple of citations), ``requires`` (input names
+       from :data:`impactlab.vocabulary.INPUTS` that must be given),
+       ``optional_inputs`` (inputs used when given), ``provides`` (output
+       names from :data:`impactlab.vocabulary.OUTPUTS`) and ``Options`` (a
+       frozen attrs class whose every field has a default and a validator).
+       ``not_provided`` may map outputs the model cannot give to the reason.
+    2. **One hook.** A model implements ``_compute(self, inputs, outputs)``
+       and nothing else of the run; ``self.options`` holds its validated
+       options.
+    3. **What the hook receives.** ``inputs`` maps each declared input that
+       was given (all of ``requires``, and those of ``optional_inputs``
+       present) to a read-only 1-D float array; all arrays have the same
+       length n, one entry per case, SI units (angles in rad, spin in rad/s).
+       ``outputs`` is a non-empty frozenset, a subset of ``provides``.
+    4. **What the hook returns.** A dict with exactly the keys of
+       ``outputs``: scalar outputs as float arrays of shape (n,) in SI;
+       history outputs as arrays of shape (n, n_time) plus the key ``"time"``,
+       a 1-D array of n_time increasing instants in seconds, shared by all
+       cases (pad a case that ended sooner with NaN).
+    5. **Vectorised and pure.** The hook handles a whole batch at once, does
+       not change its inputs and gives the same result for the same inputs,
+       whatever the batch around a case.
+    6. **Physics, not bookkeeping.** A model that provides ``normal_impulse``
+       and ``tangential_impulse`` gets launch angle, spin, velocities,
+       tangential restitution and energy loss derived by the framework; it
+       computes them itself only by also declaring them in ``provides``.
+    7. **Conformance.** ``impactlab.testing.check_model`` must pass: declared
+       names exist, energy never increases for a fixed face, frictionless and
+       head-on impacts give no tangential impulse, mirrored impacts mirror.
+
+    The public :meth:`compute` validates inputs, hands the hook only what it
+    declared, checks what came back, derives the rest, converts to the
+    units of the vocabulary and wraps it all as an :class:`xarray.Dataset`
+    with provenance.
+    """
+
+    name: ClassVar[str] = ""
+    label: ClassVar[str] = ""
+    references: ClassVar[tuple[str, ...]] = ()
+    requires: ClassVar[frozenset[str]] = frozenset()
+    optional_inputs: ClassVar[frozenset[str]] = frozenset()
+    provides: ClassVar[frozenset[str]] = frozenset()
+    not_provided: ClassVar[Mapping[str, str]] = {}
+    Options: ClassVar[type] = NoOptions
+
+    def __init__(self, options: Any = None, **option_values: Any):
+        if options is not None and option_values:
+            raise TypeError("pass either an Options instance or option keywords, not both")
+        if options is None:
+            options = self.make_options(option_values)
+        elif not isinstance(options, self.Options):
+            raise TypeError(f"options of {self.name!r} must be {self.Options.__name__}, got {type(options).__name__}")
+        self.options = options
+
+    # -- declarations -------------------------------------------------------------------------------------------
+    @classmethod
+    def make_options(cls, values: Mapping[str, Any]):
+        """Validated options from a mapping; unknown keys and bad values raise FieldError naming the option."""
+        known = [field.name for field in attrs.fields(cls.Options)]
+        for key in values:
+            if key not in known:
+                raise FieldError(str(key), f"an option of model {cls.name!r}", str(key),
+                                 choices=known or ["(this model takes no options)"])
+        try:
+            return cls.Options(**values)
+        except FieldError:
+            raise
+        except (TypeError, ValueError) as exc:
+            raise FieldError("", f"valid options for model {cls.name!r}", str(exc)) from None
+
+    @classmethod
+    def why_not_provided(cls, output: str) -> str:
+        return cls.not_provided.get(output, f"model {cls.name!r} does not provide {output}")
+
+    @classmethod
+    def describe(cls) -> dict[str, Any]:
+        """Declarations in plain data (for ``impactlab models`` and provenance)."""
+        return {
+            "name": cls.name,
+            "label": cls.label,
+            "requires": sorted(INPUTS[name].path for name in cls.requires),
+            "optional_inputs": sorted(INPUTS[name].path for name in cls.optional_inputs),
+            "provides": sorted(cls.provides),
+            "options": {field.name: _jsonable(field.default) for field in attrs.fields(cls.Options)},
+            "references": list(cls.references),
+        }
+
+    def options_dict(self) -> dict[str, Any]:
+        return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
+
+    # -- the public entry point ---------------------------------------------------------------------------------
+    def plan(self, outputs: Iterable[str]) -> OutputPlan:
+        outputs = list(outputs)
+        unknown = [name for name in outputs if name not in OUTPUTS]
+        if unknown:
+            raise FieldError("outputs", "names from the output vocabulary", unknown[0], choices=OUTPUTS)
+        return plan_outputs(type(self), outputs)
+
+    def compute(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> xr.Dataset:
+        """Run the model on a batch of cases.
+
+        Parameters
+        ----------
+        inputs : mapping or Scene or sequence of Scene
+            Input name -> scalar or 1-D array (SI), or scenes.
+        outputs : iterable of str, optional
+            Names from :data:`impactlab.vocabulary.OUTPUTS`; default: what the
+            model provides and what derives from it, histories excluded.
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per requested output on dimension ``case`` (and
+            ``time`` for histories), in the vocabulary's units; outputs the
+            model cannot give are NaN with the reason in ``missing_reason``.
+        """
+        inputs = _as_input_arrays(inputs)
+        if outputs is None:
+            outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+        plan = self.plan(outputs)
+        n_cases = self._check_inputs(inputs, plan)
+        raw = {}
+        if plan.from_model:
+            hook_inputs = {name: inputs[name] for name in (self.requires | self.optional_inputs) if name in inputs}
+            raw = self._compute(hook_inputs, plan.from_model)
+            self._check_returned(raw, plan, n_cases)
+        if plan.derived:
+            derived = after_impact(raw["normal_impulse"], raw["tangential_impulse"],
+                                   **{name: inputs[name] for name in AFTER_IMPACT_INPUTS + AFTER_IMPACT_OPTIONAL})
+            raw.update({name: derived[name] for name in plan.derived})
+        return self._wrap(raw, plan, n_cases)
+
+    def _compute(self, inputs: Mapping[str, np.ndarray], outputs: frozenset[str]) -> dict[str, np.ndarray]:
+        raise NotImplementedError(f"model {self.name!r} does not implement _compute")
+
+    # -- bookkeeping --------------------------------------------------------------------------------------------
+    def _check_inputs(self, inputs: dict[str, np.ndarray], plan: OutputPlan) -> int:
+        needed = set(self.requires)
+        if plan.derived:
+            needed |= set(AFTER_IMPACT_INPUTS) - {"spin"}  # no spin given: the ball arrives without spin
+        absent = sorted(needed - set(inputs))
+        if absent:
+            names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
+            raise ModelInputError(f"model {self.name!r} needs {names}, which the scene does not give")
+        sizes = {array.size for array in inputs.values() if array.size != 1}
+        if len(sizes) > 1:
+            raise ModelInputError(f"inputs to {self.name!r} have different lengths {sorted(sizes)}; "
+                                  "give scalars or arrays of one length")
+        n_cases = sizes.pop() if sizes else 1
+        for name, array in list(inputs.items()):
+            spec = INPUTS[name]
+            bad = spec.out_of_range(array)
+            if np.any(bad):
+                raise FieldError(spec.path, spec.range_text(), float(array[np.argmax(bad)]))
+            if array.size != n_cases:
+                array = np.broadcast_to(array, (n_cases,))
+            array = np.array(array, dtype=float)
+            array.setflags(write=False)
+            inputs[name] = array
+        # default the club mass for the derivation: a fixed face
+        if "club_mass" not in inputs:
+            inputs["club_mass"] = np.full(n_cases, math.inf)
+        if "spin" not in inputs:
+            inputs["spin"] = np.zeros(n_cases)
+        return n_cases
+
+    def _check_returned(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> None:
+        if not isinstance(raw, Mapping):
+            raise ModelContractError(f"model {self.name!r}: _compute returned {type(raw).__name__}, not a dict")
+        keys = set(raw) - {"time"}
+        if keys != set(plan.from_model):
+            raise ModelContractError(
+                f"model {self.name!r}: _compute returned {sorted(keys)}, expected exactly {sorted(plan.from_model)}")
+        histories = [name for name in plan.from_model if OUTPUTS[name].kind == HISTORY]
+        n_time = None
+        if histories:
+            if "time" not in raw:
+                raise ModelContractError(f"model {self.name!r}: histories returned without 'time'")
+            time = np.asarray(raw["time"])
+            if time.ndim != 1 or (time.size > 1 and np.any(np.diff(time) <= 0)):
+                raise ModelContractError(f"model {self.name!r}: 'time' must be 1-D and increasing")
+            n_time = time.size
+        for name in plan.from_model:
+            value = np.asarray(raw[name])
+            shape = (n_cases, n_time) if OUTPUTS[name].kind == HISTORY else (n_cases,)
+            if value.shape != shape:
+                raise ModelContractError(
+                    f"model {self.name!r}: output {name!r} has shape {value.shape}, expected {shape}")
+
+    def _wrap(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> xr.Dataset:
+        data_vars = {}
+        coords = {}
+        if "time" in raw:
+            coords[TIME_DIM] = (TIME_DIM, np.asarray(raw["time"], dtype=float),
+                                {"units": "s", "long_name": "time since first contact"})
+        for name in plan.requested:
+            spec = OUTPUTS[name]
+            attributes = {"units": spec.units, "long_name": spec.long_name}
+            if name in raw:
+                values = np.asarray(raw[name], dtype=float) * spec.factor
+            else:
+                shape = (n_cases, len(coords[TIME_DIM][1])) if spec.kind == HISTORY and TIME_DIM in coords \
+                    else (n_cases,)
+                values = np.full(shape, np.nan)
+                attributes["missing_reason"] = plan.missing[name]
+            dims = (CASE_DIM, TIME_DIM) if values.ndim == 2 else (CASE_DIM,)
+            data_vars[name] = (dims, values, attributes)
+        return xr.Dataset(data_vars, coords=coords, attrs={
+            "model": self.name,
+            "model_label": self.label,
+            "model_options": json.dumps(self.options_dict(), sort_keys=True),
+            "model_references": "; ".join(self.references),
+            "impactlab_version": __version__,
+        })
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    if isinstance(value, (str, int, float, bool)) or value is None:
+        return value
+    return str(value)
+
+
+def _as_input_arrays(inputs: Any) -> dict[str, np.ndarray]:
+    from .scene import Scene
+
+    if isinstance(inputs, Scene):
+        inputs = [inputs]
+    if not isinstance(inputs, Mapping):
+        scenes = list(inputs)
+        if not scenes or not all(isinstance(scene, Scene) for scene in scenes):
+            raise TypeError("inputs must be a mapping of input arrays, a Scene or a sequence of Scenes")
+        per_scene = [scene.inputs() for scene in scenes]
+        common = set.intersection(*(set(values) for values in per_scene))
+        inputs = {name: np.array([values[name] for values in per_scene], dtype=float) for name in common}
+    arrays = {}
+    for name, value in inputs.items():
+        if name not in INPUTS:
+            raise FieldError(str(name), "an input name", name, choices=INPUTS)
+        array = np.atleast_1d(np.asarray(value, dtype=float))
+        if array.ndim != 1:
+            raise ModelInputError(f"input {name!r} must be a scalar or 1-D array, got shape {array.shape}")
+        arrays[name] = array
+    return arrays

@@ -1,0 +1,83 @@
+"""Plan the work before running it: which outputs a model computes, which the framework derives, which are missing.
+
+A model declares the outputs it *provides*. Most result variables follow
+from the two impulses by rigid-body bookkeeping
+(:func:`impactlab.physics.mechanics.after_impact`), so the framework derives
+them for any model that provides ``normal_impulse`` and
+``tangential_impulse``. The plan is computed from declarations alone, so it
+can be shown (and stored) before anything runs.
+"""
+
+from __future__ import annotations
+
+import attrs
+
+from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL
+from .vocabulary import INPUTS, OUTPUTS
+
+IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
+#: outputs the framework derives from the impulses
+DERIVED_FROM_IMPULSES = frozenset({
+    "launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate", "normal_velocity",
+    "tangential_velocity", "tangential_restitution", "energy_loss",
+})
+
+
+@attrs.frozen
+class OutputPlan:
+    """What one model run will compute.
+
+    Attributes
+    ----------
+    model : str
+    requested : tuple of str
+        The outputs asked for, in order.
+    from_model : frozenset of str
+        Outputs the model's hook is asked for.
+    derived : frozenset of str
+        Outputs the framework derives from the impulses.
+    missing : dict
+        Output -> reason, for outputs that will be NaN.
+    inputs : frozenset of str
+        Inputs the run needs (hook's declared inputs plus those of the derivation).
+    """
+
+    model: str
+    requested: tuple[str, ...]
+    from_model: frozenset[str]
+    derived: frozenset[str]
+    missing: dict[str, str]
+    inputs: frozenset[str]
+
+    def describe(self) -> str:
+        """One paragraph in words."""
+        parts = [f"{self.model}: computes {', '.join(sorted(self.from_model)) or 'nothing'}"]
+        if self.derived:
+            parts.append(f"derives {', '.join(sorted(self.derived))} from the impulses")
+        for name, reason in self.missing.items():
+            parts.append(f"leaves {name} NaN ({reason})")
+        return "; ".join(parts)
+
+
+def plan_outputs(model_cls, requested) -> OutputPlan:
+    """Plan the outputs ``requested`` from a model class (set logic on declarations only)."""
+    requested = tuple(dict.fromkeys(requested))
+    provides = frozenset(model_cls.provides)
+    from_model, derived, missing = set(), set(), {}
+    for name in requested:
+        if name in provides:
+            from_model.add(name)
+        elif name in DERIVED_FROM_IMPULSES and IMPULSES <= provides:
+            derived.add(name)
+            from_model |= IMPULSES
+        else:
+            missing[name] = model_cls.why_not_provided(name)
+    inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))
+    if derived:
+        inputs |= set(AFTER_IMPACT_INPUTS) | set(AFTER_IMPACT_OPTIONAL)
+    return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
+                      frozenset(inputs))
+
+
+def unknown_outputs(names) -> list[str]:
+    return [name for name in names if name not in OUTPUTS]

@@ -1,0 +1,98 @@
+"""Quantities written by users, turned into SI floats.
+
+A quantity in a study is either a plain number, read in the field's *plain
+unit* (SI, except angles in degrees and spin in rpm, as the study format
+promises), or a string with a unit that pint understands (``"80 mph"``,
+``"21.335 mm"``, ``"136 MPa"``). Inside impactlab everything is SI with angles
+in radians and spin in rad/s.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from numbers import Real
+
+from .errors import FieldError
+
+#: Physical dimension name -> (SI unit as pint understands it, plain unit of
+#: bare numbers, words for messages).
+DIMENSIONS: dict[str, tuple[str, str, str]] = {
+    "length": ("m", "m", "a length"),
+    "mass": ("kg", "kg", "a mass"),
+    "pressure": ("Pa", "Pa", "a modulus (pressure)"),
+    "speed": ("m/s", "m/s", "a speed"),
+    "angle": ("rad", "deg", "an angle"),
+    "angular_speed": ("rad/s", "rpm", "a spin rate"),
+    "time": ("s", "s", "a time"),
+    "dimensionless": ("dimensionless", "dimensionless", "a number"),
+}
+
+
+@functools.cache
+def registry():
+    """The shared pint unit registry (created on first use: pint is slow to load)."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    return ureg
+
+
+def to_si(value: object, dimension: str, path: str = "") -> float:
+    """Convert a user quantity to an SI float.
+
+    Parameters
+    ----------
+    value : float or str
+        A bare number (read in the plain unit of ``dimension``) or a string
+        such as ``"80 mph"``.
+    dimension : str
+        A key of :data:`DIMENSIONS`.
+    path : str
+        Field path for error messages.
+
+    Raises
+    ------
+    FieldError
+        When the value is not a number or quantity of that dimension.
+    """
+    si_unit, plain_unit, words = DIMENSIONS[dimension]
+    expected = f"{words} (a number in {plain_unit} or a string with a unit)" if dimension != "dimensionless" \
+        else "a number"
+    if isinstance(value, bool) or value is None:
+        raise FieldError(path, expected, value)
+    if isinstance(value, Real):
+        magnitude, unit = float(value), plain_unit
+    elif isinstance(value, str):
+        ureg = registry()
+        try:
+            quantity = ureg.Quantity(value.strip())
+        except Exception:
+            raise FieldError(path, expected, value) from None
+        if not isinstance(quantity, ureg.Quantity):  # a bare number written as a string
+            magnitude, unit = float(quantity), plain_unit
+        else:
+            try:
+                return float(quantity.to(si_unit).magnitude)
+            except Exception:
+                raise FieldError(path, f"{expected}; units of {quantity.units:~} do not convert to {si_unit}",
+                                 value) from None
+    else:
+        raise FieldError(path, expected, value)
+    if unit == si_unit:
+        return magnitude
+    return float(registry().Quantity(magnitude, unit).to(si_unit).magnitude)
+
+
+def format_quantity(si_value: float, dimension: str) -> str:
+    """Human text of an SI value in the plain unit of its dimension."""
+    si_unit, plain_unit, _ = DIMENSIONS[dimension]
+    if math.isinf(si_value):
+        return "inf"
+    value = si_value if plain_unit == si_unit else float(registry().Quantity(si_value, si_unit).to(plain_unit).magnitude)
+    return f"{value:g} {plain_unit}" if plain_unit != "dimensionless" else f"{value:g}"
+
+
+#: Conversion factors from SI to the units results are stored in.
+RAD_TO_DEG = 180.0 / math.pi
+RADS_TO_RPM = 60.0 / (2.0 * math.pi)

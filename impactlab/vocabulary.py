@@ -1,0 +1,152 @@
+"""One vocabulary for what models take and what they give.
+
+Inputs are per-scene SI values handed to models. Outputs are what results
+hold: each name has one unit, one long name and one shape everywhere in
+impactlab (model hooks, datasets, HDF5 files, plots, docs).
+
+Sign conventions (face frame, see docs/conventions.md): ``x`` lies in the
+face along the incoming slip of the contact point, ``z`` is the face normal
+pointing away from the face. Backspin (the spin friction gives a ball sliding
+up a lofted face) is positive.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import attrs
+
+from .units import RAD_TO_DEG, RADS_TO_RPM
+
+SCALAR = "scalar"
+HISTORY = "history"
+
+
+@attrs.frozen
+class InputSpec:
+    """A model input: its study path, SI unit, physical dimension and description."""
+
+    path: str
+    unit: str
+    dimension: str
+    description: str
+    getter: Callable[[Any], float | None] = attrs.field(repr=False)
+    #: unit and factor of a sweep coordinate in a dataset (angles in deg, spin in rpm)
+    display_unit: str = ""
+    display_factor: float = 1.0
+    #: allowed SI range, for inputs handed over as arrays rather than built from validated objects
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    high_open: bool = False
+
+    def out_of_range(self, values):
+        """Boolean mask of the values outside the allowed range (NaN counts as outside)."""
+        above = values > self.low if self.low_open else values >= self.low
+        below = values < self.high if self.high_open else values <= self.high
+        return ~(above & below)
+
+    def range_text(self) -> str:
+        left = "(" if self.low_open else "["
+        right = ")" if self.high_open else "]"
+        return f"a value in {left}{self.low:g}, {self.high:g}{right} {self.unit}"
+
+
+def _material_value(part: str, attribute: str):
+    def getter(scene):
+        holder = getattr(scene, part)
+        if part == "face" and holder.rigid:
+            # A rigid face has no compliance term: 1/E* loses its (1 - nu^2)/E part whatever nu is.
+            return math.inf if attribute == "youngs_modulus" else 0.0
+        material = holder.material
+        return None if material is None else getattr(material, attribute)
+
+    return getter
+
+
+def _attr(part: str, attribute: str):
+    return lambda scene: getattr(getattr(scene, part), attribute)
+
+
+INPUTS: dict[str, InputSpec] = {
+    "ball_radius": InputSpec("ball.radius", "m", "length", "ball radius R", _attr("ball", "radius"), low=0.0,
+                             low_open=True, high_open=True),
+    "ball_mass": InputSpec("ball.mass", "kg", "mass", "ball mass m", _attr("ball", "mass"), low=0.0, low_open=True,
+                           high_open=True),
+    "ball_inertia_factor": InputSpec("ball.inertia_factor", "1", "dimensionless",
+                                     "ball inertia factor K^2 = I/(m R^2)", _attr("ball", "inertia_factor"), low=0.0,
+                                     high=2.0 / 3.0, low_open=True),
+    "ball_youngs_modulus": InputSpec("ball.youngs_modulus", "Pa", "pressure", "ball Young's modulus",
+                                     _material_value("ball", "youngs_modulus"), low=0.0, low_open=True,
+                                     high_open=True),
+    "ball_poisson_ratio": InputSpec("ball.poisson_ratio", "1", "dimensionless", "ball Poisson's ratio",
+                                    _material_value("ball", "poisson_ratio"), low=-1.0, high=0.5, low_open=True),
+    "face_youngs_modulus": InputSpec("face.youngs_modulus", "Pa", "pressure",
+                                     "face Young's modulus (inf for a rigid face)",
+                                     _material_value("face", "youngs_modulus"), low=0.0, low_open=True),
+    "face_poisson_ratio": InputSpec("face.poisson_ratio", "1", "dimensionless",
+                                    "face Poisson's ratio (0 for a rigid face, where it has no effect)",
+                                    _material_value("face", "poisson_ratio"), low=-1.0, high=0.5, low_open=True),
+    "club_mass": InputSpec("face.mass", "kg", "mass", "club-head mass M (inf: fixed face)", _attr("face", "mass"),
+                           low=0.0, low_open=True),
+    "friction": InputSpec("contact.friction", "1", "dimensionless", "Coulomb friction coefficient mu",
+                          _attr("contact", "friction"), low=0.0, high_open=True),
+    "restitution": InputSpec("contact.restitution", "1", "dimensionless", "normal coefficient of restitution e",
+                             _attr("contact", "restitution"), low=0.0, high=1.0),
+    "speed": InputSpec("impact.speed", "m/s", "speed", "impact speed V along the path", _attr("impact", "speed"),
+                       low=0.0, low_open=True, high_open=True),
+    "angle": InputSpec("impact.angle", "rad", "angle", "face normal relative to path alpha",
+                       _attr("impact", "angle"), "deg", RAD_TO_DEG, low=-math.pi / 2, high=math.pi / 2,
+                       low_open=True, high_open=True),
+    "spin": InputSpec("impact.spin", "rad/s", "angular_speed", "incoming spin (backspin positive)",
+                      _attr("impact", "spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
+}
+
+#: study path -> input name
+INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items()}
+
+
+@attrs.frozen
+class OutputSpec:
+    """A result variable.
+
+    ``factor`` converts the SI value a model hook returns into ``units``.
+    """
+
+    units: str
+    long_name: str
+    kind: str = SCALAR
+    factor: float = 1.0
+
+
+OUTPUTS: dict[str, OutputSpec] = {
+    "launch_angle": OutputSpec("deg", "launch angle relative to path (theta)", factor=RAD_TO_DEG),
+    "launch_ratio": OutputSpec("1", "launch ratio theta/alpha"),
+    "rebound_angle": OutputSpec("deg", "rebound angle from the face normal, face frame (specular = alpha)",
+                                factor=RAD_TO_DEG),
+    "ball_speed": OutputSpec("m/s", "ball speed after impact, ground frame"),
+    "spin_rate": OutputSpec("rpm", "ball spin after impact (backspin positive)", factor=RADS_TO_RPM),
+    "normal_velocity": OutputSpec("m/s", "ball-centre velocity after impact along the face normal, face frame"),
+    "tangential_velocity": OutputSpec("m/s",
+                                      "ball-centre velocity after impact along the incoming slip, face frame"),
+    "tangential_restitution": OutputSpec("1", "contact-point tangential restitution beta = -Vx'/Vx"),
+    "normal_impulse": OutputSpec("N s", "normal impulse on the ball"),
+    "tangential_impulse": OutputSpec("N s", "tangential impulse on the ball, positive opposing the incoming slip"),
+    "contact_time": OutputSpec("s", "contact duration"),
+    "energy_loss": OutputSpec("J", "kinetic energy lost in the impact (ball and club)"),
+    "normal_force": OutputSpec("N", "normal contact force", kind=HISTORY),
+    "tangential_force": OutputSpec("N", "tangential contact force, positive opposing the incoming slip",
+                                   kind=HISTORY),
+}
+
+SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
+HISTORY_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == HISTORY)
+#: the default outputs of a study that names none
+DEFAULT_OUTPUTS = ("launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate",
+                   "tangential_restitution", "normal_impulse", "tangential_impulse", "contact_time", "energy_loss")
+
+TIME_DIM = "time"
+CASE_DIM = "case"
+MODEL_DIM = "model"
