@@ -1,0 +1,97 @@
+"""Assemble per-model results (dimension ``case``) into one study dataset (sweep dimensions and ``model``)."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import platform
+
+import numpy as np
+import xarray as xr
+
+from ._version import __version__
+from .vocabulary import CASE_DIM, HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
+
+
+def _unfold_cases(dataset: xr.Dataset, study) -> xr.Dataset:
+    """Replace the flat ``case`` dimension by the sweep dimensions."""
+    dataset = dataset.drop_attrs(deep=False)
+    if not study.sweep:
+        return dataset.isel({CASE_DIM: 0}, drop=True)
+    index = [axis.dim for axis in study.sweep]
+    unfolded = {}
+    for name, variable in dataset.data_vars.items():
+        extra = [dim for dim in variable.dims if dim != CASE_DIM]
+        values = variable.values.reshape(study.shape + tuple(variable.sizes[dim] for dim in extra))
+        unfolded[name] = (index + extra, values, variable.attrs)
+    return xr.Dataset(unfolded, coords={name: coord for name, coord in dataset.coords.items()})
+
+
+def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
+    """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance."""
+    per_model = [_unfold_cases(result, study) for result in results]
+    times = [ds[TIME_DIM] for ds in per_model if TIME_DIM in ds.coords]
+    if times:
+        reference = times[0]
+        for index, ds in enumerate(per_model):
+            for name in ds.data_vars:
+                if OUTPUTS[name].kind == HISTORY and TIME_DIM not in ds[name].dims:
+                    # a model without histories: NaN over the time axis of those that have them
+                    ds = ds.assign({name: ds[name].expand_dims({TIME_DIM: reference.values}, axis=-1).copy()})
+            per_model[index] = ds
+    missing = {name: [] for name in study.outputs}
+    for entry, result in zip(study.models, results):
+        for name in study.outputs:
+            reason = result[name].attrs.get("missing_reason")
+            if reason:
+                missing[name].append(f"{entry.id}: {reason}")
+    for ds in per_model:
+        for name in ds.data_vars:
+            ds[name].attrs = {}
+    combined = xr.concat(per_model, dim=MODEL_DIM, join="outer", coords="minimal", compat="override",
+                         combine_attrs="drop")
+    combined = combined.assign_coords({MODEL_DIM: [entry.id for entry in study.models]})
+    combined[MODEL_DIM].attrs = {"long_name": "model",
+                                 "model_names": json.dumps([entry.name for entry in study.models])}
+    for axis in study.sweep:
+        spec = INPUTS[axis.input]
+        unit = spec.display_unit or spec.unit
+        combined = combined.assign_coords({axis.dim: np.asarray(axis.values) * spec.display_factor})
+        combined[axis.dim].attrs = {"units": unit, "long_name": spec.description, "study_path": axis.path}
+    if TIME_DIM in combined.coords:
+        combined[TIME_DIM].attrs = {"units": "s", "long_name": "time since first contact"}
+    order = [MODEL_DIM] + [axis.dim for axis in study.sweep]
+    combined = combined.transpose(*order, ...)
+    for name in study.outputs:
+        spec = OUTPUTS[name]
+        attrs = {"units": spec.units, "long_name": spec.long_name}
+        if missing[name]:
+            attrs["missing"] = "; ".join(missing[name])
+        combined[name].attrs = attrs
+    combined = combined[list(study.outputs)]
+    combined.attrs = provenance(study, plan)
+    return combined
+
+
+def provenance(study, plan) -> dict[str, str | int]:
+    """What made this result: the study, its models with resolved options, versions, the plan."""
+    models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
+               "references": list(entry.model.references)} for entry in study.models]
+    scene = {name: (value if np.isfinite(value) else str(value)) for name, value in study.scene.inputs().items()}
+    return {
+        "title": f"impactlab study {study.name}",
+        "study_name": study.name,
+        "study_description": study.description,
+        "study_file": study.file or "",
+        "study_source": study.source,
+        "base_scene_si": json.dumps(scene, sort_keys=True),
+        "models": json.dumps(models),
+        "plan": plan.describe(),
+        "impactlab_version": __version__,
+        "python_version": platform.python_version(),
+        "numpy_version": np.__version__,
+        "xarray_version": xr.__version__,
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
+                       "z away from face; backspin positive",
+    }

@@ -1,0 +1,144 @@
+"""The ``impactlab`` command line: run studies, list models, show and plot result files.
+
+Bad input ends with one message on stderr (what, where, expected, given,
+choices) and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+EXIT_BAD_INPUT = 2
+EXIT_INTERRUPTED = 130
+
+
+def _cmd_run(args) -> int:
+    from .results_io import write_results
+    from .runner import plan_study, run_study
+    from .study import load_study
+
+    study = load_study(args.study)
+    output = Path(args.output) if args.output else Path(f"{study.name}.h5")
+    if args.plan:
+        print(plan_study(study).describe())
+        return 0
+    say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
+    dataset = run_study(study, progress=say)
+    write_results(dataset, output)
+    say(f"wrote {output}")
+    if args.plot:
+        from .plotting import plot_results
+
+        plot_results(dataset, args.plot)
+        say(f"wrote {args.plot}")
+    return 0
+
+
+def _cmd_models(args) -> int:
+    from .registry import available
+
+    descriptions = [model.describe() for model in available().values()]
+    if args.json:
+        print(json.dumps(descriptions, indent=2))
+        return 0
+    for info in descriptions:
+        print(f"{info['name']}: {info['label']}")
+        print(f"  requires: {', '.join(info['requires'])}")
+        if info["optional_inputs"]:
+            print(f"  optional: {', '.join(info['optional_inputs'])}")
+        print(f"  provides: {', '.join(info['provides'])} (+ launch, spin, velocities, beta, energy derived "
+              "from the impulses)" if "normal_impulse" in info["provides"] else "")
+        if info["options"]:
+            print("  options:  " + ", ".join(f"{key}={value!r}" for key, value in info["options"].items()))
+    return 0
+
+
+def _cmd_show(args) -> int:
+    from .results_io import open_results
+
+    dataset = open_results(args.file)
+    print(f"{args.file}: study {dataset.attrs.get('study_name', '?')!r}, "
+          f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
+    for dim, size in dataset.sizes.items():
+        coord = dataset[dim]
+        if dim == "model":
+            print(f"  {dim:<10} {size:>5}  {', '.join(map(str, coord.values))}")
+        else:
+            print(f"  {dim:<10} {size:>5}  {float(coord.min()):g} .. {float(coord.max()):g} "
+                  f"{coord.attrs.get('units', '')}")
+    print("variables:")
+    for name, variable in dataset.data_vars.items():
+        missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
+        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(variable.dims)}){missing}")
+    print("models:")
+    for model in json.loads(dataset.attrs.get("models", "[]")):
+        print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")
+    return 0
+
+
+def _cmd_plot(args) -> int:
+    from .plotting import plot_histories, plot_results
+    from .results_io import open_results
+
+    dataset = open_results(args.file)
+    output = Path(args.output or Path(args.file).with_suffix(".png"))
+    if args.history:
+        plot_histories(dataset, output, args.history)
+    else:
+        plot_results(dataset, output, outputs=args.variables or None, x=args.x)
+    print(f"wrote {output}", file=sys.stderr)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from ._version import __version__
+
+    parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
+    parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    run = commands.add_parser("run", help="run a study file and write its results (HDF5)")
+    run.add_argument("study", help="study YAML file")
+    run.add_argument("-o", "--output", help="result file (.h5); default: STUDY_NAME.h5")
+    run.add_argument("--plot", metavar="PNG", help="also draw the scalar outputs to this PNG")
+    run.add_argument("--plan", action="store_true", help="print what would run, and why, then stop")
+    run.add_argument("-q", "--quiet", action="store_true")
+    run.set_defaults(handler=_cmd_run)
+
+    models = commands.add_parser("models", help="list the registered models, what they need and provide")
+    models.add_argument("--json", action="store_true")
+    models.set_defaults(handler=_cmd_models)
+
+    show = commands.add_parser("show", help="describe a result file")
+    show.add_argument("file")
+    show.set_defaults(handler=_cmd_show)
+
+    plot = commands.add_parser("plot", help="draw a result file as PNG")
+    plot.add_argument("file")
+    plot.add_argument("-o", "--output", help="PNG file (default: next to the result file)")
+    plot.add_argument("--x", help="sweep dimension for the horizontal axis")
+    plot.add_argument("--history", metavar="OUTPUT", help="draw this history (e.g. tangential_force) against time")
+    plot.add_argument("variables", nargs="*", help="scalar outputs to draw (default: all)")
+    plot.set_defaults(handler=_cmd_plot)
+    return parser
+
+
+def main(argv=None) -> int:
+    from .errors import ImpactLabError
+
+    args = build_parser().parse_args(argv)
+    try:
+        return args.handler(args)
+    except ImpactLabError as exc:
+        print(f"impactlab: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("impactlab: interrupted; no result file was written or changed", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+if __name__ == "__main__":
+    sys.exit(main())

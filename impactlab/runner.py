@@ -1,0 +1,74 @@
+"""Run a study: check every model can run, build the case inputs, call the models, assemble one dataset.
+
+Planning (what runs, what is derived, what is missing and why) happens
+before any model runs, so a study that cannot run fails at once and says why.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import attrs
+import numpy as np
+import xarray as xr
+
+from .assemble import assemble
+from .errors import ModelInputError
+from .planning import OutputPlan
+from .study import Study, load_study
+from .vocabulary import INPUTS
+
+
+@attrs.frozen
+class StudyPlan:
+    """The work a study will do: one output plan per model entry, and the case count."""
+
+    study: str
+    n_cases: int
+    models: tuple[tuple[str, OutputPlan], ...]
+
+    def describe(self) -> str:
+        lines = [f"study {self.study!r}: {self.n_cases} case(s) x {len(self.models)} model(s)"]
+        lines += [f"  [{entry_id}] {plan.describe()}" for entry_id, plan in self.models]
+        return "\n".join(lines)
+
+
+def plan_study(study: Study) -> StudyPlan:
+    """Plan every model of the study; refuse a model that lacks a required input, naming model and input."""
+    given = set(study.scene.inputs())
+    plans = []
+    for entry in study.models:
+        plan = entry.model.plan(study.outputs)
+        absent = sorted(set(entry.model.requires) - given)
+        if absent:
+            fields = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
+            raise ModelInputError(f"{study.file or study.name}: model {entry.id!r} needs {fields}, which the study "
+                                  f"does not give; add it or remove the model")
+        plans.append((entry.id, plan))
+    return StudyPlan(study.name, study.n_cases, tuple(plans))
+
+
+def case_inputs(study: Study) -> dict[str, np.ndarray]:
+    """Input arrays over the Cartesian product of the sweep, flattened in C order (first axis slowest)."""
+    base = study.scene.inputs()
+    shape = study.shape
+    grids = np.meshgrid(*[np.asarray(axis.values) for axis in study.sweep], indexing="ij") if study.sweep else []
+    inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
+    for axis, grid in zip(study.sweep, grids):
+        inputs[axis.input] = grid.reshape(-1).astype(float)
+    assert all(array.shape == (int(np.prod(shape, dtype=np.int64)) if shape else 1,) for array in inputs.values())
+    return inputs
+
+
+def run_study(source, *, progress: Callable[[str], None] | None = None) -> xr.Dataset:
+    """Run a study (path, YAML text, mapping or Study) and return its results as one dataset."""
+    study = load_study(source)
+    plan = plan_study(study)
+    inputs = case_inputs(study)
+    results = []
+    for entry in study.models:
+        if progress:
+            progress(f"running {entry.id} on {study.n_cases} case(s)")
+        wanted = {name: inputs[name] for name in inputs}
+        results.append(entry.model.compute(wanted, study.outputs))
+    return assemble(study, plan, results)

@@ -1,0 +1,405 @@
+"""Study definitions: YAML (or a mapping) read into validated, frozen objects.
+
+A study names a base scene (ball, face, contact, impact), sweeps over some of
+its fields, the models to compare with their options, and the outputs wanted.
+Every error names the file, the line and the path of the offending field,
+what was expected, what was given and, where there are choices, the choices.
+
+See docs/user-guide.md for the format.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import attrs
+import numpy as np
+import yaml
+
+from .errors import FieldError, StudyError
+from .materials import Ball, Face, Material, ball_preset, face_preset
+from .model import ImpactModel
+from .registry import available, get_model
+from .scene import Contact, Impact, Scene
+from .units import to_si
+from .vocabulary import DEFAULT_OUTPUTS, INPUT_BY_PATH, INPUTS, OUTPUTS, MODEL_DIM
+from .yaml_lines import line_of, load_yaml, parse_path
+
+TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "sweep", "models", "outputs")
+BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio")
+FACE_KEYS = ("preset", "rigid", "youngs_modulus", "poisson_ratio", "mass")
+CONTACT_KEYS = ("friction", "restitution")
+IMPACT_KEYS = ("speed", "angle", "spin")
+SWEEP_RANGE_KEYS = ("start", "stop", "num")
+
+
+@attrs.frozen
+class SweepAxis:
+    """One swept field: its study path, the model input it sets, the dataset dimension and the SI values."""
+
+    path: str
+    input: str
+    dim: str
+    values: tuple[float, ...]
+
+
+@attrs.frozen
+class ModelEntry:
+    """A model to run in a study: its coordinate in the results, and the configured model."""
+
+    id: str
+    model: ImpactModel = attrs.field(eq=False)
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+
+@attrs.frozen
+class Study:
+    """A validated study.
+
+    Attributes
+    ----------
+    name, description : str
+    scene : Scene
+        The base scene; sweeps replace some of its values.
+    sweep : tuple of SweepAxis
+        In the order given; the results' dimensions follow it.
+    models : tuple of ModelEntry
+    outputs : tuple of str
+    source : str
+        The study text (YAML), kept as provenance.
+    file : str or None
+    """
+
+    name: str
+    description: str
+    scene: Scene
+    sweep: tuple[SweepAxis, ...]
+    models: tuple[ModelEntry, ...]
+    outputs: tuple[str, ...]
+    source: str = attrs.field(repr=False)
+    file: str | None = None
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(axis.values) for axis in self.sweep)
+
+    @property
+    def n_cases(self) -> int:
+        return int(np.prod(self.shape, dtype=np.int64)) if self.sweep else 1
+
+
+class _SI(float):
+    """A value already converted to SI (sweeps substitute these into the document)."""
+
+
+def load_study(source: Any, *, file: str | None = None) -> Study:
+    """Read a study from a path, YAML text or a mapping.
+
+    Parameters
+    ----------
+    source : str, os.PathLike or Mapping
+        A path to a YAML file (``str`` ending in .yaml/.yml or a PathLike),
+        YAML text, or the mapping itself.
+    file : str, optional
+        Name used in error messages when ``source`` is text or a mapping.
+
+    Raises
+    ------
+    FieldError, StudyError
+        With file, line and field path.
+    """
+    if isinstance(source, Study):
+        return source
+    lines: dict = {}
+    if isinstance(source, Mapping):
+        document = copy.deepcopy(dict(source))
+        text = yaml.safe_dump(_plain(document), sort_keys=False)
+        file = file or "<mapping>"
+    else:
+        if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
+                                                and source.strip().endswith((".yaml", ".yml"))):
+            path = Path(source)
+            if not path.is_file():
+                raise StudyError(f"{path}: no such study file")
+            text = path.read_text(encoding="utf-8")
+            file = file or str(path)
+        elif isinstance(source, str):
+            text = source
+            file = file or "<text>"
+        else:
+            raise StudyError(f"a study is a path, YAML text or a mapping, got {type(source).__name__}")
+        document, lines = load_yaml(text, file)
+    try:
+        return _build_study(document, text, file)
+    except FieldError as exc:
+        path = _document_path(exc.path)
+        written = _lookup(document, path)
+        if isinstance(written, (str, int, float)) and not isinstance(written, bool) and written != exc.given:
+            # show what the user wrote, not the SI number it became
+            exc = FieldError(exc.path, exc.expected, written, exc.choices)
+        raise exc.at(file=file, line=line_of(lines, path)) from None
+
+
+def _document_path(text: str) -> tuple:
+    """Field path of an error -> path in the document ('sweep.impact.angle[2]' keeps 'impact.angle' whole)."""
+    path = parse_path(text)
+    if len(path) >= 3 and path[0] == "sweep" and isinstance(path[1], str) and isinstance(path[2], str):
+        path = ("sweep", f"{path[1]}.{path[2]}") + path[3:]
+    return path
+
+
+def _lookup(document, path: tuple):
+    node = document
+    for part in path:
+        try:
+            node = node[part]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return node
+
+
+def _plain(value):
+    if isinstance(value, Mapping):
+        return {str(key): _plain(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(item) for item in value]
+    if isinstance(value, (np.floating, np.integer)):
+        return value.item()
+    return value
+
+
+def _require_mapping(value, path: str, keys: tuple[str, ...], what: str) -> dict:
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        raise FieldError(path, f"a mapping ({what}) with keys from: {', '.join(keys)}", value)
+    for key in value:
+        if key not in keys:
+            raise FieldError(f"{path}.{key}" if path else str(key), f"a key of {path or 'the study'}", str(key),
+                             choices=keys)
+    return dict(value)
+
+
+def _quantity(block: dict, key: str, dimension: str, path: str):
+    value = block.get(key)
+    if value is None:
+        return None
+    if isinstance(value, _SI):
+        return float(value)
+    return to_si(value, dimension, f"{path}.{key}")
+
+
+def _construct(cls, path: str, **kwargs):
+    try:
+        return cls(**kwargs)
+    except FieldError as exc:
+        raise exc.at(prefix=path) from None
+
+
+def _material(block: dict, path: str, base: Material | None) -> Material | None:
+    modulus = _quantity(block, "youngs_modulus", "pressure", path)
+    ratio = _quantity(block, "poisson_ratio", "dimensionless", path)
+    if modulus is None and ratio is None:
+        return base
+    if base is not None:
+        modulus = base.youngs_modulus if modulus is None else modulus
+        ratio = base.poisson_ratio if ratio is None else ratio
+    if modulus is None:
+        raise FieldError(f"{path}.youngs_modulus", "a Young's modulus together with poisson_ratio", "nothing")
+    if ratio is None:
+        raise FieldError(f"{path}.poisson_ratio", "a Poisson ratio together with youngs_modulus", "nothing")
+    material = _construct(Material, path, youngs_modulus=modulus, poisson_ratio=ratio)
+    return attrs.evolve(material, name=base.name if base else "", source=base.source if base else "")
+
+
+def build_ball(value, path: str = "ball") -> Ball:
+    block = _require_mapping(value, path, BALL_KEYS, "the ball")
+    base = None
+    if "preset" in block:
+        try:
+            base = ball_preset(block["preset"])
+        except FieldError as exc:
+            raise exc.at(prefix=path) from None
+    fields = {}
+    for key in ("radius", "mass"):
+        fields[key] = _quantity(block, key, "length" if key == "radius" else "mass", path)
+        if fields[key] is None:
+            if base is None:
+                raise FieldError(f"{path}.{key}", f"the ball {key} (or a preset)", "nothing")
+            fields[key] = getattr(base, key)
+    inertia = _quantity(block, "inertia_factor", "dimensionless", path)
+    fields["inertia_factor"] = inertia if inertia is not None else (base.inertia_factor if base else 0.4)
+    material = _material(block, path, base.material if base else None)
+    return _construct(Ball, path, material=material, name=base.name if base else "",
+                      source=base.source if base else "", **fields)
+
+
+def build_face(value, path: str = "face") -> Face:
+    block = _require_mapping(value, path, FACE_KEYS, "the face")
+    base = Face()
+    if "preset" in block:
+        try:
+            base = face_preset(block["preset"])
+        except FieldError as exc:
+            raise exc.at(prefix=path) from None
+    rigid = block.get("rigid", base.rigid)
+    if not isinstance(rigid, bool):
+        raise FieldError(f"{path}.rigid", "true or false", rigid)
+    material = _material(block, path, None if rigid else base.material)
+    if rigid and material is not None:
+        raise FieldError(f"{path}.rigid", "either rigid: true or youngs_modulus + poisson_ratio, not both",
+                         "both")
+    mass = _quantity(block, "mass", "mass", path)
+    return _construct(Face, path, material=material, rigid=rigid, mass=base.mass if mass is None else mass,
+                      name=base.name, source=base.source)
+
+
+def build_contact(value, path: str = "contact") -> Contact:
+    block = _require_mapping(value, path, CONTACT_KEYS, "the contact")
+    return _construct(Contact, path, friction=_quantity(block, "friction", "dimensionless", path),
+                      restitution=_quantity(block, "restitution", "dimensionless", path))
+
+
+def build_impact(value, path: str = "impact") -> Impact:
+    block = _require_mapping(value, path, IMPACT_KEYS, "the impact conditions")
+    fields = {}
+    for key, dimension in (("speed", "speed"), ("angle", "angle")):
+        fields[key] = _quantity(block, key, dimension, path)
+        if fields[key] is None:
+            raise FieldError(f"{path}.{key}", f"the impact {key}", "nothing")
+    spin = _quantity(block, "spin", "angular_speed", path)
+    return _construct(Impact, path, spin=0.0 if spin is None else spin, **fields)
+
+
+def build_scene(document: Mapping) -> Scene:
+    """The scene a study document describes (without its sweep)."""
+    if "ball" not in document:
+        raise FieldError("ball", "a ball: {preset: NAME} or radius, mass, ...", "nothing")
+    if "impact" not in document:
+        raise FieldError("impact", "impact conditions: speed and angle", "nothing")
+    return Scene(build_ball(document["ball"]), build_face(document.get("face")),
+                 build_contact(document.get("contact")), build_impact(document["impact"]))
+
+
+def _sweep_values(path: str, spec, dimension: str) -> list[float]:
+    where = f"sweep.{path}"
+    if isinstance(spec, Mapping):
+        for key in spec:
+            if key not in SWEEP_RANGE_KEYS:
+                raise FieldError(f"{where}.{key}", "a key of a sweep range", str(key), choices=SWEEP_RANGE_KEYS)
+        missing = [key for key in SWEEP_RANGE_KEYS if key not in spec]
+        if missing:
+            raise FieldError(f"{where}.{missing[0]}", "start, stop and num of the range", "nothing")
+        num = spec["num"]
+        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+            raise FieldError(f"{where}.num", "a whole number of values >= 1", num)
+        start = to_si(spec["start"], dimension, f"{where}.start")
+        stop = to_si(spec["stop"], dimension, f"{where}.stop")
+        return list(np.linspace(start, stop, num))
+    if isinstance(spec, (list, tuple)):
+        if not spec:
+            raise FieldError(where, "a non-empty list of values", spec)
+        return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
+    raise FieldError(where, "a list of values or {start, stop, num}", spec)
+
+
+def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
+    sweep = document.get("sweep") or {}
+    if not isinstance(sweep, Mapping):
+        raise FieldError("sweep", "a mapping from dotted field paths to values", sweep)
+    axes = []
+    for path, spec in sweep.items():
+        if path not in INPUT_BY_PATH:
+            raise FieldError(f"sweep.{path}", "a dotted path of a swept field", str(path), choices=INPUT_BY_PATH)
+        name = INPUT_BY_PATH[path]
+        values = _sweep_values(path, spec, INPUTS[name].dimension)
+        section, key = path.split(".")
+        for index, value in enumerate(values):
+            # every value must make a valid scene: the same checks, and the same messages, as the base
+            trial = copy.deepcopy(dict(document))
+            trial[section] = dict(trial.get(section) or {}, **{key: _SI(value)})
+            try:
+                build_scene(trial)
+            except FieldError as exc:
+                raise FieldError(f"sweep.{path}[{index}]", f"{exc.expected} (for {exc.path})", exc.given,
+                                 exc.choices) from None
+        axes.append((path, name, tuple(float(value) for value in values)))
+    last = [path.split(".")[-1] for path, _, _ in axes]
+    result = []
+    for (path, name, values), short in zip(axes, last):
+        dim = short if last.count(short) == 1 and short != MODEL_DIM else path.replace(".", "_")
+        result.append(SweepAxis(path, name, dim, values))
+    return tuple(result)
+
+
+def _build_models(value) -> tuple[ModelEntry, ...]:
+    if not isinstance(value, list) or not value:
+        raise FieldError("models", "a non-empty list of models ({name: NAME, option: value})", value,
+                         choices=available())
+    entries, seen = [], {}
+    for index, item in enumerate(value):
+        where = f"models[{index}]"
+        if isinstance(item, str):
+            item = {"name": item}
+        if not isinstance(item, Mapping) or "name" not in item:
+            raise FieldError(where, "{name: MODEL, option: value, ...}", item, choices=available())
+        options = {key: val for key, val in item.items() if key not in ("name", "id")}
+        name = item["name"]
+        models = available()
+        if name not in models:
+            raise FieldError(f"{where}.name", "a registered model", str(name), choices=models)
+        try:
+            model = get_model(name)(**options)
+        except FieldError as exc:
+            raise exc.at(prefix=where) from None
+        entry_id = item.get("id", name)
+        if not isinstance(entry_id, str) or not entry_id:
+            raise FieldError(f"{where}.id", "a non-empty name for this entry in the results", entry_id)
+        if entry_id in seen:
+            raise FieldError(f"{where}.id" if "id" in item else f"{where}.name",
+                             f"a name not used by models[{seen[entry_id]}]; give repeated models an id", entry_id)
+        seen[entry_id] = index
+        entries.append(ModelEntry(entry_id, model))
+    return tuple(entries)
+
+
+def _build_outputs(value) -> tuple[str, ...]:
+    if value is None:
+        return DEFAULT_OUTPUTS
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not value:
+        raise FieldError("outputs", "a non-empty list of output names", value, choices=OUTPUTS)
+    for index, name in enumerate(value):
+        if name not in OUTPUTS:
+            raise FieldError(f"outputs[{index}]", "an output name", str(name), choices=OUTPUTS)
+    return tuple(dict.fromkeys(value))
+
+
+def _build_study(document, text: str, file: str | None) -> Study:
+    if not isinstance(document, Mapping):
+        raise FieldError("", "a study mapping with keys name, ball, face, contact, impact, sweep, models, outputs",
+                         type(document).__name__)
+    _require_mapping(document, "", TOP_LEVEL_KEYS, "the study")
+    default_name = Path(file).stem if file and not file.startswith("<") else "study"
+    name = document.get("name", default_name)
+    if not isinstance(name, str) or not name:
+        raise FieldError("name", "a non-empty study name", name)
+    description = document.get("description", "")
+    if not isinstance(description, str):
+        raise FieldError("description", "text", description)
+    if "models" not in document:
+        raise FieldError("models", "a list of models to run", "nothing", choices=available())
+    return Study(name=name, description=description, scene=build_scene(document), sweep=_build_sweep(document),
+                 models=_build_models(document["models"]), outputs=_build_outputs(document.get("outputs")),
+                 source=text, file=file)
+
+
+__all__ = ["Study", "SweepAxis", "ModelEntry", "load_study", "build_scene"]
