@@ -49,8 +49,10 @@ class ImpactModel:
        present) to a read-only 1-D float array; all arrays have the same
        length n, one entry per case, SI units (angles in rad, spin in rad/s).
        ``outputs`` is a non-empty frozenset, a subset of ``provides``.
-    4. **What the hook returns.** A dict with exactly the keys of
-       ``outputs``: scalar outputs as float arrays of shape (n,) in SI;
+    4. **What the hook returns.** A dict with every key of ``outputs``
+       (other keys from ``provides`` are allowed and dropped, so a cheap
+       model may always return all it has): scalar outputs as float arrays
+       of shape (n,) in SI;
        history outputs as arrays of shape (n, n_time) plus the key ``"time"``,
        a 1-D array of n_time increasing instants in seconds, shared by all
        cases (pad a case that ended sooner with NaN).
@@ -161,6 +163,10 @@ class ImpactModel:
             hook_inputs = {name: inputs[name] for name in (self.requires | self.optional_inputs) if name in inputs}
             raw = self._compute(hook_inputs, plan.from_model)
             self._check_returned(raw, plan, n_cases)
+            keep = set(plan.from_model)
+            if any(OUTPUTS[name].kind == HISTORY for name in keep):
+                keep.add("time")
+            raw = {name: value for name, value in raw.items() if name in keep}
         if plan.derived:
             derived = after_impact(raw["normal_impulse"], raw["tangential_impulse"],
                                    **{name: inputs[name] for name in AFTER_IMPACT_INPUTS + AFTER_IMPACT_OPTIONAL})
@@ -205,9 +211,10 @@ class ImpactModel:
         if not isinstance(raw, Mapping):
             raise ModelContractError(f"model {self.name!r}: _compute returned {type(raw).__name__}, not a dict")
         keys = set(raw) - {"time"}
-        if keys != set(plan.from_model):
+        if not plan.from_model <= keys or not keys <= self.provides:
             raise ModelContractError(
-                f"model {self.name!r}: _compute returned {sorted(keys)}, expected exactly {sorted(plan.from_model)}")
+                f"model {self.name!r}: _compute returned {sorted(keys)}; expected {sorted(plan.from_model)} "
+                f"and nothing outside what it provides ({sorted(self.provides)})")
         histories = [name for name in plan.from_model if OUTPUTS[name].kind == HISTORY]
         n_time = None
         if histories:

@@ -1,0 +1,207 @@
+"""Conformance suite for impact models, shipped for plugin authors.
+
+Every registered model must pass it; run it on your own plugin with::
+
+    from impactlab.testing import check_model
+    check_model(MyModel)                 # raises AssertionError listing failures
+
+or, one pytest test per check::
+
+    @pytest.mark.parametrize("check", [name for name, _ in iter_checks(MyModel)])
+    def test_conformance(check):
+        dict(iter_checks(MyModel))[check]()
+
+The checks are physics every impact model must respect whatever its
+approximations: energy of a fixed-face impact never increases, a frictionless
+or head-on impact gives no tangential impulse, mirrored impacts mirror, the
+normal impulse lies between 0 and that of an elastic impact, beta lies in
+[-1, 1], and a case's result does not depend on the batch around it.
+"""
+
+from __future__ import annotations
+
+import json
+import keyword
+from collections.abc import Callable, Iterator
+
+import attrs
+import numpy as np
+
+from .materials import BALL_PRESETS, FACE_PRESETS
+from .model import ImpactModel
+from .physics.mechanics import effective_mass
+from .scene import Contact, Impact, Scene
+from .vocabulary import HISTORY, INPUTS, OUTPUTS
+
+#: relative round-off allowed in energy and impulse bounds
+RTOL = 1e-9
+
+
+def reference_inputs(n_angles: int = 7) -> dict[str, np.ndarray]:
+    """A batch of golf-like cases on rigid and steel faces, frictions 0.1-0.6, lofts 2-70 deg, with and without spin."""
+    scenes = []
+    for face in (FACE_PRESETS["rigid"], FACE_PRESETS["steel"], attrs.evolve(FACE_PRESETS["titanium"], mass=0.2)):
+        for friction in (0.1, 0.4, 0.6):
+            for angle in np.radians(np.linspace(2.0, 70.0, n_angles)):
+                for spin in (0.0, 200.0):
+                    scenes.append(Scene(BALL_PRESETS["urethane_tour"], face, Contact(friction, 0.8 if spin else 1.0),
+                                        Impact(40.0, float(angle), spin)))
+    keys = scenes[0].inputs().keys()
+    return {key: np.array([scene.inputs()[key] for scene in scenes]) for key in keys}
+
+
+def _model(model) -> ImpactModel:
+    return model() if isinstance(model, type) else model
+
+
+def _with(inputs: dict, **changes) -> dict:
+    out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
+    for key, value in changes.items():
+        out[key] = np.broadcast_to(np.asarray(value, dtype=float), out["speed"].shape).copy()
+    return out
+
+
+def _scalar_outputs(model) -> list[str]:
+    wanted = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+    plan = model.plan(wanted)
+    return [name for name in wanted if name not in plan.missing]
+
+
+def check_declarations(model) -> None:
+    cls = type(model)
+    assert isinstance(cls.name, str) and cls.name.isidentifier() and not keyword.iskeyword(cls.name), \
+        f"name must be a Python identifier, got {cls.name!r}"
+    assert isinstance(cls.label, str) and cls.label, "label must be a non-empty string"
+    assert isinstance(cls.references, tuple) and cls.references and all(
+        isinstance(ref, str) and ref for ref in cls.references), "references must be a non-empty tuple of citations"
+    for attribute, vocabulary in (("requires", INPUTS), ("optional_inputs", INPUTS), ("provides", OUTPUTS)):
+        declared = getattr(cls, attribute)
+        assert isinstance(declared, frozenset), f"{attribute} must be a frozenset"
+        unknown = sorted(set(declared) - set(vocabulary))
+        assert not unknown, f"{attribute} names unknown to the vocabulary: {unknown}"
+    assert cls.provides, "provides must not be empty"
+    assert not (cls.requires & cls.optional_inputs), "an input is both required and optional"
+    assert attrs.has(cls.Options), "Options must be an attrs class"
+    assert all(field.default is not attrs.NOTHING for field in attrs.fields(cls.Options)), \
+        "every option needs a default"
+    options, fields = cls.Options(), attrs.fields(cls.Options)
+    if fields:
+        try:
+            setattr(options, fields[0].name, getattr(options, fields[0].name))
+        except attrs.exceptions.FrozenInstanceError:
+            pass
+        else:
+            raise AssertionError("Options must be frozen (attrs.frozen)")
+    json.dumps(model.options_dict())
+    assert model.__doc__ and "References" in model.__doc__, "the model docstring must cite its references"
+
+
+def check_runs_finite(model) -> None:
+    inputs = reference_inputs()
+    names = _scalar_outputs(model)
+    result = model.compute(inputs, names)
+    for name in names:
+        values = result[name].values
+        assert np.all(np.isfinite(values)), f"{name} has non-finite values"
+
+
+def check_energy_never_increases(model) -> None:
+    inputs = reference_inputs()
+    result = model.compute(inputs, ["energy_loss", "ball_speed"])
+    kinetic = 0.5 * inputs["ball_mass"] * inputs["speed"] ** 2
+    loss = result["energy_loss"].values
+    assert np.all(loss >= -RTOL * kinetic * 10), f"energy rises: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
+
+
+def check_normal_impulse_bounds(model) -> None:
+    inputs = reference_inputs()
+    jn = model.compute(inputs, ["normal_impulse"])["normal_impulse"].values
+    elastic = 2.0 * effective_mass(inputs["ball_mass"], inputs["club_mass"]) * inputs["speed"] * np.cos(inputs["angle"])
+    assert np.all(jn > 0.0), "normal impulse must be positive"
+    assert np.all(jn <= elastic * (1 + 1e-6)), "normal impulse exceeds that of an elastic impact"
+
+
+def check_tangential_restitution_bounds(model) -> None:
+    beta = model.compute(reference_inputs(), ["tangential_restitution"])["tangential_restitution"].values
+    assert np.all((beta >= -1 - 1e-9) & (beta <= 1 + 1e-9)), f"beta outside [-1, 1]: {beta.min():.4g}..{beta.max():.4g}"
+
+
+def check_frictionless(model) -> None:
+    inputs = _with(reference_inputs(), friction=0.0, spin=0.0)
+    result = model.compute(inputs, ["tangential_impulse", "spin_rate", "tangential_restitution"])
+    scale = inputs["ball_mass"] * inputs["speed"]
+    assert np.all(np.abs(result["tangential_impulse"].values) <= 1e-12 * scale), "frictionless impact has J_t != 0"
+    assert np.allclose(result["spin_rate"].values, 0.0, atol=1e-9), "frictionless impact spins the ball"
+    assert np.allclose(result["tangential_restitution"].values, -1.0), "frictionless impact must give beta = -1"
+
+
+def check_head_on(model) -> None:
+    inputs = _with(reference_inputs(), angle=0.0, spin=0.0)
+    result = model.compute(inputs, ["tangential_impulse", "launch_angle", "rebound_angle"])
+    scale = inputs["ball_mass"] * inputs["speed"]
+    assert np.all(np.abs(result["tangential_impulse"].values) <= 1e-12 * scale), "head-on impact has J_t != 0"
+    assert np.allclose(result["launch_angle"].values, 0.0, atol=1e-9), "head-on impact launches off the path"
+
+
+def check_mirror_symmetry(model) -> None:
+    inputs = reference_inputs()
+    mirrored = _with(inputs, angle=-inputs["angle"], spin=-inputs["spin"])
+    a = model.compute(inputs, ["normal_impulse", "tangential_impulse", "launch_angle"])
+    b = model.compute(mirrored, ["normal_impulse", "tangential_impulse", "launch_angle"])
+    assert np.allclose(a["normal_impulse"], b["normal_impulse"], rtol=1e-12), "mirroring changes J_n"
+    assert np.allclose(a["tangential_impulse"], -b["tangential_impulse"], rtol=1e-12, atol=1e-15), \
+        "mirroring must flip J_t"
+    assert np.allclose(a["launch_angle"], -b["launch_angle"], rtol=1e-12, atol=1e-12), "mirroring must flip theta"
+
+
+def check_batch_independence(model) -> None:
+    inputs = reference_inputs(n_angles=3)
+    names = [name for name in ("normal_impulse", "tangential_impulse") if name in model.provides] or \
+        sorted(model.provides)[:1]
+    whole = model.compute(inputs, names)
+    for case in (0, len(inputs["speed"]) // 2, len(inputs["speed"]) - 1):
+        single = model.compute({key: value[case:case + 1] for key, value in inputs.items()}, names)
+        for name in names:
+            assert np.allclose(whole[name].values[case], single[name].values[0], rtol=1e-12, atol=0), \
+                f"{name} of case {case} depends on the batch around it"
+
+
+def check_inputs_untouched(model) -> None:
+    inputs = reference_inputs(n_angles=3)
+    copies = {key: value.copy() for key, value in inputs.items()}
+    model.compute(inputs, sorted(model.provides))
+    for key in inputs:
+        assert np.array_equal(inputs[key], copies[key]), f"input {key} was changed"
+
+
+CHECKS: dict[str, Callable[[ImpactModel], None]] = {
+    "declarations": check_declarations,
+    "runs_finite": check_runs_finite,
+    "energy_never_increases": check_energy_never_increases,
+    "normal_impulse_bounds": check_normal_impulse_bounds,
+    "tangential_restitution_bounds": check_tangential_restitution_bounds,
+    "frictionless": check_frictionless,
+    "head_on": check_head_on,
+    "mirror_symmetry": check_mirror_symmetry,
+    "batch_independence": check_batch_independence,
+    "inputs_untouched": check_inputs_untouched,
+}
+
+
+def iter_checks(model) -> Iterator[tuple[str, Callable[[], None]]]:
+    """(name, zero-argument callable) for each conformance check of ``model`` (class or instance)."""
+    instance = _model(model)
+    for name, check in CHECKS.items():
+        yield name, (lambda check=check: check(instance))
+
+
+def check_model(model) -> None:
+    """Run every conformance check; raise AssertionError listing all that failed."""
+    failures = []
+    for name, run in iter_checks(model):
+        try:
+            run()
+        except AssertionError as exc:
+            failures.append(f"{name}: {exc}")
+    if failures:
+        raise AssertionError(f"model {_model(model).name!r} fails conformance:\n  " + "\n  ".join(failures))

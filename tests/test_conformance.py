@@ -1,0 +1,52 @@
+"""The shipped conformance suite, run over every registered model."""
+
+import pytest
+
+from impactlab.registry import available
+from impactlab.testing import CHECKS, check_model, iter_checks
+
+MODELS = sorted(available())
+
+
+def test_builtin_models_are_registered():
+    assert {"maw", "rigid_coulomb", "restitution"} <= set(MODELS)
+
+
+@pytest.mark.parametrize("check", sorted(CHECKS))
+@pytest.mark.parametrize("name", MODELS)
+def test_conformance(name, check):
+    dict(iter_checks(available()[name]))[check]()
+
+
+def test_conformance_catches_a_model_that_creates_energy():
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    class Bouncy(RigidCoulombModel):
+        """Returns 1.5 times the elastic normal impulse. References: none."""
+
+        name = "bouncy"
+
+        def _compute(self, inputs, outputs):
+            result = super()._compute(inputs, outputs)
+            result["normal_impulse"] = result["normal_impulse"] * 1.5
+            return result
+
+    with pytest.raises(AssertionError, match="energy_never_increases"):
+        check_model(Bouncy)
+
+
+def test_conformance_catches_a_model_that_ignores_mirror_symmetry():
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    class OneSided(RigidCoulombModel):
+        """Friction that only ever pushes one way. References: none."""
+
+        name = "one_sided"
+
+        def _compute(self, inputs, outputs):
+            result = super()._compute(inputs, outputs)
+            result["tangential_impulse"] = abs(result["tangential_impulse"])
+            return result
+
+    with pytest.raises(AssertionError, match="mirror_symmetry"):
+        check_model(OneSided)
