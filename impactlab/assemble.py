@@ -56,7 +56,9 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
     for axis in study.sweep:
         spec = INPUTS[axis.input]
         unit = spec.display_unit or spec.unit
-        combined = combined.assign_coords({axis.dim: np.asarray(axis.values) * spec.display_factor})
+        # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
+        coordinate = [float(f"{value * spec.display_factor:.12g}") for value in axis.values]
+        combined = combined.assign_coords({axis.dim: coordinate})
         combined[axis.dim].attrs = {"units": unit, "long_name": spec.description, "study_path": axis.path}
     if TIME_DIM in combined.coords:
         combined[TIME_DIM].attrs = {"units": "s", "long_name": "time since first contact"}

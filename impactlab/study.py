@@ -141,7 +141,9 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
     except FieldError as exc:
         path = _document_path(exc.path)
         written = _lookup(document, path)
-        if isinstance(written, (str, int, float)) and not isinstance(written, bool) and written != exc.given:
+        about_a_key = bool(path) and exc.given == path[-1]
+        if (not about_a_key and isinstance(written, (str, int, float)) and not isinstance(written, bool)
+                and written != exc.given):
             # show what the user wrote, not the SI number it became
             exc = FieldError(exc.path, exc.expected, written, exc.choices)
         raise exc.at(file=file, line=line_of(lines, path)) from None

@@ -51,6 +51,9 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
         mark = getattr(exc, "problem_mark", None)
         where = f"{file or '<study>'}:{mark.line + 1}" if mark else (file or "<study>")
         problem = getattr(exc, "problem", None) or str(exc)
+        context, context_mark = getattr(exc, "context", None), getattr(exc, "context_mark", None)
+        if context and context_mark:
+            problem += f" ({context} on line {context_mark.line + 1})"
         raise StudyError(f"{where}: not valid YAML: {problem}") from None
     finally:
         loader.dispose()
