@@ -121,7 +121,8 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument("-o", "--output", help="PNG file (default: next to the result file)")
     plot.add_argument("--x", help="sweep dimension for the horizontal axis")
     plot.add_argument("--history", metavar="OUTPUT", help="draw this history (e.g. tangential_force) against time")
-    plot.add_argument("variables", nargs="*", help="scalar outputs to draw (default: all)")
+    plot.add_argument("-v", "--variable", dest="variables", action="append",
+                      help="a scalar output to draw (repeatable; default: all)")
     plot.set_defaults(handler=_cmd_plot)
     return parser
 

@@ -1,0 +1,77 @@
+"""The command line: runs, lists, shows, plots; bad input exits 2 with one message and no traceback."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from impactlab.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "studies" / "compare_models.yaml"
+
+
+def run_cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "impactlab", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, env={**os.environ, "MPLBACKEND": "Agg"})
+
+
+def small_study(tmp_path, **replace):
+    text = EXAMPLE.read_text().replace("num: 60", "num: 4")
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    path = tmp_path / "study.yaml"
+    path.write_text(text)
+    return path
+
+
+def test_run_show_and_plot(tmp_path, capsys):
+    study = small_study(tmp_path)
+    out, png = tmp_path / "r.h5", tmp_path / "r.png"
+    assert main(["run", str(study), "-o", str(out), "--plot", str(png), "-q"]) == 0
+    assert out.is_file() and png.stat().st_size > 10_000
+    assert main(["show", str(out)]) == 0
+    shown = capsys.readouterr().out
+    assert "compare-models" in shown and "launch_ratio" in shown and "maw, rigid_coulomb, restitution" in shown
+    assert main(["plot", str(out), "-o", str(tmp_path / "again.png"), "-v", "launch_ratio"]) == 0
+
+
+def test_plan_is_printed_without_running(tmp_path, capsys):
+    assert main(["run", str(small_study(tmp_path)), "--plan", "-o", str(tmp_path / "never.h5")]) == 0
+    text = capsys.readouterr().out
+    assert "12 case(s) x 3 model(s)" in text and "derives" in text
+    assert not (tmp_path / "never.h5").exists()
+
+
+def test_models_lists_needs_and_provides(capsys):
+    assert main(["models"]) == 0
+    text = capsys.readouterr().out
+    for name in ("maw", "rigid_coulomb", "restitution"):
+        assert f"{name}:" in text
+    assert "requires:" in text and "ball.youngs_modulus" in text
+
+
+@pytest.mark.parametrize("replace, fragment", [
+    ({"poisson_ratio: 0.45": "poisson_ratio: 0.7"}, "ball.poisson_ratio: expected a Poisson ratio"),
+    ({"- name: maw": "- name: mow"}, "models[0].name: expected a registered model, got mow"),
+    ({"radius: 21.335 mm": "radius: -1 mm"}, "ball.radius: expected a positive"),
+])
+def test_bad_input_exits_2_with_one_message_and_leaves_results_alone(tmp_path, replace, fragment):
+    study = small_study(tmp_path, **replace)
+    existing = tmp_path / "keep.h5"
+    existing.write_bytes(b"previous results")
+    result = run_cli("run", study, "-o", existing)
+    assert result.returncode == 2
+    assert fragment in result.stderr
+    assert "Traceback" not in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+    assert existing.read_bytes() == b"previous results"
+
+
+def test_missing_file_and_unwritable_output(tmp_path):
+    result = run_cli("run", tmp_path / "nope.yaml")
+    assert result.returncode == 2 and "no such study file" in result.stderr
+    result = run_cli("run", small_study(tmp_path), "-o", tmp_path / "no" / "such" / "dir.h5")
+    assert result.returncode == 2 and "does not exist" in result.stderr and "Traceback" not in result.stderr

@@ -1,0 +1,59 @@
+"""Plugin discovery: entry points, broken and duplicate plugins, unknown names."""
+
+from importlib import metadata
+
+import pytest
+
+from impactlab import registry
+from impactlab.errors import ModelNotFoundError, PluginWarning
+
+
+def fake_entry_points(monkeypatch, extra):
+    real = list(metadata.entry_points(group=registry.ENTRY_POINT_GROUP))
+    fakes = [metadata.EntryPoint(name, value, registry.ENTRY_POINT_GROUP) for name, value in extra]
+    monkeypatch.setattr(registry, "_entry_points", lambda: real + fakes)
+    registry.refresh()
+
+
+@pytest.fixture(autouse=True)
+def fresh_registry():
+    registry.refresh()
+    yield
+    registry.refresh()
+
+
+def test_builtins_come_from_entry_points():
+    names = {ep.name for ep in metadata.entry_points(group=registry.ENTRY_POINT_GROUP)}
+    assert {"maw", "rigid_coulomb", "restitution"} <= names
+    assert registry.get_model("maw").__module__ == "impactlab_models.maw"
+
+
+def test_broken_plugin_warns_and_the_rest_still_load(monkeypatch):
+    with pytest.warns(PluginWarning, match="no_such_module_xyz"):
+        fake_entry_points(monkeypatch, [("broken", "no_such_module_xyz:Model")])
+    assert {"maw", "rigid_coulomb", "restitution"} <= set(registry.available())
+    assert "broken" not in registry.available()
+
+
+def test_duplicate_and_non_model_plugins_warn(monkeypatch):
+    with pytest.warns(PluginWarning) as caught:
+        fake_entry_points(monkeypatch, [("maw", "impactlab_models.rigid_coulomb:RigidCoulombModel"),
+                                        ("notamodel", "json:dumps")])
+    text = " ".join(str(w.message) for w in caught)
+    assert "not an ImpactModel subclass" in text
+    assert registry.get_model("maw").__module__ == "impactlab_models.maw"
+
+
+def test_unknown_model_lists_choices_and_closest_match():
+    with pytest.raises(ModelNotFoundError) as info:
+        registry.get_model("rigid_colomb")
+    message = str(info.value)
+    assert "Choices: maw, restitution, rigid_coulomb" in message
+    assert "did you mean 'rigid_coulomb'" in message
+
+
+def test_discovery_is_cached(monkeypatch):
+    registry.available()
+    monkeypatch.setattr(registry, "_entry_points", lambda: [])
+    assert "maw" in registry.available()  # cached
+    assert registry.refresh() == {}  # refresh rediscovers
