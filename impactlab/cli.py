@@ -16,25 +16,44 @@ EXIT_INTERRUPTED = 130
 
 
 def _cmd_run(args) -> int:
+    from .errors import StudyError
     from .results_io import write_results
     from .runner import plan_study, run_study
     from .study import load_study
 
-    study = load_study(args.study)
-    output = Path(args.output) if args.output else Path(f"{study.name}.h5")
-    if args.plan:
-        print(plan_study(study).describe())
-        return 0
+    if args.output and len(args.study) > 1:
+        raise StudyError("-o/--output names one result file; with several studies use --outdir")
+    studies = [load_study(path) for path in args.study]  # every file is checked before anything runs
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
-    dataset = run_study(study, progress=say)
-    write_results(dataset, output)
-    say(f"wrote {output}")
-    if args.plot:
-        from .plotting import plot_results
-
-        plot_results(dataset, args.plot)
-        say(f"wrote {args.plot}")
+    if args.plan:
+        for study in studies:
+            print(plan_study(study).describe())
+        return 0
+    outdir = Path(args.outdir) if args.outdir else None
+    if outdir:
+        outdir.mkdir(parents=True, exist_ok=True)
+    for study in studies:
+        output = Path(args.output) if args.output else (outdir or Path(".")) / f"{study.name}.h5"
+        dataset = run_study(study, progress=say)
+        write_results(dataset, output)
+        say(f"wrote {output}")
+        if args.plot:
+            for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
+                say(f"wrote {picture}")
     return 0
+
+
+def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
+    """The standard pictures of a result: scalar outputs, and each history if there is one."""
+    from .plotting import plot_histories, plot_results
+    from .vocabulary import HISTORY, OUTPUTS
+
+    png = png or output.with_suffix(".png")
+    pictures = [plot_results(dataset, png)]
+    for name in dataset.data_vars:
+        if OUTPUTS[name].kind == HISTORY:
+            pictures.append(plot_histories(dataset, png.with_name(f"{png.stem}_{name}.png"), name))
+    return pictures
 
 
 def _cmd_models(args) -> int:
@@ -84,6 +103,11 @@ def _cmd_plot(args) -> int:
     from .results_io import open_results
 
     dataset = open_results(args.file)
+    if args.history and args.history not in dataset.data_vars:
+        from .errors import FieldError
+
+        raise FieldError("--history", "a history held by the file", args.history,
+                         choices=[name for name in dataset.data_vars if "time" in dataset[name].dims])
     output = Path(args.output or Path(args.file).with_suffix(".png"))
     if args.history:
         plot_histories(dataset, output, args.history)
@@ -101,9 +125,11 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
 
     run = commands.add_parser("run", help="run a study file and write its results (HDF5)")
-    run.add_argument("study", help="study YAML file")
-    run.add_argument("-o", "--output", help="result file (.h5); default: STUDY_NAME.h5")
-    run.add_argument("--plot", metavar="PNG", help="also draw the scalar outputs to this PNG")
+    run.add_argument("study", nargs="+", help="study YAML file(s)")
+    run.add_argument("-o", "--output", help="result file (.h5) of a single study; default: STUDY_NAME.h5")
+    run.add_argument("--outdir", help="folder for the results, one STUDY_NAME.h5 per study (created if needed)")
+    run.add_argument("--plot", metavar="PNG", nargs="?", const=True,
+                     help="also draw the results (to PNG, default: next to the result file)")
     run.add_argument("--plan", action="store_true", help="print what would run, and why, then stop")
     run.add_argument("-q", "--quiet", action="store_true")
     run.set_defaults(handler=_cmd_run)
