@@ -101,10 +101,6 @@ class PluginWarning(UserWarning):
     """A plugin could not be loaded or clashes with another; it was skipped."""
 
 
-class ValidityWarning(UserWarning):
-    """A result was computed outside a model's stated assumptions."""
-
-
 def closest(word: str, choices: Iterable[str]) -> str | None:
     """The choice closest to ``word``, or None when nothing is close."""
     match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)

@@ -13,3 +13,13 @@ def test_documented_plugin_passes_conformance():
     namespace = {}
     exec(compile(blocks[0], str(DOC), "exec"), namespace)  # noqa: S102 - our own documentation
     check_model(namespace["StickyModel"])
+
+
+def test_user_guide_lists_every_output_and_sweepable_field():
+    from impactlab.vocabulary import INPUTS, OUTPUTS
+
+    guide = (DOC.parent / "user-guide.md").read_text()
+    for name, spec in OUTPUTS.items():
+        assert f"| `{name}` | {spec.units} |" in guide, name
+    for spec in INPUTS.values():
+        assert f"`{spec.path}`" in guide, spec.path
