@@ -126,20 +126,24 @@ def check_tangential_restitution_bounds(model) -> None:
     assert np.all((beta >= -1 - 1e-9) & (beta <= 1 + 1e-9)), f"beta outside [-1, 1]: {beta.min():.4g}..{beta.max():.4g}"
 
 
-def check_frictionless(model) -> None:
-    inputs = _with(reference_inputs(), friction=0.0, spin=0.0)
-    result = model.compute(inputs, ["tangential_impulse", "spin_rate", "tangential_restitution"])
+def _without_tangential_impulse(model, what: str, outputs: list[str], **changes):
+    """Run the reference batch with ``changes``; assert J_t vanishes; return the result."""
+    inputs = _with(reference_inputs(), spin=0.0, **changes)
+    result = model.compute(inputs, ["tangential_impulse", *outputs])
     scale = inputs["ball_mass"] * inputs["speed"]
-    assert np.all(np.abs(result["tangential_impulse"].values) <= 1e-12 * scale), "frictionless impact has J_t != 0"
+    assert np.all(np.abs(result["tangential_impulse"].values) <= 1e-12 * scale), f"{what} impact has J_t != 0"
+    return result
+
+
+def check_frictionless(model) -> None:
+    result = _without_tangential_impulse(model, "frictionless", ["spin_rate", "tangential_restitution"],
+                                         friction=0.0)
     assert np.allclose(result["spin_rate"].values, 0.0, atol=1e-9), "frictionless impact spins the ball"
     assert np.allclose(result["tangential_restitution"].values, -1.0), "frictionless impact must give beta = -1"
 
 
 def check_head_on(model) -> None:
-    inputs = _with(reference_inputs(), angle=0.0, spin=0.0)
-    result = model.compute(inputs, ["tangential_impulse", "launch_angle", "rebound_angle"])
-    scale = inputs["ball_mass"] * inputs["speed"]
-    assert np.all(np.abs(result["tangential_impulse"].values) <= 1e-12 * scale), "head-on impact has J_t != 0"
+    result = _without_tangential_impulse(model, "head-on", ["launch_angle"], angle=0.0)
     assert np.allclose(result["launch_angle"].values, 0.0, atol=1e-9), "head-on impact launches off the path"
 
 
