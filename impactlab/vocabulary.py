@@ -139,6 +139,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "normal_force": OutputSpec("N", "normal contact force", kind=HISTORY),
     "tangential_force": OutputSpec("N", "tangential contact force, positive opposing the incoming slip",
                                    kind=HISTORY),
+    "stick_radius": OutputSpec("m", "radius of the stuck central region of the contact (0 in gross slip)",
+                               kind=HISTORY),
 }
 
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)

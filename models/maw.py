@@ -93,7 +93,7 @@ class MawModel(ImpactModel):
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"restitution"}
-    provides = IMPULSES | {"contact_time", "normal_force", "tangential_force"}
+    provides = IMPULSES | {"contact_time", "normal_force", "tangential_force", "stick_radius"}
     Options = MawOptions
 
     def _compute(self, inputs, outputs):
@@ -111,19 +111,20 @@ class MawModel(ImpactModel):
         elastic_speed = 0.5 * (1.0 + restitution) * normal_speed
         friction = p["friction"]
 
-        histories = {"normal_force", "tangential_force"} & outputs
+        histories = {"normal_force", "tangential_force", "stick_radius"} & outputs
         sliding = (friction > 0.0) & (slip != 0.0)
         slip_change = np.zeros_like(slip)
-        scaled_force, tau = None, None
+        scaled_history, tau = {}, None
         if np.any(sliding):
             chi = 0.5 * kappa * m_normal / m_tangential
             psi1 = kappa * np.abs(slip) / np.where(sliding, friction * elastic_speed, 1.0)
-            scaled = self._solve(chi[sliding], psi1[sliding], record="tangential_force" in histories)
+            scaled = self._solve(chi[sliding], psi1[sliding], record=bool(histories - {"normal_force"}))
             slip_change[sliding] = scaled.slip_change * friction[sliding] * elastic_speed[sliding] / kappa[sliding]
             if scaled.force is not None:
                 tau = scaled.tau
-                scaled_force = np.zeros((slip.size, tau.size))
-                scaled_force[sliding] = scaled.force
+                for name, values in (("tangential_force", scaled.force), ("stick_radius", scaled.stick_radius)):
+                    scaled_history[name] = np.zeros((slip.size, tau.size))
+                    scaled_history[name][sliding] = values
         result = {
             "normal_impulse": 2.0 * m_normal * elastic_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
@@ -131,30 +132,37 @@ class MawModel(ImpactModel):
             "contact_time": hertz.contact_time(m_normal, radius, modulus, elastic_speed),
         }
         if histories:
-            result.update(self._histories(histories, result["contact_time"],
-                                          hertz.peak_force(m_normal, radius, modulus, elastic_speed),
-                                          friction * np.sign(slip), tau, scaled_force))
+            scales = {"normal_force": hertz.peak_force(m_normal, radius, modulus, elastic_speed),
+                      "tangential_force": hertz.peak_force(m_normal, radius, modulus, elastic_speed)
+                      * friction * np.sign(slip),
+                      "stick_radius": np.sqrt(radius * hertz.max_approach(m_normal, radius, modulus, elastic_speed))}
+            result.update(self._histories(histories, result["contact_time"], scales, tau, scaled_history))
         return {name: result[name] for name in outputs | ({"time"} if histories else set())}
 
     def _solve(self, chi, psi1, record):
         options = self.options
         parts = [mdr.solve_scaled(chi[i:i + BLOCK], psi1[i:i + BLOCK], springs=options.springs, steps=options.steps,
                                   record=record) for i in range(0, chi.size, BLOCK)]
-        force = np.concatenate([part.force for part in parts]) if record else None
-        return mdr.TangentialSolution(np.concatenate([part.slip_change for part in parts]),
-                                      parts[0].tau, force, parts[0].steps)
+        joined = {name: np.concatenate([getattr(part, name) for part in parts]) if record else None
+                  for name in ("force", "stick_radius")}
+        return mdr.TangentialSolution(np.concatenate([part.slip_change for part in parts]), parts[0].tau,
+                                      joined["force"], joined["stick_radius"], parts[0].steps)
 
-    def _histories(self, wanted, duration, peak, signed_friction, tau, scaled_force):
+    def _histories(self, wanted, duration, scales, tau, scaled_history):
+        """Histories on one time axis from 0 to the longest contact; NaN after a case's contact ends."""
         time = np.linspace(0.0, float(duration.max()), self.options.history_points)
         scaled_time = time[None, :] / (duration[:, None] / hertz.TAU_CONTACT)
         inside = scaled_time <= hertz.TAU_CONTACT * (1 + 1e-12)
         out = {"time": time}
-        if "normal_force" in wanted:
-            out["normal_force"] = np.where(inside, peak[:, None] * hertz.scaled_approach(scaled_time) ** 1.5, np.nan)
-        if "tangential_force" in wanted:
-            force = np.zeros_like(scaled_time)
-            if scaled_force is not None:
-                for case in range(force.shape[0]):
-                    force[case] = np.interp(scaled_time[case], tau, scaled_force[case])
-            out["tangential_force"] = np.where(inside, peak[:, None] * signed_friction[:, None] * force, np.nan)
+        for name in wanted:
+            if name == "normal_force":
+                shape = hertz.scaled_approach(scaled_time) ** 1.5
+            elif name in scaled_history:
+                shape = np.vstack([np.interp(scaled_time[case], tau, scaled_history[name][case])
+                                   for case in range(scaled_time.shape[0])])
+            elif name == "stick_radius":  # no tangential load anywhere: the whole contact sticks
+                shape = np.sqrt(hertz.scaled_approach(scaled_time))
+            else:
+                shape = np.zeros_like(scaled_time)
+            out[name] = np.where(inside, scales[name][:, None] * shape, np.nan)
         return out

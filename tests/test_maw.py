@@ -190,3 +190,22 @@ def test_paper_fig6_trends_hold_for_urethane_on_a_rigid_face(golf_inputs):
     below_20 = angles < np.radians(20.0)
     assert np.all(ratio[0, below_20] <= ratio[:, below_20].min(axis=0))
     assert ratio[0, -1] == ratio[:, -1].max()  # high loft, low mu: gross slip, high ratio
+
+
+def test_fig7_low_friction_slides_first_higher_frictions_stick_at_once(golf_inputs):
+    # Henrikson et al. 2020, Fig. 7: 80 mph, 15 deg, mu = 0.15 / 0.25 / 0.35
+    mu = np.array([0.15, 0.25, 0.35])
+    inputs = golf_inputs(friction=mu, angle=np.radians(15.0))
+    model = get_model("maw")(history_points=300)
+    result = model.compute(inputs, ["stick_radius", "tangential_force", "normal_force"])
+    stick = result["stick_radius"].values
+    early = slice(1, 30)  # first ~10 % of contact
+    assert np.all(stick[0, early] == 0.0)  # mu = 0.15: gross slip, F_t = mu F_n ...
+    np.testing.assert_allclose(result["tangential_force"].values[0, early],
+                               0.15 * result["normal_force"].values[0, early], rtol=2e-3)  # spring quadrature
+    assert np.any(stick[0, 60:150] > 0.0)  # ... then the centre sticks
+    assert np.all(stick[1:, early] > 0.0)  # mu = 0.25, 0.35: stuck from first touch
+    # a reversed (negative) tangential impulse late in contact, larger for larger mu
+    force = np.nan_to_num(result["tangential_force"].values)
+    reversed_impulse = -np.trapezoid(np.minimum(force, 0.0), result["time"].values, axis=1)
+    assert 0 < reversed_impulse[0] < reversed_impulse[1] < reversed_impulse[2]

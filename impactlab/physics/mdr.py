@@ -56,8 +56,10 @@ class TangentialSolution:
     force : ndarray (cases, nodes) or None
         Scaled tangential force F_t / (mu F_max), positive along the incoming slip
         of the springs (opposing the slip on the ball).
-    stick_fraction : ndarray (cases, nodes) or None
-        Fraction of the contact's springs that stick (|u| below their cap).
+    stick_radius : ndarray (cases, nodes) or None
+        Radius of the stuck central region over a_max: the springs from the
+        centre outwards that are below their Coulomb cap (0 in gross slip; the
+        contact radius when the whole contact sticks).
     steps : int
         Number of time steps taken.
     """
@@ -65,6 +67,7 @@ class TangentialSolution:
     slip_change: np.ndarray
     tau: np.ndarray | None
     force: np.ndarray | None
+    stick_radius: np.ndarray | None
     steps: int
 
 
@@ -104,6 +107,7 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     velocity_change = np.zeros(chi.size)  # X' - psi1, kept apart so a huge psi1 loses no digits
     acceleration = np.zeros(chi.size)
     history = np.zeros((chi.size, tau.size)) if record else None
+    stick = np.zeros((chi.size, tau.size)) if record else None
     h_nodes = scaled_approach(tau)
     for k in range(1, tau.size):
         dt = tau[k] - tau[k - 1]
@@ -116,8 +120,16 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
         velocity_change = half + 0.5 * dt * acceleration
         if record:
             history[:, k] = total * weight
+            stick[:, k] = _stick_radius(u, cap, h_nodes[k], springs)
     force = None
     if record:
         # F_t = mu * 2 E* a_max delta_max * integral u  and  F_max = (4/3) E* a_max delta_max
         force = 1.5 * history
-    return TangentialSolution(velocity_change, tau if record else None, force, tau.size - 1)
+    return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1)
+
+
+def _stick_radius(u, cap, h, springs):
+    """Scaled radius of the stuck central region: cells from the centre whose spring is below its cap."""
+    slipping = (np.abs(u) >= cap * (1.0 - 1e-12)) & (cap > 0.0)
+    first_slip = np.where(slipping.any(axis=1), slipping.argmax(axis=1), springs)
+    return np.minimum(first_slip / springs, np.sqrt(max(h, 0.0)))
