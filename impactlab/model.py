@@ -19,7 +19,7 @@ import xarray as xr
 from ._version import __version__
 from .errors import FieldError, ModelContractError, ModelInputError
 from .planning import OutputPlan, plan_outputs
-from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after_impact
+from .derive import NEEDS, derive
 from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM
 
 
@@ -128,12 +128,13 @@ class ImpactModel:
         return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
 
     # -- the public entry point ---------------------------------------------------------------------------------
-    def plan(self, outputs: Iterable[str]) -> OutputPlan:
+    def plan(self, outputs: Iterable[str], given_inputs: Iterable[str] | None = None) -> OutputPlan:
+        """What a run with these outputs (and, if known, these inputs) computes, derives and leaves NaN."""
         outputs = list(outputs)
         unknown = [name for name in outputs if name not in OUTPUTS]
         if unknown:
             raise FieldError("outputs", "names from the output vocabulary", unknown[0], choices=OUTPUTS)
-        return plan_outputs(type(self), outputs)
+        return plan_outputs(type(self), outputs, None if given_inputs is None else set(given_inputs))
 
     def compute(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> xr.Dataset:
         """Run the model on a batch of cases.
@@ -156,7 +157,7 @@ class ImpactModel:
         inputs = _as_input_arrays(inputs)
         if outputs is None:
             outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
-        plan = self.plan(outputs)
+        plan = self.plan(outputs, inputs)
         n_cases = self._check_inputs(inputs, plan)
         raw = {}
         if plan.from_model:
@@ -167,10 +168,7 @@ class ImpactModel:
             if any(OUTPUTS[name].kind == HISTORY for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
-        if plan.derived:
-            derived = after_impact(raw["normal_impulse"], raw["tangential_impulse"],
-                                   **{name: inputs[name] for name in AFTER_IMPACT_INPUTS + AFTER_IMPACT_OPTIONAL})
-            raw.update({name: derived[name] for name in plan.derived})
+        raw.update(derive(plan.derived, raw, inputs))
         return self._wrap(raw, plan, n_cases)
 
     def _compute(self, inputs: Mapping[str, np.ndarray], outputs: frozenset[str]) -> dict[str, np.ndarray]:
@@ -180,7 +178,7 @@ class ImpactModel:
     def _check_inputs(self, inputs: dict[str, np.ndarray], plan: OutputPlan) -> int:
         needed = set(self.requires)
         if plan.derived:
-            needed |= set(AFTER_IMPACT_INPUTS) - {"spin"}  # no spin given: the ball arrives without spin
+            needed |= NEEDS["impulses"]  # no spin given: the ball arrives without spin
         absent = sorted(needed - set(inputs))
         if absent:
             names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)

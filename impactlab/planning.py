@@ -12,15 +12,9 @@ from __future__ import annotations
 
 import attrs
 
-from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL
+from .derive import FROM_DELIVERY, IMPULSES, NEEDS, derivable
+from .physics.mechanics import AFTER_IMPACT_OPTIONAL
 from .vocabulary import INPUTS, OUTPUTS
-
-IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
-#: outputs the framework derives from the impulses
-DERIVED_FROM_IMPULSES = frozenset({
-    "launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate", "normal_velocity",
-    "tangential_velocity", "tangential_restitution", "energy_loss",
-})
 
 
 @attrs.frozen
@@ -59,22 +53,30 @@ class OutputPlan:
         return "; ".join(parts)
 
 
-def plan_outputs(model_cls, requested) -> OutputPlan:
-    """Plan the outputs ``requested`` from a model class (set logic on declarations only)."""
+def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
+    """Plan the outputs ``requested`` from a model class (set logic on declarations only).
+
+    ``given_inputs``, when known, lets the plan tell outputs that need inputs
+    the scene lacks (a golf delivery) from those it can give.
+    """
     requested = tuple(dict.fromkeys(requested))
     provides = frozenset(model_cls.provides)
     from_model, derived, missing = set(), set(), {}
     for name in requested:
         if name in provides:
             from_model.add(name)
-        elif name in DERIVED_FROM_IMPULSES and IMPULSES <= provides:
+            continue
+        possible, reason = derivable(name, provides, given_inputs)
+        if possible:
             derived.add(name)
             from_model |= IMPULSES
         else:
-            missing[name] = model_cls.why_not_provided(name)
+            missing[name] = reason or model_cls.why_not_provided(name)
     inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))
     if derived:
-        inputs |= set(AFTER_IMPACT_INPUTS) | set(AFTER_IMPACT_OPTIONAL)
+        inputs |= NEEDS["impulses"] | set(AFTER_IMPACT_OPTIONAL)
+    if derived & FROM_DELIVERY:
+        inputs |= NEEDS["delivery"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
                       frozenset(inputs))
 

@@ -13,8 +13,9 @@ import numpy as np
 import xarray as xr
 
 from .assemble import assemble
-from .errors import ModelInputError
+from .errors import FieldError, ModelInputError
 from .planning import OutputPlan
+from .scene import complete_inputs
 from .study import Study, load_study
 from .vocabulary import INPUTS
 
@@ -38,7 +39,7 @@ def plan_study(study: Study) -> StudyPlan:
     given = set(study.scene.inputs())
     plans = []
     for entry in study.models:
-        plan = entry.model.plan(study.outputs)
+        plan = entry.model.plan(study.outputs, given)
         absent = sorted(set(entry.model.requires) - given)
         if absent:
             fields = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
@@ -56,7 +57,11 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
     inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
     for axis, grid in zip(study.sweep, grids):
         inputs[axis.input] = grid.reshape(-1).astype(float)
-    assert all(array.shape == (int(np.prod(shape, dtype=np.int64)) if shape else 1,) for array in inputs.values())
+    complete_inputs(inputs)
+    if np.any(inputs["angle"] >= np.pi / 2):
+        case = int(np.argmax(inputs["angle"] >= np.pi / 2))
+        raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",
+                         f"spin loft {np.degrees(inputs['angle'][case]):.1f} deg in case {case}")
     return inputs
 
 

@@ -6,7 +6,8 @@ import math
 
 import attrs
 
-from ._validate import finite, in_range, positive, to_float
+from ._validate import check, finite, in_range, positive, to_float
+from .errors import FieldError
 from .materials import Ball, Face
 
 
@@ -57,14 +58,83 @@ class Impact:
     spin: float = attrs.field(default=0.0, converter=to_float, validator=finite("a finite spin rate"))
 
 
+HANDEDNESS = ("right", "left")
+
+
+@attrs.frozen
+class Delivery:
+    """A golf delivery: how the club head meets the ball, as a golfer or launch monitor describes it.
+
+    Parameters
+    ----------
+    club_speed : float
+        Club-head speed at the face centre [m/s].
+    path, face_angle : float
+        Horizontal directions of the club velocity (in-to-out positive) and of
+        the face normal (open positive) [rad], each relative to the target line
+        and counted towards the golfer's trail side: right for a right-handed
+        golfer, left for a left-handed one.
+    attack_angle : float
+        Vertical direction of the club velocity, upwards positive [rad].
+    dynamic_loft : float
+        Elevation of the face normal above the horizontal at impact [rad].
+    handedness : str
+        ``"right"`` or ``"left"``.
+    """
+
+    club_speed: float = attrs.field(converter=to_float, validator=positive("a positive, finite club speed in m/s"))
+    path: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -math.pi / 2, math.pi / 2, "a club path between -90 and 90 deg", low_open=True, high_open=True))
+    face_angle: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -math.pi / 2, math.pi / 2, "a face angle between -90 and 90 deg", low_open=True, high_open=True))
+    attack_angle: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -math.pi / 2, math.pi / 2, "an attack angle between -90 and 90 deg", low_open=True, high_open=True))
+    dynamic_loft: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -math.pi / 2, math.pi / 2, "a dynamic loft between -90 and 90 deg", low_open=True, high_open=True))
+    handedness: str = attrs.field(default="right", validator=check(lambda v: v in HANDEDNESS,
+                                                                   "right or left"))
+
+    def __attrs_post_init__(self):
+        if not self.spin_loft < math.pi / 2:
+            raise FieldError("dynamic_loft", "a delivery whose face meets the ball (spin loft below 90 deg)",
+                             f"spin loft {math.degrees(self.spin_loft):.1f} deg")
+
+    @property
+    def sign(self) -> float:
+        return 1.0 if self.handedness == "right" else -1.0
+
+    @property
+    def spin_loft(self) -> float:
+        """Angle between face normal and club velocity [rad]."""
+        from .physics.delivery import spin_loft
+
+        return float(spin_loft(self.path, self.face_angle, self.attack_angle, self.dynamic_loft, self.sign))
+
+
 @attrs.frozen
 class Scene:
-    """One impact: ball, face, contact and impact conditions."""
+    """One impact: ball, face, contact and impact conditions, and the golf delivery they come from, if any.
+
+    With a delivery, ``impact`` holds the club speed and the spin loft
+    (use :meth:`from_delivery`).
+    """
 
     ball: Ball
     face: Face
     contact: Contact
     impact: Impact
+    delivery: Delivery | None = None
+
+    def __attrs_post_init__(self):
+        if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
+                                          or self.impact.speed != self.delivery.club_speed):
+            raise FieldError("impact", "the club speed and spin loft of the delivery (use Scene.from_delivery)",
+                             f"speed {self.impact.speed:g} m/s, angle {math.degrees(self.impact.angle):g} deg")
+
+    @classmethod
+    def from_delivery(cls, ball: Ball, face: Face, contact: Contact, delivery: Delivery, spin: float = 0.0):
+        """The scene of a golf delivery: impact speed = club speed, impact angle = spin loft."""
+        return cls(ball, face, contact, Impact(delivery.club_speed, delivery.spin_loft, spin), delivery)
 
     def inputs(self) -> dict[str, float]:
         """The model inputs this scene can supply, by vocabulary name (SI).
@@ -81,3 +151,12 @@ class Scene:
             if value is not None:
                 values[name] = value
         return values
+
+
+def complete_inputs(inputs: dict) -> dict:
+    """Fill inputs that follow from others: a delivery's spin loft is the impact angle (arrays, SI)."""
+    from .physics.delivery import DELIVERY_INPUTS, spin_loft
+
+    if all(name in inputs for name in DELIVERY_INPUTS):
+        inputs["angle"] = spin_loft(*(inputs[name] for name in DELIVERY_INPUTS))
+    return inputs

@@ -24,12 +24,14 @@ from .errors import FieldError, StudyError
 from .materials import Ball, Face, Material, ball_preset, face_preset
 from .model import ImpactModel
 from .registry import available, get_model
-from .scene import Contact, Impact, Scene
+from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
 from .units import to_si
 from .vocabulary import DEFAULT_OUTPUTS, INPUT_BY_PATH, INPUTS, OUTPUTS, MODEL_DIM
 from .yaml_lines import line_of, load_yaml, parse_path
 
-TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "sweep", "models", "outputs")
+TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "delivery", "sweep", "models",
+                  "outputs")
+DELIVERY_KEYS = ("club_speed", "path", "face_angle", "attack_angle", "dynamic_loft", "handedness")
 BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio")
 FACE_KEYS = ("preset", "rigid", "youngs_modulus", "poisson_ratio", "mass")
 CONTACT_KEYS = ("friction", "restitution")
@@ -198,11 +200,11 @@ def _quantity(block: dict, key: str, dimension: str, path: str):
     return to_si(value, dimension, f"{path}.{key}")
 
 
-def _construct(cls, path: str, **kwargs):
+def _construct(cls, where: str, **kwargs):
     try:
         return cls(**kwargs)
     except FieldError as exc:
-        raise exc.at(prefix=path) from None
+        raise exc.at(prefix=where) from None
 
 
 def _material(block: dict, path: str, base: Material | None) -> Material | None:
@@ -280,14 +282,37 @@ def build_impact(value, path: str = "impact") -> Impact:
     return _construct(Impact, path, spin=0.0 if spin is None else spin, **fields)
 
 
+def build_delivery(value, path: str = "delivery") -> Delivery:
+    block = _require_mapping(value, path, DELIVERY_KEYS, "the golf delivery")
+    speed = _quantity(block, "club_speed", "speed", path)
+    if speed is None:
+        raise FieldError(f"{path}.club_speed", "the club speed", "nothing")
+    angles = {key: _quantity(block, key, "angle", path) for key in DELIVERY_KEYS[1:5]}
+    angles = {key: value for key, value in angles.items() if value is not None}
+    handedness = block.get("handedness", "right")
+    if handedness not in HANDEDNESS:
+        raise FieldError(f"{path}.handedness", "the golfer's handedness", handedness, choices=HANDEDNESS)
+    return _construct(Delivery, path, club_speed=speed, handedness=handedness, **angles)
+
+
 def build_scene(document: Mapping) -> Scene:
     """The scene a study document describes (without its sweep)."""
     if "ball" not in document:
         raise FieldError("ball", "a ball: {preset: NAME} or radius, mass, ...", "nothing")
+    ball, face, contact = (build_ball(document["ball"]), build_face(document.get("face")),
+                           build_contact(document.get("contact")))
+    if "delivery" in document:
+        impact = _require_mapping(document.get("impact"), "impact", IMPACT_KEYS, "the impact conditions")
+        for key in ("speed", "angle"):
+            if key in impact:
+                raise FieldError(f"impact.{key}", "either a delivery or impact speed and angle, not both",
+                                 impact[key])
+        spin = _quantity(impact, "spin", "angular_speed", "impact")
+        return Scene.from_delivery(ball, face, contact, build_delivery(document["delivery"]),
+                                   0.0 if spin is None else spin)
     if "impact" not in document:
-        raise FieldError("impact", "impact conditions: speed and angle", "nothing")
-    return Scene(build_ball(document["ball"]), build_face(document.get("face")),
-                 build_contact(document.get("contact")), build_impact(document["impact"]))
+        raise FieldError("impact", "impact conditions (speed and angle) or a delivery block", "nothing")
+    return Scene(ball, face, contact, build_impact(document["impact"]))
 
 
 def _sweep_values(path: str, spec, dimension: str) -> list[float]:

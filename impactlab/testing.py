@@ -61,9 +61,9 @@ def _with(inputs: dict, **changes) -> dict:
     return out
 
 
-def _scalar_outputs(model) -> list[str]:
+def _scalar_outputs(model, inputs) -> list[str]:
     wanted = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
-    plan = model.plan(wanted)
+    plan = model.plan(wanted, inputs)
     return [name for name in wanted if name not in plan.missing]
 
 
@@ -98,7 +98,7 @@ def check_declarations(model) -> None:
 
 def check_runs_finite(model) -> None:
     inputs = reference_inputs()
-    names = _scalar_outputs(model)
+    names = _scalar_outputs(model, inputs)
     result = model.compute(inputs, names)
     for name in names:
         values = result[name].values

@@ -104,8 +104,35 @@ INPUTS: dict[str, InputSpec] = {
                       _attr("impact", "spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
 }
 
-#: study path -> input name
-INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items()}
+
+
+def _delivery_value(attribute: str):
+    def getter(scene):
+        delivery = scene.delivery
+        if delivery is None:
+            return None
+        return delivery.sign if attribute == "handedness" else getattr(delivery, attribute)
+
+    return getter
+
+
+_HALF_TURN = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
+INPUTS.update({
+    "path": InputSpec("delivery.path", "rad", "angle", "club path, horizontal, in-to-out positive",
+                      _delivery_value("path"), "deg", RAD_TO_DEG, **_HALF_TURN),
+    "face_angle": InputSpec("delivery.face_angle", "rad", "angle", "face angle, horizontal, open positive",
+                            _delivery_value("face_angle"), "deg", RAD_TO_DEG, **_HALF_TURN),
+    "attack_angle": InputSpec("delivery.attack_angle", "rad", "angle", "attack angle, upwards positive",
+                              _delivery_value("attack_angle"), "deg", RAD_TO_DEG, **_HALF_TURN),
+    "dynamic_loft": InputSpec("delivery.dynamic_loft", "rad", "angle", "dynamic loft of the face normal",
+                              _delivery_value("dynamic_loft"), "deg", RAD_TO_DEG, **_HALF_TURN),
+    "handedness": InputSpec("delivery.handedness", "1", "dimensionless", "+1 right-handed golfer, -1 left-handed",
+                            _delivery_value("handedness"), low=-1.0, high=1.0),
+})
+
+#: study path -> input name (a delivery's club speed is the impact speed)
+INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items() if name != "handedness"}
+INPUT_BY_PATH["delivery.club_speed"] = "speed"
 
 
 @attrs.frozen
@@ -141,6 +168,14 @@ OUTPUTS: dict[str, OutputSpec] = {
                                    kind=HISTORY),
     "stick_radius": OutputSpec("m", "radius of the stuck central region of the contact (0 in gross slip)",
                                kind=HISTORY),
+    # golf deliveries (3-D, ground frame; horizontal angles positive to the right of the target line)
+    "spin_loft": OutputSpec("deg", "spin loft: angle between face normal and club velocity", factor=RAD_TO_DEG),
+    "vertical_launch_angle": OutputSpec("deg", "vertical launch angle above the horizontal", factor=RAD_TO_DEG),
+    "horizontal_launch_angle": OutputSpec("deg", "horizontal launch angle, right of the target line positive",
+                                          factor=RAD_TO_DEG),
+    "vertical_launch_ratio": OutputSpec("1", "vertical launch ratio (launch - attack)/(dynamic loft - attack)"),
+    "horizontal_launch_ratio": OutputSpec("1", "horizontal launch ratio (launch - path)/(face - path)"),
+    "spin_axis": OutputSpec("deg", "spin axis tilt from horizontal, positive curving right", factor=RAD_TO_DEG),
 }
 
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
