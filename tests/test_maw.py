@@ -209,3 +209,38 @@ def test_fig7_low_friction_slides_first_higher_frictions_stick_at_once(golf_inpu
     force = np.nan_to_num(result["tangential_force"].values)
     reversed_impulse = -np.trapezoid(np.minimum(force, 0.0), result["time"].values, axis=1)
     assert 0 < reversed_impulse[0] < reversed_impulse[1] < reversed_impulse[2]
+
+
+def test_annular_strip_method_agrees_with_mdr_and_converges_to_it(golf_inputs):
+    mu, alpha = np.meshgrid([0.15, 0.3, 0.5], np.radians([5.0, 15.0, 30.0, 50.0]), indexing="ij")
+    inputs = golf_inputs(friction=mu.ravel(), angle=alpha.ravel())
+    names = ["launch_ratio", "tangential_restitution"]
+    reference = get_model("maw")(springs=400, steps=800).compute(inputs, names)
+    gaps = []
+    for rings in (20, 40, 80):
+        annular = get_model("maw")(method="annuli", rings=rings).compute(inputs, names)
+        gaps.append(float(np.max(np.abs(annular["launch_ratio"] - reference["launch_ratio"]))))
+    assert gaps[1] < 1e-3  # the default number of rings
+    assert gaps[2] < gaps[1] < gaps[0]
+
+
+def test_annular_strip_method_passes_conformance():
+    from impactlab.testing import check_model
+
+    check_model(get_model("maw")(method="annuli", rings=16, steps=200))
+
+
+def test_annular_strip_gross_slip_line_and_stick_start(golf_inputs):
+    model = get_model("maw")(method="annuli", history_points=2001)
+    nu = 0.45
+    kappa = 2 * (1 - nu) / (2 - nu)
+    chi = (1 - nu) / (2 - nu) * 3.5
+    targets = np.array([0.5, 8.0 * chi])
+    inputs = golf_inputs(friction=0.3, angle=np.arctan(targets * 0.3 / kappa))
+    result = model.compute(inputs, ["tangential_velocity", "spin_rate", "normal_velocity", "tangential_force",
+                                    "normal_force", "contact_time"])
+    psi1, psi2, chi = mbf_variables(inputs, result)
+    assert psi2[1] == pytest.approx(psi1[1] - 4 * chi[1], abs=1e-3)
+    early = np.argmin(np.abs(result["time"].values - 0.04 * result["contact_time"].values.min()))
+    ratio = (result["tangential_force"] / (0.3 * result["normal_force"])).isel(time=early).values
+    assert ratio[0] == pytest.approx(0.5, rel=0.05)  # sticks from first touch, F_t/(mu F_n) = psi1
