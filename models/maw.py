@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 import attrs
 import numpy as np
 
@@ -13,6 +15,7 @@ from impactlab.physics.mechanics import approach_velocities, effective_mass, tan
 from ._common import IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
 
 METHODS = ("mdr", "annuli")
+INELASTIC = ("adjusted_speed", "hysteretic")
 #: cases solved together; bounds the memory of the spring arrays
 BLOCK = 2048
 
@@ -44,6 +47,13 @@ class MawOptions:
         instants are added to them, so contact changes fall on steps.
     history_points : int
         Samples of the force histories on the shared time axis (when asked).
+    inelastic : str
+        How a restitution e < 1 enters. ``"adjusted_speed"`` (default, the
+        paper's approach): the elastic problem is solved at the normal speed
+        (1 + e) V_z / 2, so the normal impulse is (1 + e) m* V_z.
+        ``"hysteretic"``: Hertz contact with Hunt-Crossley damping chosen to
+        rebound at e, solved at the real approach speed; the Coulomb limit
+        follows the damped normal force.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -52,6 +62,8 @@ class MawOptions:
     rings: int = attrs.field(default=40, validator=_int_at_least(4))
     steps: int = attrs.field(default=400, validator=_int_at_least(16))
     history_points: int = attrs.field(default=256, validator=_int_at_least(2))
+    inelastic: str = attrs.field(default="adjusted_speed", validator=check(
+        lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
 
 class MawModel(ImpactModel):
@@ -66,10 +78,10 @@ class MawModel(ImpactModel):
     loading history, in the universal variables of Maw, Barber & Fawcett:
     chi = (kappa/2) m*/m_t and psi1 = kappa V_x/(mu V_z), kappa = G*/E*.
 
-    Normal restitution: the model is elastic. When the scene gives e < 1 it
-    follows Henrikson et al. (2020): it solves the elastic problem at the
-    normal speed (1 + e) V_z / 2, so that the normal impulse is (1 + e) m* V_z,
-    with the real tangential slip speed.
+    Normal restitution: with e < 1 in the scene, option ``inelastic`` picks
+    either the approach of Henrikson et al. (2020), the elastic problem at the
+    normal speed (1 + e) V_z / 2 so that the normal impulse is (1 + e) m* V_z,
+    or a hysteretic (Hunt-Crossley) normal law that rebounds at e.
 
     Inputs: ball and face materials (a rigid face has 1/E_face = 0), ball
     mass, radius, inertia factor; impact speed and angle; friction; optional
@@ -84,6 +96,7 @@ class MawModel(ImpactModel):
     J. Lubr. Technol. 103 (1981) 74-80.
     V. L. Popov, M. Hess, Method of Dimensionality Reduction in Contact Mechanics and Friction, Springer (2015).
     E. Henrikson, P. Wood, C. Broadie, T. Nuttall, Proceedings 49 (2020) 27.
+    K. H. Hunt, F. R. E. Crossley, J. Appl. Mech. 42 (1975) 440-445.
     """
 
     name = "maw"
@@ -104,77 +117,102 @@ class MawModel(ImpactModel):
 
     def _compute(self, inputs, outputs):
         p = inputs
-        radius, ball_mass = p["ball_radius"], p["ball_mass"]
-        modulus = hertz.effective_modulus(p["ball_youngs_modulus"], p["ball_poisson_ratio"],
-                                          p["face_youngs_modulus"], p["face_poisson_ratio"])
-        kappa = hertz.tangential_modulus(p["ball_youngs_modulus"], p["ball_poisson_ratio"],
-                                         p["face_youngs_modulus"], p["face_poisson_ratio"]) / modulus
+        radius, ball_mass, friction = p["ball_radius"], p["ball_mass"], p["friction"]
+        moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"], p["face_poisson_ratio"])
+        modulus = hertz.effective_modulus(*moduli)
+        kappa = hertz.tangential_modulus(*moduli) / modulus
         m_normal = effective_mass(ball_mass, p["club_mass"])
         m_tangential = tangential_mass(ball_mass, p["ball_inertia_factor"], p["club_mass"])
         normal_speed, slip = approach_velocities(p["speed"], p["angle"], p["spin"], radius)
         restitution = p.get("restitution", np.ones_like(normal_speed))
-        # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse.
-        elastic_speed = 0.5 * (1.0 + restitution) * normal_speed
-        friction = p["friction"]
+        if self.options.inelastic == "adjusted_speed":
+            # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
+            scale_speed = 0.5 * (1.0 + restitution) * normal_speed
+            law_of_case = np.zeros(slip.size, dtype=int)
+            laws = [hertz.ElasticNormal()]
+        else:
+            scale_speed = normal_speed
+            levels, law_of_case = np.unique(restitution, return_inverse=True)
+            laws = [self._damped_law(level) for level in levels]
 
         histories = {"normal_force", "tangential_force", "stick_radius"} & outputs
+        record = bool(histories - {"normal_force"})
         sliding = (friction > 0.0) & (slip != 0.0)
+        chi = 0.5 * kappa * m_normal / m_tangential
+        psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
         slip_change = np.zeros_like(slip)
-        scaled_history, tau = {}, None
-        if np.any(sliding):
-            chi = 0.5 * kappa * m_normal / m_tangential
-            psi1 = kappa * np.abs(slip) / np.where(sliding, friction * elastic_speed, 1.0)
-            scaled = self._solve(chi[sliding], psi1[sliding], record=bool(histories - {"normal_force"}))
-            slip_change[sliding] = scaled.slip_change * friction[sliding] * elastic_speed[sliding] / kappa[sliding]
-            if scaled.force is not None:
-                tau = scaled.tau
-                for name, values in (("tangential_force", scaled.force), ("stick_radius", scaled.stick_radius)):
-                    scaled_history[name] = np.zeros((slip.size, tau.size))
-                    scaled_history[name][sliding] = values
+        tangential = [None] * len(laws)
+        for index, law in enumerate(laws):
+            members = sliding & (law_of_case == index)
+            if np.any(members):
+                tangential[index] = self._solve(chi[members], psi1[members], record, law)
+                slip_change[members] = tangential[index].slip_change
+        slip_change *= friction * scale_speed / kappa
+        approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
+        duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed
         result = {
-            "normal_impulse": 2.0 * m_normal * elastic_speed,
+            "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
             "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
-            "contact_time": hertz.contact_time(m_normal, radius, modulus, elastic_speed),
+            "contact_time": duration,
         }
         if histories:
-            scales = {"normal_force": hertz.peak_force(m_normal, radius, modulus, elastic_speed),
-                      "tangential_force": hertz.peak_force(m_normal, radius, modulus, elastic_speed)
-                      * friction * np.sign(slip),
-                      "stick_radius": np.sqrt(radius * hertz.max_approach(m_normal, radius, modulus, elastic_speed))}
-            result.update(self._histories(histories, result["contact_time"], scales, tau, scaled_history))
+            peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
+            scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
+                      "stick_radius": np.sqrt(radius * approach_scale)}
+            result.update(self._histories(histories, duration, approach_scale / scale_speed, scales, laws,
+                                          law_of_case, sliding, tangential))
         return {name: result[name] for name in outputs | ({"time"} if histories else set())}
 
-    def _solve(self, chi, psi1, record):
+    @staticmethod
+    @functools.lru_cache(maxsize=64)
+    def _damped_law(restitution: float):
+        return hertz.DampedNormal(hertz.damping_for_restitution(float(restitution)))
+
+    def _solve(self, chi, psi1, record, normal):
         options = self.options
         if options.method == "annuli":
             def solve(chi_part, psi_part):
-                return annuli.solve_scaled(chi_part, psi_part, rings=options.rings, steps=options.steps, record=record)
+                return annuli.solve_scaled(chi_part, psi_part, rings=options.rings, steps=options.steps,
+                                           record=record, normal=normal)
         else:
             def solve(chi_part, psi_part):
                 return mdr.solve_scaled(chi_part, psi_part, springs=options.springs, steps=options.steps,
-                                        record=record)
+                                        record=record, normal=normal)
         parts = [solve(chi[i:i + BLOCK], psi1[i:i + BLOCK]) for i in range(0, chi.size, BLOCK)]
         joined = {name: np.concatenate([getattr(part, name) for part in parts]) if record else None
                   for name in ("force", "stick_radius")}
         return mdr.TangentialSolution(np.concatenate([part.slip_change for part in parts]), parts[0].tau,
                                       joined["force"], joined["stick_radius"], parts[0].steps)
 
-    def _histories(self, wanted, duration, scales, tau, scaled_history):
+    def _histories(self, wanted, duration, time_scale, scales, laws, law_of_case, sliding, tangential):
         """Histories on one time axis from 0 to the longest contact; NaN after a case's contact ends."""
         time = np.linspace(0.0, float(duration.max()), self.options.history_points)
-        scaled_time = time[None, :] / (duration[:, None] / hertz.TAU_CONTACT)
-        inside = scaled_time <= hertz.TAU_CONTACT * (1 + 1e-12)
         out = {"time": time}
+        shapes = {name: np.full((duration.size, time.size), np.nan) for name in wanted}
+        position = {index: 0 for index in range(len(laws))}
+        for case in range(duration.size):
+            law_index = law_of_case[case]
+            law = laws[law_index]
+            tau = time / time_scale[case]
+            inside = tau <= law.tau_end * (1 + 1e-12)
+            h = law.approach(tau)
+            solved = tangential[law_index]
+            row = None
+            if sliding[case]:
+                row = position[law_index]
+                position[law_index] += 1
+            for name in wanted:
+                if name == "normal_force":
+                    shape = h**1.5 * law.load_factor(tau)
+                elif row is not None:
+                    history = solved.force if name == "tangential_force" else solved.stick_radius
+                    shape = np.interp(tau, solved.tau, history[row])
+                elif name == "stick_radius":  # no tangential load anywhere: the whole contact sticks
+                    shape = np.sqrt(h)
+                else:
+                    shape = np.zeros_like(tau)
+                shapes[name][case] = np.where(inside, shape, np.nan)
         for name in wanted:
-            if name == "normal_force":
-                shape = hertz.scaled_approach(scaled_time) ** 1.5
-            elif name in scaled_history:
-                shape = np.vstack([np.interp(scaled_time[case], tau, scaled_history[name][case])
-                                   for case in range(scaled_time.shape[0])])
-            elif name == "stick_radius":  # no tangential load anywhere: the whole contact sticks
-                shape = np.sqrt(hertz.scaled_approach(scaled_time))
-            else:
-                shape = np.zeros_like(scaled_time)
-            out[name] = np.where(inside, scales[name][:, None] * shape, np.nan)
+            out[name] = scales[name][:, None] * shapes[name]
         return out

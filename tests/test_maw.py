@@ -244,3 +244,40 @@ def test_annular_strip_gross_slip_line_and_stick_start(golf_inputs):
     early = np.argmin(np.abs(result["time"].values - 0.04 * result["contact_time"].values.min()))
     ratio = (result["tangential_force"] / (0.3 * result["normal_force"])).isel(time=early).values
     assert ratio[0] == pytest.approx(0.5, rel=0.05)  # sticks from first touch, F_t/(mu F_n) = psi1
+
+
+@pytest.mark.parametrize("inelastic", ["adjusted_speed", "hysteretic"])
+def test_inelastic_laws_rebound_at_e_and_lose_the_right_energy(golf_inputs, inelastic):
+    model = get_model("maw")(inelastic=inelastic, history_points=3001)
+    e = np.array([0.5, 0.75, 0.9, 1.0])
+    inputs = golf_inputs(restitution=e, friction=0.0, angle=np.radians(10.0))
+    result = model.compute(inputs, ["normal_velocity", "energy_loss", "normal_impulse", "normal_force"])
+    vz = inputs["speed"] * np.cos(inputs["angle"])
+    np.testing.assert_allclose(result["normal_velocity"], e * vz, rtol=1e-8)
+    np.testing.assert_allclose(result["energy_loss"], 0.5 * inputs["ball_mass"] * vz**2 * (1 - e**2),
+                               rtol=1e-8, atol=1e-9)
+    integral = np.trapezoid(np.nan_to_num(result["normal_force"].values), result["time"].values, axis=1)
+    np.testing.assert_allclose(integral, result["normal_impulse"], rtol=1e-3)
+
+
+def test_hysteretic_law_is_elastic_at_e_one_and_slides_at_mu_jn(golf_inputs):
+    names = ["tangential_impulse", "normal_impulse", "contact_time", "launch_ratio"]
+    elastic = MAW.compute(golf_inputs(angle=np.radians([10.0, 30.0])), names)
+    damped = get_model("maw")(inelastic="hysteretic").compute(golf_inputs(angle=np.radians([10.0, 30.0])), names)
+    for name in names:
+        np.testing.assert_allclose(damped[name], elastic[name], rtol=1e-9)
+    # gross slip throughout: J_t = mu J_n whatever the normal law
+    sliding = get_model("maw")(inelastic="hysteretic").compute(
+        golf_inputs(friction=0.05, restitution=0.7, angle=np.radians(60.0)), names)
+    assert sliding["tangential_impulse"].item() == pytest.approx(0.05 * sliding["normal_impulse"].item(), rel=2e-4)
+    # damping lengthens the contact (slower unloading) compared with the adjusted-speed approach's shorter one
+    adjusted = MAW.compute(golf_inputs(restitution=0.7, angle=np.radians(20.0)), names)
+    hysteretic = get_model("maw")(inelastic="hysteretic").compute(golf_inputs(restitution=0.7,
+                                                                              angle=np.radians(20.0)), names)
+    assert hysteretic["contact_time"].item() > adjusted["contact_time"].item()
+
+
+def test_hysteretic_maw_passes_conformance():
+    from impactlab.testing import check_model
+
+    check_model(get_model("maw")(inelastic="hysteretic", springs=60, steps=150))

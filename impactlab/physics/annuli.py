@@ -39,8 +39,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .hertz import TAU_CONTACT, scaled_approach, time_to_reach
-from .mdr import TANGENTIAL_GAIN, TangentialSolution
+from .hertz import ElasticNormal
+from .mdr import TANGENTIAL_GAIN, TangentialSolution, event_grid
 
 OUT, STICK, SLIP = 0, 1, 2
 
@@ -73,16 +73,8 @@ def _pressure_loads(h: float, gamma: np.ndarray, rings: int) -> np.ndarray:
     return (np.maximum(h - inner**2, 0.0) ** 1.5 - np.maximum(h - outer**2, 0.0) ** 1.5) / 3.0
 
 
-def time_nodes(rings: int, steps: int) -> np.ndarray:
-    """A uniform grid merged with the instants each ring enters and leaves contact."""
-    rho = (np.arange(rings) + 0.5) / rings
-    entry = time_to_reach(rho**2)
-    tau = np.unique(np.concatenate([np.linspace(0.0, TAU_CONTACT, steps + 1), entry, TAU_CONTACT - entry]))
-    return tau[(tau >= 0.0) & (tau <= TAU_CONTACT)]
-
-
 def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool = False,
-                 max_iterations: int | None = None) -> TangentialSolution:
+                 max_iterations: int | None = None, normal=None) -> TangentialSolution:
     """Solve the scaled tangential impact by the annular-strip method, vectorised over cases.
 
     Parameters and result as :func:`impactlab.physics.mdr.solve_scaled`, with
@@ -99,8 +91,9 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
     cases = chi.size
     rho, gamma, displacement, load = influence_matrices(rings)
-    tau = time_nodes(rings, steps)
-    h_nodes = scaled_approach(tau)
+    normal = normal or ElasticNormal()
+    tau = event_grid(rho**2, steps, normal)
+    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
     max_iterations = max_iterations or 2 * rings
 
     mode = np.zeros((cases, rings), dtype=np.int8)  # all rings outside the contact at first touch
@@ -120,7 +113,7 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
         position = position + dt * (psi1 + half)
         h = h_nodes[k]
         in_contact = rho**2 < h
-        cap = _pressure_loads(h, gamma, rings)
+        cap = _pressure_loads(h, gamma, rings) * load_nodes[k]
         last = int(in_contact.sum()) - 1
         if 0 <= last < rings - 1:
             # the sliver of contact beyond the last mid-radius is carried by the last annulus in contact

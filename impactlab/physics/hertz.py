@@ -66,3 +66,116 @@ def time_to_reach(h):
     """Scaled time at which the approach first reaches h delta_max (0 <= h <= 1)."""
     h = np.asarray(h, dtype=float)
     return TAU_MAX_COMPRESSION * special.betainc(_A, _B, np.clip(h, 0.0, 1.0) ** 2.5)
+
+
+class ElasticNormal:
+    """The elastic Hertz impact in scaled time: h(tau), load factor 1, closed-form crossing times."""
+
+    damping = 0.0
+    restitution = 1.0
+    tau_end = TAU_CONTACT
+
+    def approach(self, tau):
+        return scaled_approach(tau)
+
+    def load_factor(self, tau):
+        return np.ones_like(np.asarray(tau, dtype=float))
+
+    def crossing_times(self, level):
+        """Scaled times at which h rises through and falls back through ``level`` (arrays)."""
+        rise = time_to_reach(level)
+        return rise, TAU_CONTACT - rise
+
+
+class DampedNormal:
+    """Hertz contact with Hunt-Crossley damping, F = k delta^(3/2) (1 + c d(delta)/dt / V_z), scaled.
+
+    h'' = -(5/4) h^(3/2) (1 + c h') with h(0) = 0, h'(0) = 1 (scaled by the
+    elastic delta_max and T = delta_max/V_z of the same approach speed). The
+    force never pulls: contact ends when h returns to 0 or the force falls to
+    zero first. The exit speed -h'(tau_end) is the coefficient of restitution,
+    a function of c alone, so the law is chosen per requested e.
+
+    References
+    ----------
+    K. H. Hunt and F. R. E. Crossley, Coefficient of restitution interpreted as
+    damping in vibroimpact, J. Appl. Mech. 42 (1975) 440-445.
+    """
+
+    def __init__(self, damping: float):
+        from scipy.integrate import solve_ivp
+
+        self.damping = float(damping)
+        c = self.damping
+
+        def rhs(_, y):
+            h, v = y
+            return [v, -1.25 * max(h, 0.0) ** 1.5 * (1.0 + c * v)]
+
+        def unloaded(_, y):  # the force vanishes on the way out: 1 + c h' = 0, or h = 0
+            h, v = y
+            return min(h, 1.0 + c * v) if v < 0 else 1.0
+
+        unloaded.terminal, unloaded.direction = True, -1
+        solution = solve_ivp(rhs, (0.0, 4.0 * TAU_CONTACT), [0.0, 1.0], method="DOP853", rtol=1e-11, atol=1e-13,
+                             dense_output=True, events=unloaded, first_step=1e-6)
+        self._solution = solution.sol
+        self.tau_end = float(solution.t_events[0][0]) if len(solution.t_events[0]) else float(solution.t[-1])
+        h_end, v_end = solution.sol(self.tau_end)
+        self.restitution = float(-v_end)
+        self._peak_time = float(_argmax_time(solution.sol, self.tau_end))
+        grid = np.linspace(0.0, self.tau_end, 4001)
+        self._rise = (grid[grid <= self._peak_time], self.approach(grid[grid <= self._peak_time]))
+        self._fall = (grid[grid >= self._peak_time], self.approach(grid[grid >= self._peak_time]))
+
+    def approach(self, tau):
+        tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
+        return np.maximum(self._solution(tau)[0], 0.0)
+
+    def load_factor(self, tau):
+        tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
+        return np.maximum(1.0 + self.damping * self._solution(tau)[1], 0.0)
+
+    def crossing_times(self, level):
+        from scipy.optimize import brentq
+
+        level = np.asarray(level, dtype=float)
+        peak = float(self.approach(self._peak_time))
+        rise, fall = np.empty_like(level), np.empty_like(level)
+        h_end = float(self.approach(self.tau_end))
+        for index, target in enumerate(level):
+            if target >= peak:
+                rise[index] = fall[index] = self._peak_time
+                continue
+            rise[index] = brentq(lambda t: self.approach(t) - target, 0.0, self._peak_time, xtol=1e-13)
+            fall[index] = self.tau_end if target <= h_end else brentq(
+                lambda t: self.approach(t) - target, self._peak_time, self.tau_end, xtol=1e-13)
+        return rise, fall
+
+
+def _argmax_time(sol, tau_end):
+    from scipy.optimize import brentq
+
+    return brentq(lambda t: sol(t)[1], 1e-9, tau_end, xtol=1e-14)
+
+
+_RESTITUTION_TABLE: tuple[np.ndarray, np.ndarray] | None = None
+
+
+def damping_for_restitution(restitution: float) -> float:
+    """The Hunt-Crossley damping c (scaled) whose impact rebounds with ``restitution`` (0.05 <= e <= 1)."""
+    global _RESTITUTION_TABLE
+    from scipy.optimize import brentq
+
+    if restitution >= 1.0:
+        return 0.0
+    if _RESTITUTION_TABLE is None:
+        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 60)])
+        _RESTITUTION_TABLE = (dampings, np.array([DampedNormal(c).restitution for c in dampings]))
+    dampings, restitutions = _RESTITUTION_TABLE
+    if restitution < restitutions[-1]:
+        raise ValueError(f"restitution {restitution} is below what the damped Hertz law reaches "
+                         f"({restitutions[-1]:.3f})")
+    index = int(np.searchsorted(-restitutions, -restitution))
+    low, high = dampings[max(index - 1, 0)], dampings[min(index, dampings.size - 1)]
+    return float(brentq(lambda c: DampedNormal(c).restitution - restitution, low, high, xtol=1e-10))

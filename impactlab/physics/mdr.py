@@ -19,7 +19,9 @@ Gross slip throughout gives psi2 = psi1 - 4 chi exactly.
 
 Numerics: springs at the mid-points of n equal cells of [0, 1]; the time grid
 is a uniform grid merged with the exact instants at which each spring enters
-and leaves contact (known in closed form), so contact changes fall on steps.
+and leaves contact (in closed form for the elastic law), so contact changes
+fall on steps. A damped normal law (:class:`.hertz.DampedNormal`) scales the
+springs' normal force, hence their Coulomb caps, by its load factor.
 Between nodes, velocity Verlet; each step adds the slip increment to every
 spring and returns it to its Coulomb cap (a return map, exact for a
 monotonic slip within a step).
@@ -37,7 +39,7 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from .hertz import TAU_CONTACT, scaled_approach, time_to_reach
+from .hertz import ElasticNormal
 
 #: dX''/dtau = -TANGENTIAL_GAIN * chi * integral u dxi
 TANGENTIAL_GAIN = 15.0 / 4.0
@@ -71,16 +73,15 @@ class TangentialSolution:
     steps: int
 
 
-def time_nodes(springs: int, steps: int) -> tuple[np.ndarray, np.ndarray]:
-    """Scaled spring positions and the merged time grid on [0, tau_c]."""
-    xi = (np.arange(springs) + 0.5) / springs
-    entry = time_to_reach(xi**2)
-    uniform = np.linspace(0.0, TAU_CONTACT, steps + 1)
-    tau = np.unique(np.concatenate([uniform, entry, TAU_CONTACT - entry]))
-    return xi, tau[(tau >= 0.0) & (tau <= TAU_CONTACT)]
+def event_grid(levels, steps: int, normal) -> np.ndarray:
+    """A uniform grid over the contact merged with the instants h rises through and falls through each level."""
+    rise, fall = normal.crossing_times(levels)
+    tau = np.unique(np.concatenate([np.linspace(0.0, normal.tau_end, steps + 1), rise, fall]))
+    return tau[(tau >= 0.0) & (tau <= normal.tau_end)]
 
 
-def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False) -> TangentialSolution:
+def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
+                 normal=None) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
 
     Parameters
@@ -94,11 +95,15 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     steps : int
         Uniform steps over the contact (spring entry and exit instants are added).
     record : bool
-        Keep the scaled force history.
+        Keep the scaled force and stick-radius histories.
+    normal : ElasticNormal or DampedNormal, optional
+        The scaled normal history h(tau) and its load factor (default: elastic Hertz).
     """
+    normal = normal or ElasticNormal()
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
-    xi, tau = time_nodes(springs, steps)
+    xi = (np.arange(springs) + 0.5) / springs
+    tau = event_grid(xi**2, steps, normal)
     cap_offset = xi**2
     weight = 1.0 / springs
     gain = TANGENTIAL_GAIN * chi * weight
@@ -108,12 +113,12 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     acceleration = np.zeros(chi.size)
     history = np.zeros((chi.size, tau.size)) if record else None
     stick = np.zeros((chi.size, tau.size)) if record else None
-    h_nodes = scaled_approach(tau)
+    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
     for k in range(1, tau.size):
         dt = tau[k] - tau[k - 1]
         half = velocity_change + 0.5 * dt * acceleration
         u += (dt * (psi1 + half))[:, None]
-        cap = np.maximum(h_nodes[k] - cap_offset, 0.0)
+        cap = np.maximum(h_nodes[k] - cap_offset, 0.0) * load_nodes[k]
         np.clip(u, -cap, cap, out=u)
         total = u.sum(axis=1)
         acceleration = -gain * total
