@@ -54,12 +54,17 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
     combined[MODEL_DIM].attrs = {"long_name": "model",
                                  "model_names": json.dumps([entry.name for entry in study.models])}
     for axis in study.sweep:
-        spec = INPUTS[axis.input]
-        unit = spec.display_unit or spec.unit
-        # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
-        coordinate = [float(f"{value * spec.display_factor:.12g}") for value in axis.values]
-        combined = combined.assign_coords({axis.dim: coordinate})
-        combined[axis.dim].attrs = {"units": unit, "long_name": spec.description, "study_path": axis.path}
+        if axis.grouped:
+            labels = list(axis.labels) if axis.labels else list(range(axis.size))
+            combined = combined.assign_coords({axis.dim: labels})
+            combined[axis.dim].attrs = {"long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"}
+        for field in axis.fields:
+            spec = INPUTS[field.input]
+            # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
+            values = [float(f"{value * spec.display_factor:.12g}") for value in field.values]
+            combined = combined.assign_coords({field.coord: (axis.dim, values)})
+            combined[field.coord].attrs = {"units": spec.display_unit or spec.unit, "long_name": spec.description,
+                                           "study_path": field.path}
     if TIME_DIM in combined.coords:
         combined[TIME_DIM].attrs = {"units": "s", "long_name": "time since first contact"}
     order = [MODEL_DIM] + [axis.dim for axis in study.sweep]

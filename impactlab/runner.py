@@ -52,11 +52,11 @@ def plan_study(study: Study) -> StudyPlan:
 def case_inputs(study: Study) -> dict[str, np.ndarray]:
     """Input arrays over the Cartesian product of the sweep, flattened in C order (first axis slowest)."""
     base = study.scene.inputs()
-    shape = study.shape
-    grids = np.meshgrid(*[np.asarray(axis.values) for axis in study.sweep], indexing="ij") if study.sweep else []
+    grids = np.meshgrid(*[np.arange(axis.size) for axis in study.sweep], indexing="ij") if study.sweep else []
     inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
     for axis, grid in zip(study.sweep, grids):
-        inputs[axis.input] = grid.reshape(-1).astype(float)
+        for field in axis.fields:
+            inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
     complete_inputs(inputs)
     if np.any(inputs["angle"] >= np.pi / 2):
         case = int(np.argmax(inputs["angle"] >= np.pi / 2))

@@ -40,13 +40,30 @@ SWEEP_RANGE_KEYS = ("start", "stop", "num")
 
 
 @attrs.frozen
-class SweepAxis:
-    """One swept field: its study path, the model input it sets, the dataset dimension and the SI values."""
+class SweepField:
+    """A field set by a sweep: its study path, the model input it sets, its SI values, and its coordinate name."""
 
     path: str
     input: str
-    dim: str
     values: tuple[float, ...]
+    coord: str
+
+
+@attrs.frozen
+class SweepAxis:
+    """One dimension of a study: one swept field, or several fields swept together (with optional labels)."""
+
+    dim: str
+    fields: tuple[SweepField, ...]
+    labels: tuple[str, ...] | None = None
+
+    @property
+    def size(self) -> int:
+        return len(self.fields[0].values)
+
+    @property
+    def grouped(self) -> bool:
+        return len(self.fields) > 1 or self.labels is not None
 
 
 @attrs.frozen
@@ -90,7 +107,7 @@ class Study:
 
     @property
     def shape(self) -> tuple[int, ...]:
-        return tuple(len(axis.values) for axis in self.sweep)
+        return tuple(axis.size for axis in self.sweep)
 
     @property
     def n_cases(self) -> int:
@@ -337,33 +354,74 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
     raise FieldError(where, "a list of values or {start, stop, num}", spec)
 
 
+def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, list[float]]]) -> None:
+    """Every swept value (all fields of one index together) must make a valid scene, with the base's messages."""
+    for index in range(len(fields[0][1])):
+        trial = copy.deepcopy(dict(document))
+        for path, values in fields:
+            section, key = path.split(".")
+            trial[section] = dict(trial.get(section) or {}, **{key: _SI(values[index])})
+        try:
+            build_scene(trial)
+        except FieldError as exc:
+            raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given,
+                             exc.choices) from None
+
+
+def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
+    if path not in INPUT_BY_PATH:
+        raise FieldError(where, "a dotted path of a swept field", str(path), choices=INPUT_BY_PATH)
+    name = INPUT_BY_PATH[path]
+    return name, _sweep_values(path, spec, INPUTS[name].dimension)
+
+
 def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
-        raise FieldError("sweep", "a mapping from dotted field paths to values", sweep)
+        raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
+    raw_axes = []  # (dim or None, labels, [(path, input, values)])
+    for key, spec in sweep.items():
+        key = str(key)
+        if "." in key or not isinstance(spec, Mapping) or set(spec) <= set(SWEEP_RANGE_KEYS):
+            name, values = _sweep_field_values(key, spec, f"sweep.{key}")
+            _check_sweep_values(document, f"sweep.{key}", [(key, values)])
+            raw_axes.append((None, None, [(key, name, values)]))
+            continue
+        # a named dimension along which several fields change together
+        if not key.isidentifier() or key in (MODEL_DIM, "time"):
+            raise FieldError(f"sweep.{key}", "a dimension name (letters, digits, _; not model or time)", key)
+        labels = spec.get("labels")
+        fields = [(path, *_sweep_field_values(path, values, f"sweep.{key}.{path}"))
+                  for path, values in spec.items() if path != "labels"]
+        if not fields:
+            raise FieldError(f"sweep.{key}", "at least one dotted field path with its values", "none")
+        sizes = {len(values) for _, _, values in fields} | ({len(labels)} if isinstance(labels, list) else set())
+        if labels is not None and (not isinstance(labels, list) or not all(isinstance(x, str) for x in labels)
+                                   or len(set(labels)) != len(labels)):
+            raise FieldError(f"sweep.{key}.labels", "a list of distinct names, one per value", labels)
+        if len(sizes) != 1:
+            raise FieldError(f"sweep.{key}", "lists of one length for every field (and labels)", sorted(sizes))
+        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields])
+        raw_axes.append((key, tuple(labels) if labels else None, fields))
+
+    paths = [path for _, _, fields in raw_axes for path, _, _ in fields]
+    repeated = sorted({path for path in paths if paths.count(path) > 1})
+    if repeated:
+        raise FieldError(f"sweep.{repeated[0]}", "each field swept at most once", "swept twice")
+    short = [path.split(".")[-1] for path in paths]
+    taken = {dim for dim, _, _ in raw_axes if dim}
+
+    def name_of(path):
+        last = path.split(".")[-1]
+        clash = short.count(last) > 1 or last in (MODEL_DIM, "time") or last in taken
+        return path.replace(".", "_") if clash else last
+
     axes = []
-    for path, spec in sweep.items():
-        if path not in INPUT_BY_PATH:
-            raise FieldError(f"sweep.{path}", "a dotted path of a swept field", str(path), choices=INPUT_BY_PATH)
-        name = INPUT_BY_PATH[path]
-        values = _sweep_values(path, spec, INPUTS[name].dimension)
-        section, key = path.split(".")
-        for index, value in enumerate(values):
-            # every value must make a valid scene: the same checks, and the same messages, as the base
-            trial = copy.deepcopy(dict(document))
-            trial[section] = dict(trial.get(section) or {}, **{key: _SI(value)})
-            try:
-                build_scene(trial)
-            except FieldError as exc:
-                raise FieldError(f"sweep.{path}[{index}]", f"{exc.expected} (for {exc.path})", exc.given,
-                                 exc.choices) from None
-        axes.append((path, name, tuple(float(value) for value in values)))
-    last = [path.split(".")[-1] for path, _, _ in axes]
-    result = []
-    for (path, name, values), short in zip(axes, last):
-        dim = short if last.count(short) == 1 and short != MODEL_DIM else path.replace(".", "_")
-        result.append(SweepAxis(path, name, dim, values))
-    return tuple(result)
+    for dim, labels, fields in raw_axes:
+        sweep_fields = tuple(SweepField(path, name, tuple(float(v) for v in values), name_of(path))
+                             for path, name, values in fields)
+        axes.append(SweepAxis(dim or sweep_fields[0].coord, sweep_fields, labels))
+    return tuple(axes)
 
 
 def _build_models(value) -> tuple[ModelEntry, ...]:
@@ -429,4 +487,4 @@ def _build_study(document, text: str, file: str | None) -> Study:
                  source=text, file=file)
 
 
-__all__ = ["Study", "SweepAxis", "ModelEntry", "load_study", "build_scene"]
+__all__ = ["Study", "SweepAxis", "SweepField", "ModelEntry", "load_study", "build_scene"]

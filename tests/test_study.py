@@ -167,3 +167,42 @@ def test_same_model_twice_needs_an_id():
 def test_missing_study_file_is_a_clear_error(tmp_path):
     with pytest.raises(StudyError, match="no such study file"):
         impactlab.load_study(tmp_path / "absent.yaml")
+
+
+GROUPED = {**MINIMAL, "face": {"preset": "steel"}, "impact": None,
+           "delivery": {"club_speed": "90 mph", "attack_angle": -4, "dynamic_loft": 24},
+           "sweep": {"club": {"labels": ["driver", "7-iron", "pitching wedge"],
+                              "delivery.club_speed": ["112 mph", "90 mph", "83 mph"],
+                              "delivery.dynamic_loft": [13, 24, 33]},
+                     "contact.friction": [0.3, 0.4]},
+           "models": ["maw", "rigid_coulomb"], "outputs": ["vertical_launch_ratio", "spin_loft"]}
+
+
+def test_fields_swept_together_share_one_labelled_dimension(tmp_path):
+    study = {key: value for key, value in GROUPED.items() if value is not None}
+    ds = impactlab.run_study(study)
+    assert dict(ds.sizes) == {"model": 2, "club": 3, "friction": 2}
+    assert list(ds.club.values) == ["driver", "7-iron", "pitching wedge"]
+    assert ds.dynamic_loft.dims == ("club",) and ds.dynamic_loft.values.tolist() == [13.0, 24.0, 33.0]
+    assert ds.club_speed.attrs["units"] == "m/s"
+    # each label's fields really went together: spin loft = dynamic loft - attack angle
+    np.testing.assert_allclose(ds.spin_loft.sel(model="maw", friction=0.3), ds.dynamic_loft + 4.0, rtol=1e-12)
+    from impactlab.results_io import write_results
+
+    back = impactlab.open_results(write_results(ds, tmp_path / "grouped.h5"))
+    import xarray as xr
+
+    xr.testing.assert_identical(back, ds)
+
+
+def test_grouped_sweep_errors_name_the_field():
+    study = {key: value for key, value in GROUPED.items() if value is not None}
+    bad = {**study, "sweep": {"club": {"delivery.club_speed": [1, 2], "delivery.dynamic_loft": [10, 20, 30]}}}
+    with pytest.raises(FieldError, match=r"sweep.club: expected lists of one length"):
+        impactlab.load_study(bad)
+    bad = {**study, "sweep": {"club": {"delivery.club_sped": [1, 2]}}}
+    with pytest.raises(FieldError, match=r"sweep.club.delivery.club_sped: .*did you mean 'delivery.club_speed'"):
+        impactlab.load_study(bad)
+    bad = {**study, "sweep": {"club": {"delivery.dynamic_loft": [10, 95]}}}
+    with pytest.raises(FieldError, match=r"sweep.club\[1\]: expected a dynamic loft between -90 and 90 deg"):
+        impactlab.load_study(bad)
