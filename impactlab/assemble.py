@@ -94,6 +94,7 @@ def provenance(study, plan) -> dict[str, str | int]:
         "base_scene_si": json.dumps(scene, sort_keys=True),
         "models": json.dumps(models),
         "plan": plan.describe(),
+        "plots": json.dumps([plot.as_dict() for plot in study.plots]),
         "impactlab_version": __version__,
         "python_version": platform.python_version(),
         "numpy_version": np.__version__,

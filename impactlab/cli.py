@@ -45,10 +45,12 @@ def _cmd_run(args) -> int:
 
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     """The standard pictures of a result: scalar outputs, and each history if there is one."""
-    from .plotting import plot_histories, plot_results
+    from .plotting import draw_declared, plot_histories, plot_results
     from .vocabulary import HISTORY, OUTPUTS
 
     png = png or output.with_suffix(".png")
+    if dataset.attrs.get("plots", "[]") not in ("", "[]"):
+        return draw_declared(dataset, png.parent, png.stem)
     pictures = [plot_results(dataset, png)]
     for name in dataset.data_vars:
         if OUTPUTS[name].kind == HISTORY:
@@ -111,8 +113,12 @@ def _cmd_plot(args) -> int:
     output = Path(args.output or Path(args.file).with_suffix(".png"))
     if args.history:
         plot_histories(dataset, output, args.history)
-    else:
+    elif args.variables or args.x or args.output:
         plot_results(dataset, output, outputs=args.variables or None, x=args.x)
+    else:
+        for picture in _draw(dataset, Path(args.file), None):
+            print(f"wrote {picture}", file=sys.stderr)
+        return 0
     print(f"wrote {output}", file=sys.stderr)
     return 0
 
@@ -142,7 +148,7 @@ def build_parser() -> argparse.ArgumentParser:
     show.add_argument("file")
     show.set_defaults(handler=_cmd_show)
 
-    plot = commands.add_parser("plot", help="draw a result file as PNG")
+    plot = commands.add_parser("plot", help="draw a result file as PNG (by default the figures its study declares)")
     plot.add_argument("file")
     plot.add_argument("-o", "--output", help="PNG file (default: next to the result file)")
     plot.add_argument("--x", help="sweep dimension for the horizontal axis")

@@ -12,7 +12,7 @@ from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after
 
 IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
 FROM_IMPULSES = frozenset({
-    "launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate", "normal_velocity",
+    "launch_angle", "launch_ratio", "rebound_angle", "total_angle", "ball_speed", "spin_rate", "normal_velocity",
     "tangential_velocity", "tangential_restitution", "energy_loss",
 })
 FROM_DELIVERY = frozenset({

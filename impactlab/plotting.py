@@ -10,10 +10,36 @@ import xarray as xr
 
 from .vocabulary import HISTORY, MODEL_DIM, OUTPUTS, TIME_DIM
 
-_STYLES = ("-", "--", ":", "-.")
+_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 
 
-def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: str | None = None) -> Path:
+def _text(coordinate) -> str:
+    value = coordinate.item()
+    return f"{value:g}" if isinstance(value, (int, float)) else str(value)
+
+
+def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
+    """Draw every figure the study declared (``plots`` attribute) to FOLDER/STEM_NAME.png."""
+    import json
+
+    pictures = []
+    for spec in json.loads(dataset.attrs.get("plots", "[]") or "[]"):
+        path = folder / f"{stem}_{spec['name']}.png"
+        selected = dataset.sel(spec.get("select") or {})
+        if MODEL_DIM not in selected.dims:  # one model chosen: keep it as a one-long dimension
+            selected = selected.expand_dims({MODEL_DIM: [selected[MODEL_DIM].item()]})
+        if spec.get("kind") == "history":
+            for output in spec["y"]:
+                plot_histories(selected, path if len(spec["y"]) == 1 else path.with_stem(f"{path.stem}_{output}"),
+                               output, title=spec.get("title", ""))
+        else:
+            plot_results(selected, path, outputs=spec["y"], x=spec.get("x"), title=spec.get("title", ""))
+        pictures.append(path)
+    return pictures
+
+
+def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: str | None = None,
+                 title: str = "") -> Path:
     """Draw scalar outputs against one sweep dimension, one colour per model, one line style per other value.
 
     Parameters
@@ -40,8 +66,10 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     others = [dim for dim in sweep_dims if dim != x]
     columns = min(len(names), 3) or 1
     rows = max(1, -(-len(names) // columns))
-    figure, axes = plt.subplots(rows, columns, figsize=(5.2 * columns, 3.8 * rows), squeeze=False)
+    size = (8.0, 5.2) if len(names) == 1 else (5.2 * columns, 3.8 * rows + 0.6)
+    figure, axes = plt.subplots(rows, columns, figsize=size, squeeze=False)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    single_model = dataset.sizes[MODEL_DIM] == 1
     for axis, name in zip(axes.flat, names):
         variable = dataset[name]
         for m_index, model in enumerate(dataset[MODEL_DIM].values):
@@ -51,10 +79,13 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
                 line = stacked.isel(_line=l_index)
                 label = str(model)
                 if others:
-                    label += " " + ", ".join(f"{dim}={float(line[dim]):g}" for dim in others)
+                    label += " " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
                 xs = dataset[x].values if x else [0.0]
-                axis.plot(xs, np.atleast_1d(line.values), _STYLES[l_index % len(_STYLES)],
-                          color=colours[m_index % len(colours)], label=label, marker="" if x else "o")
+                # one model: a colour per line; several: a colour per model, a line style per other value
+                colour = colours[(l_index if single_model else m_index) % len(colours)]
+                style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
+                axis.plot(xs, np.atleast_1d(line.values), linestyle=style, color=colour, label=label,
+                          marker="" if x else "o")
         axis.set_title(OUTPUTS[name].long_name, fontsize=9)
         axis.set_ylabel(f"{name} [{OUTPUTS[name].units}]")
         if x:
@@ -62,11 +93,16 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         axis.grid(True, alpha=0.3)
     for axis in list(axes.flat)[len(names):]:
         axis.set_visible(False)
-    if names:
+    figure.suptitle(title or dataset.attrs.get("title", ""), fontsize=11)
+    if len(names) == 1:
+        axes.flat[0].legend(fontsize=7, ncol=2 if len(axes.flat[0].lines) > 6 else 1)
+        figure.tight_layout(rect=(0, 0, 1, 0.95))
+    elif names:
         handles, labels = axes.flat[0].get_legend_handles_labels()
-        figure.legend(handles, labels, loc="lower center", ncol=min(4, len(labels)), fontsize=8, frameon=False)
-    figure.suptitle(dataset.attrs.get("title", ""), fontsize=11)
-    figure.tight_layout(rect=(0, 0.04 + 0.025 * (len(labels) // 4 if names else 0), 1, 0.96))
+        columns_of_legend = min(4, len(labels))
+        legend_rows = -(-len(labels) // columns_of_legend)
+        figure.legend(handles, labels, loc="lower center", ncol=columns_of_legend, fontsize=8, frameon=False)
+        figure.tight_layout(rect=(0, 0.02 + 0.03 * legend_rows, 1, 0.96))
     path = Path(path)
     figure.savefig(path, dpi=110)
     plt.close(figure)
@@ -74,7 +110,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
 
 
 def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "tangential_force",
-                   select: dict | None = None) -> Path:
+                   select: dict | None = None, title: str = "") -> Path:
     """Draw a force history against time for every model that has it and every remaining sweep value."""
     import matplotlib
 
@@ -91,12 +127,12 @@ def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "
         stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
         for index in range(stacked.sizes["_line"]):
             line = stacked.isel(_line=index)
-            label = f"{model} " + ", ".join(f"{dim}={float(line[dim]):g}" for dim in others)
+            label = f"{model} " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
             axis.plot(dataset[TIME_DIM].values * 1e6, line.values, label=label)
     axis.axhline(0.0, color="0.5", lw=0.8)
     axis.set_xlabel("time [us]")
     axis.set_ylabel(f"{output} [{OUTPUTS[output].units}]")
-    axis.set_title(OUTPUTS[output].long_name, fontsize=10)
+    axis.set_title(title or OUTPUTS[output].long_name, fontsize=10)
     axis.legend(fontsize=8)
     axis.grid(True, alpha=0.3)
     figure.tight_layout()

@@ -30,7 +30,7 @@ from .vocabulary import DEFAULT_OUTPUTS, INPUT_BY_PATH, INPUTS, OUTPUTS, MODEL_D
 from .yaml_lines import line_of, load_yaml, parse_path
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "delivery", "sweep", "models",
-                  "outputs")
+                  "outputs", "plots")
 DELIVERY_KEYS = ("club_speed", "path", "face_angle", "attack_angle", "dynamic_loft", "handedness")
 BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio")
 FACE_KEYS = ("preset", "rigid", "youngs_modulus", "poisson_ratio", "mass")
@@ -78,6 +78,26 @@ class ModelEntry:
         return self.model.name
 
 
+PLOT_KEYS = ("name", "y", "x", "select", "title", "kind")
+PLOT_KINDS = ("lines", "history")
+
+
+@attrs.frozen
+class PlotSpec:
+    """A figure a study declares: ``y`` against sweep dimension ``x`` (or time), lines per model and per other value."""
+
+    name: str
+    y: tuple[str, ...]
+    x: str | None = None
+    select: tuple[tuple[str, Any], ...] = ()
+    title: str = ""
+    kind: str = "lines"
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "y": list(self.y), "x": self.x, "select": dict(self.select), "title": self.title,
+                "kind": self.kind}
+
+
 @attrs.frozen
 class Study:
     """A validated study.
@@ -104,6 +124,7 @@ class Study:
     outputs: tuple[str, ...]
     source: str = attrs.field(repr=False)
     file: str | None = None
+    plots: tuple[PlotSpec, ...] = ()
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -482,9 +503,53 @@ def _build_study(document, text: str, file: str | None) -> Study:
         raise FieldError("description", "text", description)
     if "models" not in document:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
-    return Study(name=name, description=description, scene=build_scene(document), sweep=_build_sweep(document),
-                 models=_build_models(document["models"]), outputs=_build_outputs(document.get("outputs")),
-                 source=text, file=file)
+    scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
+    sweep = _build_sweep(document)
+    outputs = _build_outputs(document.get("outputs"))
+    return Study(name=name, description=description, scene=scene, sweep=sweep,
+                 models=_build_models(document["models"]), outputs=outputs, source=text, file=file,
+                 plots=_build_plots(document.get("plots"), sweep, outputs))
+
+
+def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
+    if value is None:
+        return ()
+    if not isinstance(value, list):
+        raise FieldError("plots", "a list of figures ({name, y, x, select, title, kind})", value)
+    dims = [axis.dim for axis in sweep]
+    plots = []
+    for index, item in enumerate(value):
+        where = f"plots[{index}]"
+        block = _require_mapping(item, where, PLOT_KEYS, "a figure")
+        name = block.get("name", f"plot{index}")
+        if not isinstance(name, str) or not name.replace("-", "_").isidentifier():
+            raise FieldError(f"{where}.name", "a short file-name-safe name", name)
+        wanted = block.get("y")
+        wanted = [wanted] if isinstance(wanted, str) else wanted
+        if not isinstance(wanted, list) or not wanted:
+            raise FieldError(f"{where}.y", "an output name or a list of them", wanted, choices=outputs)
+        for position, output in enumerate(wanted):
+            if output not in outputs:
+                raise FieldError(f"{where}.y[{position}]", "an output the study computes", output, choices=outputs)
+        kind = block.get("kind", "lines")
+        if kind not in PLOT_KINDS:
+            raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)
+        x = block.get("x")
+        if x is not None and x not in dims:
+            raise FieldError(f"{where}.x", "a sweep dimension", x, choices=dims)
+        select = block.get("select") or {}
+        if not isinstance(select, Mapping):
+            raise FieldError(f"{where}.select", "a mapping from dimension to value", select)
+        for key in select:
+            if key not in dims + [MODEL_DIM]:
+                raise FieldError(f"{where}.select.{key}", "a sweep dimension or model", key,
+                                 choices=dims + [MODEL_DIM])
+        title = block.get("title", "")
+        plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind))
+    names = [plot.name for plot in plots]
+    if len(set(names)) != len(names):
+        raise FieldError("plots", "figures with distinct names", names)
+    return tuple(plots)
 
 
 __all__ = ["Study", "SweepAxis", "SweepField", "ModelEntry", "load_study", "build_scene"]

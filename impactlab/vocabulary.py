@@ -153,6 +153,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "launch_ratio": OutputSpec("1", "launch ratio theta/alpha"),
     "rebound_angle": OutputSpec("deg", "rebound angle from the face normal, face frame (specular = alpha)",
                                 factor=RAD_TO_DEG),
+    "total_angle": OutputSpec("deg", "total angle: incidence plus rebound angle (plate experiment)",
+                              factor=RAD_TO_DEG),
     "ball_speed": OutputSpec("m/s", "ball speed after impact, ground frame"),
     "spin_rate": OutputSpec("rpm", "ball spin after impact (backspin positive)", factor=RADS_TO_RPM),
     "normal_velocity": OutputSpec("m/s", "ball-centre velocity after impact along the face normal, face frame"),

@@ -52,7 +52,8 @@ def after_impact(normal_impulse, tangential_impulse, *, ball_mass, ball_radius, 
         ``normal_velocity``, ``tangential_velocity`` (ball centre relative to
         the face after impact), ``spin_rate`` [rad/s], ``tangential_restitution``
         (NaN where there was no incoming slip), ``launch_angle`` [rad],
-        ``launch_ratio`` (NaN at alpha = 0), ``rebound_angle`` [rad],
+        ``launch_ratio`` (NaN at alpha = 0), ``rebound_angle`` [rad], ``total_angle``
+        (incidence plus rebound angle, the plate experiment's measure) [rad],
         ``ball_speed`` [m/s] (ground frame) and ``energy_loss`` [J].
     """
     jn = np.asarray(normal_impulse, dtype=float)
@@ -85,6 +86,7 @@ def after_impact(normal_impulse, tangential_impulse, *, ball_mass, ball_radius, 
         "launch_angle": launch_angle,
         "launch_ratio": launch_ratio,
         "rebound_angle": rebound_angle,
+        "total_angle": angle + rebound_angle,
         "ball_speed": ball_speed,
         "energy_loss": energy_loss,
     }
