@@ -123,6 +123,19 @@ def _cmd_plot(args) -> int:
     return 0
 
 
+def _cmd_paper(args) -> int:
+    from .errors import StudyError
+    from .paper import report
+
+    results = Path(args.results)
+    if not results.is_dir():
+        raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
+    output = Path(args.output)
+    report(results, output, Path(args.figures) if args.figures else output.parent / "figures")
+    print(f"wrote {output}", file=sys.stderr)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from ._version import __version__
 
@@ -156,6 +169,11 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument("-v", "--variable", dest="variables", action="append",
                       help="a scalar output to draw (repeatable; default: all)")
     plot.set_defaults(handler=_cmd_plot)
+    paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
+    paper.add_argument("results", help="folder holding the result files of studies/paper/*.yaml")
+    paper.add_argument("-o", "--output", default="docs/paper.md", help="report file (markdown)")
+    paper.add_argument("--figures", help="folder for the figures (default: figures/ beside the report)")
+    paper.set_defaults(handler=_cmd_paper)
     return parser
 
 
