@@ -75,3 +75,13 @@ def test_missing_file_and_unwritable_output(tmp_path):
     assert result.returncode == 2 and "no such study file" in result.stderr
     result = run_cli("run", small_study(tmp_path), "-o", tmp_path / "no" / "such" / "dir.h5")
     assert result.returncode == 2 and "does not exist" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_plot_redraws_the_figures_a_study_declares(tmp_path):
+    study = ROOT / "studies" / "paper" / "fig7_tangential_force.yaml"
+    out = tmp_path / "fig7.h5"
+    assert main(["run", str(study), "-o", str(out), "-q"]) == 0
+    assert main(["plot", str(out)]) == 0
+    drawn = sorted(path.name for path in tmp_path.glob("*.png"))
+    assert drawn == ["fig7_fig7.png", "fig7_fig7_annuli.png", "fig7_stick_radius.png"]
+    assert all(path.stat().st_size > 20_000 for path in tmp_path.glob("*.png"))
