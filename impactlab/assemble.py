@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 
 from ._version import __version__
+from .diagnostics import flag_attributes
 from .vocabulary import CASE_DIM, HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
 
 
@@ -39,9 +40,9 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
                     # a model without histories: NaN over the time axis of those that have them
                     ds = ds.assign({name: ds[name].expand_dims({TIME_DIM: reference.values}, axis=-1).copy()})
             per_model[index] = ds
-    missing = {name: [] for name in study.outputs}
+    missing = {name: [] for name in study.all_outputs}
     for entry, result in zip(study.models, results):
-        for name in study.outputs:
+        for name in study.all_outputs:
             reason = result[name].attrs.get("missing_reason")
             if reason:
                 missing[name].append(f"{entry.id}: {reason}")
@@ -69,13 +70,15 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
         combined[TIME_DIM].attrs = {"units": "s", "long_name": "time since first contact"}
     order = [MODEL_DIM] + [axis.dim for axis in study.sweep]
     combined = combined.transpose(*order, ...)
-    for name in study.outputs:
+    for name in study.all_outputs:
         spec = OUTPUTS[name]
         attrs = {"units": spec.units, "long_name": spec.long_name}
         if missing[name]:
             attrs["missing"] = "; ".join(missing[name])
+        if name == "validity":
+            attrs.update(flag_attributes())
         combined[name].attrs = attrs
-    combined = combined[list(study.outputs)]
+    combined = combined[list(study.all_outputs)]
     combined.attrs = provenance(study, plan)
     return combined
 

@@ -180,7 +180,20 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     from .errors import ImpactLabError
 
+    import warnings
+
+    from .diagnostics import ValidityWarning
+
     args = build_parser().parse_args(argv)
+
+    def show_warning(message, category, *rest, **kwargs):
+        # one line, in words, for validity; the usual format for anything else
+        if issubclass(category, ValidityWarning):
+            print(f"impactlab: warning: {message}", file=sys.stderr)
+        else:
+            print(warnings.formatwarning(message, category, *rest), file=sys.stderr, end="")
+
+    warnings.showwarning = show_warning
     try:
         return args.handler(args)
     except ImpactLabError as exc:

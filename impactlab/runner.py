@@ -13,6 +13,7 @@ import numpy as np
 import xarray as xr
 
 from .assemble import assemble
+from .diagnostics import warn as warn_validity
 from .errors import FieldError, ModelInputError
 from .planning import OutputPlan
 from .scene import complete_inputs
@@ -39,7 +40,7 @@ def plan_study(study: Study) -> StudyPlan:
     given = set(study.scene.inputs())
     plans = []
     for entry in study.models:
-        plan = entry.model.plan(study.outputs, given)
+        plan = entry.model.plan(study.all_outputs, given)
         absent = sorted(set(entry.model.requires) - given)
         if absent:
             fields = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
@@ -75,5 +76,7 @@ def run_study(source, *, progress: Callable[[str], None] | None = None) -> xr.Da
         if progress:
             progress(f"running {entry.id} on {study.n_cases} case(s)")
         wanted = {name: inputs[name] for name in inputs}
-        results.append(entry.model.compute(wanted, study.outputs))
-    return assemble(study, plan, results)
+        results.append(entry.model.compute(wanted, study.all_outputs))
+    dataset = assemble(study, plan, results)
+    warn_validity(dataset)
+    return dataset

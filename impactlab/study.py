@@ -26,7 +26,7 @@ from .model import ImpactModel
 from .registry import available, get_model
 from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
 from .units import to_si
-from .vocabulary import DEFAULT_OUTPUTS, INPUT_BY_PATH, INPUTS, OUTPUTS, MODEL_DIM
+from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS
 from .yaml_lines import line_of, load_yaml, parse_path
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "delivery", "sweep", "models",
@@ -125,6 +125,11 @@ class Study:
     source: str = attrs.field(repr=False)
     file: str | None = None
     plots: tuple[PlotSpec, ...] = ()
+
+    @property
+    def all_outputs(self) -> tuple[str, ...]:
+        """The outputs asked for, then the stability report every result carries."""
+        return self.outputs + tuple(name for name in DIAGNOSTIC_OUTPUTS if name not in self.outputs)
 
     @property
     def shape(self) -> tuple[int, ...]:

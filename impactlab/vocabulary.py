@@ -146,6 +146,8 @@ class OutputSpec:
     long_name: str
     kind: str = SCALAR
     factor: float = 1.0
+    #: part of the stability report that every study result carries
+    diagnostic: bool = False
 
 
 OUTPUTS: dict[str, OutputSpec] = {
@@ -170,6 +172,14 @@ OUTPUTS: dict[str, OutputSpec] = {
                                    kind=HISTORY),
     "stick_radius": OutputSpec("m", "radius of the stuck central region of the contact (0 in gross slip)",
                                kind=HISTORY),
+    "contact_radius_ratio": OutputSpec("1", "largest contact radius over ball radius, a_max/R"),
+    # the stability report (added to every study result)
+    "steps": OutputSpec("1", "time steps of the tangential solution (0: none needed or closed form)",
+                        diagnostic=True),
+    "energy_error": OutputSpec("1", "energy-balance residual over the initial kinetic energy (0: closed form)",
+                               diagnostic=True),
+    "validity": OutputSpec("1", "validity flags, bits of flag_masks (0: within the model's assumptions)",
+                           diagnostic=True),
     # golf deliveries (3-D, ground frame; horizontal angles positive to the right of the target line)
     "spin_loft": OutputSpec("deg", "spin loft: angle between face normal and club velocity", factor=RAD_TO_DEG),
     "vertical_launch_angle": OutputSpec("deg", "vertical launch angle above the horizontal", factor=RAD_TO_DEG),
@@ -181,6 +191,7 @@ OUTPUTS: dict[str, OutputSpec] = {
 }
 
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
+DIAGNOSTIC_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.diagnostic)
 HISTORY_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == HISTORY)
 #: the default outputs of a study that names none
 DEFAULT_OUTPUTS = ("launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate",

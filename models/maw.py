@@ -8,6 +8,7 @@ import attrs
 import numpy as np
 
 from impactlab._validate import check
+from impactlab.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.model import ImpactModel
 from impactlab.physics import annuli, hertz, mdr
 from impactlab.physics.mechanics import approach_velocities, effective_mass, tangential_mass
@@ -24,6 +25,15 @@ def _int_at_least(low: int):
     return check(lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= low, f"an integer >= {low}")
 
 
+def _optional_int(low: int):
+    return check(lambda v: v is None or (isinstance(v, int) and not isinstance(v, bool) and v >= low),
+                 f"an integer >= {low} (or leave it out and set tolerance)")
+
+
+#: default tolerance of each method on |J_t| / (mu J_n)
+DEFAULT_TOLERANCE = {"mdr": 1e-5, "annuli": 1e-3}
+
+
 @attrs.frozen
 class MawOptions:
     """Options of ``maw``.
@@ -36,15 +46,16 @@ class MawOptions:
         exactly (Popov & Hess 2015). ``"annuli"`` (faithful to the paper): the
         annular-strip solution of Maw, Barber & Fawcett, a mixed boundary-value
         problem over all rings at every step.
-    springs : int
-        MDR springs across the half-width of the largest contact; error falls
-        as 1/springs^2 (about 3e-5 in psi2 at the default 200).
-    rings : int
-        Annuli of the annular-strip method; error falls roughly as
-        1/rings^1.4 (about 4e-3 in psi2 at the default 40, 1.4e-3 at 80).
-    steps : int
-        Uniform time steps over the contact; each spring's entry and exit
-        instants are added to them, so contact changes fall on steps.
+    tolerance : float, optional
+        Target error of the tangential impulse relative to its Coulomb bound,
+        |dJ_t| / (mu J_n) (launch angle, spin and beta follow from J_t). The
+        method picks its resolution from it and from the physics (the
+        tangential oscillation quickens as chi grows). Default 1e-5 for MDR,
+        1e-3 for annuli (see docs/accuracy.md for the measured error).
+    springs, rings, steps : int, optional
+        Expert resolution that overrides ``tolerance``: MDR springs across the
+        half-width of the largest contact, annuli, and uniform time steps over
+        the contact (spring or ring entry and exit instants are added to them).
     history_points : int
         Samples of the force histories on the shared time axis (when asked).
     inelastic : str
@@ -58,12 +69,32 @@ class MawOptions:
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
                                                              f"one of {', '.join(METHODS)}"))
-    springs: int = attrs.field(default=200, validator=_int_at_least(8))
-    rings: int = attrs.field(default=40, validator=_int_at_least(4))
-    steps: int = attrs.field(default=400, validator=_int_at_least(16))
+    tolerance: float = attrs.field(validator=check(
+        lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and 1e-9 <= v <= 0.1,
+        "a tolerance between 1e-9 and 0.1"))
+    springs: int | None = attrs.field(default=None, validator=_optional_int(8))
+    rings: int | None = attrs.field(default=None, validator=_optional_int(4))
+    steps: int | None = attrs.field(default=None, validator=_optional_int(16))
     history_points: int = attrs.field(default=256, validator=_int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
+
+    @tolerance.default
+    def _default_tolerance(self):
+        return DEFAULT_TOLERANCE.get(self.method, 1e-5)
+
+    def resolution(self, chi_max: float) -> tuple[int, int, bool]:
+        """(springs or rings, uniform steps, tolerance not met) for a batch whose largest chi is ``chi_max``."""
+        tolerance = self.tolerance
+        if self.method == "annuli":
+            if self.rings is not None:
+                return self.rings, self.steps or max(200, 10 * self.rings), False
+            rings, steps, capped = annuli.resolution(tolerance)
+            return rings, self.steps or steps, capped
+        if self.springs is not None:
+            return self.springs, self.steps or 4 * self.springs, False
+        springs, steps = mdr.resolution(tolerance, chi_max)
+        return springs, self.steps or steps, False
 
 
 class MawModel(ImpactModel):
@@ -112,7 +143,8 @@ class MawModel(ImpactModel):
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"restitution"}
-    provides = IMPULSES | {"contact_time", "normal_force", "tangential_force", "stick_radius"}
+    provides = IMPULSES | {"contact_time", "normal_force", "tangential_force", "stick_radius", "contact_radius_ratio",
+                           "steps", "energy_error", "validity"}
     Options = MawOptions
 
     def _compute(self, inputs, outputs):
@@ -140,21 +172,37 @@ class MawModel(ImpactModel):
         sliding = (friction > 0.0) & (slip != 0.0)
         chi = 0.5 * kappa * m_normal / m_tangential
         psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
-        slip_change = np.zeros_like(slip)
+        slip_change, residual, steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
+        resolution, steps_wanted, capped = self.options.resolution(float(np.max(chi[sliding], initial=0.0)))
         tangential = [None] * len(laws)
         for index, law in enumerate(laws):
             members = sliding & (law_of_case == index)
             if np.any(members):
-                tangential[index] = self._solve(chi[members], psi1[members], record, law)
+                tangential[index] = self._solve(chi[members], psi1[members], record, law, resolution, steps_wanted)
                 slip_change[members] = tangential[index].slip_change
-        slip_change *= friction * scale_speed / kappa
+                residual[members] = tangential[index].energy_residual(chi[members], psi1[members])
+                steps[members] = tangential[index].steps
+        # back from the scaled slip velocity (units mu V / kappa) to m/s, and the energy residual to joules
+        velocity_unit = friction * scale_speed / kappa
+        slip_change *= velocity_unit
+        initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
+            radius * p["spin"]) ** 2
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed
+        contact_ratio = np.sqrt(approach_scale / radius)
+        face_compliance = (1.0 - p["face_poisson_ratio"] ** 2) / p["face_youngs_modulus"]
+        ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
+        validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0) | np.where(face_compliance > ball_compliance, 2, 0)
+                    | np.where(sliding & capped, 4, 0))
         result = {
             "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
             "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
             "contact_time": duration,
+            "contact_radius_ratio": contact_ratio,
+            "steps": steps,
+            "energy_error": m_tangential * velocity_unit**2 * residual / initial_energy,
+            "validity": validity.astype(float),
         }
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
@@ -169,21 +217,21 @@ class MawModel(ImpactModel):
     def _damped_law(restitution: float):
         return hertz.DampedNormal(hertz.damping_for_restitution(float(restitution)))
 
-    def _solve(self, chi, psi1, record, normal):
-        options = self.options
-        if options.method == "annuli":
+    def _solve(self, chi, psi1, record, normal, resolution, steps):
+        if self.options.method == "annuli":
             def solve(chi_part, psi_part):
-                return annuli.solve_scaled(chi_part, psi_part, rings=options.rings, steps=options.steps,
-                                           record=record, normal=normal)
+                return annuli.solve_scaled(chi_part, psi_part, rings=resolution, steps=steps, record=record,
+                                           normal=normal)
         else:
             def solve(chi_part, psi_part):
-                return mdr.solve_scaled(chi_part, psi_part, springs=options.springs, steps=options.steps,
-                                        record=record, normal=normal)
+                return mdr.solve_scaled(chi_part, psi_part, springs=resolution, steps=steps, record=record,
+                                        normal=normal)
         parts = [solve(chi[i:i + BLOCK], psi1[i:i + BLOCK]) for i in range(0, chi.size, BLOCK)]
         joined = {name: np.concatenate([getattr(part, name) for part in parts]) if record else None
                   for name in ("force", "stick_radius")}
         return mdr.TangentialSolution(np.concatenate([part.slip_change for part in parts]), parts[0].tau,
-                                      joined["force"], joined["stick_radius"], parts[0].steps)
+                                      joined["force"], joined["stick_radius"], parts[0].steps,
+                                      np.concatenate([part.dissipation for part in parts]))
 
     def _histories(self, wanted, duration, time_scale, scales, laws, law_of_case, sliding, tangential):
         """Histories on one time axis from 0 to the longest contact; NaN after a case's contact ends."""

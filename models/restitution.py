@@ -8,7 +8,8 @@ from impactlab._validate import in_range, to_float
 from impactlab.model import ImpactModel
 from impactlab.physics.rigid import restitution_impulses
 
-from ._common import IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE
+from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED,
+                      STRONGE, closed_form_diagnostics)
 
 
 @attrs.frozen
@@ -50,10 +51,10 @@ class RestitutionModel(ImpactModel):
                   "R. Cross, Grip-slip behavior of a bouncing ball, Am. J. Phys. 70 (2002) 1093", STRONGE)
     requires = RIGID_BODY_INPUTS | {"restitution"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"friction"}
-    provides = IMPULSES
+    provides = IMPULSES | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
 
     def _compute(self, inputs, outputs):
         jn, jt, _ = restitution_impulses(tangential_restitution=self.options.tangential_restitution, **inputs)
-        return {"normal_impulse": jn, "tangential_impulse": jt}
+        return {"normal_impulse": jn, "tangential_impulse": jt, **closed_form_diagnostics(jn.size)}

@@ -7,7 +7,8 @@ import attrs
 from impactlab.model import ImpactModel
 from impactlab.physics.rigid import coulomb_impulses
 
-from ._common import IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE
+from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED,
+                      STRONGE, closed_form_diagnostics)
 
 
 @attrs.frozen
@@ -42,10 +43,10 @@ class RigidCoulombModel(ImpactModel):
     references = (STRONGE, "R. M. Brach, Mechanical Impact Dynamics, Wiley (1991)")
     requires = RIGID_BODY_INPUTS | {"friction", "restitution"}
     optional_inputs = RIGID_BODY_OPTIONAL
-    provides = IMPULSES
+    provides = IMPULSES | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
 
     def _compute(self, inputs, outputs):
         jn, jt, _ = coulomb_impulses(**inputs)
-        return {"normal_impulse": jn, "tangential_impulse": jt}
+        return {"normal_impulse": jn, "tangential_impulse": jt, **closed_form_diagnostics(jn.size)}
