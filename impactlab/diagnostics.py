@@ -42,7 +42,7 @@ def messages(dataset) -> list[str]:
         for bit, (_, meaning) in FLAGS.items():
             count = int(np.count_nonzero(values & bit))
             if count:
-                found.append(f"{model}: {meaning} in {count} of {values.size} case(s)")
+                found.append(f"{model}: in {count} of {values.size} case(s) {meaning}")
     return found
 
 
