@@ -123,6 +123,48 @@ def _cmd_plot(args) -> int:
     return 0
 
 
+def _cmd_convergence(args) -> int:
+    from .convergence import LADDER, plot_work_precision, work_precision
+    from .results_io import write_results
+    from .study import load_study
+
+    study = load_study(args.study)
+    say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
+    dataset = work_precision(study, tolerances=args.tolerances or LADDER, repeats=args.repeats, progress=say)
+    output = Path(args.output or f"{study.name}-work-precision.h5")
+    write_results(dataset, output)
+    say(f"wrote {output}")
+    if args.plot:
+        picture = output.with_suffix(".png") if args.plot is True else Path(args.plot)
+        plot_work_precision(dataset, picture)
+        say(f"wrote {picture}")
+    if not args.quiet:
+        print(work_precision_table(dataset))
+    return 0
+
+
+def work_precision_table(dataset) -> str:
+    """Markdown table: per model entry and tolerance, wall time per impact and the error of each output."""
+    import numpy as np
+
+    outputs = list(dataset.output.values)
+    lines = ["| model | tolerance | us per impact | " + " | ".join(f"{name} error" for name in outputs) + " |",
+             "|---|---|---|" + "---|" * len(outputs)]
+    for model in dataset.model.values:
+        for tolerance in dataset.tolerance.values:
+            # a dict, because sel() has a keyword argument of its own called tolerance
+            seconds = float(dataset.wall_time.sel({"model": model, "tolerance": tolerance}))
+            if not np.isfinite(seconds):
+                continue
+            errors = [float(dataset.error.sel({"model": model, "tolerance": tolerance, "output": name}))
+                      for name in outputs]
+            if all(e == 0 for e in errors) and tolerance != dataset.tolerance.values[0]:
+                continue  # a closed-form model: one row is enough
+            lines.append(f"| {model} | {tolerance:g} | {1e6 * seconds:.1f} | "
+                         + " | ".join(f"{e:.1e}" if e else "exact" for e in errors) + " |")
+    return "\n".join(lines)
+
+
 def _cmd_paper(args) -> int:
     from .errors import StudyError
     from .paper import report
@@ -169,6 +211,16 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument("-v", "--variable", dest="variables", action="append",
                       help="a scalar output to draw (repeatable; default: all)")
     plot.set_defaults(handler=_cmd_plot)
+    convergence = commands.add_parser("convergence", help="error against run time for every model of a study")
+    convergence.add_argument("study", help="study YAML file (its cases and outputs are used)")
+    convergence.add_argument("-o", "--output", help="result file (.h5); default: STUDY_NAME-work-precision.h5")
+    convergence.add_argument("--plot", metavar="PNG", nargs="?", const=True,
+                             help="draw the work-precision diagram (default: next to the result file)")
+    convergence.add_argument("--repeats", type=int, default=3, help="timed repeats per point (median)")
+    convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
+    convergence.add_argument("-q", "--quiet", action="store_true")
+    convergence.set_defaults(handler=_cmd_convergence)
+
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
     paper.add_argument("results", help="folder holding the result files of studies/paper/*.yaml")
     paper.add_argument("-o", "--output", default="docs/paper.md", help="report file (markdown)")

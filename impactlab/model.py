@@ -124,6 +124,14 @@ class ImpactModel:
             "references": list(cls.references),
         }
 
+    def reference_options(self, tolerance: float):
+        """Options of the converged reference run for a work-precision study (see impactlab.convergence)."""
+        return attrs.evolve(self.options, tolerance=tolerance)
+
+    def can_reach(self, tolerance: float) -> bool:
+        """Whether this configuration resolves ``tolerance`` without hitting a resolution cap."""
+        return True
+
     def options_dict(self) -> dict[str, Any]:
         return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
 

@@ -147,6 +147,13 @@ class MawModel(ImpactModel):
                            "steps", "energy_error", "validity"}
     Options = MawOptions
 
+    def reference_options(self, tolerance):
+        # both methods solve the same problem; MDR converges fastest, so it sets the reference for both
+        return attrs.evolve(self.options, method="mdr", tolerance=tolerance, springs=None, rings=None, steps=None)
+
+    def can_reach(self, tolerance):
+        return not attrs.evolve(self.options, tolerance=tolerance).resolution(1.0)[2]
+
     def _compute(self, inputs, outputs):
         p = inputs
         radius, ball_mass, friction = p["ball_radius"], p["ball_mass"], p["friction"]
