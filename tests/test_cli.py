@@ -85,3 +85,12 @@ def test_plot_redraws_the_figures_a_study_declares(tmp_path):
     drawn = sorted(path.name for path in tmp_path.glob("*.png"))
     assert drawn == ["fig7_fig7.png", "fig7_fig7_annuli.png", "fig7_stick_radius.png"]
     assert all(path.stat().st_size > 20_000 for path in tmp_path.glob("*.png"))
+
+
+def test_validity_is_warned_once_per_flag_in_words(tmp_path):
+    study = small_study(tmp_path, **{"youngs_modulus: 136 MPa": "youngs_modulus: 5 MPa"})
+    result = run_cli("run", study, "-o", tmp_path / "soft.h5")
+    assert result.returncode == 0
+    warnings = [line for line in result.stderr.splitlines() if line.startswith("impactlab: warning:")]
+    assert warnings == ["impactlab: warning: maw: in 12 of 12 case(s) the contact radius exceeds 0.6 R, beyond "
+                        "Hertz's small-contact assumption"]
