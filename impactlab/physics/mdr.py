@@ -39,6 +39,7 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
+from . import _kernels
 from .hertz import ElasticNormal
 
 #: dX''/dtau = -TANGENTIAL_GAIN * chi * integral u dxi
@@ -93,7 +94,7 @@ def event_grid(levels, steps: int, normal) -> np.ndarray:
 
 
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
-                 normal=None) -> TangentialSolution:
+                 normal=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
 
     Parameters
@@ -120,13 +121,22 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     weight = 1.0 / springs
     gain = TANGENTIAL_GAIN * chi * weight
 
+    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
+    if _kernels.HAVE_NUMBA and not _force_numpy:
+        history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
+        stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
+        inside = np.searchsorted(cap_offset, h_nodes, side="left").astype(np.int64)  # springs with xi^2 < h
+        velocity_change, dissipation = _kernels.mdr_cases(chi, psi1, cap_offset, tau, h_nodes, load_nodes, inside,
+                                                          weight, TANGENTIAL_GAIN, record, history, stick)
+        return TangentialSolution(velocity_change, tau if record else None, 1.5 * history if record else None,
+                                  stick if record else None, tau.size - 1, dissipation)
+
     u = np.zeros((chi.size, springs))
     velocity_change = np.zeros(chi.size)  # X' - psi1, kept apart so a huge psi1 loses no digits
     dissipation = np.zeros(chi.size)
     acceleration = np.zeros(chi.size)
     history = np.zeros((chi.size, tau.size)) if record else None
     stick = np.zeros((chi.size, tau.size)) if record else None
-    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
     for k in range(1, tau.size):
         dt = tau[k] - tau[k - 1]
         half = velocity_change + 0.5 * dt * acceleration

@@ -1,0 +1,20 @@
+"""The compiled kernels give the numpy reference's results to round-off."""
+
+import numpy as np
+import pytest
+
+from impactlab.physics import _kernels, hertz, mdr
+
+pytestmark = pytest.mark.skipif(not _kernels.HAVE_NUMBA, reason="numba is not installed")
+
+
+@pytest.mark.parametrize("normal", [None, hertz.DampedNormal(0.4)], ids=["elastic", "damped"])
+def test_mdr_kernel_matches_numpy(normal):
+    rng = np.random.default_rng(7)
+    chi, psi1 = rng.uniform(0.3, 10.0, 40), np.concatenate([rng.uniform(0.0, 3.0, 20), rng.uniform(3.0, 60.0, 20)])
+    fast = mdr.solve_scaled(chi, psi1, springs=60, steps=240, record=True, normal=normal)
+    slow = mdr.solve_scaled(chi, psi1, springs=60, steps=240, record=True, normal=normal, _force_numpy=True)
+    np.testing.assert_allclose(fast.slip_change, slow.slip_change, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(fast.dissipation, slow.dissipation, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(fast.force, slow.force, rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(fast.stick_radius, slow.stick_radius)
