@@ -83,18 +83,24 @@ class MawOptions:
     def _default_tolerance(self):
         return DEFAULT_TOLERANCE.get(self.method, 1e-5)
 
-    def resolution(self, chi_max: float) -> tuple[int, int, bool]:
-        """(springs or rings, uniform steps, tolerance not met) for a batch whose largest chi is ``chi_max``."""
+    def resolution(self, chi: float) -> tuple[int, int, bool]:
+        """(springs or rings, uniform steps, tolerance not met) for a case with this chi."""
         tolerance = self.tolerance
         if self.method == "annuli":
             if self.rings is not None:
-                return self.rings, self.steps or max(200, 10 * self.rings), False
-            rings, steps, capped = annuli.resolution(tolerance)
-            return rings, self.steps or steps, capped
+                return self.rings, self.resolution_steps(self.rings), False
+            rings, _, capped = annuli.resolution(tolerance)
+            return rings, self.resolution_steps(rings), capped
         if self.springs is not None:
-            return self.springs, self.steps or 4 * self.springs, False
-        springs, steps = mdr.resolution(tolerance, chi_max)
-        return springs, self.steps or steps, False
+            return self.springs, self.resolution_steps(self.springs), False
+        springs, _ = mdr.resolution(tolerance, chi)
+        return springs, self.resolution_steps(springs), False
+
+    def resolution_steps(self, count: int) -> int:
+        """Uniform time steps that go with ``count`` springs or rings (unless given)."""
+        if self.steps is not None:
+            return self.steps
+        return max(200, 10 * count) if self.method == "annuli" else 4 * count
 
 
 class MawModel(ImpactModel):
@@ -180,15 +186,24 @@ class MawModel(ImpactModel):
         chi = 0.5 * kappa * m_normal / m_tangential
         psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
         slip_change, residual, steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
-        resolution, steps_wanted, capped = self.options.resolution(float(np.max(chi[sliding], initial=0.0)))
-        tangential = [None] * len(laws)
+        # each case's resolution depends on its own chi only, so a case's result never depends on its batch
+        resolution = np.zeros(slip.size, dtype=int)
+        capped = np.zeros(slip.size, dtype=bool)
+        for value in np.unique(chi[sliding]):
+            members = chi == value
+            count, _, too_fine = self.options.resolution(float(value))
+            resolution[members], capped[members] = count, too_fine
+        solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
         for index, law in enumerate(laws):
-            members = sliding & (law_of_case == index)
-            if np.any(members):
-                tangential[index] = self._solve(chi[members], psi1[members], record, law, resolution, steps_wanted)
-                slip_change[members] = tangential[index].slip_change
-                residual[members] = tangential[index].energy_residual(chi[members], psi1[members])
-                steps[members] = tangential[index].steps
+            for count in np.unique(resolution[sliding & (law_of_case == index)]):
+                members = sliding & (law_of_case == index) & (resolution == count)
+                steps_wanted = self.options.resolution_steps(int(count))
+                solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted)
+                slip_change[members] = solved.slip_change
+                residual[members] = solved.energy_residual(chi[members], psi1[members])
+                steps[members] = solved.steps
+                for row, case in enumerate(np.nonzero(members)[0]):
+                    solution_of_case[case] = (solved, row)
         # back from the scaled slip velocity (units mu V / kappa) to m/s, and the energy residual to joules
         velocity_unit = friction * scale_speed / kappa
         slip_change *= velocity_unit
@@ -216,7 +231,7 @@ class MawModel(ImpactModel):
             scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
                       "stick_radius": np.sqrt(radius * approach_scale)}
             result.update(self._histories(histories, duration, approach_scale / scale_speed, scales, laws,
-                                          law_of_case, sliding, tangential))
+                                          law_of_case, solution_of_case))
         return {name: result[name] for name in outputs | ({"time"} if histories else set())}
 
     @staticmethod
@@ -240,23 +255,17 @@ class MawModel(ImpactModel):
                                       joined["force"], joined["stick_radius"], parts[0].steps,
                                       np.concatenate([part.dissipation for part in parts]))
 
-    def _histories(self, wanted, duration, time_scale, scales, laws, law_of_case, sliding, tangential):
+    def _histories(self, wanted, duration, time_scale, scales, laws, law_of_case, solution_of_case):
         """Histories on one time axis from 0 to the longest contact; NaN after a case's contact ends."""
         time = np.linspace(0.0, float(duration.max()), self.options.history_points)
         out = {"time": time}
         shapes = {name: np.full((duration.size, time.size), np.nan) for name in wanted}
-        position = {index: 0 for index in range(len(laws))}
         for case in range(duration.size):
-            law_index = law_of_case[case]
-            law = laws[law_index]
+            law = laws[law_of_case[case]]
             tau = time / time_scale[case]
             inside = tau <= law.tau_end * (1 + 1e-12)
             h = law.approach(tau)
-            solved = tangential[law_index]
-            row = None
-            if sliding[case]:
-                row = position[law_index]
-                position[law_index] += 1
+            solved, row = solution_of_case[case] or (None, None)
             for name in wanted:
                 if name == "normal_force":
                     shape = h**1.5 * law.load_factor(tau)

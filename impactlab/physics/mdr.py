@@ -165,7 +165,9 @@ def resolution(tolerance: float, chi_max: float) -> tuple[int, int]:
     The error of the scaled slip velocity, over 4 chi, falls as ~0.12 max(1, chi/4) / springs^2
     with steps = 4 springs (the tangential oscillation quickens as sqrt(chi)).
     """
-    springs = max(12, int(np.ceil(np.sqrt(0.12 * max(1.0, chi_max / 4.0) / tolerance))))
+    wanted = max(12.0, np.sqrt(0.12 * max(1.0, chi_max / 4.0) / tolerance))
+    # round up on a ladder of quarter-octaves, so that cases with nearby chi share one batched solve
+    springs = int(np.ceil(12.0 * 2.0 ** (np.ceil(4.0 * np.log2(wanted / 12.0) - 1e-9) / 4.0)))
     return springs, 4 * springs
 
 
