@@ -21,11 +21,15 @@ def load_study(source, *, file=None):
     return _load(source, file=file)
 
 
-def run_study(study, *, progress=None):
-    """Run a study (path, mapping or :class:`~impactlab.study.Study`) and return one xarray Dataset."""
+def run_study(study, **options):
+    """Run a study (path, mapping or :class:`~impactlab.study.Study`) and return one xarray Dataset.
+
+    Keyword options (executor, workers, scheduler, chunk_size, progress_folder, show_progress, progress)
+    are those of :func:`impactlab.runner.run_study`.
+    """
     from .runner import run_study as _run
 
-    return _run(study, progress=progress)
+    return _run(study, **options)
 
 
 def open_results(path):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
 from pathlib import Path
 
@@ -21,6 +22,8 @@ def _cmd_run(args) -> int:
     from .runner import plan_study, run_study
     from .study import load_study
 
+    if args.scheduler:
+        args.executor = "dask"
     if args.output and len(args.study) > 1:
         raise StudyError("-o/--output names one result file; with several studies use --outdir")
     studies = [load_study(path) for path in args.study]  # every file is checked before anything runs
@@ -34,8 +37,20 @@ def _cmd_run(args) -> int:
         outdir.mkdir(parents=True, exist_ok=True)
     for study in studies:
         output = Path(args.output) if args.output else (outdir or Path(".")) / f"{study.name}.h5"
-        dataset = run_study(study, progress=say)
+        if not output.parent.is_dir():
+            raise StudyError(f"{output}: cannot write results: folder {output.parent} does not exist")
+        # finished chunks wait here until the result file is complete; a killed run resumes from them
+        progress_folder = output.with_name(f"{output.name}.progress")
+        try:
+            dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
+                                scheduler=args.scheduler, chunk_size=args.chunk_size,
+                                progress_folder=progress_folder, show_progress=not args.quiet)
+        except KeyboardInterrupt:
+            print(f"impactlab: interrupted; finished chunks are kept in {progress_folder}: run the same command "
+                  "again to compute only the rest", file=sys.stderr)
+            return EXIT_INTERRUPTED
         write_results(dataset, output)
+        shutil.rmtree(progress_folder, ignore_errors=True)
         say(f"wrote {output}")
         if args.plot:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
@@ -192,6 +207,12 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", metavar="PNG", nargs="?", const=True,
                      help="also draw the results (to PNG, default: next to the result file)")
     run.add_argument("--plan", action="store_true", help="print what would run, and why, then stop")
+    run.add_argument("--executor", choices=("auto", "serial", "processes", "dask"), default="auto",
+                     help="where cases run: auto (serial for small studies, every core for large), serial, "
+                          "processes, dask; results are identical")
+    run.add_argument("--workers", type=int, help="worker processes (default: every core)")
+    run.add_argument("--scheduler", metavar="ADDRESS", help="dask.distributed scheduler (implies --executor dask)")
+    run.add_argument("--chunk-size", type=int, help="cases per unit of work")
     run.add_argument("-q", "--quiet", action="store_true")
     run.set_defaults(handler=_cmd_run)
 

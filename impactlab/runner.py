@@ -7,6 +7,7 @@ before any model runs, so a study that cannot run fails at once and says why.
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 
 import attrs
 import numpy as np
@@ -66,17 +67,42 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
     return inputs
 
 
-def run_study(source, *, progress: Callable[[str], None] | None = None) -> xr.Dataset:
-    """Run a study (path, YAML text, mapping or Study) and return its results as one dataset."""
+def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
+              workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
+              progress_folder: str | Path | None = None, show_progress: bool = False) -> xr.Dataset:
+    """Run a study (path, YAML text, mapping or Study) and return its results as one dataset.
+
+    Parameters
+    ----------
+    executor : str
+        ``"auto"`` (serial for small studies, every core for large ones),
+        ``"serial"``, ``"processes"`` or ``"dask"``; the results are identical.
+    workers : int, optional
+        Worker processes (default: every core).
+    scheduler : str, optional
+        Address of a dask.distributed scheduler (with ``executor="dask"``;
+        without it a LocalCluster is started).
+    chunk_size : int, optional
+        Cases per unit of work.
+    progress_folder : path, optional
+        Where finished chunks are saved; a run interrupted at any point and
+        started again with the same folder computes only what is missing.
+    show_progress : bool
+        Draw a progress bar on stderr.
+    """
+    from .execution import ProgressStore, fingerprint, run_chunks
+
     study = load_study(source)
     plan = plan_study(study)
     inputs = case_inputs(study)
-    results = []
-    for entry in study.models:
-        if progress:
-            progress(f"running {entry.id} on {study.n_cases} case(s)")
-        wanted = {name: inputs[name] for name in inputs}
-        results.append(entry.model.compute(wanted, study.all_outputs))
+    outputs = study.all_outputs
+    say = progress or (lambda text: None)
+    store = None
+    if progress_folder is not None:
+        store = ProgressStore(Path(progress_folder), fingerprint(study, outputs), say)
+    say(f"running {len(study.models)} model(s) on {study.n_cases} case(s)")
+    results = run_chunks(study, inputs, outputs, executor=executor, workers=workers, scheduler=scheduler,
+                         chunk_size=chunk_size, store=store, show_progress=show_progress)
     dataset = assemble(study, plan, results)
     warn_validity(dataset)
     return dataset

@@ -1,0 +1,271 @@
+"""Running a study's cases in chunks: executors, progress, interruption and resume.
+
+The work of a study is a list of chunks (one model entry, a contiguous slice
+of cases). An executor computes chunks and yields them as they complete; only
+the calling process assembles and writes results, so workers never touch a
+file. Chunked results equal unchunked ones exactly: a model's result for a
+case does not depend on the batch around it (conformance rule 5).
+
+Executors: ``serial`` (in this process), ``processes`` (every core of this
+machine), ``dask`` (a dask.distributed cluster: a scheduler address, or a
+LocalCluster). With a progress folder, every finished chunk is saved there
+atomically; a run killed at any point and started again with the same study
+and output computes only the chunks that are missing.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import sys
+import time
+from collections.abc import Callable, Iterator
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from pathlib import Path
+
+import attrs
+import numpy as np
+import xarray as xr
+
+from .errors import StudyError
+
+EXECUTORS = ("auto", "serial", "processes", "dask")
+#: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
+AUTO_PARALLEL_WORK = 20_000
+
+
+@attrs.frozen
+class Chunk:
+    """A model entry and a slice of cases."""
+
+    entry: int
+    start: int
+    stop: int
+
+    @property
+    def key(self) -> str:
+        return f"m{self.entry}-c{self.start}-{self.stop}"
+
+
+def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
+    return [Chunk(entry, start, min(start + chunk_size, n_cases))
+            for entry in range(n_models) for start in range(0, n_cases, chunk_size)]
+
+
+def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
+    """Worker side: run ``model`` on the chunk's cases; plain arrays and attributes come back."""
+    part = {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
+    result = model.compute(part, outputs)
+    return {"data": {name: variable.values for name, variable in result.data_vars.items()},
+            "attrs": {name: dict(variable.attrs) for name, variable in result.data_vars.items()},
+            "dims": {name: variable.dims for name, variable in result.data_vars.items()},
+            "time": result["time"].values if "time" in result.coords else None,
+            "global": dict(result.attrs)}
+
+
+def _serial(tasks) -> Iterator:
+    for chunk, call in tasks:
+        yield chunk, call()
+
+
+class _Pool:
+    def __init__(self, kind: str, workers: int | None, scheduler: str | None):
+        self.kind = kind
+        self.shared = None
+        if kind == "processes":
+            self.pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count())
+        else:
+            try:
+                from dask.distributed import Client, LocalCluster
+            except ImportError:
+                raise StudyError("the dask executor needs dask.distributed: pip install 'impactlab[dask]'") from None
+            if scheduler:
+                self.client = Client(scheduler)
+                self.cluster = None
+            else:
+                self.cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
+                                            processes=True, dashboard_address=None)
+                self.client = Client(self.cluster)
+
+    def run(self, model, inputs, outputs, chunks) -> Iterator:
+        if self.kind == "processes":
+            futures = {self.pool.submit(compute_chunk, model, inputs, outputs, chunk): chunk for chunk in chunks}
+            pending = set(futures)
+            while pending:
+                done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for future in done:
+                    yield futures[future], future.result()
+        else:
+            from dask.distributed import as_completed
+
+            if self.shared is None:  # the case inputs travel to every worker once, as one object
+                self.shared = self.client.scatter([inputs], broadcast=True, hash=False)[0]
+            futures = {self.client.submit(compute_chunk, model, self.shared, outputs, chunk, pure=False): chunk
+                       for chunk in chunks}
+            for future in as_completed(list(futures)):
+                yield futures[future], future.result()
+
+    def close(self):
+        if self.kind == "processes":
+            self.pool.shutdown(wait=False, cancel_futures=True)
+        else:
+            self.client.close()
+            if self.cluster is not None:
+                self.cluster.close()
+
+
+class Progress:
+    """One progress bar on stderr, fed by completed chunks whatever the executor."""
+
+    def __init__(self, total: int, enabled: bool, label: str = "cases"):
+        self.total, self.done, self.enabled, self.label = total, 0, enabled, label
+        self.start = time.perf_counter()
+        self.tty = sys.stderr.isatty()
+        self.last_tenth = -1
+
+    def advance(self, count: int) -> None:
+        self.done += count
+        if not self.enabled:
+            return
+        fraction = self.done / max(self.total, 1)
+        elapsed = time.perf_counter() - self.start
+        bar = "#" * int(30 * fraction)
+        text = f"[{bar:<30}] {self.done}/{self.total} {self.label} ({100 * fraction:.0f} %, {elapsed:.1f} s)"
+        if self.tty:
+            print(f"\r{text}", end="" if self.done < self.total else "\n", file=sys.stderr, flush=True)
+        elif int(10 * fraction) > self.last_tenth:  # logs and CI: a line every tenth
+            self.last_tenth = int(10 * fraction)
+            print(text, file=sys.stderr, flush=True)
+
+
+class ProgressStore:
+    """Finished chunks of one study run, saved atomically next to the result file."""
+
+    def __init__(self, folder: Path, fingerprint: str, say: Callable[[str], None]):
+        self.folder = folder
+        manifest = folder / "manifest.json"
+        if folder.is_dir():
+            try:
+                same = json.loads(manifest.read_text())["fingerprint"] == fingerprint
+            except (OSError, ValueError, KeyError):
+                same = False
+            if not same:
+                say(f"{folder}: progress of a different study or version; starting over")
+                shutil.rmtree(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+        if not manifest.exists():
+            _atomic_write(manifest, json.dumps({"fingerprint": fingerprint}).encode())
+
+    def load(self, chunk: Chunk) -> dict | None:
+        path = self.folder / f"{chunk.key}.npz"
+        if not path.exists():
+            return None
+        with np.load(path, allow_pickle=False) as archive:
+            meta = json.loads(str(archive["__meta__"]))
+            data = {name: archive[name] for name in meta["names"]}
+            time_axis = archive["__time__"] if "__time__" in archive else None
+        return {"data": data, "attrs": meta["attrs"], "dims": {k: tuple(v) for k, v in meta["dims"].items()},
+                "time": time_axis, "global": meta["global"]}
+
+    def save(self, chunk: Chunk, part: dict) -> None:
+        meta = {"names": list(part["data"]), "attrs": _jsonable(part["attrs"]), "dims": part["dims"],
+                "global": part["global"]}
+        arrays = dict(part["data"])
+        if part["time"] is not None:
+            arrays["__time__"] = part["time"]
+        temporary = self.folder / f".{chunk.key}.tmp.npz"
+        np.savez(temporary, __meta__=np.array(json.dumps(meta)), **arrays)
+        os.replace(temporary, self.folder / f"{chunk.key}.npz")
+
+    def clear(self) -> None:
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _jsonable(attrs_by_name: dict) -> dict:
+    out = {}
+    for name, attributes in attrs_by_name.items():
+        out[name] = {key: (value.tolist() if isinstance(value, np.ndarray) else value)
+                     for key, value in attributes.items()}
+    return out
+
+
+def _atomic_write(path: Path, payload: bytes) -> None:
+    temporary = path.with_name(f".{path.name}.tmp")
+    temporary.write_bytes(payload)
+    os.replace(temporary, path)
+
+
+def fingerprint(study, outputs, extra: str = "") -> str:
+    from ._version import __version__
+
+    text = json.dumps({"source": study.source, "outputs": list(outputs), "version": __version__,
+                       "models": [[entry.id, entry.model.options_dict()] for entry in study.models],
+                       "extra": extra}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
+    if kind != "auto":
+        return kind
+    return "processes" if n_work >= AUTO_PARALLEL_WORK and not has_histories and (os.cpu_count() or 1) > 1 \
+        else "serial"
+
+
+def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers: int | None = None,
+               scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
+               show_progress: bool = False) -> list[xr.Dataset]:
+    """Compute every model entry on every case; one per-model dataset (dimension ``case``) per entry."""
+    from .vocabulary import HISTORY, OUTPUTS
+
+    n_cases = study.n_cases
+    has_histories = any(OUTPUTS[name].kind == HISTORY for name in outputs)
+    kind = choose_executor(executor, n_cases * len(study.models), has_histories)
+    if kind not in EXECUTORS:
+        raise StudyError(f"unknown executor {kind!r}; choices: {', '.join(EXECUTORS)}")
+    if has_histories:
+        chunk_size = n_cases  # histories share one time axis per model: they are computed in one piece
+    elif chunk_size is None:
+        parallel = workers or os.cpu_count() or 1
+        chunk_size = max(256, min(8192, -(-n_cases // (4 * parallel)))) if kind != "serial" else 8192
+    chunks = plan_chunks(len(study.models), n_cases, chunk_size)
+    parts: dict[Chunk, dict] = {}
+    progress = Progress(n_cases * len(study.models), show_progress)
+    if store is not None:
+        for chunk in chunks:
+            saved = store.load(chunk)
+            if saved is not None:
+                parts[chunk] = saved
+                progress.advance(chunk.stop - chunk.start)
+    todo = [chunk for chunk in chunks if chunk not in parts]
+    pool = _Pool(kind, workers, scheduler) if todo and kind in ("processes", "dask") else None
+    try:
+        for entry_index, entry in enumerate(study.models):
+            mine = [chunk for chunk in todo if chunk.entry == entry_index]
+            if not mine:
+                continue
+            if pool is None:
+                stream = _serial((chunk, lambda chunk=chunk: compute_chunk(entry.model, inputs, outputs, chunk))
+                                 for chunk in mine)
+            else:
+                stream = pool.run(entry.model, inputs, outputs, mine)
+            for chunk, part in stream:
+                if store is not None:
+                    store.save(chunk, part)
+                parts[chunk] = part
+                progress.advance(chunk.stop - chunk.start)
+    finally:
+        if pool is not None:
+            pool.close()
+    return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
+
+
+def _join(parts: list[dict]) -> xr.Dataset:
+    first = parts[0]
+    coords = {}
+    if first["time"] is not None:
+        coords["time"] = ("time", first["time"], {"units": "s", "long_name": "time since first contact"})
+    data = {name: (first["dims"][name], np.concatenate([part["data"][name] for part in parts]),
+                   first["attrs"][name]) for name in first["data"]}
+    return xr.Dataset(data, coords=coords, attrs=first["global"])
