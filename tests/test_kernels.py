@@ -18,3 +18,17 @@ def test_mdr_kernel_matches_numpy(normal):
     np.testing.assert_allclose(fast.dissipation, slow.dissipation, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(fast.force, slow.force, rtol=1e-12, atol=1e-12)
     np.testing.assert_array_equal(fast.stick_radius, slow.stick_radius)
+
+
+@pytest.mark.parametrize("normal", [None, hertz.DampedNormal(0.4)], ids=["elastic", "damped"])
+def test_annuli_kernel_matches_the_dense_solve(normal):
+    from impactlab.physics import annuli
+
+    chi = np.concatenate([np.full(6, 1.44), np.full(6, 6.0)])
+    psi1 = np.tile(np.linspace(0.2, 12.0, 6), 2)
+    fast = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal)
+    dense = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal, dense=True)
+    np.testing.assert_allclose(fast.slip_change, dense.slip_change, rtol=1e-11, atol=1e-12)
+    np.testing.assert_allclose(fast.force, dense.force, rtol=1e-11, atol=1e-12)
+    np.testing.assert_allclose(fast.dissipation, dense.dissipation, rtol=1e-11, atol=1e-12)
+    np.testing.assert_array_equal(fast.stick_radius, dense.stick_radius)

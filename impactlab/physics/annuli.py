@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _kernels
 from .hertz import ElasticNormal
 from .mdr import TANGENTIAL_GAIN, TangentialSolution, event_grid
 
@@ -73,13 +74,30 @@ def _pressure_loads(h: float, gamma: np.ndarray, rings: int) -> np.ndarray:
     return (np.maximum(h - inner**2, 0.0) ** 1.5 - np.maximum(h - outer**2, 0.0) ** 1.5) / 3.0
 
 
+def _caps(h_nodes, load_nodes, rho, gamma, rings):
+    """Coulomb limit of every annulus at every node, the sliver beyond the last mid-radius merged inwards."""
+    caps = np.zeros((h_nodes.size, rings))
+    for k, h in enumerate(h_nodes):
+        cap = _pressure_loads(h, gamma, rings) * load_nodes[k]
+        last = int(np.sum(rho**2 < h)) - 1
+        if 0 <= last < rings - 1:
+            cap[last] += cap[last + 1]
+        caps[k] = cap
+    return caps
+
+
 def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool = False,
-                 max_iterations: int | None = None, normal=None) -> TangentialSolution:
+                 max_iterations: int | None = None, normal=None, dense: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact by the annular-strip method, vectorised over cases.
 
     Parameters and result as :func:`impactlab.physics.mdr.solve_scaled`, with
     ``rings`` annuli instead of springs. ``steps`` counts the stick/slip
     iterations too (``TangentialSolution.steps`` is the number of time steps).
+
+    ``dense=True`` runs the plain version: every case's full system solved
+    afresh at every step and iteration (numpy, batched over cases). The
+    default uses the compiled kernel, which factorises each case's system only
+    when its stick/slip set changes and solves only the annuli in contact.
 
     Raises
     ------
@@ -95,6 +113,19 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
     tau = event_grid(rho**2, steps, normal)
     h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
     max_iterations = max_iterations or 2 * rings
+    if _kernels.HAVE_NUMBA and not dense:
+        caps = _caps(h_nodes, load_nodes, rho, gamma, rings)
+        inside = np.array([int(np.sum(rho**2 < h)) for h in h_nodes], dtype=np.int64)
+        history = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))
+        stick = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))
+        velocity_change, dissipation, failures = _kernels.annuli_cases(
+            chi, psi1, tau, inside, caps, displacement, load, gamma, TANGENTIAL_GAIN, max_iterations, record,
+            history, stick, h_nodes)
+        if failures:
+            raise RuntimeError(f"annular-strip stick/slip set did not settle in {max_iterations} iterations "
+                               f"at {failures} step(s)")
+        return TangentialSolution(velocity_change, tau if record else None, history if record else None,
+                                  stick if record else None, tau.size - 1, dissipation)
 
     mode = np.zeros((cases, rings), dtype=np.int8)  # all rings outside the contact at first touch
     direction = np.zeros((cases, rings))  # sign of the limiting traction of slipping rings
