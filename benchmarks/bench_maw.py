@@ -111,7 +111,7 @@ def main():
         print(f"{'first-order numpy baseline':<34}{f'{springs} springs/{steps} st':<22}{1e6 * seconds / n:>10.1f}"
               f"{err['launch_ratio']:>14.1e}{err['spin_rate (rel.)']:>12.1e}{err['beta']:>10.1e}")
     best = {}
-    for tolerance in (1e-3, 1e-4, 1e-5, 1e-6):
+    for tolerance in (1e-3, 1e-4, 3e-5, 1e-5, 5e-6, 3e-6, 1e-6):
         model = get_model("maw")(tolerance=tolerance)
         seconds = timed(lambda: model.compute(inputs, OUTPUTS))
         err = errors(model.compute(inputs, OUTPUTS), reference)

@@ -100,7 +100,7 @@ class MawOptions:
         """Uniform time steps that go with ``count`` springs or rings (unless given)."""
         if self.steps is not None:
             return self.steps
-        return max(200, 10 * count) if self.method == "annuli" else 4 * count
+        return max(200, 10 * count) if self.method == "annuli" else mdr.STEPS_PER_SPRING * count
 
 
 class MawModel(ImpactModel):
