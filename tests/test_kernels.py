@@ -8,16 +8,20 @@ from impactlab.physics import _kernels, hertz, mdr
 pytestmark = pytest.mark.skipif(not _kernels.HAVE_NUMBA, reason="numba is not installed")
 
 
+def assert_same_solution(fast, slow, rtol=1e-12):
+    np.testing.assert_allclose(fast.slip_change, slow.slip_change, rtol=rtol, atol=1e-12)
+    np.testing.assert_allclose(fast.dissipation, slow.dissipation, rtol=rtol, atol=1e-12)
+    np.testing.assert_allclose(fast.force, slow.force, rtol=rtol, atol=1e-12)
+    np.testing.assert_array_equal(fast.stick_radius, slow.stick_radius)
+
+
 @pytest.mark.parametrize("normal", [None, hertz.DampedNormal(0.4)], ids=["elastic", "damped"])
 def test_mdr_kernel_matches_numpy(normal):
     rng = np.random.default_rng(7)
     chi, psi1 = rng.uniform(0.3, 10.0, 40), np.concatenate([rng.uniform(0.0, 3.0, 20), rng.uniform(3.0, 60.0, 20)])
     fast = mdr.solve_scaled(chi, psi1, springs=60, steps=240, record=True, normal=normal)
     slow = mdr.solve_scaled(chi, psi1, springs=60, steps=240, record=True, normal=normal, _force_numpy=True)
-    np.testing.assert_allclose(fast.slip_change, slow.slip_change, rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(fast.dissipation, slow.dissipation, rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(fast.force, slow.force, rtol=1e-12, atol=1e-12)
-    np.testing.assert_array_equal(fast.stick_radius, slow.stick_radius)
+    assert_same_solution(fast, slow)
 
 
 @pytest.mark.parametrize("normal", [None, hertz.DampedNormal(0.4)], ids=["elastic", "damped"])
@@ -28,7 +32,4 @@ def test_annuli_kernel_matches_the_dense_solve(normal):
     psi1 = np.tile(np.linspace(0.2, 12.0, 6), 2)
     fast = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal)
     dense = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal, dense=True)
-    np.testing.assert_allclose(fast.slip_change, dense.slip_change, rtol=1e-11, atol=1e-12)
-    np.testing.assert_allclose(fast.force, dense.force, rtol=1e-11, atol=1e-12)
-    np.testing.assert_allclose(fast.dissipation, dense.dissipation, rtol=1e-11, atol=1e-12)
-    np.testing.assert_array_equal(fast.stick_radius, dense.stick_radius)
+    assert_same_solution(fast, dense, rtol=1e-11)
