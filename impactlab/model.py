@@ -120,7 +120,8 @@ class ImpactModel:
             "requires": sorted(INPUTS[name].path for name in cls.requires),
             "optional_inputs": sorted(INPUTS[name].path for name in cls.optional_inputs),
             "provides": sorted(cls.provides),
-            "options": {field.name: _jsonable(field.default) for field in attrs.fields(cls.Options)},
+            # the defaults as an instance sees them (a default may depend on another option)
+            "options": {key: _jsonable(value) for key, value in attrs.asdict(cls.Options()).items()},
             "references": list(cls.references),
         }
 

@@ -1,0 +1,189 @@
+"""DEM-style tangential laws on the shared Hertz normal contact: a linear spring and Hertz-Mindlin."""
+
+from __future__ import annotations
+
+import attrs
+import numpy as np
+
+from impactlab._validate import check
+from impactlab.physics import dem
+
+from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
+
+CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
+                  "Geotechnique 29 (1979) 47-65")
+THORNTON = ("C. Thornton, S. J. Cummins, P. W. Cleary, An investigation of the comparative behaviour of alternative "
+            "contact force models during inelastic collisions, Powder Technology 233 (2013) 30-46")
+MINDLIN = "R. D. Mindlin, Compliance of elastic bodies in contact, J. Appl. Mech. 16 (1949) 259-268"
+
+
+def _number_in(low: float, high: float, what: str, low_open: bool = False):
+    def ok(v):
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and (v > low if low_open else v >= low) \
+            and v <= high
+    return check(ok, what)
+
+
+@attrs.frozen
+class _SpringOptions:
+    """Options shared by the DEM laws (see the model docstrings)."""
+
+    tolerance: float = attrs.field(default=1e-5, validator=_number_in(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
+    steps: int | None = attrs.field(default=None, validator=optional_int(16))
+    damping: float = attrs.field(default=0.0, validator=_number_in(0.0, 10.0, "a damping ratio between 0 and 10"))
+    history_points: int = attrs.field(default=256, validator=int_at_least(2))
+    inelastic: str = attrs.field(default="adjusted_speed", validator=check(
+        lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
+
+    def resolution(self, chi: float) -> tuple[int, int, bool]:
+        """(one spring, uniform steps, tolerance not met): the DEM laws reach any tolerance by steps alone."""
+        return 1, self.resolution_steps(1), False
+
+    def resolution_steps(self, count: int) -> int:
+        return self.steps if self.steps is not None else dem.steps_for(self.tolerance)
+
+
+@attrs.frozen
+class DemLinearOptions(_SpringOptions):
+    """Options of ``dem_linear``.
+
+    Parameters
+    ----------
+    stiffness_ratio : float
+        k_t / k_n, with k_n = 2 E* a_max the Hertz contact's tangent normal
+        stiffness at maximum compression (default 2/7, the common DEM choice
+        that matches the tangential and normal frequencies of a solid sphere
+        on linear springs).
+    tolerance : float
+        Target error of |J_t| / (mu J_n); sets the uniform time steps.
+    steps : int, optional
+        Expert override of the time steps.
+    damping : float
+        Tangential damping ratio zeta of the spring (0: none, the default).
+    history_points : int
+        Samples of the force histories (when asked).
+    inelastic : str
+        ``adjusted_speed`` or ``hysteretic``, as for ``maw``.
+    """
+
+    stiffness_ratio: float = attrs.field(default=2.0 / 7.0, validator=_number_in(
+        0.0, 100.0, "a stiffness ratio k_t/k_n > 0", low_open=True))
+
+
+@attrs.frozen
+class HertzMindlinOptions(_SpringOptions):
+    """Options of ``hertz_mindlin``.
+
+    Parameters
+    ----------
+    history : str
+        ``force`` (default): the spring stores its force and adds
+        dF_t = 8 G* a(t) V_x dt (incremental). ``displacement``: it stores the
+        slip displacement xi and F_t = 8 G* a(t) xi ("total" form; LAMMPS
+        ``mindlin``).
+    rescale : bool
+        Scale the stored history by a_new/a_old when the contact shrinks
+        (default true; LAMMPS ``mindlin_rescale``).
+    tolerance, steps, damping, history_points, inelastic
+        As for ``dem_linear``.
+    """
+
+    history: str = attrs.field(default="force", validator=check(
+        lambda v: v in dem.HISTORIES, f"one of {', '.join(dem.HISTORIES)}"))
+    rescale: bool = attrs.field(default=True, validator=check(lambda v: isinstance(v, bool), "true or false"))
+
+
+class _SpringModel(HertzTangentialModel):
+
+    def reference_options(self, tolerance):
+        return attrs.evolve(self.options, tolerance=tolerance, steps=None)
+
+    def can_reach(self, tolerance):
+        return tolerance >= 1e-9
+
+    def _law(self, kappa) -> dict:
+        raise NotImplementedError
+
+    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
+        change, dissipation = np.zeros_like(chi), np.zeros_like(chi)
+        force = stick = tau = None
+        if record:
+            force, stick = np.zeros((chi.size, steps + 1)), np.zeros((chi.size, steps + 1))
+        groups = np.unique(kappa) if self._depends_on_kappa else [None]
+        for value in groups:
+            members = np.ones(chi.size, dtype=bool) if value is None else kappa == value
+            solved = dem.solve_scaled(chi[members], psi1[members], steps=steps, record=record, normal=normal,
+                                      damping=self.options.damping, **self._law(value))
+            change[members], dissipation[members] = solved.slip_change, solved.dissipation
+            if record:
+                force[members], stick[members], tau = solved.force, solved.stick_radius, solved.tau
+        return dem.TangentialSolution(change, tau, force, stick, steps, dissipation)
+
+
+class DemLinearModel(_SpringModel):
+    """Hertz normal contact with a linear tangential spring capped by Coulomb friction (Cundall-Strack DEM).
+
+    The contact point carries one spring, F_t = k_t xi with xi the slip
+    displacement accumulated since first touch and k_t = r k_n constant
+    (r = ``stiffness_ratio``, k_n = 2 E* a_max); when |F_t| would exceed
+    mu F_n the spring is reset to the cap and the contact slides. There is no
+    microslip: the whole contact sticks or slides. In gross slip it agrees
+    with every Coulomb model (psi2 = psi1 - 4 chi); in stick its tangential
+    oscillation has a fixed frequency set by r rather than by the growing
+    contact, which is where it departs from Maw-Barber-Fawcett: with r = 2/7
+    it is far stiffer than Mindlin early in the contact and returns much of
+    the stored tangential energy (high beta, low launch ratio at golf lofts).
+
+    Inputs and outputs are those of ``maw`` (same normal contact, restitution
+    options and histories). The ``stick_radius`` history is the contact
+    radius while the spring sticks and 0 while it slides.
+
+    References
+    ----------
+    P. A. Cundall, O. D. L. Strack, Geotechnique 29 (1979) 47-65.
+    L. E. Silbert et al., Granular flow down an inclined plane, Phys. Rev. E 64 (2001) 051302 (k_t/k_n = 2/7).
+    """
+
+    name = "dem_linear"
+    label = "Hertz + linear tangential spring, Coulomb cap (DEM)"
+    references = (CUNDALL_STRACK, "L. E. Silbert, D. Ertas, G. S. Grest, T. C. Halsey, D. Levine, S. J. Plimpton, "
+                  "Granular flow down an inclined plane: Bagnold scaling and rheology, Phys. Rev. E 64 (2001) 051302")
+    Options = DemLinearOptions
+    _depends_on_kappa = True
+
+    def _law(self, kappa):
+        # scaled stiffness 1.5 r/kappa: the spring's ratio to Mindlin's k_t/k_n
+        return {"law": "linear", "linear_stiffness": self.options.stiffness_ratio / float(kappa)}
+
+
+class HertzMindlinModel(_SpringModel):
+    """Hertz normal contact with the Hertz-Mindlin no-slip spring capped by Coulomb friction (DEM).
+
+    The tangential stiffness follows the contact, k_t = 8 G* a(t) (Mindlin's
+    no-slip stiffness; k_t/k_n = kappa as in ``maw``), on one spring at the
+    contact point: ``history: displacement`` gives F_t = k_t(a) xi,
+    ``history: force`` integrates dF_t = k_t(a) dxi; with ``rescale`` the
+    stored value shrinks with the contact radius on unloading. Capped at
+    mu F_n and reset to the cap when sliding. It has Maw's stiffness in full
+    stick but no microslip: the whole contact slips at once. The incremental
+    form starts an impact in slip from psi1 > 1 like Maw (while the contact
+    grows and nothing slips it is exactly Maw's MDR), the total form from
+    psi1 > 2/3. At golf lofts both predict less grip than Maw (lower beta,
+    so a higher launch ratio).
+
+    References
+    ----------
+    R. D. Mindlin, J. Appl. Mech. 16 (1949) 259-268.
+    C. Thornton, S. J. Cummins, P. W. Cleary, Powder Technology 233 (2013) 30-46.
+    LAMMPS pair_style granular, tangential mindlin / mindlin_rescale (and their /force forms).
+    """
+
+    name = "hertz_mindlin"
+    label = "Hertz + Mindlin tangential spring, Coulomb cap (DEM)"
+    references = (MINDLIN, THORNTON, "LAMMPS documentation, pair_style granular (tangential mindlin, "
+                  "mindlin_rescale, mindlin/force, mindlin_rescale/force)")
+    Options = HertzMindlinOptions
+    _depends_on_kappa = False
+
+    def _law(self, kappa):
+        return {"law": "mindlin", "history": self.options.history, "rescale": self.options.rescale}
