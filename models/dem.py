@@ -84,6 +84,11 @@ class HertzMindlinOptions(_SpringOptions):
     rescale : bool
         Scale the stored history by a_new/a_old when the contact shrinks
         (default true; LAMMPS ``mindlin_rescale``).
+    stiffness_ratio : float, optional
+        k_t/k_n of the spring, with k_n = 2 E* a the current normal tangent
+        stiffness. Default: Mindlin's, kappa = G*/E* from the materials
+        (2(1-nu)/(2-nu) on a rigid face). Set it to reproduce a code whose
+        stiffness differs (see docs/approaches.md on LAMMPS).
     tolerance, steps, damping, history_points, inelastic
         As for ``dem_linear``.
     """
@@ -91,6 +96,9 @@ class HertzMindlinOptions(_SpringOptions):
     history: str = attrs.field(default="force", validator=check(
         lambda v: v in dem.HISTORIES, f"one of {', '.join(dem.HISTORIES)}"))
     rescale: bool = attrs.field(default=True, validator=check(lambda v: isinstance(v, bool), "true or false"))
+    stiffness_ratio: float | None = attrs.field(default=None, validator=check(
+        lambda v: v is None or (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v <= 100),
+        "a stiffness ratio k_t/k_n > 0 (or leave it out for Mindlin's)"))
 
 
 class _SpringModel(HertzTangentialModel):
@@ -153,7 +161,9 @@ class DemLinearModel(_SpringModel):
 
     def _law(self, kappa):
         # scaled stiffness 1.5 r/kappa: the spring's ratio to Mindlin's k_t/k_n
-        return {"law": "linear", "linear_stiffness": self.options.stiffness_ratio / float(kappa)}
+        # a constant spring stores force and displacement alike and never rescales
+        return {"law": "linear", "history": "force", "rescale": False,
+                "stiffness_factor": self.options.stiffness_ratio / float(kappa)}
 
 
 class HertzMindlinModel(_SpringModel):
@@ -183,7 +193,11 @@ class HertzMindlinModel(_SpringModel):
     references = (MINDLIN, THORNTON, "LAMMPS documentation, pair_style granular (tangential mindlin, "
                   "mindlin_rescale, mindlin/force, mindlin_rescale/force)")
     Options = HertzMindlinOptions
-    _depends_on_kappa = False
+    @property
+    def _depends_on_kappa(self):
+        return self.options.stiffness_ratio is not None
 
     def _law(self, kappa):
-        return {"law": "mindlin", "history": self.options.history, "rescale": self.options.rescale}
+        factor = 1.0 if kappa is None else self.options.stiffness_ratio / float(kappa)
+        return {"law": "mindlin", "history": self.options.history, "rescale": self.options.rescale,
+                "stiffness_factor": factor}

@@ -44,7 +44,7 @@ def test_compiled_kernel_equals_the_numpy_reference(law, history, rescale):
     if not _kernels.HAVE_NUMBA:
         pytest.skip("numba kernels are off (IMPACTLAB_KERNELS=numpy or numba missing)")
     chi, psi1 = np.full(40, 1.24), np.geomspace(0.02, 12.0, 40)
-    kwargs = dict(law=law, history=history, rescale=rescale, linear_stiffness=0.4, damping=0.1, steps=700,
+    kwargs = dict(law=law, history=history, rescale=rescale, stiffness_factor=0.4, damping=0.1, steps=700,
                   record=True)
     fast, slow = dem.solve_scaled(chi, psi1, **kwargs), dem.solve_scaled(chi, psi1, _force_numpy=True, **kwargs)
     np.testing.assert_allclose(fast.slip_change, slow.slip_change, rtol=1e-13, atol=1e-14)
@@ -56,7 +56,7 @@ def test_compiled_kernel_equals_the_numpy_reference(law, history, rescale):
                                                          ("mindlin", "displacement", True)])
 def test_default_steps_meet_the_tolerance(law, history, rescale):
     chi, psi1 = np.full(30, 1.24), np.geomspace(0.05, 8.0, 30)
-    kwargs = dict(law=law, history=history, rescale=rescale, linear_stiffness=0.4)
+    kwargs = dict(law=law, history=history, rescale=rescale, stiffness_factor=0.4)
     converged = dem.solve_scaled(chi, psi1, steps=200_000, **kwargs).slip_change
     for tolerance in (1e-4, 1e-5):
         result = dem.solve_scaled(chi, psi1, steps=dem.steps_for(tolerance), **kwargs).slip_change

@@ -13,10 +13,12 @@ the slip obeys psi' = -(5/2) chi f (the MDR equation with f = 1.5 * integral of 
 the Coulomb cap is |f| <= h^(3/2) (times the load factor of a damped normal law),
 and the spring laws read, with s = integral psi dtau:
 
-- ``linear``   f = 1.5 (r/kappa) s: a constant k_t = r k_n with k_n = 2 E* a_max,
-  the normal contact's tangent stiffness at maximum compression;
-- ``mindlin``, history ``displacement``  f = 1.5 sqrt(h) s  (k_t = 8 G* a, "total");
-- ``mindlin``, history ``force``  df = 1.5 sqrt(h) ds  (incremental).
+- ``linear``   f = 1.5 q s: a constant k_t = r k_n with k_n = 2 E* a_max,
+  the normal contact's tangent stiffness at maximum compression, q = r/kappa;
+- ``mindlin``, history ``displacement``  f = 1.5 q sqrt(h) s  (k_t = 8 G* a q, "total");
+- ``mindlin``, history ``force``  df = 1.5 q sqrt(h) ds  (incremental);
+
+q = 1 for Mindlin's no-slip stiffness (kappa = k_t/k_n = G*/E* as in :mod:`.mdr`).
 
 ``rescale`` multiplies the stored displacement or force by a_new/a_old
 whenever the contact shrinks (Walton; Thornton et al. 2013, eq. 18b), so that a
@@ -52,14 +54,14 @@ LAWS = ("linear", "mindlin")
 HISTORIES = ("displacement", "force")
 
 
-def stiffness_shape(law: str, h: np.ndarray, linear_stiffness: float) -> np.ndarray:
-    """Scaled stiffness df/ds at approach h: 1.5 r/kappa (linear) or 1.5 sqrt(h) (Mindlin)."""
+def stiffness_shape(law: str, h: np.ndarray, stiffness_factor: float) -> np.ndarray:
+    """Scaled stiffness df/ds at approach h: 1.5 q (linear) or 1.5 q sqrt(h) (Mindlin), q = stiffness_factor."""
     if law == "linear":
-        return np.full_like(h, 1.5 * linear_stiffness)
-    return 1.5 * np.sqrt(np.maximum(h, 0.0))
+        return np.full_like(h, 1.5 * stiffness_factor)
+    return 1.5 * stiffness_factor * np.sqrt(np.maximum(h, 0.0))
 
 
-def solve_scaled(chi, psi1, *, law: str = "mindlin", linear_stiffness: float = 1.0, history: str = "force",
+def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1.0, history: str = "force",
                  rescale: bool = True, damping: float = 0.0, steps: int = 2000, record: bool = False,
                  normal=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact under a DEM spring law for each (chi, psi1) pair.
@@ -69,9 +71,10 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", linear_stiffness: float = 1
     chi, psi1 : array_like (cases,)
         MBF parameter and normalised incidence (see :mod:`.mdr`).
     law : {"linear", "mindlin"}
-    linear_stiffness : float
-        For ``linear``: r/kappa, the spring's stiffness ratio to the normal tangent
-        stiffness at maximum compression over kappa = k_t/k_n of Mindlin.
+    stiffness_factor : float
+        q = r/kappa: the spring's stiffness ratio r = k_t/k_n over Mindlin's kappa. For ``linear``,
+        k_n is the normal tangent stiffness at maximum compression; for ``mindlin``, the current one
+        (q = 1 is Mindlin's no-slip stiffness 8 G* a).
     history : {"displacement", "force"}
         What the spring stores between steps (the same for ``linear``).
     rescale : bool
@@ -89,7 +92,7 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", linear_stiffness: float = 1
     tau = np.linspace(0.0, normal.tau_end, steps + 1)
     h = np.maximum(normal.approach(tau), 0.0)
     cap = h**1.5 * normal.load_factor(tau)
-    stiffness = stiffness_shape(law, h, linear_stiffness)
+    stiffness = stiffness_shape(law, h, stiffness_factor)
     # a_new / a_old when the contact shrinks, 1 otherwise
     # (applied half before and half after the step's increment: Strang splitting keeps second order)
     shrink = np.ones_like(h)
