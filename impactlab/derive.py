@@ -7,8 +7,11 @@ golf delivery, the 3-D launch (:func:`impactlab.physics.delivery.launch`).
 
 from __future__ import annotations
 
+import numpy as np
+
+from .physics import hertz
 from .physics.delivery import DELIVERY_INPUTS, launch
-from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after_impact
+from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after_impact, approach_velocities
 
 IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
 FROM_IMPULSES = frozenset({
@@ -19,20 +22,28 @@ FROM_DELIVERY = frozenset({
     "spin_loft", "vertical_launch_angle", "horizontal_launch_angle", "vertical_launch_ratio",
     "horizontal_launch_ratio", "spin_axis",
 })
+#: Maw-Barber-Fawcett's normalised incidence and rebound, from the materials and friction of the scene
+FROM_MATERIALS = frozenset({"normalised_incidence", "normalised_rebound"})
+MATERIAL_INPUTS = ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus", "face_poisson_ratio",
+                   "friction")
 #: inputs each family needs (the optional ones default: no spin, a fixed face)
 NEEDS = {
     "impulses": frozenset(AFTER_IMPACT_INPUTS) - {"spin"},
     "delivery": frozenset(DELIVERY_INPUTS),
+    "materials": frozenset(MATERIAL_INPUTS),
 }
 NO_DELIVERY = "needs a golf delivery (a delivery block: path, face angle, attack angle, dynamic loft)"
+NO_MATERIALS = "needs the ball's and face's elastic constants and the friction (kappa = G*/E*, mu)"
 
 
 def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]:
     """Whether ``name`` can be derived for a model that provides ``provides``; if not, why (None: not derivable)."""
-    if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY:
+    if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS:
         return False, None
     if name in FROM_DELIVERY and given_inputs is not None and not NEEDS["delivery"] <= set(given_inputs):
         return False, NO_DELIVERY
+    if name in FROM_MATERIALS and given_inputs is not None and not NEEDS["materials"] <= set(given_inputs):
+        return False, NO_MATERIALS
     return True, None
 
 
@@ -49,4 +60,23 @@ def derive(names, raw, inputs) -> dict:
         golf = launch(raw["normal_impulse"], raw["tangential_impulse"], basics["spin_rate"],
                       ball_mass=inputs["ball_mass"], **{name: inputs[name] for name in DELIVERY_INPUTS})
         out.update({name: golf[name] for name in names & FROM_DELIVERY})
+    if names & FROM_MATERIALS:
+        out.update({name: value for name, value in normalised_slip(basics, inputs).items() if name in names})
     return out
+
+
+def normalised_slip(basics: dict, inputs: dict) -> dict:
+    """psi1 = kappa V_x/(mu V_z) and psi2 = kappa V_x'/(mu V_z') of Maw, Barber & Fawcett (NaN without friction).
+
+    V_x, V_x' are the contact point's slip velocities before and after (V_x' = -beta V_x), V_z, V_z' the
+    normal approach and rebound speeds, kappa = G*/E* of the ball-face pair. Every Coulomb model gives
+    psi2 = psi1 - 4 chi in gross slip; the rigid ones give psi2 = 0 below it.
+    """
+    moduli = [inputs[name] for name in MATERIAL_INPUTS[:4]]
+    kappa = hertz.tangential_modulus(*moduli) / hertz.effective_modulus(*moduli)
+    normal_speed, slip = approach_velocities(inputs["speed"], inputs["angle"], inputs["spin"], inputs["ball_radius"])
+    friction = np.where(inputs["friction"] > 0.0, inputs["friction"], np.nan)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        incidence = kappa * np.abs(slip) / (friction * normal_speed)
+        rebound = -basics["tangential_restitution"] * incidence * normal_speed / basics["normal_velocity"]
+    return {"normalised_incidence": incidence, "normalised_rebound": rebound}

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import attrs
 
-from .derive import FROM_DELIVERY, IMPULSES, NEEDS, derivable
+from .derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from .physics.mechanics import AFTER_IMPACT_OPTIONAL
 from .vocabulary import INPUTS, OUTPUTS
 
@@ -77,6 +77,8 @@ def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
         inputs |= NEEDS["impulses"] | set(AFTER_IMPACT_OPTIONAL)
     if derived & FROM_DELIVERY:
         inputs |= NEEDS["delivery"]
+    if derived & FROM_MATERIALS:
+        inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
                       frozenset(inputs))
 

@@ -51,7 +51,9 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     outputs : list of str, optional
         Scalar outputs to draw (default: every scalar output in the dataset, at most six).
     x : str, optional
-        Sweep dimension for the horizontal axis (default: the longest).
+        Sweep dimension for the horizontal axis (default: the longest), or a scalar output: each
+        line is then drawn against that output along the longest sweep dimension (psi2 against
+        psi1, say).
     """
     import matplotlib
 
@@ -61,9 +63,12 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     names = [name for name in (outputs or dataset.data_vars) if name in OUTPUTS and OUTPUTS[name].kind != HISTORY
              and not bool(np.all(np.isnan(dataset[name].values)))][:6]
     sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
-    if x is None and sweep_dims:
-        x = max(sweep_dims, key=lambda dim: dataset.sizes[dim])
-    others = [dim for dim in sweep_dims if dim != x]
+    along_output = x is not None and x in dataset.data_vars
+    along = x
+    if (x is None or along_output) and sweep_dims:
+        along = max(sweep_dims, key=lambda dim: dataset.sizes[dim])
+        x = x or along
+    others = [dim for dim in sweep_dims if dim != along]
     columns = min(len(names), 3) or 1
     rows = max(1, -(-len(names) // columns))
     size = (8.0, 5.2) if len(names) == 1 else (5.2 * columns, 3.8 * rows + 0.6)
@@ -80,7 +85,12 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
                 label = str(model)
                 if others:
                     label += " " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
-                xs = dataset[x].values if x else [0.0]
+                if along_output:
+                    horizontal = dataset[x].sel({MODEL_DIM: model})
+                    horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
+                    xs = horizontal.isel(_line=l_index).values
+                else:
+                    xs = dataset[x].values if x else [0.0]
                 # one model: a colour per line; several: a colour per model, a line style per other value
                 colour = colours[(l_index if single_model else m_index) % len(colours)]
                 style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
@@ -89,7 +99,8 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         axis.set_title(OUTPUTS[name].long_name, fontsize=9)
         axis.set_ylabel(f"{name} [{OUTPUTS[name].units}]")
         if x:
-            axis.set_xlabel(f"{x} [{dataset[x].attrs.get('units', '')}]")
+            units = OUTPUTS[x].units if along_output else dataset[x].attrs.get("units", "")
+            axis.set_xlabel(f"{x} [{units}]")
         axis.grid(True, alpha=0.3)
     for axis in list(axes.flat)[len(names):]:
         axis.set_visible(False)

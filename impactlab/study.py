@@ -26,7 +26,7 @@ from .model import ImpactModel
 from .registry import available, get_model
 from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
 from .units import to_si
-from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS
+from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR
 from .yaml_lines import line_of, load_yaml, parse_path
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "delivery", "sweep", "models",
@@ -540,8 +540,10 @@ def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
         if kind not in PLOT_KINDS:
             raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)
         x = block.get("x")
-        if x is not None and x not in dims:
-            raise FieldError(f"{where}.x", "a sweep dimension", x, choices=dims)
+        scalar_outputs = [name for name in outputs if OUTPUTS[name].kind == SCALAR]
+        if x is not None and x not in dims + scalar_outputs:
+            raise FieldError(f"{where}.x", "a sweep dimension or a scalar output of the study", x,
+                             choices=dims + scalar_outputs)
         select = block.get("select") or {}
         if not isinstance(select, Mapping):
             raise FieldError(f"{where}.select", "a mapping from dimension to value", select)

@@ -163,6 +163,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "tangential_velocity": OutputSpec("m/s",
                                       "ball-centre velocity after impact along the incoming slip, face frame"),
     "tangential_restitution": OutputSpec("1", "contact-point tangential restitution beta = -Vx'/Vx"),
+    "normalised_incidence": OutputSpec("1", "normalised incidence psi1 = kappa Vx/(mu Vz) (Maw, Barber & Fawcett)"),
+    "normalised_rebound": OutputSpec("1", "normalised rebound psi2 = kappa Vx'/(mu Vz'), contact-point slip after"),
     "normal_impulse": OutputSpec("N s", "normal impulse on the ball"),
     "tangential_impulse": OutputSpec("N s", "tangential impulse on the ball, positive opposing the incoming slip"),
     "contact_time": OutputSpec("s", "contact duration"),
