@@ -193,6 +193,15 @@ def _cmd_paper(args) -> int:
     return 0
 
 
+def _cmd_export(args) -> int:
+    from .interchange import write_gspro
+    from .results_io import open_results
+
+    count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
+    print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from ._version import __version__
 
@@ -241,6 +250,15 @@ def build_parser() -> argparse.ArgumentParser:
     convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
     convergence.add_argument("-q", "--quiet", action="store_true")
     convergence.set_defaults(handler=_cmd_convergence)
+
+    export = commands.add_parser("export", help="export a delivery result's ball data for golf simulators")
+    export.add_argument("file", help="result file (.h5) of a study with a delivery block")
+    export.add_argument("-o", "--output", required=True, help="JSON file: an array of shot messages")
+    export.add_argument("--format", choices=("gspro",), default="gspro",
+                        help="gspro: GSPro Open Connect v1 (Speed mph, SpinAxis/HLA positive right, VLA, spins rpm)")
+    export.add_argument("--model", help="only this model's shots (default: every model)")
+    export.add_argument("--device-id", default="impactlab", help="DeviceID of the messages")
+    export.set_defaults(handler=_cmd_export)
 
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
     paper.add_argument("results", help="folder holding the result files of studies/paper/*.yaml")
