@@ -15,6 +15,8 @@ from pathlib import Path
 EXIT_BAD_INPUT = 2
 EXIT_INTERRUPTED = 130
 
+from .vocabulary import OUTPUTS  # noqa: E402  (light: names and units only)
+
 
 def _cmd_run(args) -> int:
     from .errors import StudyError
@@ -202,6 +204,61 @@ def _cmd_export(args) -> int:
     return 0
 
 
+def _cmd_validate(args) -> int:
+    from .validation import DATASETS, errors, get_dataset
+
+    names = args.dataset or sorted(DATASETS)
+    over = []
+    for name in names:
+        data = get_dataset(name)
+        units = OUTPUTS[data.quantity].units
+        print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
+        print(f"  measured  {'  '.join(f'{v:8.3f}' for v in data.values)}"
+              + (f"   (+- {', '.join(f'{s:g}' for s in data.sigma)})" if data.sigma else ""))
+        print(f"  source: {data.source}")
+        print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
+        for model, error in errors(data).items():
+            budget = data.budgets.get(model)
+            verdict = "" if budget is None else ("ok" if error["rms"] <= budget else "OVER BUDGET")
+            if verdict == "OVER BUDGET":
+                over.append(f"{name}/{model}")
+            predicted = " ".join(f"{v:8.3f}" for v in error["predicted"])
+            print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
+                  f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")
+        print()
+    if over:
+        print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _cmd_fit(args) -> int:
+    from .fitting import describe, fit
+    from .validation import get_dataset
+
+    data = get_dataset(args.dataset)
+    known = [entry.id for entry in data.load_study().models]
+    models = args.model or known
+    for model in models:
+        if model not in known:
+            from .errors import FieldError
+
+            raise FieldError("--model", "a model of the dataset's study", model, choices=known)
+    results = []
+    print(f"{data.name}: fitting {data.quantity} at {', '.join(data.labels)} "
+          f"({'weights 1/sigma^2' if data.sigma else 'no stated uncertainty: unit weights, scaled covariance'})")
+    for model in models:
+        result = fit(data, model, args.parameter)
+        results.append(result.as_dict())
+        residuals = " ".join(f"{r:+.3f}" for r in result.residuals)
+        print(f"  {model:<16} {describe(result)}")
+        print(f"  {'':<16} residuals {residuals}; rms {result.rms:.4f} (before the fit {result.start_rms:.4f})")
+    if args.json:
+        Path(args.json).write_text(json.dumps(results, indent=1))
+        print(f"wrote {args.json}", file=sys.stderr)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from ._version import __version__
 
@@ -259,6 +316,18 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--model", help="only this model's shots (default: every model)")
     export.add_argument("--device-id", default="impactlab", help="DeviceID of the messages")
     export.set_defaults(handler=_cmd_export)
+
+    validate = commands.add_parser("validate", help="every model against the measured data the project cites")
+    validate.add_argument("--dataset", action="append", help="only this dataset (repeatable; default: all)")
+    validate.set_defaults(handler=_cmd_validate)
+
+    fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
+    fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them)")
+    fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
+    fitting.add_argument("--parameter", action="append",
+                         help="parameter to fit (repeatable; default: friction, and beta for restitution)")
+    fitting.add_argument("--json", help="also write the fits to this JSON file")
+    fitting.set_defaults(handler=_cmd_fit)
 
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
     paper.add_argument("results", help="folder holding the result files of studies/paper/*.yaml")
