@@ -35,7 +35,8 @@ class HertzTangentialModel(ImpactModel):
     tangential problem is posed in the variables of Maw, Barber & Fawcett,
     chi = (kappa/2) m*/m_t and psi1 = kappa V_x/(mu V_z), and solved by the
     subclass's :meth:`_solve`, which returns a :class:`~impactlab.physics.mdr.TangentialSolution`.
-    Its options must provide ``resolution(chi)``, ``resolution_steps(count)``,
+    Its options must provide ``resolution(chi, psi1)`` (resolution and "tolerance not met" per case),
+    ``resolution_steps(count)``,
     ``history_points`` and ``inelastic``.
     """
 
@@ -71,13 +72,12 @@ class HertzTangentialModel(ImpactModel):
         chi = 0.5 * kappa * m_normal / m_tangential
         psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
         slip_change, residual, steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
-        # each case's resolution depends on its own chi only, so a case's result never depends on its batch
+        # each case's resolution depends on its own chi and psi1 only: its result never depends on its batch
         resolution = np.zeros(slip.size, dtype=int)
         capped = np.zeros(slip.size, dtype=bool)
         for value in np.unique(chi[sliding]):
-            members = chi == value
-            count, _, too_fine = self.options.resolution(float(value))
-            resolution[members], capped[members] = count, too_fine
+            members = sliding & (chi == value)
+            resolution[members], capped[members] = self.options.resolution(float(value), psi1[members])
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
         for index, law in enumerate(laws):
             for count in np.unique(resolution[sliding & (law_of_case == index)]):

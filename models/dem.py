@@ -35,9 +35,9 @@ class _SpringOptions:
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
-    def resolution(self, chi: float) -> tuple[int, int, bool]:
-        """(one spring, uniform steps, tolerance not met): the DEM laws reach any tolerance by steps alone."""
-        return 1, self.resolution_steps(1), False
+    def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(one spring, tolerance not met) per case: the DEM laws reach any tolerance by steps alone."""
+        return np.ones(psi1.size, dtype=np.int64), np.zeros(psi1.size, dtype=bool)
 
     def resolution_steps(self, count: int) -> int:
         return self.steps if self.steps is not None else dem.steps_for(self.tolerance)

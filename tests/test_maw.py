@@ -281,3 +281,24 @@ def test_hysteretic_maw_passes_conformance():
     from impactlab.testing import check_model
 
     check_model(get_model("maw")(inelastic="hysteretic", springs=60, steps=150))
+
+
+@pytest.mark.parametrize("chi", [0.7, 1.24, 4.0])
+def test_tolerance_bounds_the_impulse_against_both_of_its_scales(chi):
+    # |dJ_t| <= tol min(mu J_n, m_t |V_x|): in scaled units |d psi2| <= tol min(4 chi, psi1), so beta (the
+    # impulse over m_t V_x) is accurate to the tolerance even at low loft, where the slip is small
+    from impactlab.physics import mdr
+
+    psi1 = np.geomspace(0.02, 6 * chi, 16)
+    chis = np.full(psi1.size, chi)
+    reference = mdr.solve_scaled(chis, psi1, springs=1600, steps=9600).slip_change
+    for tolerance in (1e-3, 1e-4):
+        springs, capped = mdr.resolution(tolerance, chi, psi1)
+        assert not capped.any()
+        result = np.empty_like(psi1)
+        for count in np.unique(springs):
+            rung = springs == count
+            result[rung] = mdr.solve_scaled(chis[rung], psi1[rung], springs=int(count),
+                                            steps=mdr.STEPS_PER_SPRING * int(count)).slip_change
+        assert np.all(np.abs(result - reference) <= tolerance * np.minimum(4 * chi, psi1))
+        assert springs[0] > springs[-1]  # the thin slip annuli of low loft are what costs

@@ -53,7 +53,7 @@ def test_results_carry_provenance(example_result):
     assert "tangential_restitution: 0.1" in attrs["study_source"]
     assert attrs["impactlab_version"] == impactlab.__version__
     assert '"tangential_restitution": 0.1' in attrs["models"]
-    assert '"tolerance": 1e-05' in attrs["models"]  # resolved defaults are recorded, not just what was written
+    assert '"tolerance": 0.0001' in attrs["models"]  # resolved defaults are recorded, not just what was written
     assert "maw" in attrs["plan"]
 
 

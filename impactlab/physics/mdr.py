@@ -159,21 +159,36 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation)
 
 
-def resolution(tolerance: float, chi_max: float) -> tuple[int, int]:
-    """Springs and uniform steps for a target error of |J_t| / (mu J_n) (measured: see docs/accuracy.md).
-
-    The error of the scaled slip velocity, over 4 chi, falls as ~0.05/springs^2 (quadrature) plus
-    ~1.1 max(1, chi/4)/steps^2 (time stepping; the tangential oscillation quickens as sqrt(chi)).
-    steps = 6 springs is the cheapest split for a given error (cost ~ springs * (steps + 2 springs)).
-    """
-    wanted = max(12.0, np.sqrt(0.08 * max(1.0, chi_max / 4.0) / tolerance))
-    # round up on a ladder of quarter-octaves, so that cases with nearby chi share one batched solve
-    springs = int(np.ceil(12.0 * 2.0 ** (np.ceil(4.0 * np.log2(wanted / 12.0) - 1e-9) / 4.0)))
-    return springs, STEPS_PER_SPRING * springs
-
-
-#: uniform time steps per spring chosen by :func:`resolution`
+#: uniform time steps per spring: the cheapest split between time and spring error (measured)
 STEPS_PER_SPRING = 6
+#: measured constant of the error model in :func:`resolution` (largest over chi 0.3-15, psi1 1e-3-6 chi)
+ERROR_CONSTANT = 1.2
+#: below this normalised incidence the rule stops refining (a loft of a few hundredths of a degree)
+SMALLEST_SCALE = 1e-3
+#: finest resolution the rule may choose; a tolerance needing more is flagged tolerance_not_met
+MAX_SPRINGS = 8192
+
+
+def resolution(tolerance: float, chi, psi1) -> tuple[np.ndarray, np.ndarray]:
+    """Springs for each case so that |dJ_t| <= tolerance * min(mu J_n, m_t |V_x|), and whether capped.
+
+    The bound is relative to the smaller of the tangential impulse's two scales, the Coulomb bound
+    mu J_n and the impulse m_t |V_x| that stops the slip, so beta (= J_t/(m_t V_x) - 1), the spin and
+    the launch angle are all accurate to about the tolerance. In the scaled variables the error of
+    psi2 must stay below tol * min(4 chi, psi1). Measured (docs/accuracy.md):
+
+        |d psi2| <= 1.2 max(1, chi/4)^1.15 min(4 chi, psi1) / (springs^2 sqrt(min(4 chi, psi1)))
+
+    the quadrature and time errors together at STEPS_PER_SPRING steps per spring; the slip annuli of
+    a mostly stuck contact (small psi1) are thin, hence the extra factor. Springs are rounded up on a
+    ladder of quarter-octaves so that cases with nearby (chi, psi1) share one batched solve.
+    """
+    chi = np.asarray(chi, dtype=float)
+    scale = np.maximum(np.minimum(np.asarray(psi1, dtype=float), 4.0 * chi), SMALLEST_SCALE)
+    wanted = np.sqrt(ERROR_CONSTANT * np.maximum(1.0, chi / 4.0) ** 1.15 / (tolerance * np.sqrt(scale)))
+    wanted = np.maximum(12.0, wanted)
+    springs = np.ceil(12.0 * 2.0 ** (np.ceil(4.0 * np.log2(wanted / 12.0) - 1e-9) / 4.0)).astype(np.int64)
+    return np.minimum(springs, MAX_SPRINGS), springs > MAX_SPRINGS
 
 
 def _stick_radius(u, cap, h, springs):
