@@ -28,7 +28,7 @@ def _number_in(low: float, high: float, what: str, low_open: bool = False):
 class _SpringOptions:
     """Options shared by the DEM laws (see the model docstrings)."""
 
-    tolerance: float = attrs.field(default=1e-5, validator=_number_in(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
+    tolerance: float = attrs.field(default=1e-4, validator=_number_in(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
     steps: int | None = attrs.field(default=None, validator=optional_int(16))
     damping: float = attrs.field(default=0.0, validator=_number_in(0.0, 10.0, "a damping ratio between 0 and 10"))
     history_points: int = attrs.field(default=256, validator=int_at_least(2))
@@ -36,11 +36,12 @@ class _SpringOptions:
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(one spring, tolerance not met) per case: the DEM laws reach any tolerance by steps alone."""
-        return np.ones(psi1.size, dtype=np.int64), np.zeros(psi1.size, dtype=bool)
+        """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""
+        capped = self.steps is None and dem.steps_for(self.tolerance)[1]
+        return np.ones(psi1.size, dtype=np.int64), np.full(psi1.size, capped)
 
     def resolution_steps(self, count: int) -> int:
-        return self.steps if self.steps is not None else dem.steps_for(self.tolerance)
+        return self.steps if self.steps is not None else dem.steps_for(self.tolerance)[0]
 
 
 @attrs.frozen
@@ -55,7 +56,8 @@ class DemLinearOptions(_SpringOptions):
         that matches the tangential and normal frequencies of a solid sphere
         on linear springs).
     tolerance : float
-        Target error of |J_t| / (mu J_n); sets the uniform time steps.
+        Target error of J_t against min(mu J_n, m_t |V_x|), as for ``maw``
+        (default 1e-4); sets the uniform time steps.
     steps : int, optional
         Expert override of the time steps.
     damping : float
@@ -107,7 +109,7 @@ class _SpringModel(HertzTangentialModel):
         return attrs.evolve(self.options, tolerance=tolerance, steps=None)
 
     def can_reach(self, tolerance):
-        return tolerance >= 1e-9
+        return not dem.steps_for(tolerance)[1]
 
     def _law(self, kappa) -> dict:
         raise NotImplementedError

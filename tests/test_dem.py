@@ -54,13 +54,15 @@ def test_compiled_kernel_equals_the_numpy_reference(law, history, rescale):
 @pytest.mark.parametrize(("law", "history", "rescale"), [("linear", "force", False), ("mindlin", "force", True),
                                                          ("mindlin", "force", False),
                                                          ("mindlin", "displacement", True)])
-def test_default_steps_meet_the_tolerance(law, history, rescale):
-    chi, psi1 = np.full(30, 1.24), np.geomspace(0.05, 8.0, 30)
+def test_default_steps_meet_the_tolerance_against_both_scales(law, history, rescale):
+    chi, psi1 = np.full(30, 1.24), np.geomspace(0.01, 8.0, 30)
     kwargs = dict(law=law, history=history, rescale=rescale, stiffness_factor=0.4)
-    converged = dem.solve_scaled(chi, psi1, steps=200_000, **kwargs).slip_change
-    for tolerance in (1e-4, 1e-5):
-        result = dem.solve_scaled(chi, psi1, steps=dem.steps_for(tolerance), **kwargs).slip_change
-        assert np.max(np.abs(result - converged)) / (4 * chi[0]) <= tolerance
+    converged = dem.solve_scaled(chi, psi1, steps=100_000, **kwargs).slip_change
+    for tolerance in (1e-3, 1e-4):
+        steps, capped = dem.steps_for(tolerance)
+        result = dem.solve_scaled(chi, psi1, steps=steps, **kwargs).slip_change
+        assert not capped
+        assert np.all(np.abs(result - converged) <= tolerance * np.minimum(4 * chi, psi1))
 
 
 def test_energy_balance_closes_in_scaled_variables():

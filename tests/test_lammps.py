@@ -22,7 +22,7 @@ GOLF = dict(youngs_modulus=136e6, poisson_ratio=0.45, radius=0.021335, mass=0.04
 
 
 def rebound(name, options, scene):
-    result = get_model(name)(tolerance=1e-7, **options).compute(scene, ["tangential_velocity", "normal_velocity",
+    result = get_model(name)(tolerance=2e-6, **options).compute(scene, ["tangential_velocity", "normal_velocity",
                                                                          "spin_rate"])
     return result["tangential_velocity"].item(), result["normal_velocity"].item(), result["spin_rate"].item() * RPM
 
