@@ -60,7 +60,7 @@ class HertzTangentialModel(ImpactModel):
             # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
             scale_speed = 0.5 * (1.0 + restitution) * normal_speed
             law_of_case = np.zeros(slip.size, dtype=int)
-            laws = [hertz.ElasticNormal()]
+            laws = [hertz.ELASTIC]
         else:
             scale_speed = normal_speed
             levels, law_of_case = np.unique(restitution, return_inverse=True)

@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .hertz import ElasticNormal
+from .hertz import ELASTIC
 from .mdr import TANGENTIAL_GAIN, TangentialSolution, event_grid
 
 OUT, STICK, SLIP = 0, 1, 2
@@ -109,7 +109,7 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
     cases = chi.size
     rho, gamma, displacement, load = influence_matrices(rings)
-    normal = normal or ElasticNormal()
+    normal = normal or ELASTIC
     tau = event_grid(rho**2, steps, normal)
     h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
     max_iterations = max_iterations or 2 * rings

@@ -45,7 +45,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .hertz import ElasticNormal
+from .hertz import ELASTIC, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution
 
 #: psi' = -SLIP_GAIN * chi * f
@@ -86,12 +86,15 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
     """
     if law not in LAWS or history not in HISTORIES:
         raise ValueError(f"law must be one of {LAWS} and history one of {HISTORIES}")
-    normal = normal or ElasticNormal()
+    normal = normal or ELASTIC
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
-    tau = np.linspace(0.0, normal.tau_end, steps + 1)
-    h = np.maximum(normal.approach(tau), 0.0)
-    cap = h**1.5 * normal.load_factor(tau)
+    def grid():
+        nodes = np.linspace(0.0, normal.tau_end, steps + 1)
+        return nodes, np.maximum(normal.approach(nodes), 0.0), normal.load_factor(nodes)
+
+    tau, h, load = cached_grid(normal, ("dem", steps), grid)
+    cap = h**1.5 * load
     stiffness = stiffness_shape(law, h, stiffness_factor)
     # a_new / a_old when the contact shrinks, 1 otherwise
     # (applied half before and half after the step's increment: Strang splitting keeps second order)

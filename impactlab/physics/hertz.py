@@ -87,6 +87,34 @@ class ElasticNormal:
         return rise, TAU_CONTACT - rise
 
 
+#: the elastic law (stateless): one instance, so that grids derived from it are cached once for all
+ELASTIC = ElasticNormal()
+
+_GRIDS: dict = {}
+_GRIDS_LIMIT = 128
+
+
+def cached_grid(normal, key: tuple, build):
+    """Arrays derived from a normal law (its time grid and samples), built once per law and key.
+
+    The normal solution is shared by every case of a batch and every batch with the same law and
+    resolution; sampling it (an inverse incomplete beta function per node) would otherwise dominate
+    small batches. The arrays are returned read-only.
+    """
+    full_key = (id(normal), *key)
+    hit = _GRIDS.get(full_key)
+    if hit is not None and hit[0] is normal:
+        return hit[1]
+    arrays = build()
+    for array in arrays:
+        if isinstance(array, np.ndarray):
+            array.setflags(write=False)
+    if len(_GRIDS) >= _GRIDS_LIMIT:
+        _GRIDS.clear()
+    _GRIDS[full_key] = (normal, arrays)  # holding the law keeps its id from being reused while cached
+    return arrays
+
+
 class DampedNormal:
     """Hertz contact with Hunt-Crossley damping, F = k delta^(3/2) (1 + c d(delta)/dt / V_z), scaled.
 

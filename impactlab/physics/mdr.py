@@ -40,7 +40,7 @@ import attrs
 import numpy as np
 
 from . import _kernels
-from .hertz import ElasticNormal
+from .hertz import ELASTIC, cached_grid
 
 #: dX''/dtau = -TANGENTIAL_GAIN * chi * integral u dxi
 TANGENTIAL_GAIN = 15.0 / 4.0
@@ -93,6 +93,15 @@ def event_grid(levels, steps: int, normal) -> np.ndarray:
     return tau[(tau >= 0.0) & (tau <= normal.tau_end)]
 
 
+def _spring_grid(normal, springs: int, steps: int):
+    """Spring offsets xi^2, time nodes, h and load factor at the nodes, springs inside at each node."""
+    xi = (np.arange(springs) + 0.5) / springs
+    tau = event_grid(xi**2, steps, normal)
+    h_nodes = normal.approach(tau)
+    inside = np.searchsorted(xi**2, h_nodes, side="left").astype(np.int64)  # springs with xi^2 < h
+    return xi**2, tau, h_nodes, normal.load_factor(tau), inside
+
+
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
                  normal=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
@@ -112,20 +121,16 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     normal : ElasticNormal or DampedNormal, optional
         The scaled normal history h(tau) and its load factor (default: elastic Hertz).
     """
-    normal = normal or ElasticNormal()
+    normal = normal or ELASTIC
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
-    xi = (np.arange(springs) + 0.5) / springs
-    tau = event_grid(xi**2, steps, normal)
-    cap_offset = xi**2
     weight = 1.0 / springs
     gain = TANGENTIAL_GAIN * chi * weight
-
-    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
+    cap_offset, tau, h_nodes, load_nodes, inside = cached_grid(normal, ("mdr", springs, steps),
+                                                               lambda: _spring_grid(normal, springs, steps))
     if _kernels.HAVE_NUMBA and not _force_numpy:
         history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
-        inside = np.searchsorted(cap_offset, h_nodes, side="left").astype(np.int64)  # springs with xi^2 < h
         velocity_change, dissipation = _kernels.mdr_cases(chi, psi1, cap_offset, tau, h_nodes, load_nodes, inside,
                                                           weight, TANGENTIAL_GAIN, record, history, stick)
         return TangentialSolution(velocity_change, tau if record else None, 1.5 * history if record else None,
