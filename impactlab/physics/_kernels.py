@@ -22,6 +22,11 @@ except ImportError:  # pragma: no cover - depends on the platform
     HAVE_NUMBA = False
 
 
+def _compiled(function):
+    """The numba-compiled kernel (cached on disk), or None where numba is off."""
+    return numba.njit(cache=True, nogil=True)(function) if HAVE_NUMBA else None
+
+
 def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_factor, record, history, stick):
     """MDR time loop for each case; see mdr.solve_scaled for the method. Returns (slip change, dissipation)."""
     cases = chi.size
@@ -77,10 +82,7 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
     return velocity_change_out, dissipation_out
 
 
-if HAVE_NUMBA:
-    mdr_cases = numba.njit(cache=True, nogil=True)(_mdr_cases)
-else:  # pragma: no cover
-    mdr_cases = None
+mdr_cases = _compiled(_mdr_cases)
 
 
 def _lu_factor(matrix, size, pivots):
@@ -237,11 +239,9 @@ def _annuli_cases(chi, psi1, tau, inside, caps, displacement, load, gamma, gain_
 
 if HAVE_NUMBA:
     # the helpers are looked up as globals when the kernel compiles: compile them first
-    _lu_factor = numba.njit(cache=True, nogil=True)(_lu_factor)
-    _lu_solve = numba.njit(cache=True, nogil=True)(_lu_solve)
-    annuli_cases = numba.njit(cache=True, nogil=True)(_annuli_cases)
-else:  # pragma: no cover
-    annuli_cases = None
+    _lu_factor = _compiled(_lu_factor)
+    _lu_solve = _compiled(_lu_solve)
+annuli_cases = _compiled(_annuli_cases)
 
 
 def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record, force,
@@ -288,7 +288,4 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
     return change_out, work_out
 
 
-if HAVE_NUMBA:
-    dem_cases = numba.njit(cache=True, nogil=True)(_dem_cases)
-else:  # pragma: no cover
-    dem_cases = None
+dem_cases = _compiled(_dem_cases)
