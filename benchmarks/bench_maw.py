@@ -147,6 +147,23 @@ def main():
         print(f"   {rings} rings: {1e3 * fast / chi.size:.2f} ms vs {1e3 * dense / chi.size:.2f} ms per impact: "
               f"{dense / fast:.1f}x (target >= 10x)")
 
+    print("\n2b. DEM-style laws (one spring per contact): default tolerance, compiled kernel vs its numpy reference")
+    from impactlab.physics import dem
+
+    for name in ("hertz_mindlin", "dem_linear"):
+        model = get_model(name)()
+        seconds = timed(lambda: model.compute(inputs, OUTPUTS))
+        converged = get_model(name)(steps=100_000).compute(inputs, OUTPUTS)
+        err = errors(model.compute(inputs, OUTPUTS), converged)
+        print(f"   {name:<14} {1e6 * seconds / n:7.1f} us/impact; beta {err['beta']:.1e}, launch ratio "
+              f"{err['launch_ratio']:.1e} against 100 000 steps")
+    chi, psi = np.full(200, 1.24), np.geomspace(0.05, 10.0, 200)
+    steps = dem.steps_for(model.options.tolerance)[0]
+    compiled = timed(lambda: dem.solve_scaled(chi, psi, steps=steps))
+    reference = timed(lambda: dem.solve_scaled(chi, psi, steps=steps, _force_numpy=True), repeats=1)
+    print(f"   kernel {1e6 * compiled / chi.size:.1f} us vs numpy {1e6 * reference / chi.size:.1f} us per impact "
+          f"({reference / compiled:.0f}x), {steps} steps")
+
     print("\n3. Fig. 6 sweep (540 scenes: 5 frictions x 108 lofts, maw only, warm)")
     study = {"name": "fig6", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
              "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": 10},
