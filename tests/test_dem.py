@@ -115,3 +115,33 @@ def test_bad_options_name_the_field_and_the_choices():
         get_model("hertz_mindlin")(history="forces")
     with pytest.raises(FieldError, match="stiffness_ratio"):
         get_model("dem_linear")(stiffness_ratio=-1.0)
+
+
+def test_tangential_damping_dissipates_in_stick_and_changes_nothing_in_gross_slip(golf_inputs):
+    # the ball keeps less tangential energy (|beta| falls), whichever way beta pointed without damping
+    sticking = golf_inputs(angle=np.radians([8.0, 15.0]))
+    sliding = golf_inputs(friction=0.05, angle=np.radians([50.0, 65.0]))
+    names = ["tangential_restitution", "energy_loss"]
+    for name in ("hertz_mindlin", "dem_linear"):
+        plain, damped = get_model(name)(), get_model(name)(damping=0.5)
+        a, b = plain.compute(sticking, names), damped.compute(sticking, names)
+        assert np.all(np.abs(b["tangential_restitution"].values) < np.abs(a["tangential_restitution"].values))
+        assert np.all(b["energy_loss"].values > a["energy_loss"].values)
+        np.testing.assert_allclose(damped.compute(sliding, ["tangential_impulse"])["tangential_impulse"],
+                                   plain.compute(sliding, ["tangential_impulse"])["tangential_impulse"], rtol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["hertz_mindlin", "dem_linear"])
+def test_force_history_integrates_to_the_impulse_and_never_exceeds_coulomb(golf_inputs, name):
+    inputs = golf_inputs(angle=np.radians([10.0, 30.0]))
+    result = get_model(name)(history_points=4001).compute(
+        inputs, ["tangential_force", "normal_force", "tangential_impulse", "stick_radius"])
+    time = result["time"].values
+    for case in range(2):
+        force = np.nan_to_num(result["tangential_force"].values[case])
+        normal = np.nan_to_num(result["normal_force"].values[case])
+        assert np.trapezoid(force, time) == pytest.approx(result["tangential_impulse"].values[case], rel=2e-3)
+        # (the histories are interpolated onto the output axis; the normal force is exact there)
+        assert np.all(np.abs(force) <= 0.4 * normal + 0.01 * 0.4 * normal.max())
+    stick = result["stick_radius"].values
+    assert np.nanmax(stick) > 0 and np.nanmin(stick) == 0.0  # the whole contact sticks, or none of it
