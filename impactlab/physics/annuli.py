@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .hertz import ELASTIC
+from .hertz import ELASTIC, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution, event_grid
 
 OUT, STICK, SLIP = 0, 1, 2
@@ -86,6 +86,16 @@ def _caps(h_nodes, load_nodes, rho, gamma, rings):
     return caps
 
 
+def _ring_grid(normal, rings: int, steps: int):
+    """Everything of a solve that depends on the normal law and the resolution only (cached per pair)."""
+    rho, gamma, displacement, load = influence_matrices(rings)
+    tau = event_grid(rho**2, steps, normal)
+    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
+    caps = _caps(h_nodes, load_nodes, rho, gamma, rings)
+    inside = np.searchsorted(rho**2, h_nodes, side="left").astype(np.int64)  # annuli with rho^2 < h
+    return rho, gamma, displacement, load, tau, h_nodes, load_nodes, caps, inside
+
+
 def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool = False,
                  max_iterations: int | None = None, normal=None, dense: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact by the annular-strip method, vectorised over cases.
@@ -108,14 +118,11 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
     cases = chi.size
-    rho, gamma, displacement, load = influence_matrices(rings)
     normal = normal or ELASTIC
-    tau = event_grid(rho**2, steps, normal)
-    h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
+    rho, gamma, displacement, load, tau, h_nodes, load_nodes, caps, inside = cached_grid(
+        normal, ("annuli", rings, steps), lambda: _ring_grid(normal, rings, steps))
     max_iterations = max_iterations or 2 * rings
     if _kernels.HAVE_NUMBA and not dense:
-        caps = _caps(h_nodes, load_nodes, rho, gamma, rings)
-        inside = np.array([int(np.sum(rho**2 < h)) for h in h_nodes], dtype=np.int64)
         history = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))
         stick = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))
         velocity_change, dissipation, failures = _kernels.annuli_cases(
