@@ -104,6 +104,7 @@ class HertzMindlinOptions(_SpringOptions):
 
 
 class _SpringModel(HertzTangentialModel):
+    """What the one-spring laws share: the scaled solve of :mod:`impactlab.physics.dem` and its resolution."""
 
     def reference_options(self, tolerance):
         return attrs.evolve(self.options, tolerance=tolerance, steps=None)
