@@ -101,3 +101,53 @@ def test_predictions_follow_the_dataset_points_not_the_study_order():
     reordered = attrs.evolve(data, labels=tuple(reversed(data.labels)), values=tuple(reversed(data.values)))
     a, b = predictions(data, ["maw"])["maw"], predictions(reordered, ["maw"])["maw"]
     np.testing.assert_allclose(a, b[::-1], rtol=1e-14)
+
+
+def write_session(folder, points, extra=""):
+    from importlib import resources
+
+    study = resources.files("impactlab.validation").joinpath("table1_clubs.yaml").read_text()
+    (folder / "clubs.yaml").write_text(study)
+    path = folder / "session.yaml"
+    path.write_text(f"""name: session
+source: a launch monitor session (synthetic, for the test)
+quantity: vertical_launch_ratio
+study: clubs.yaml
+dimension: club
+points:
+{points}{extra}""")
+    return path
+
+
+def test_your_own_measured_data_file_can_be_validated_and_fitted(tmp_path, capsys):
+    from impactlab.runner import case_inputs
+    from impactlab.validation import get_dataset
+
+    study = DATASETS["wood2018"].load_study()
+    inputs = case_inputs(study)
+    inputs["friction"] = np.full_like(inputs["friction"], 0.3)
+    truth = next(e.model for e in study.models if e.id == "maw").compute(inputs, ["vertical_launch_ratio"])
+    values = truth["vertical_launch_ratio"].values
+    points = "".join(f"  - {{label: {label}, value: {value:.6f}, sigma: 0.01}}\n"
+                     for label, value in zip(["driver", "7-iron", "pitching wedge"], values))
+    path = write_session(tmp_path, points, "budgets: {maw: 0.05}\n")
+    data = get_dataset(str(path))
+    assert data.labels == ("driver", "7-iron", "pitching wedge") and data.sigma == (0.01, 0.01, 0.01)
+    assert fit(data, "maw").values[0] == pytest.approx(0.3, abs=3e-3)
+    assert main(["validate", "--dataset", str(path)]) == 0
+    assert main(["fit", str(path), "--model", "maw"]) == 0
+    assert "friction = 0.30" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("points", "extra", "message"), [
+    ("  - {label: driver, value: 0.8, sigma: 0.01}\n  - {label: 7-iron, value: 0.7}\n", "",
+     "points: expected a sigma for every point or for none"),
+    ("  - {label: putter, value: 0.8}\n", "", "labels of the study's sweep 'club'"),
+    ("  - {label: driver, value: 0.8, sigmaa: 0.1}\n", "", "points[0].sigmaa: expected a key of a point"),
+    ("  - {label: driver, value: 0.8}\n", "quantiy: x\n", "quantiy: expected a key of a measured-data file"),
+])
+def test_a_bad_measured_data_file_says_where_and_what(tmp_path, capsys, points, extra, message):
+    path = write_session(tmp_path, points, extra)
+    assert main(["validate", "--dataset", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "session.yaml" in err and "Traceback" not in err

@@ -15,7 +15,9 @@ docs/validation.md as wanted.
 
 from __future__ import annotations
 
+import os
 from importlib import resources
+from pathlib import Path
 
 import attrs
 import numpy as np
@@ -23,6 +25,8 @@ import numpy as np
 from ..errors import FieldError
 from ..runner import case_inputs
 from ..study import Study, load_study
+from ..vocabulary import OUTPUTS, SCALAR
+from ..yaml_lines import line_of, load_yaml, parse_path
 
 
 @attrs.frozen
@@ -61,8 +65,11 @@ class MeasuredData:
     dimension: str
     budgets: dict = attrs.field(factory=dict)
     note: str = ""
+    folder: str | None = None  # where ``study`` lives; None: shipped with impactlab
 
     def load_study(self) -> Study:
+        if self.folder is not None:
+            return load_study(Path(self.folder) / self.study)
         text = resources.files(__package__).joinpath(self.study).read_text()
         return load_study(text, file=f"impactlab/validation/{self.study}")
 
@@ -99,10 +106,103 @@ DATASETS: dict[str, MeasuredData] = {
 }
 
 
+DATA_KEYS = ("name", "source", "quantity", "study", "dimension", "points", "budgets", "note")
+POINT_KEYS = ("label", "value", "sigma")
+
+
 def get_dataset(name: str) -> MeasuredData:
+    """A shipped dataset by name, or a measured-data file (.yaml) of the user's."""
+    if str(name).endswith((".yaml", ".yml")) or os.path.sep in str(name):
+        return load_measured(name)
     if name not in DATASETS:
-        raise FieldError("dataset", "a validation dataset", name, choices=sorted(DATASETS))
+        raise FieldError("dataset", "a validation dataset or a measured-data file (.yaml)", name,
+                         choices=sorted(DATASETS))
     return DATASETS[name]
+
+
+def load_measured(path) -> MeasuredData:
+    """Read measured data from YAML: your own launch data to validate against or fit to.
+
+    ::
+
+        name: my-session
+        source: launch monitor session, 2026-10-01, 40 shots per club (mean +- SD)
+        quantity: vertical_launch_ratio          # an output of impactlab
+        study: my_clubs.yaml                     # the study that reproduces it (relative to this file)
+        dimension: club                          # its labelled sweep along which the points lie
+        points:
+          - {label: driver, value: 0.84, sigma: 0.03}
+          - {label: 7-iron, value: 0.79, sigma: 0.03}
+        budgets: {maw: 0.05}                     # optional: largest RMS error allowed per model id
+
+    ``sigma`` is optional, but given for every point or for none.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FieldError("dataset", "a measured-data file that exists", str(path))
+    file = str(path)
+    document, lines = load_yaml(path.read_text(), file)
+
+    def fail(where, expected, given, choices=None):
+        raise FieldError(where, expected, given, choices=choices, file=file, line=line_of(lines, parse_path(where)))
+
+    if not isinstance(document, dict):
+        fail("", "a mapping with keys " + ", ".join(DATA_KEYS), document)
+    for key in document:
+        if key not in DATA_KEYS:
+            fail(str(key), "a key of a measured-data file", key, DATA_KEYS)
+    for key in ("source", "quantity", "study", "dimension", "points"):
+        if key not in document:
+            fail(key, "a value (required)", None)
+    quantity = document["quantity"]
+    scalars = [name for name, spec in OUTPUTS.items() if spec.kind == SCALAR]
+    if quantity not in scalars:
+        fail("quantity", "a scalar output of impactlab", quantity, scalars)
+    points = document["points"]
+    if not isinstance(points, list) or not points:
+        fail("points", "a list of {label, value, sigma}", points)
+    labels, values, sigmas = [], [], []
+    for index, point in enumerate(points):
+        where = f"points[{index}]"
+        if not isinstance(point, dict):
+            fail(where, "a mapping {label, value, sigma}", point)
+        for key in point:
+            if key not in POINT_KEYS:
+                fail(f"{where}.{key}", "a key of a point", key, POINT_KEYS)
+        if "label" not in point or "value" not in point:
+            fail(where, "a label and a value", point)
+        value = point["value"]
+        if not isinstance(value, (int, float)) or isinstance(value, bool) or not np.isfinite(value):
+            fail(f"{where}.value", "a finite number", value)
+        sigma = point.get("sigma")
+        if sigma is not None and (not isinstance(sigma, (int, float)) or isinstance(sigma, bool) or not sigma > 0):
+            fail(f"{where}.sigma", "a positive number (or leave it out)", sigma)
+        labels.append(str(point["label"]))
+        values.append(float(value))
+        sigmas.append(sigma)
+    given = [sigma is not None for sigma in sigmas]
+    if any(given) and not all(given):
+        fail("points", "a sigma for every point or for none", f"{sum(given)} of {len(given)}")
+    budgets = document.get("budgets") or {}
+    if not isinstance(budgets, dict) or not all(isinstance(v, (int, float)) and v > 0 for v in budgets.values()):
+        fail("budgets", "a mapping from model id to a positive RMS error", budgets)
+    data = MeasuredData(
+        name=str(document.get("name", path.stem)), source=str(document["source"]), quantity=quantity,
+        labels=tuple(labels), values=tuple(values), sigma=tuple(float(s) for s in sigmas) if all(given) else None,
+        study=str(document["study"]), dimension=str(document["dimension"]), budgets=dict(budgets),
+        note=str(document.get("note", "")), folder=str(path.parent))
+    study = data.load_study()
+    axes = {axis.dim: axis for axis in study.sweep}
+    if data.dimension not in axes or axes[data.dimension].labels is None:
+        fail("dimension", "a labelled sweep of the study", data.dimension,
+             [dim for dim, axis in axes.items() if axis.labels is not None])
+    missing = [label for label in data.labels if label not in axes[data.dimension].labels]
+    if missing:
+        fail("points", f"labels of the study's sweep {data.dimension!r}", ", ".join(missing),
+             list(axes[data.dimension].labels))
+    if len(study.sweep) != 1:
+        fail("study", "a study with one sweep (the points' own)", [axis.dim for axis in study.sweep])
+    return data
 
 
 def point_order(data: MeasuredData, study: Study) -> list[int]:
