@@ -81,3 +81,13 @@ def test_a_plot_along_an_output_must_name_one_the_study_computes():
     text["plots"] = [{"name": "bad", "y": "normalised_rebound", "x": "psi1"}]
     with pytest.raises(FieldError, match=r"plots\[0\]\.x.*normalised_incidence"):
         impactlab.load_study(text)
+
+
+def test_without_elastic_constants_the_normalised_variables_are_nan_and_say_why():
+    study = {"ball": {"radius": "21 mm", "mass": "46 g"}, "contact": {"friction": 0.3, "restitution": 0.8},
+             "impact": {"speed": 40, "angle": 20}, "sweep": {"impact.angle": [5, 10]}, "models": ["rigid_coulomb"],
+             "outputs": ["normalised_incidence", "launch_ratio"]}
+    result = impactlab.run_study(study, executor="serial")
+    assert np.isnan(result.normalised_incidence.values).all()
+    assert "elastic constants" in result.normalised_incidence.attrs["missing"]
+    assert np.isfinite(result.launch_ratio.values).all()
