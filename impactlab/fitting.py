@@ -99,8 +99,9 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
     lower = np.array([PARAMETERS[name][1][0] for name in parameters])
     upper = np.array([PARAMETERS[name][1][1] for name in parameters])
     start = np.clip(start, lower + 1e-6, upper - 1e-6)
-    # finite differences of 1e-3 sit well above the models' solver tolerance (1e-5) and below the data's scale
-    solution = least_squares(residuals, start, bounds=(lower, upper), diff_step=1e-3, x_scale="jac")
+    # relative finite-difference steps of 1e-2 keep the models' discretisation (a resolution that can change
+    # with the parameter, errors ~ tolerance = 1e-4) a few percent of each difference
+    solution = least_squares(residuals, start, bounds=(lower, upper), diff_step=1e-2, x_scale="jac")
     jacobian = solution.jac
     n, p = len(measured), len(parameters)
     identified = np.linalg.norm(jacobian, axis=0) > 1e-6 * max(1.0, np.linalg.norm(jacobian))

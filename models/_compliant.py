@@ -35,9 +35,8 @@ class HertzTangentialModel(ImpactModel):
     tangential problem is posed in the variables of Maw, Barber & Fawcett,
     chi = (kappa/2) m*/m_t and psi1 = kappa V_x/(mu V_z), and solved by the
     subclass's :meth:`_solve`, which returns a :class:`~impactlab.physics.mdr.TangentialSolution`.
-    Its options must provide ``resolution(chi, psi1)`` (resolution and "tolerance not met" per case),
-    ``resolution_steps(count)``,
-    ``history_points`` and ``inelastic``.
+    Its options must provide ``resolution(chi, psi1)`` (resolution and "tolerance not met" per
+    case), ``resolution_steps(count)``, ``history_points`` and ``inelastic``.
     """
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
