@@ -91,7 +91,8 @@ class ElasticNormal:
 ELASTIC = ElasticNormal()
 
 _GRIDS: dict = {}
-_GRIDS_LIMIT = 128
+#: memory the cache may hold; the oldest grids go first
+_GRIDS_BYTES = 64 * 2**20
 
 
 def cached_grid(normal, key: tuple, build):
@@ -106,12 +107,17 @@ def cached_grid(normal, key: tuple, build):
     if hit is not None and hit[0] is normal:
         return hit[1]
     arrays = build()
+    size = 0
     for array in arrays:
         if isinstance(array, np.ndarray):
             array.setflags(write=False)
-    if len(_GRIDS) >= _GRIDS_LIMIT:
-        _GRIDS.clear()
-    _GRIDS[full_key] = (normal, arrays)  # holding the law keeps its id from being reused while cached
+            size += array.nbytes
+    _GRIDS[full_key] = (normal, arrays, size)  # holding the law keeps its id from being reused while cached
+    total = sum(entry[2] for entry in _GRIDS.values())
+    for key in list(_GRIDS):
+        if total <= _GRIDS_BYTES or key == full_key:
+            break
+        total -= _GRIDS.pop(key)[2]
     return arrays
 
 
