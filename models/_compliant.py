@@ -99,7 +99,8 @@ class HertzTangentialModel(ImpactModel):
         contact_ratio = np.sqrt(approach_scale / radius)
         face_compliance = (1.0 - p["face_poisson_ratio"] ** 2) / p["face_youngs_modulus"]
         ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
-        validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0) | np.where(face_compliance > ball_compliance, 2, 0)
+        validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0)
+                    | np.where(face_compliance > ball_compliance, 2, 0)
                     | np.where(sliding & capped, 4, 0))
         result = {
             "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,

@@ -49,7 +49,8 @@ def test_microslip_tracks_the_measured_fall_of_launch_ratio_with_loft_better_tha
     for dataset in DATASETS:
         assert measured_errors[dataset]["maw"]["rms"] < measured_errors[dataset]["rigid_coulomb"]["rms"]
     data = DATASETS["wood2018"]
-    drop = {model: error["predicted"][0] - error["predicted"][2] for model, error in measured_errors["wood2018"].items()}
+    drop = {model: error["predicted"][0] - error["predicted"][2]
+            for model, error in measured_errors["wood2018"].items()}
     measured_drop = data.values[0] - data.values[2]
     assert abs(drop["maw"] - measured_drop) < abs(drop["rigid_coulomb"] - measured_drop)
 
