@@ -37,3 +37,22 @@ def test_annuli_kernel_matches_the_dense_solve(normal):
     fast = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal)
     dense = annuli.solve_scaled(chi, psi1, rings=16, steps=160, record=True, normal=normal, dense=True)
     assert_same_solution(fast, dense, rtol=1e-11)
+
+
+def test_a_freshly_compiled_kernel_and_one_loaded_from_the_cache_give_the_same_bits(tmp_path):
+    # every process of an executor must run the same machine code: workers load numba's cache that the
+    # first process wrote, so a kernel whose code differs between the two would make results depend on
+    # where a chunk ran (it did once, through a fastmath helper linked into a plain kernel)
+    import os
+    import subprocess
+    import sys
+
+    script = ("import hashlib, numpy as np\n"
+              "from impactlab.physics import mdr\n"
+              "r = mdr.solve_scaled(np.full(64, 1.3), np.geomspace(0.05, 9.0, 64), springs=60, steps=360)\n"
+              "print(hashlib.sha256(r.slip_change.tobytes() + r.dissipation.tobytes()).hexdigest())\n")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    fresh = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+    cached = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+    assert any(tmp_path.rglob("*.nbc")), "the first run should have written the cache"
+    assert fresh.stdout == cached.stdout

@@ -22,24 +22,9 @@ except ImportError:  # pragma: no cover - depends on the platform
     HAVE_NUMBA = False
 
 
-def _compiled(function):
+def _compiled(function, fastmath=False):
     """The numba-compiled kernel (cached on disk), or None where numba is off."""
-    return numba.njit(cache=True, nogil=True)(function) if HAVE_NUMBA else None
-
-
-def _clip_and_sum(u, xi2, reach, h, load, dx):
-    """Add dx to the springs [0, reach), return each to its Coulomb cap, and sum them.
-
-    Branch-free, and compiled with reassociation allowed, so that the loop vectorises (3x the
-    branching loop); the sum differs from the numpy reference by round-off only.
-    """
-    total = 0.0
-    for i in range(reach):
-        cap = max((h - xi2[i]) * load, 0.0)
-        value = max(min(u[i] + dx, cap), -cap)
-        u[i] = value
-        total += value
-    return total
+    return numba.njit(cache=True, nogil=True, fastmath=fastmath)(function) if HAVE_NUMBA else None
 
 
 def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_factor, record, history, stick):
@@ -68,8 +53,14 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
             reach = max(inside[k], inside[k - 1])  # springs beyond both contacts are, and stay, at zero
             total = 0.0
             first_slip = springs
-            if not record:  # the fast path: no stick radius to track
-                total = _clip_and_sum(u, xi2, reach, h, load, dx)
+            if not record:
+                # the fast path, no stick radius to track: branch-free, so that the loop vectorises (the
+                # kernel is compiled with reassociation; the sum differs from numpy's by round-off only)
+                for i in range(reach):
+                    limit = max((h - xi2[i]) * load, 0.0)
+                    value = max(min(u[i] + dx, limit), -limit)
+                    u[i] = value
+                    total += value
             for i in range(reach if record else 0):
                 cap = (h - xi2[i]) * load
                 if cap < 0.0:
@@ -99,9 +90,9 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
     return velocity_change_out, dissipation_out
 
 
-if HAVE_NUMBA:  # compiled before the kernel that calls it (globals are resolved at compile time)
-    _clip_and_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "nsz"})(_clip_and_sum)
-mdr_cases = _compiled(_mdr_cases)
+# one function with its own flags: a fastmath helper linked into a plain kernel compiles differently when
+# fresh and when loaded from numba's cache, which would make results depend on the process (executors)
+mdr_cases = _compiled(_mdr_cases, fastmath={"reassoc", "nsz"})
 
 
 def _lu_factor(matrix, size, pivots):
