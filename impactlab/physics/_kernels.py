@@ -61,21 +61,22 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
                     value = max(min(u[i] + dx, limit), -limit)
                     u[i] = value
                     total += value
-            for i in range(reach if record else 0):
-                cap = (h - xi2[i]) * load
-                if cap < 0.0:
-                    cap = 0.0
-                value = u[i] + dx
-                if value > cap:
-                    value = cap
-                    if first_slip == springs and cap > 0.0:
-                        first_slip = i
-                elif value < -cap:
-                    value = -cap
-                    if first_slip == springs and cap > 0.0:
-                        first_slip = i
-                u[i] = value
-                total += value
+            else:
+                for i in range(reach):
+                    cap = (h - xi2[i]) * load
+                    if cap < 0.0:
+                        cap = 0.0
+                    value = u[i] + dx
+                    if value > cap:
+                        value = cap
+                        if first_slip == springs and cap > 0.0:
+                            first_slip = i
+                    elif value < -cap:
+                        value = -cap
+                        if first_slip == springs and cap > 0.0:
+                            first_slip = i
+                    u[i] = value
+                    total += value
             dissipation += 0.5 * weight * (previous_total + total) * dx
             previous_total = total
             acceleration = -gain * total

@@ -74,13 +74,14 @@ def _pressure_loads(h: float, gamma: np.ndarray, rings: int) -> np.ndarray:
     return (np.maximum(h - inner**2, 0.0) ** 1.5 - np.maximum(h - outer**2, 0.0) ** 1.5) / 3.0
 
 
-def _caps(h_nodes, load_nodes, rho, gamma, rings):
+def _caps(h_nodes, load_nodes, inside, gamma, rings):
     """Coulomb limit of every annulus at every node, the sliver beyond the last mid-radius merged inwards."""
     caps = np.zeros((h_nodes.size, rings))
     for k, h in enumerate(h_nodes):
         cap = _pressure_loads(h, gamma, rings) * load_nodes[k]
-        last = int(np.sum(rho**2 < h)) - 1
+        last = int(inside[k]) - 1
         if 0 <= last < rings - 1:
+            # the sliver of contact beyond the last mid-radius is carried by the last annulus in contact
             cap[last] += cap[last + 1]
         caps[k] = cap
     return caps
@@ -91,8 +92,8 @@ def _ring_grid(normal, rings: int, steps: int):
     rho, gamma, displacement, load = influence_matrices(rings)
     tau = event_grid(rho**2, steps, normal)
     h_nodes, load_nodes = normal.approach(tau), normal.load_factor(tau)
-    caps = _caps(h_nodes, load_nodes, rho, gamma, rings)
     inside = np.searchsorted(rho**2, h_nodes, side="left").astype(np.int64)  # annuli with rho^2 < h
+    caps = _caps(h_nodes, load_nodes, inside, gamma, rings)
     return rho, gamma, displacement, load, tau, h_nodes, load_nodes, caps, inside
 
 
@@ -150,13 +151,8 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
         half = velocity_change + 0.5 * dt * acceleration
         previous_position = position
         position = position + dt * (psi1 + half)
-        h = h_nodes[k]
-        in_contact = rho**2 < h
-        cap = _pressure_loads(h, gamma, rings) * load_nodes[k]
-        last = int(in_contact.sum()) - 1
-        if 0 <= last < rings - 1:
-            # the sliver of contact beyond the last mid-radius is carried by the last annulus in contact
-            cap[last] += cap[last + 1]
+        in_contact = np.arange(rings) < inside[k]
+        cap = caps[k]
 
         # rings entering contact stick where they are; rings leaving carry no traction
         entering = (mode == OUT) & in_contact[None, :]
@@ -193,8 +189,7 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
             force[:, k] = 1.5 * total  # F_t / (mu F_max), as in mdr
             slipping = (mode == SLIP)
             first_slip = np.where(slipping.any(axis=1), slipping.argmax(axis=1), rings)
-            contact_rings = int(in_contact.sum())
-            stick[:, k] = np.where(first_slip >= contact_rings, np.sqrt(h), first_slip / rings)
+            stick[:, k] = np.where(first_slip >= inside[k], np.sqrt(h_nodes[k]), first_slip / rings)
     return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation)
 
 

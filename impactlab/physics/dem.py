@@ -89,6 +89,7 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
     normal = normal or ELASTIC
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
     psi1 = np.atleast_1d(np.asarray(psi1, dtype=float))
+
     def grid():
         nodes = np.linspace(0.0, normal.tau_end, steps + 1)
         return nodes, np.maximum(normal.approach(nodes), 0.0), normal.load_factor(nodes)

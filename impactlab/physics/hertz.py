@@ -114,10 +114,10 @@ def cached_grid(normal, key: tuple, build):
             size += array.nbytes
     _GRIDS[full_key] = (normal, arrays, size)  # holding the law keeps its id from being reused while cached
     total = sum(entry[2] for entry in _GRIDS.values())
-    for key in list(_GRIDS):
-        if total <= _GRIDS_BYTES or key == full_key:
+    for oldest in list(_GRIDS):
+        if total <= _GRIDS_BYTES or oldest == full_key:
             break
-        total -= _GRIDS.pop(key)[2]
+        total -= _GRIDS.pop(oldest)[2]
     return arrays
 
 
