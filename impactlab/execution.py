@@ -30,6 +30,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import StudyError
+from .results_io import write_atomically
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
 #: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
@@ -156,7 +157,7 @@ class ProgressStore:
                 shutil.rmtree(folder)
         folder.mkdir(parents=True, exist_ok=True)
         if not manifest.exists():
-            _atomic_write(manifest, json.dumps({"fingerprint": fingerprint}).encode())
+            write_atomically(manifest, json.dumps({"fingerprint": fingerprint}).encode())
 
     def load(self, chunk: Chunk) -> dict | None:
         path = self.folder / f"{chunk.key}.npz"
@@ -189,12 +190,6 @@ def _jsonable(attrs_by_name: dict) -> dict:
         out[name] = {key: (value.tolist() if isinstance(value, np.ndarray) else value)
                      for key, value in attributes.items()}
     return out
-
-
-def _atomic_write(path: Path, payload: bytes) -> None:
-    temporary = path.with_name(f".{path.name}.tmp")
-    temporary.write_bytes(payload)
-    os.replace(temporary, path)
 
 
 def fingerprint(study, outputs, extra: str = "") -> str:

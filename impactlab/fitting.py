@@ -112,7 +112,7 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
         if data.sigma is None and n > identified.sum():
             covariance *= 2.0 * solution.cost / (n - identified.sum())
         uncertainties[identified] = np.sqrt(np.diag(covariance))
-    final = predict(solution.x) - measured
+    final = solution.fun * sigma  # predicted - measured at the optimum
     at_bound = np.isclose(solution.x, lower, rtol=0, atol=1e-4) | np.isclose(solution.x, upper, rtol=0, atol=1e-4)
     return FitResult(model_id, data.name, parameters, tuple(float(v) for v in solution.x),
                      tuple(float(u) for u in uncertainties), tuple(bool(i) for i in identified),

@@ -30,6 +30,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import FieldError, StudyError
+from .results_io import write_atomically
 from .vocabulary import MODEL_DIM
 
 MPH = 0.44704
@@ -59,7 +60,7 @@ def gspro_shots(dataset: xr.Dataset, model: str | None = None, device_id: str = 
     for name in models:
         subset = dataset.sel({MODEL_DIM: name})
         stacked = {output: subset[output].values.ravel() for output in GSPRO_OUTPUTS}
-        dims = [dim for dim in subset[GSPRO_OUTPUTS[0]].dims]
+        dims = list(subset[GSPRO_OUTPUTS[0]].dims)
         grid = np.meshgrid(*[subset[dim].values for dim in dims], indexing="ij") if dims else []
         for index in range(stacked["ball_speed"].size):
             values = {output: float(stacked[output][index]) for output in GSPRO_OUTPUTS}
@@ -94,8 +95,5 @@ def _plain(value):
 def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options) -> int:
     """Write the shots as a JSON array to ``path`` (atomically); return how many."""
     shots = gspro_shots(dataset, **options)
-    path = Path(path)
-    temporary = path.with_name(f".{path.name}.tmp")
-    temporary.write_text(json.dumps(shots, indent=1))
-    os.replace(temporary, path)
+    write_atomically(Path(path), json.dumps(shots, indent=1).encode())
     return len(shots)

@@ -13,6 +13,13 @@ from .errors import StudyError
 ENGINE = "h5netcdf"
 
 
+def write_atomically(path: Path, payload: bytes) -> None:
+    """Write ``payload`` to a temporary file beside ``path``, then rename it over ``path``."""
+    temporary = path.with_name(f".{path.name}.tmp")
+    temporary.write_bytes(payload)
+    os.replace(temporary, path)
+
+
 def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write ``dataset`` to ``path`` atomically.
 
