@@ -1,8 +1,11 @@
 """Outputs the framework derives from a model's impulses (rule 6 of the model contract).
 
-Two families: the face-frame and ground-frame results of any impact
-(:func:`impactlab.physics.mechanics.after_impact`), and, when the scene is a
-golf delivery, the 3-D launch (:func:`impactlab.physics.delivery.launch`).
+The impulse on the ball, in the contact frame of :mod:`impactlab.physics.contact`,
+fixes everything after impact: ball velocity and spin, the head's velocity and
+angular velocity, the contact point's restitution and the energy lost
+(:func:`impactlab.physics.contact.after_impact`); with a golf delivery, also the
+launch in golf terms (:func:`impactlab.physics.contact.ground_outputs`). One
+code path serves a fixed face, a point-mass club and a free 3-D head.
 """
 
 from __future__ import annotations
@@ -10,36 +13,45 @@ from __future__ import annotations
 import numpy as np
 
 from .physics import hertz
-from .physics.delivery import DELIVERY_INPUTS, launch
-from .physics.mechanics import AFTER_IMPACT_INPUTS, AFTER_IMPACT_OPTIONAL, after_impact, approach_velocities
+from .physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, contact_state, ground_outputs, \
+    impulse_vector
+from .physics.delivery import DELIVERY_INPUTS
+from .physics.mechanics import AFTER_IMPACT_INPUTS
 
 IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
 FROM_IMPULSES = frozenset({
     "launch_angle", "launch_ratio", "rebound_angle", "total_angle", "ball_speed", "spin_rate", "normal_velocity",
-    "tangential_velocity", "tangential_restitution", "energy_loss",
+    "tangential_velocity", "tangential_restitution", "energy_loss", "smash_factor", "club_speed_after",
+    "club_angular_velocity",
 })
 FROM_DELIVERY = frozenset({
     "spin_loft", "vertical_launch_angle", "horizontal_launch_angle", "vertical_launch_ratio",
-    "horizontal_launch_ratio", "spin_axis",
+    "horizontal_launch_ratio", "spin_axis", "back_spin", "side_spin",
 })
 #: Maw-Barber-Fawcett's normalised incidence and rebound, from the materials and friction of the scene
 FROM_MATERIALS = frozenset({"normalised_incidence", "normalised_rebound"})
 MATERIAL_INPUTS = ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus", "face_poisson_ratio",
                    "friction")
-#: inputs each family needs (the optional ones default: no spin, a fixed face)
+#: inputs each family needs (the optional ones default: no spin, a fixed face, a centred strike)
 NEEDS = {
     "impulses": frozenset(AFTER_IMPACT_INPUTS) - {"spin"},
     "delivery": frozenset(DELIVERY_INPUTS),
     "materials": frozenset(MATERIAL_INPUTS),
 }
+#: inputs the derivation uses when given
+DERIVATION_OPTIONAL = frozenset({"spin", "club_mass"} | set(GEOMETRY_INPUTS) | set(DELIVERY_INPUTS))
 NO_DELIVERY = "needs a golf delivery (a delivery block: path, face angle, attack angle, dynamic loft)"
 NO_MATERIALS = "needs the ball's and face's elastic constants and the friction (kappa = G*/E*, mu)"
+NO_LATERAL = ("the model gives impulses on one line (no lateral_impulse), and the scene has a free club head "
+              "whose impact may turn the slip")
 
 
 def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]:
     """Whether ``name`` can be derived for a model that provides ``provides``; if not, why (None: not derivable)."""
     if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS:
         return False, None
+    if given_inputs is not None and "lateral_impulse" not in provides and set(INERTIA_INPUTS) <= set(given_inputs):
+        return False, NO_LATERAL
     if name in FROM_DELIVERY and given_inputs is not None and not NEEDS["delivery"] <= set(given_inputs):
         return False, NO_DELIVERY
     if name in FROM_MATERIALS and given_inputs is not None and not NEEDS["materials"] <= set(given_inputs):
@@ -53,19 +65,19 @@ def derive(names, raw, inputs) -> dict:
     out = {}
     if not names:
         return out
-    basics = after_impact(raw["normal_impulse"], raw["tangential_impulse"],
-                          **{name: inputs[name] for name in AFTER_IMPACT_INPUTS + AFTER_IMPACT_OPTIONAL})
+    state = contact_state(inputs)
+    impulse = impulse_vector(state, raw["normal_impulse"], raw["tangential_impulse"], raw.get("lateral_impulse"))
+    basics = after_impact(state, impulse, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})
     if names & FROM_DELIVERY:
-        golf = launch(raw["normal_impulse"], raw["tangential_impulse"], basics["spin_rate"],
-                      ball_mass=inputs["ball_mass"], **{name: inputs[name] for name in DELIVERY_INPUTS})
+        golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})
         out.update({name: golf[name] for name in names & FROM_DELIVERY})
     if names & FROM_MATERIALS:
-        out.update({name: value for name, value in normalised_slip(basics, inputs).items() if name in names})
+        out.update({name: value for name, value in normalised_slip(state, basics, inputs).items() if name in names})
     return out
 
 
-def normalised_slip(basics: dict, inputs: dict) -> dict:
+def normalised_slip(state: dict, basics: dict, inputs: dict) -> dict:
     """psi1 = kappa V_x/(mu V_z) and psi2 = kappa V_x'/(mu V_z') of Maw, Barber & Fawcett (NaN without friction).
 
     V_x, V_x' are the contact point's slip velocities before and after (V_x' = -beta V_x), V_z, V_z' the
@@ -74,7 +86,7 @@ def normalised_slip(basics: dict, inputs: dict) -> dict:
     """
     moduli = [inputs[name] for name in MATERIAL_INPUTS[:4]]
     kappa = hertz.tangential_modulus(*moduli) / hertz.effective_modulus(*moduli)
-    normal_speed, slip = approach_velocities(inputs["speed"], inputs["angle"], inputs["spin"], inputs["ball_radius"])
+    normal_speed, slip = state["normal_speed"], state["slip_speed"]
     friction = np.where(inputs["friction"] > 0.0, inputs["friction"], np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         incidence = kappa * np.abs(slip) / (friction * normal_speed)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import attrs
 
 from .derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
-from .physics.mechanics import AFTER_IMPACT_OPTIONAL
+from .derive import DERIVATION_OPTIONAL
 from .vocabulary import INPUTS, OUTPUTS
 
 
@@ -74,7 +74,7 @@ def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
             missing[name] = reason or model_cls.why_not_provided(name)
     inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))
     if derived:
-        inputs |= NEEDS["impulses"] | set(AFTER_IMPACT_OPTIONAL)
+        inputs |= NEEDS["impulses"] | DERIVATION_OPTIONAL
     if derived & FROM_DELIVERY:
         inputs |= NEEDS["delivery"]
     if derived & FROM_MATERIALS:

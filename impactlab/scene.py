@@ -7,6 +7,7 @@ import math
 import attrs
 
 from ._validate import check, finite, in_range, positive, to_float
+from .clubs import ClubHead, Strike
 from .errors import FieldError
 from .materials import Ball, Face
 
@@ -124,17 +125,33 @@ class Scene:
     contact: Contact
     impact: Impact
     delivery: Delivery | None = None
+    #: a free club head behind the face (None: the face is fixed or a point mass, ``face.mass``)
+    club: ClubHead | None = None
+    #: where the ball meets the face of ``club``
+    strike: Strike = Strike()
 
     def __attrs_post_init__(self):
+        if self.club is not None and (self.face.mass != self.club.mass or self.face.material != self.club.material):
+            raise FieldError("face", "the club head's mass and face material (use Scene.with_club)",
+                             f"mass {self.face.mass:g} kg")
+        if self.club is None and self.strike != Strike():
+            raise FieldError("strike", "a club head to strike off centre (a club block)", "no club")
         if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
                                           or self.impact.speed != self.delivery.club_speed):
             raise FieldError("impact", "the club speed and spin loft of the delivery (use Scene.from_delivery)",
                              f"speed {self.impact.speed:g} m/s, angle {math.degrees(self.impact.angle):g} deg")
 
     @classmethod
-    def from_delivery(cls, ball: Ball, face: Face, contact: Contact, delivery: Delivery, spin: float = 0.0):
+    def from_delivery(cls, ball: Ball, face: Face, contact: Contact, delivery: Delivery, spin: float = 0.0,
+                      club: ClubHead | None = None, strike: Strike = Strike()):
         """The scene of a golf delivery: impact speed = club speed, impact angle = spin loft."""
-        return cls(ball, face, contact, Impact(delivery.club_speed, delivery.spin_loft, spin), delivery)
+        return cls(ball, face, contact, Impact(delivery.club_speed, delivery.spin_loft, spin), delivery, club, strike)
+
+    @staticmethod
+    def face_of(club: ClubHead) -> Face:
+        """The face a club head presents: its material (rigid without one) and its mass."""
+        return Face(material=club.material, rigid=club.material is None, mass=club.mass, name=club.name,
+                    source=club.source)
 
     def inputs(self) -> dict[str, float]:
         """The model inputs this scene can supply, by vocabulary name (SI).

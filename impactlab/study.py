@@ -20,8 +20,9 @@ import attrs
 import numpy as np
 import yaml
 
+from .clubs import INERTIA_COMPONENTS, ClubHead, Strike, club_preset
 from .errors import FieldError, StudyError
-from .materials import Ball, Face, Material, ball_preset, face_preset
+from .materials import MATERIAL_PRESETS, Ball, Face, Material, ball_preset, face_preset
 from .model import ImpactModel
 from .registry import available, get_model
 from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
@@ -29,8 +30,13 @@ from .units import to_si
 from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR
 from .yaml_lines import line_of, load_yaml, parse_path
 
-TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "contact", "impact", "delivery", "sweep", "models",
-                  "outputs", "plots")
+TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
+                  "models", "outputs", "plots")
+CLUB_KEYS = ("preset", "mass", "inertia", "center_of_mass", "loft", "lie", "bulge_radius", "roll_radius", "material",
+             "rigid", "youngs_modulus", "poisson_ratio")
+INERTIA_KEYS = ("toe", "up", "target", "toe_up", "toe_target", "up_target", "principal", "axes")
+CENTER_KEYS = ("toe", "high", "depth")
+STRIKE_KEYS = ("toe", "high")
 DELIVERY_KEYS = ("club_speed", "path", "face_angle", "attack_angle", "dynamic_loft", "handedness")
 BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio")
 FACE_KEYS = ("preset", "rigid", "youngs_modulus", "poisson_ratio", "mass")
@@ -308,6 +314,109 @@ def build_face(value, path: str = "face") -> Face:
                       name=base.name, source=base.source)
 
 
+def _inertia(value, path: str, base) -> tuple | None:
+    """A head inertia tensor (toe, up, target axes) from a mapping of components or of principal moments and axes."""
+    if value is None:
+        return base
+    if isinstance(value, list):
+        try:
+            rows = [[to_si(item, "inertia", f"{path}[{i}][{j}]") for j, item in enumerate(row)]
+                    for i, row in enumerate(value)]
+        except TypeError:
+            raise FieldError(path, "a 3x3 list of lists (the tensor in toe, up, target axes)", value) from None
+        return tuple(tuple(row) for row in rows)
+    block = _require_mapping(value, path, INERTIA_KEYS, "the head's inertia about its centre of mass")
+    if "principal" in block or "axes" in block:
+        extra = [key for key in block if key not in ("principal", "axes")]
+        if extra:
+            raise FieldError(f"{path}.{extra[0]}", "either principal + axes or tensor components, not both", extra[0])
+        moments, axes = block.get("principal"), block.get("axes")
+        if not isinstance(moments, list) or len(moments) != 3:
+            raise FieldError(f"{path}.principal", "three principal moments", moments)
+        values = [to_si(item, "inertia", f"{path}.principal[{i}]") for i, item in enumerate(moments)]
+        if (not isinstance(axes, list) or len(axes) != 3
+                or not all(isinstance(row, list) and len(row) == 3 for row in axes)):
+            raise FieldError(f"{path}.axes", "three unit axes [toe, up, target], one per principal moment", axes)
+        try:
+            return ClubHead.from_principal(values, axes, mass=1.0, center_of_mass=(0.0, 0.0, 1.0)).inertia
+        except FieldError as exc:
+            raise exc.at(prefix=path) from None
+        except (TypeError, ValueError):
+            raise FieldError(f"{path}.axes", "numbers", axes) from None
+    components = dict(zip(INERTIA_COMPONENTS, (0.0,) * 6))
+    if base is not None:
+        components.update(ClubHead(mass=1.0, inertia=base, center_of_mass=(0.0, 0.0, 1.0)).inertia_components())
+    for key in ("toe", "up", "target"):
+        if key not in block and base is None:
+            raise FieldError(f"{path}.{key}", f"the moment of inertia about the {key} axis", "nothing")
+    for key in INERTIA_COMPONENTS:
+        if key in block:
+            components[key] = _quantity(block, key, "inertia", path)
+    c = components
+    return ((c["toe"], c["toe_up"], c["toe_target"]), (c["toe_up"], c["up"], c["up_target"]),
+            (c["toe_target"], c["up_target"], c["target"]))
+
+
+def build_club(value, path: str = "club") -> ClubHead:
+    """A club head from a study block: a preset, its keys overridden, or every key given."""
+    block = _require_mapping(value, path, CLUB_KEYS, "the club head")
+    base = None
+    if "preset" in block:
+        try:
+            base = club_preset(block["preset"])
+        except FieldError as exc:
+            raise exc.at(prefix=path) from None
+    fields = {}
+    for key, dimension in (("mass", "mass"), ("loft", "angle"), ("lie", "angle"), ("bulge_radius", "length"),
+                           ("roll_radius", "length")):
+        given = _quantity(block, key, dimension, path)
+        if given is None and base is not None:
+            given = getattr(base, key)
+        if given is not None:
+            fields[key] = given
+    if "mass" not in fields:
+        raise FieldError(f"{path}.mass", "the head mass (or a preset)", "nothing")
+    fields["inertia"] = _inertia(block.get("inertia"), f"{path}.inertia", base.inertia if base else None)
+    if fields["inertia"] is None:
+        raise FieldError(f"{path}.inertia", "the head's inertia (toe, up, target moments) or a preset", "nothing")
+    center = block.get("center_of_mass")
+    if center is None:
+        if base is None:
+            raise FieldError(f"{path}.center_of_mass", "the centre of mass {toe, high, depth} or a preset", "nothing")
+        fields["center_of_mass"] = base.center_of_mass
+    else:
+        center = _require_mapping(center, f"{path}.center_of_mass", CENTER_KEYS, "the centre of mass")
+        defaults = dict(zip(CENTER_KEYS, base.center_of_mass)) if base else {"toe": 0.0, "high": 0.0}
+        values = []
+        for key in CENTER_KEYS:
+            given = _quantity(center, key, "length", f"{path}.center_of_mass")
+            if given is None and key not in defaults:
+                raise FieldError(f"{path}.center_of_mass.{key}", "the centre of mass's depth behind the face",
+                                 "nothing")
+            values.append(defaults[key] if given is None else given)
+        fields["center_of_mass"] = tuple(values)
+    material = base.material if base else None
+    if "material" in block:
+        name = block["material"]
+        if name not in MATERIAL_PRESETS:
+            raise FieldError(f"{path}.material", "a material preset", name, choices=MATERIAL_PRESETS)
+        material = MATERIAL_PRESETS[name]
+    rigid = block.get("rigid", False)
+    if not isinstance(rigid, bool):
+        raise FieldError(f"{path}.rigid", "true or false", rigid)
+    material = None if rigid else _material(block, path, material)
+    if rigid and ("youngs_modulus" in block or "material" in block):
+        raise FieldError(f"{path}.rigid", "either rigid: true or a face material, not both", "both")
+    return _construct(ClubHead, path, material=material, name=base.name if base else "",
+                      source=base.source if base else "", **fields)
+
+
+def build_strike(value, path: str = "strike") -> Strike:
+    block = _require_mapping(value, path, STRIKE_KEYS, "the impact point on the face")
+    fields = {key: _quantity(block, key, "length", path) for key in STRIKE_KEYS}
+    return _construct(Strike, path, **{key: v for key, v in fields.items() if v is not None})
+
+
 def build_contact(value, path: str = "contact") -> Contact:
     block = _require_mapping(value, path, CONTACT_KEYS, "the contact")
     return _construct(Contact, path, friction=_quantity(block, "friction", "dimensionless", path),
@@ -344,6 +453,17 @@ def build_scene(document: Mapping) -> Scene:
         raise FieldError("ball", "a ball: {preset: NAME} or radius, mass, ...", "nothing")
     ball, face, contact = (build_ball(document["ball"]), build_face(document.get("face")),
                            build_contact(document.get("contact")))
+    club, strike = None, Strike()
+    if "club" in document:
+        if "face" in document:
+            raise FieldError("face", "either a face or a club (whose face it is), not both", "both")
+        club = build_club(document["club"])
+        face = Scene.face_of(club)
+    if "strike" in document:
+        if club is None:
+            raise FieldError("strike", "a club block to strike (a fixed or point-mass face has no off-centre)",
+                             "no club")
+        strike = build_strike(document["strike"])
     if "delivery" in document:
         impact = _require_mapping(document.get("impact"), "impact", IMPACT_KEYS, "the impact conditions")
         for key in ("speed", "angle"):
@@ -352,10 +472,10 @@ def build_scene(document: Mapping) -> Scene:
                                  impact[key])
         spin = _quantity(impact, "spin", "angular_speed", "impact")
         return Scene.from_delivery(ball, face, contact, build_delivery(document["delivery"]),
-                                   0.0 if spin is None else spin)
+                                   0.0 if spin is None else spin, club, strike)
     if "impact" not in document:
         raise FieldError("impact", "impact conditions (speed and angle) or a delivery block", "nothing")
-    return Scene(ball, face, contact, build_impact(document["impact"]))
+    return Scene(ball, face, contact, build_impact(document["impact"]), club=club, strike=strike)
 
 
 def _sweep_values(path: str, spec, dimension: str) -> list[float]:

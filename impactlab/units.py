@@ -25,6 +25,7 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "angle": ("rad", "deg", "an angle"),
     "angular_speed": ("rad/s", "rpm", "a spin rate"),
     "time": ("s", "s", "a time"),
+    "inertia": ("kg*m**2", "kg*m**2", "a moment of inertia"),
     "dimensionless": ("dimensionless", "dimensionless", "a number"),
 }
 

@@ -130,9 +130,60 @@ INPUTS.update({
                             _delivery_value("handedness"), low=-1.0, high=1.0),
 })
 
+
+def _club_value(attribute: str, index: int | str | None = None):
+    def getter(scene):
+        club = getattr(scene, "club", None)
+        if club is None:
+            return None
+        value = getattr(club, attribute)
+        if attribute == "inertia":
+            return club.inertia_components()[index]
+        return value if index is None else value[index]
+
+    return getter
+
+
+def _strike_value(attribute: str):
+    def getter(scene):
+        strike = getattr(scene, "strike", None)
+        return None if strike is None or getattr(scene, "club", None) is None else getattr(strike, attribute)
+
+    return getter
+
+
+_INERTIA_WORDS = {"toe": "about the heel-toe axis", "up": "about the vertical axis", "target": "about the target axis"}
+for _component in ("toe", "up", "target", "toe_up", "toe_target", "up_target"):
+    _a, _, _b = _component.partition("_")
+    _words = _INERTIA_WORDS[_a] if not _b else f"product of inertia {_a}-{_b} (tensor component)"
+    INPUTS[f"club_inertia_{_component}"] = InputSpec(
+        f"club.inertia.{_component}", "kg m^2", "inertia", f"club-head inertia about its centre of mass, {_words}",
+        _club_value("inertia", _component), low=-math.inf, high_open=True, low_open=True)
+for _index, (_key, _words) in enumerate((("toe", "towards the toe"), ("high", "up the face"),
+                                         ("depth", "behind the face"))):
+    INPUTS[f"club_cg_{_key}"] = InputSpec(
+        f"club.center_of_mass.{_key}", "m", "length", f"club-head centre of mass from the face centre, {_words}",
+        _club_value("center_of_mass", _index), low_open=True, high_open=True)
+INPUTS.update({
+    "club_loft": InputSpec("club.loft", "rad", "angle", "static loft of the club head", _club_value("loft"), "deg",
+                           RAD_TO_DEG, low=0.0, high=math.pi / 2, high_open=True),
+    "face_bulge_radius": InputSpec("club.bulge_radius", "m", "length", "face bulge radius (heel to toe; inf: flat)",
+                                   _club_value("bulge_radius"), low=0.0, low_open=True),
+    "face_roll_radius": InputSpec("club.roll_radius", "m", "length", "face roll radius (sole to crown; inf: flat)",
+                                  _club_value("roll_radius"), low=0.0, low_open=True),
+    "strike_toe": InputSpec("strike.toe", "m", "length", "impact point from the face centre towards the toe",
+                            _strike_value("toe"), low=-0.1, high=0.1, low_open=True, high_open=True),
+    "strike_high": InputSpec("strike.high", "m", "length", "impact point from the face centre up the face",
+                             _strike_value("high"), low=-0.1, high=0.1, low_open=True, high_open=True),
+})
+
 #: study path -> input name (a delivery's club speed is the impact speed)
 INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items() if name != "handedness"}
 INPUT_BY_PATH["delivery.club_speed"] = "speed"
+INPUT_BY_PATH["club.mass"] = "club_mass"
+#: swept paths a study may not set (they are parts of a tensor or vector checked as a whole)
+for _path in [path for path in INPUT_BY_PATH if path.startswith(("club.inertia.", "club.center_of_mass."))]:
+    del INPUT_BY_PATH[_path]
 
 
 @attrs.frozen
@@ -167,6 +218,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "normalised_rebound": OutputSpec("1", "normalised rebound psi2 = kappa Vx'/(mu Vz'), contact-point slip after"),
     "normal_impulse": OutputSpec("N s", "normal impulse on the ball"),
     "tangential_impulse": OutputSpec("N s", "tangential impulse on the ball, positive opposing the incoming slip"),
+    "lateral_impulse": OutputSpec("N s", "tangential impulse on the ball across the incoming slip, along n x s "
+                                  "(0 when the slip stays on one line)"),
     "contact_time": OutputSpec("s", "contact duration"),
     "energy_loss": OutputSpec("J", "kinetic energy lost in the impact (ball and club)"),
     "normal_force": OutputSpec("N", "normal contact force", kind=HISTORY),
@@ -190,6 +243,14 @@ OUTPUTS: dict[str, OutputSpec] = {
     "vertical_launch_ratio": OutputSpec("1", "vertical launch ratio (launch - attack)/(dynamic loft - attack)"),
     "horizontal_launch_ratio": OutputSpec("1", "horizontal launch ratio (launch - path)/(face - path)"),
     "spin_axis": OutputSpec("deg", "spin axis tilt from horizontal, positive curving right", factor=RAD_TO_DEG),
+    "back_spin": OutputSpec("rpm", "back spin: spin about the horizontal axis across the flight",
+                            factor=RADS_TO_RPM),
+    "side_spin": OutputSpec("rpm", "side spin: spin about the axis across the flight perpendicular to the back-spin "
+                            "axis, positive curving right", factor=RADS_TO_RPM),
+    "smash_factor": OutputSpec("1", "smash factor: ball speed over club speed"),
+    "club_speed_after": OutputSpec("m/s", "club-head centre-of-mass speed after impact"),
+    "club_angular_velocity": OutputSpec("rpm", "club-head angular speed after impact", factor=RADS_TO_RPM),
+    "face_rotation": OutputSpec("deg", "rotation of the club head during contact", factor=RAD_TO_DEG),
 }
 
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)

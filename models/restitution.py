@@ -5,11 +5,14 @@ from __future__ import annotations
 import attrs
 
 from impactlab._validate import in_range, to_float
+import numpy as np
+
 from impactlab.model import ImpactModel
+from impactlab.physics.contact import contact_state
 from impactlab.physics.rigid import restitution_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED,
-                      STRONGE, closed_form_diagnostics)
+from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
+                      RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics, impulse_outputs)
 
 
 @attrs.frozen
@@ -39,6 +42,14 @@ class RestitutionModel(ImpactModel):
     branch of ``rigid_coulomb``; measured golf impacts grip, beta > 0
     (Cross & Dewhurst 2018 report about 0.1-0.2 for golf).
 
+    In 3-D (a free head struck off its centre-of-mass line, a curved face)
+    the coefficients act on the relative velocity of the contact point with
+    the full mobility matrix W: W J = v1 - v0 with v1 = (-beta V_s, 0, e V_n)
+    in the contact frame (slip reversed and scaled by beta, no lateral slip,
+    normal velocity reversed and scaled by e); a tangential impulse outside
+    the Coulomb cone is put on the cone in its direction, with the normal
+    impulse that keeps e.
+
     References
     ----------
     R. Cross and P. Dewhurst, Eur. J. Phys. 39 (2018) 065003.
@@ -51,10 +62,12 @@ class RestitutionModel(ImpactModel):
                   "R. Cross, Grip-slip behavior of a bouncing ball, Am. J. Phys. 70 (2002) 1093", STRONGE)
     requires = RIGID_BODY_INPUTS | {"restitution"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"friction"}
-    provides = IMPULSES | CLOSED_FORM_DIAGNOSTICS
+    provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
 
     def _compute(self, inputs, outputs):
-        jn, jt, _ = restitution_impulses(tangential_restitution=self.options.tangential_restitution, **inputs)
-        return {"normal_impulse": jn, "tangential_impulse": jt, **closed_form_diagnostics(jn.size)}
+        state = contact_state(inputs)
+        impulse, _ = restitution_impulses(state["initial_velocity"], state["mobility"], inputs["restitution"],
+                                          self.options.tangential_restitution, inputs.get("friction", np.inf))
+        return {**impulse_outputs(impulse), **closed_form_diagnostics(impulse.shape[0])}

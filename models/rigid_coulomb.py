@@ -4,16 +4,29 @@ from __future__ import annotations
 
 import attrs
 
-from impactlab.model import ImpactModel
-from impactlab.physics.rigid import coulomb_impulses
+import numpy as np
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED,
-                      STRONGE, closed_form_diagnostics)
+from impactlab.model import ImpactModel
+from impactlab.physics.contact import contact_state
+from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_impulses
+
+from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
+                      RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics, impulse_outputs)
 
 
 @attrs.frozen
 class RigidCoulombOptions:
-    """``rigid_coulomb`` takes no options: friction and restitution come from the scene's contact."""
+    """Options of ``rigid_coulomb`` (friction and restitution come from the scene's contact).
+
+    Parameters
+    ----------
+    steps : int
+        Steps over the normal impulse of the 3-D integration (scenes whose slip may turn); exact where the
+        slip keeps its direction, first order in 1/steps where it turns. Default 2000.
+    """
+
+    steps: int = attrs.field(default=STRONGE_STEPS, validator=attrs.validators.and_(
+        attrs.validators.instance_of(int), attrs.validators.ge(10), attrs.validators.le(10**6)))
 
 
 class RigidCoulombModel(ImpactModel):
@@ -43,10 +56,27 @@ class RigidCoulombModel(ImpactModel):
     references = (STRONGE, "R. M. Brach, Mechanical Impact Dynamics, Wiley (1991)")
     requires = RIGID_BODY_INPUTS | {"friction", "restitution"}
     optional_inputs = RIGID_BODY_OPTIONAL
-    provides = IMPULSES | CLOSED_FORM_DIAGNOSTICS
+    provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
 
     def _compute(self, inputs, outputs):
-        jn, jt, _ = coulomb_impulses(**inputs)
-        return {"normal_impulse": jn, "tangential_impulse": jt, **closed_form_diagnostics(jn.size)}
+        state = contact_state(inputs)
+        n = state["normal_speed"].size
+        friction = np.broadcast_to(inputs["friction"], (n,))
+        restitution = np.broadcast_to(inputs["restitution"], (n,))
+        impulse = np.zeros((n, 3))
+        diagnostics = closed_form_diagnostics(n)
+        line = state["one_dimensional"]
+        if np.any(line):
+            w = state["mobility"][line]
+            jn, jt, _ = coulomb_impulses_1d(state["normal_speed"][line], state["slip_speed"][line],
+                                            1.0 / w[:, 2, 2], 1.0 / w[:, 0, 0], friction[line], restitution[line])
+            impulse[line, 0], impulse[line, 2] = -jt, jn
+        if not np.all(line):
+            solved, flags = stronge_impulses(state["initial_velocity"][~line], state["mobility"][~line],
+                                             friction[~line], restitution[~line], self.options.steps)
+            impulse[~line] = solved
+            diagnostics["steps"][~line] = self.options.steps
+            diagnostics["validity"][~line] = np.where(flags & 1, 4.0, 0.0)
+        return {**impulse_outputs(impulse), **diagnostics}

@@ -1,0 +1,313 @@
+"""The 3-D contact of a ball and a club head: contact frame, approach velocity and mobility (Delassus) matrix.
+
+Every model solves the impact at the contact point: the relative velocity of
+the ball's and the head's material points there, v = v_ball - v_head, changes
+with the impulse J on the ball (the head takes -J) as
+
+    dv = W dJ,    W = W_ball + W_head,
+
+with the mobility (inverse-inertia, Delassus) matrix of each body at the
+contact point (Stronge, *Impact Mechanics*, ch. 5; Cross & Nathan 2009 for the
+off-centre effective mass):
+
+    W_ball = (1/m) [1 + (1/K^2) (1 - n n^T)]          (a sphere, lever -R n)
+    W_head = (1/M) 1 + [r]^T I_G^-1 [r]               (r: from the head's centre of mass to the contact)
+
+A fixed face has W_head = 0; a point-mass club (no inertia given) has
+W_head = 1/M. W is symmetric positive definite. Off the centre-of-mass line it
+couples the normal and tangential directions, and a tangential impulse turns
+the slip direction: this is the gear effect.
+
+Frames. Computations use a right-handed ground frame for a right-handed
+golfer: X towards the target, Y to the left, Z up (the toe points to -Y). A
+left-handed golfer's impact is the mirror image (Y -> -Y) of the same numbers,
+so it is computed as a right-handed one and its lateral outputs are mirrored
+(:func:`ground_outputs`). The contact frame is (s, l, n): n the outward face
+normal at the strike point (bulge and roll tilt it), s along the incoming slip
+of the contact point (the club velocity's tangential part, reversed), and
+l = n x s. The contact frame is fixed at first contact: the head turns by a
+fraction of a degree during contact (output ``face_rotation``; docs/clubs.md
+measures what following it would change).
+
+A plate experiment (impact speed and angle, no delivery) is the delivery with
+zero path, face angle and attack angle and a dynamic loft equal to the impact
+angle; its contact frame is the face frame of :mod:`.mechanics`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: inputs of the club head's rigid body (SI); without them the club is a point mass (or fixed if M = inf)
+INERTIA_INPUTS = tuple(f"club_inertia_{name}" for name in ("toe", "up", "target", "toe_up", "toe_target",
+                                                              "up_target"))
+CENTER_INPUTS = ("club_cg_toe", "club_cg_high", "club_cg_depth")
+FACE_SHAPE_INPUTS = ("club_loft", "face_bulge_radius", "face_roll_radius")
+STRIKE_INPUTS = ("strike_toe", "strike_high")
+#: every input of the 3-D geometry beyond the ball, speed, angle and spin
+GEOMETRY_INPUTS = INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS
+#: relative tolerance under which off-diagonal mobilities count as zero (the 1-D path applies)
+DIAGONAL_TOLERANCE = 1e-12
+
+
+def _unit(vectors):
+    norm = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return vectors / np.where(norm > 0.0, norm, 1.0)
+
+
+def _skew(r):
+    """[r] with [r] x = r cross x, for (..., 3) arrays."""
+    zero = np.zeros_like(r[..., 0])
+    return np.stack([np.stack([zero, -r[..., 2], r[..., 1]], -1),
+                     np.stack([r[..., 2], zero, -r[..., 0]], -1),
+                     np.stack([-r[..., 1], r[..., 0], zero], -1)], -2)
+
+
+def _rotation_z(angle):
+    c, s = np.cos(angle), np.sin(angle)
+    one, zero = np.ones_like(c), np.zeros_like(c)
+    return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1), np.stack([zero, zero, one], -1)], -2)
+
+
+def face_axes(dynamic_loft, face_angle):
+    """Toe, up-the-face and normal unit vectors of the face at impact, (n, 3) each (right-handed golfer).
+
+    The face normal is (cos L cos f, -cos L sin f, sin L) for dynamic loft L and face angle f (open to the
+    right); the toe is horizontal, to the right of the normal.
+    """
+    loft, face = np.asarray(dynamic_loft, float), np.asarray(face_angle, float)
+    zero = np.zeros_like(loft)
+    normal = np.stack([np.cos(loft), zero, np.sin(loft)], -1)
+    up = np.stack([-np.sin(loft), zero, np.cos(loft)], -1)
+    toe = np.stack([zero, -np.ones_like(loft), zero], -1)
+    turn = _rotation_z(-face)
+    return tuple(np.einsum("nij,nj->ni", turn, v) for v in (toe, up, normal))
+
+
+def _head_inertia(inputs, n, toe, up, normal):
+    """Inverse inertia tensor of the head in the ground frame at impact (n, 3, 3), or None for a point mass."""
+    if not all(name in inputs for name in INERTIA_INPUTS):
+        return None
+    c = {name: np.broadcast_to(np.asarray(inputs[name], float), (n,)) for name in INERTIA_INPUTS}
+    tensor = np.stack([
+        np.stack([c["club_inertia_toe"], c["club_inertia_toe_up"], c["club_inertia_toe_target"]], -1),
+        np.stack([c["club_inertia_toe_up"], c["club_inertia_up"], c["club_inertia_up_target"]], -1),
+        np.stack([c["club_inertia_toe_target"], c["club_inertia_up_target"], c["club_inertia_target"]], -1),
+    ], -2)
+    # head-frame axes at impact: toe stays the face's toe; up and target are the face's up and normal turned
+    # back by the static loft (the face normal is the target axis tilted up by the loft)
+    static = np.broadcast_to(np.asarray(inputs.get("club_loft", 0.0), float), (n,))[:, None]
+    target = np.cos(static) * normal - np.sin(static) * up
+    vertical = np.sin(static) * normal + np.cos(static) * up
+    axes = np.stack([toe, vertical, target], -1)  # columns: head axes in ground coordinates
+    return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes))
+
+
+def contact_state(inputs: dict) -> dict:
+    """Contact frame, approach velocity and mobility of each case, from model inputs (SI arrays).
+
+    Returns
+    -------
+    dict of arrays (n cases)
+        ``slip_direction``, ``lateral_direction``, ``normal`` (n, 3): the contact frame in ground
+        coordinates (right-handed golfer); ``club_direction`` (n, 3); ``normal_speed`` V_n > 0 and
+        ``slip_speed`` V_s (signed, as the 1-D models count it: positive along the club's slip direction)
+        [m/s]; ``mobility`` (n, 3, 3) [1/kg] in the contact frame (s, l, n); ``contact_radius`` R_e [m],
+        the Hertz radius of ball and face curvature; ``lever`` (n, 3) from the head's centre of mass to the
+        contact [m]; ``head_inverse_inertia`` (n, 3, 3) or None; ``ball_spin`` (n, 3) [rad/s] before impact;
+        ``initial_velocity`` (n, 3) [m/s], the relative contact velocity in the contact frame;
+        ``one_dimensional`` (n,) bool: mobility diagonal in the contact frame, so the slip stays on one
+        line and the normal problem is uncoupled (the 1-D solvers apply).
+    """
+    speed = np.atleast_1d(np.asarray(inputs["speed"], float))
+    n = speed.size
+
+    def value(name, default):
+        return np.broadcast_to(np.asarray(inputs.get(name, default), float), (n,))
+
+    if "dynamic_loft" in inputs:
+        loft, face = value("dynamic_loft", 0.0), value("face_angle", 0.0)
+        path, attack = value("path", 0.0), value("attack_angle", 0.0)
+    else:  # a plate experiment: the club moves along X, the face normal is tilted up by the impact angle
+        loft, face = value("angle", 0.0), np.zeros(n)
+        path, attack = np.zeros(n), np.zeros(n)
+    toe, up, flat_normal = face_axes(loft, face)
+    club_direction = np.stack([np.cos(attack) * np.cos(path), -np.cos(attack) * np.sin(path), np.sin(attack)], -1)
+
+    ball_mass, radius = value("ball_mass", np.nan), value("ball_radius", np.nan)
+    k2 = value("ball_inertia_factor", 0.4)
+    bulge, roll = value("face_bulge_radius", np.inf), value("face_roll_radius", np.inf)
+    strike_toe, strike_high = value("strike_toe", 0.0), value("strike_high", 0.0)
+    # the face as the osculating paraboloid of its bulge and roll (exact to O(s^4/R^3) at offsets s)
+    tilt_toe, tilt_high = strike_toe / bulge, strike_high / roll
+    normal = _unit(flat_normal + tilt_toe[:, None] * toe + tilt_high[:, None] * up)
+    sag = 0.5 * (strike_toe * tilt_toe + strike_high * tilt_high)
+    point = strike_toe[:, None] * toe + strike_high[:, None] * up - sag[:, None] * flat_normal
+
+    # slip direction: the ball's contact point moves against the club's tangential velocity
+    relative = -club_direction
+    tangential = relative - np.sum(relative * normal, -1, keepdims=True) * normal
+    fallback = up - np.sum(up * normal, -1, keepdims=True) * normal  # head-on: any tangent will do
+    has_slip = np.linalg.norm(tangential, axis=-1) > 1e-12
+    slip_direction = _unit(np.where(has_slip[:, None], tangential, fallback))
+    # counted up the face, as the 1-D models count x: a slip down the face is a negative slip speed
+    slip_direction *= np.where(np.sum(slip_direction * up, -1) < 0.0, -1.0, 1.0)[:, None]
+    lateral_direction = np.cross(normal, slip_direction)
+    frame = np.stack([slip_direction, lateral_direction, normal], -1)  # columns s, l, n
+
+    spin = value("spin", 0.0)
+    ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
+    ball_point_velocity = -radius[:, None] * np.cross(ball_spin, normal)
+    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - speed[:, None] * club_direction)
+
+    eye = np.eye(3)
+    ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
+        / ball_mass[:, None, None]
+    club_mass = value("club_mass", np.inf)
+    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
+    inverse_inertia = _head_inertia(inputs, n, toe, up, flat_normal)
+    if inverse_inertia is not None:
+        center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
+                  - value("club_cg_depth", 0.0)[:, None] * flat_normal)
+        lever = point - center
+        skew = _skew(lever)
+        head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
+    else:
+        lever = np.zeros((n, 3))
+    mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
+    mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
+    off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
+    one_dimensional = off <= DIAGONAL_TOLERANCE * mobility[:, 2, 2]
+
+    # Hertz radius of the ball on the curved face: the geometric mean of the principal relative radii
+    # (Johnson, Contact Mechanics, 1985, section 4.2: good to a few per cent of the contact radius for the
+    # mild ellipticity of a bulged face)
+    contact_radius = np.sqrt(1.0 / ((1.0 / radius + 1.0 / bulge) * (1.0 / radius + 1.0 / roll)))
+    return {
+        "slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
+        "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
+        "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": mobility,
+        "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
+        "ball_spin": ball_spin, "one_dimensional": one_dimensional, "frame": frame,
+    }
+
+
+def impulse_vector(state, normal_impulse, tangential_impulse, lateral_impulse=None):
+    """The impulse on the ball in the contact frame (s, l, n) from the models' components [N s].
+
+    ``tangential_impulse`` is counted positive against the incoming slip (as every model reports it),
+    ``lateral_impulse`` along l = n x s.
+    """
+    jn = np.asarray(normal_impulse, float)
+    lateral = np.zeros_like(jn) if lateral_impulse is None else np.asarray(lateral_impulse, float)
+    return np.stack([-np.asarray(tangential_impulse, float), lateral, jn], -1)
+
+
+def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf, **_):
+    """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
+
+    Returns the ground-frame vectors (right-handed golfer) and the 1-D face-frame quantities; see
+    :func:`impactlab.physics.mechanics.after_impact` for the latter's definitions, of which these are the
+    generalisation to a contact normal, a free head and a slip that may turn.
+    """
+    n = impulse.shape[0]
+    frame = state["frame"]
+    impulse_ground = np.einsum("nij,nj->ni", frame, impulse)
+    m = np.broadcast_to(np.asarray(ball_mass, float), (n,))
+    radius = np.broadcast_to(np.asarray(ball_radius, float), (n,))
+    inertia = np.broadcast_to(np.asarray(ball_inertia_factor, float), (n,)) * m * radius**2
+    club = np.broadcast_to(np.asarray(club_mass, float), (n,))
+    speed = np.broadcast_to(np.asarray(speed, float), (n,))
+
+    ball_velocity = impulse_ground / m[:, None]
+    # dw = I^-1 (-R n) x J = (R/I) J x n; in the contact frame J x n = (J_l, -J_s, 0) (exactly 0 for a normal J)
+    torque_arm = impulse[:, 1:2] * state["slip_direction"] - impulse[:, 0:1] * state["lateral_direction"]
+    ball_spin = state["ball_spin"] + (radius / inertia)[:, None] * torque_arm
+    club_velocity = speed[:, None] * state["club_direction"] - np.where(
+        np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
+    if state["head_inverse_inertia"] is not None:
+        club_spin = -np.einsum("nij,nj->ni", state["head_inverse_inertia"], np.cross(state["lever"], impulse_ground))
+    else:
+        club_spin = np.zeros((n, 3))
+    relative_after = state["initial_velocity"] + np.einsum("nij,nj->ni", state["mobility"], impulse)
+    # the ball centre relative to the head's material point at the contact
+    head_point = club_velocity + np.cross(club_spin, state["lever"])
+    centre_relative = ball_velocity - head_point
+    normal_velocity = np.sum(centre_relative * state["normal"], -1)
+    tangential_velocity = np.sum(centre_relative * state["slip_direction"], -1)
+
+    slip = state["slip_speed"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        beta = np.where(slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
+    # angles in the plane of the path and the contact normal, counted positive from the path towards a normal
+    # tilted up the face (the 1-D models' sign: a face tilted down has a negative angle)
+    direction = state["club_direction"]
+    towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
+    orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
+    across_unit = orientation[:, None] * _unit(towards_normal)
+    launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
+    angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        launch_ratio = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
+    rebound_angle = np.arctan2(tangential_velocity, normal_velocity)
+    spin_sense = np.sign(np.sum(ball_spin * state["lateral_direction"], -1))
+    spin_sense = np.where(spin_sense == 0.0, 1.0, spin_sense)
+    # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
+    energy_loss = -np.sum(impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])),
+                          -1)
+    return {
+        "ball_velocity": ball_velocity, "ball_spin_vector": ball_spin, "club_velocity": club_velocity,
+        "club_spin": club_spin,
+        "normal_velocity": normal_velocity,
+        "tangential_velocity": tangential_velocity,
+        "spin_rate": spin_sense * np.linalg.norm(ball_spin, axis=-1),
+        "tangential_restitution": beta,
+        "launch_angle": launch_angle,
+        "launch_ratio": launch_ratio,
+        "rebound_angle": rebound_angle,
+        "total_angle": angle + rebound_angle,
+        "ball_speed": np.linalg.norm(impulse, axis=-1) / m,
+        "energy_loss": energy_loss,
+        "smash_factor": np.linalg.norm(impulse, axis=-1) / m / speed,
+        "club_speed_after": np.linalg.norm(club_velocity, axis=-1) if np.all(np.isfinite(club)) else np.where(
+            np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
+        "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
+    }
+
+
+def ground_outputs(state, after, *, dynamic_loft=None, attack_angle=None, path=None, face_angle=None,
+                   handedness=None, angle=None, **_):
+    """Launch direction and spin in golf terms; lateral quantities mirrored for a left-handed golfer (rad, rad/s).
+
+    ``horizontal_launch_angle`` and ``spin_axis`` are positive to the right of the target line (spin axis:
+    a ball that curves right), whoever swings; ``back_spin`` and ``side_spin`` split the spin about the
+    horizontal axis across the flight and the axis across the flight perpendicular to it (side spin positive
+    curving right); spin along the flight direction (rifle spin) enters neither.
+    """
+    velocity, spin = after["ball_velocity"], after["ball_spin_vector"]
+    n = velocity.shape[0]
+    sign = np.sign(np.broadcast_to(np.asarray(1.0 if handedness is None else handedness, float), (n,)))
+    horizontal_rh = np.arctan2(-velocity[:, 1], velocity[:, 0])
+    vertical = np.arctan2(velocity[:, 2], np.hypot(velocity[:, 0], velocity[:, 1]))
+    flight = _unit(velocity)
+    back_axis = _unit(np.cross(velocity * np.array([1.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])))
+    up_axis = np.cross(back_axis, flight)  # perpendicular to the flight and the back-spin axis, upwards
+    back_spin = np.sum(spin * back_axis, -1)
+    side_spin_rh = -np.sum(spin * up_axis, -1)  # a spin vector tilted down on the right curves right
+    horizontal, side_spin = sign * horizontal_rh, sign * side_spin_rh
+    out = {
+        "vertical_launch_angle": vertical,
+        "horizontal_launch_angle": horizontal,
+        "back_spin": back_spin,
+        "side_spin": side_spin,
+        "spin_axis": np.arctan2(side_spin, back_spin),
+        "spin_loft": np.arccos(np.clip(np.sum(state["normal"] * state["club_direction"], -1), -1.0, 1.0)),
+    }
+    if dynamic_loft is not None:
+        path_abs, face_abs = sign * np.asarray(path, float), sign * np.asarray(face_angle, float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            vertical_ratio = (vertical - attack_angle) / (dynamic_loft - attack_angle)
+            horizontal_ratio = (horizontal - path_abs) / (face_abs - path_abs)
+        out["vertical_launch_ratio"] = np.where(np.abs(dynamic_loft - attack_angle) > 1e-12, vertical_ratio, np.nan)
+        out["horizontal_launch_ratio"] = np.where(np.abs(face_abs - path_abs) > 1e-12, horizontal_ratio, np.nan)
+    return out
