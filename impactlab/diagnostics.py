@@ -17,6 +17,8 @@ FLAGS: dict[int, tuple[str, str]] = {
     2: ("soft_face", "the face is more compliant than the ball, so the half-space idealisation of the face is strained"),
     4: ("tolerance_not_met", "the requested tolerance needs more resolution than the method allows; the result is "
                              "less accurate than asked"),
+    8: ("unfinished", "the 3-D integration reached its step limit before the bodies separated; the impulses are "
+                      "those of an unfinished contact"),
 }
 LARGE_CONTACT_RATIO = 0.6
 

@@ -9,10 +9,10 @@ import numpy as np
 from impactlab._validate import check
 from impactlab.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.model import ImpactModel
-from impactlab.physics import hertz
-from impactlab.physics.mechanics import approach_velocities, effective_mass, tangential_mass
+from impactlab.physics import compliant3d, hertz
+from impactlab.physics.contact import contact_state
 
-from ._common import IMPULSES, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
+from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
 
 #: how a restitution e < 1 enters the compliant models (option ``inelastic``)
 INELASTIC = ("adjusted_speed", "hysteretic")
@@ -42,18 +42,22 @@ class HertzTangentialModel(ImpactModel):
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"restitution"}
-    provides = IMPULSES | {"contact_time", "normal_force", "tangential_force", "stick_radius", "contact_radius_ratio",
-                           "steps", "energy_error", "validity"}
+    provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
+                              "contact_radius_ratio", "steps", "energy_error", "validity", "face_rotation"}
+    #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
+    _3d_depends_on_kappa = False
 
     def _compute(self, inputs, outputs):
         p = inputs
-        radius, ball_mass, friction = p["ball_radius"], p["ball_mass"], p["friction"]
+        ball_mass, friction = p["ball_mass"], p["friction"]
         moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"], p["face_poisson_ratio"])
         modulus = hertz.effective_modulus(*moduli)
         kappa = hertz.tangential_modulus(*moduli) / modulus
-        m_normal = effective_mass(ball_mass, p["club_mass"])
-        m_tangential = tangential_mass(ball_mass, p["ball_inertia_factor"], p["club_mass"])
-        normal_speed, slip = approach_velocities(p["speed"], p["angle"], p["spin"], radius)
+        state = contact_state(p)
+        mobility = state["mobility"]
+        # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
+        m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
+        normal_speed, slip, radius = state["normal_speed"], state["slip_speed"], state["contact_radius"]
         restitution = p.get("restitution", np.ones_like(normal_speed))
         if self.options.inelastic == "adjusted_speed":
             # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
@@ -68,19 +72,28 @@ class HertzTangentialModel(ImpactModel):
         histories = {"normal_force", "tangential_force", "stick_radius"} & outputs
         record = bool(histories - {"normal_force"})
         sliding = (friction > 0.0) & (slip != 0.0)
+        # the plan of each case: the scaled 1-D solver where the mobility is diagonal in the contact frame (the
+        # slip stays on one line, the normal problem is uncoupled) or there is no friction to couple them; the
+        # 3-D solver elsewhere, and wherever the head's rotation during contact is asked for
+        three_d = ~state["one_dimensional"] & (friction > 0.0)
+        turning_head = state["head_inverse_inertia"] is not None
+        if "face_rotation" in outputs and turning_head:
+            three_d = np.ones(slip.size, dtype=bool)
+        self._check_dimensions(three_d)
+        line = ~three_d
         chi = 0.5 * kappa * m_normal / m_tangential
         psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
         slip_change, residual, steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
         # each case's resolution depends on its own chi and psi1 only: its result never depends on its batch
         resolution = np.zeros(slip.size, dtype=int)
         capped = np.zeros(slip.size, dtype=bool)
-        for value in np.unique(chi[sliding]):
-            members = sliding & (chi == value)
+        for value in np.unique(chi[sliding | three_d]):
+            members = (sliding | three_d) & (chi == value)
             resolution[members], capped[members] = self.options.resolution(float(value), psi1[members])
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
         for index, law in enumerate(laws):
-            for count in np.unique(resolution[sliding & (law_of_case == index)]):
-                members = sliding & (law_of_case == index) & (resolution == count)
+            for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
+                members = line & sliding & (law_of_case == index) & (resolution == count)
                 steps_wanted = self.options.resolution_steps(int(count))
                 solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
                                      kappa=kappa[members])
@@ -93,7 +106,7 @@ class HertzTangentialModel(ImpactModel):
         velocity_unit = friction * scale_speed / kappa
         slip_change *= velocity_unit
         initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
-            radius * p["spin"]) ** 2
+            p["ball_radius"] * p["spin"]) ** 2
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed
         contact_ratio = np.sqrt(approach_scale / radius)
@@ -101,24 +114,70 @@ class HertzTangentialModel(ImpactModel):
         ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
         validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0)
                     | np.where(face_compliance > ball_compliance, 2, 0)
-                    | np.where(sliding & capped, 4, 0))
+                    | np.where((sliding | three_d) & capped, 4, 0))
         result = {
             "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
             "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
+            "lateral_impulse": np.zeros_like(slip),
+            "face_rotation": np.zeros_like(slip),
             "contact_time": duration,
             "contact_radius_ratio": contact_ratio,
             "steps": steps,
             "energy_error": m_tangential * velocity_unit**2 * residual / initial_energy,
             "validity": validity.astype(float),
         }
+        if np.any(three_d):
+            self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
+                           record, result, solution_of_case, initial_energy)
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
             scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
                       "stick_radius": np.sqrt(radius * approach_scale)}
-            result.update(self._histories(histories, duration, approach_scale / scale_speed, scales, laws,
-                                          law_of_case, solution_of_case))
+            result.update(self._histories(histories, result["contact_time"], approach_scale / scale_speed, scales,
+                                          laws, law_of_case, solution_of_case))
         return {name: result[name] for name in outputs | ({"time"} if histories else set())}
+
+    def _check_dimensions(self, three_d) -> None:
+        """Refuse 3-D cases if the configured method solves only 1-D ones (a model may override)."""
+
+    def _law_3d(self, kappa: float) -> dict:
+        """Keyword arguments of :func:`impactlab.physics.compliant3d.solve` for this model's tangential law."""
+        raise NotImplementedError
+
+    def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
+                  result, solution_of_case, initial_energy):
+        """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
+        groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
+                                     else np.zeros_like(kappa)], -1)[members], axis=0)
+        for law_index, count, kappa_value in groups:
+            rows = members & (law_of_case == law_index) & (resolution == count)
+            if self._3d_depends_on_kappa:
+                rows &= kappa == kappa_value
+            springs, steps = int(count), self.options.resolution_steps(int(count))
+            solved = compliant3d.solve(state["mobility"][rows], scale_speed[rows], state["slip_speed"][rows],
+                                       friction=friction[rows], kappa=kappa[rows], modulus=modulus[rows],
+                                       radius=state["contact_radius"][rows], normal=laws[int(law_index)],
+                                       springs=springs, steps=steps, record=record, **self._law_3d(kappa_value))
+            impulse = solved.impulse
+            result["normal_impulse"][rows] = impulse[:, 2]
+            result["tangential_impulse"][rows] = -impulse[:, 0]
+            result["lateral_impulse"][rows] = impulse[:, 1]
+            result["contact_time"][rows] = solved.contact_time
+            result["steps"][rows] = solved.steps
+            unfinished = solved.steps >= compliant3d.STEP_ALLOWANCE * steps
+            result["validity"][rows] = (result["validity"][rows].astype(int) | np.where(unfinished, 8, 0))
+            # energy balance of the solved (scaled-speed) problem: kinetic energy change = work of the forces
+            initial = np.stack([state["slip_speed"][rows], np.zeros(impulse.shape[0]), -scale_speed[rows]], -1)
+            mean = initial + 0.5 * np.einsum("nij,nj->ni", state["mobility"][rows], impulse)
+            result["energy_error"][rows] = (np.sum(impulse * mean, -1) - solved.work) / initial_energy[rows]
+            if state["head_inverse_inertia"] is not None:
+                moment = np.einsum("nij,nj->ni", state["frame"][rows], solved.impulse_time)
+                turn = np.einsum("nij,nj->ni", state["head_inverse_inertia"][rows],
+                                 np.cross(state["lever"][rows], moment))
+                result["face_rotation"][rows] = np.linalg.norm(turn, axis=-1)
+            for row, case in enumerate(np.nonzero(rows)[0]):
+                solution_of_case[case] = ("3d", solved, row)
 
     @staticmethod
     @functools.lru_cache(maxsize=64)
@@ -140,6 +199,15 @@ class HertzTangentialModel(ImpactModel):
             inside = tau <= law.tau_end * (1 + 1e-12)
             h = law.approach(tau)
             solved, row = solution_of_case[case] or (None, None)
+            if solved == "3d":  # its own time grid, in SI: interpolate onto the shared axis
+                _, solved3, row = solution_of_case[case]
+                for name in wanted:
+                    own = getattr(solved3, name)[row]
+                    valid = ~np.isnan(own)
+                    scale = scales[name][case] if scales[name][case] != 0.0 else 1.0
+                    shapes[name][case] = np.where(time <= solved3.time[row][valid][-1] * (1 + 1e-12), np.interp(
+                        time, solved3.time[row][valid], own[valid]), np.nan) / scale
+                continue
             for name in wanted:
                 if name == "normal_force":
                     shape = h**1.5 * law.load_factor(tau)

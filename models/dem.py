@@ -115,6 +115,16 @@ class _SpringModel(HertzTangentialModel):
     def _law(self, kappa) -> dict:
         raise NotImplementedError
 
+    @property
+    def _3d_depends_on_kappa(self):
+        return self._depends_on_kappa
+
+    def _law_3d(self, kappa) -> dict:
+        law = self._law(kappa if self._depends_on_kappa else None)
+        return {"law": law["law"], "stiffness_factor": law["stiffness_factor"],
+                "store_force": law["history"] == "force" or law["law"] == "linear", "rescale": law["rescale"],
+                "tangential_damping": self.options.damping}
+
     def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
         change, dissipation = np.zeros_like(chi), np.zeros_like(chi)
         force = stick = tau = None

@@ -6,6 +6,7 @@ import attrs
 import numpy as np
 
 from impactlab._validate import check
+from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, mdr
 
 from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
@@ -142,6 +143,16 @@ class MawModel(HertzTangentialModel):
         # the hardest case the rule knows: the smallest normalised incidence
         options = attrs.evolve(self.options, tolerance=tolerance)
         return not bool(options.resolution(1.0, np.array([mdr.SMALLEST_SCALE]))[1][0])
+
+    def _check_dimensions(self, three_d):
+        if self.options.method == "annuli" and np.any(three_d):
+            raise ModelInputError(
+                f"maw with method: annuli solves impacts on one line only, and {int(np.sum(three_d))} case(s) have a "
+                "3-D contact (a free club head struck off its centre-of-mass line, a curved face, or face_rotation "
+                "asked for); use method: mdr for them")
+
+    def _law_3d(self, kappa):
+        return {"law": "mdr"}
 
     def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
         if self.options.method == "annuli":
