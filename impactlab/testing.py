@@ -50,6 +50,38 @@ def reference_inputs(n_angles: int = 7) -> dict[str, np.ndarray]:
     return {key: np.array([scene.inputs()[key] for scene in scenes]) for key in keys}
 
 
+def reference_inputs_3d() -> dict[str, np.ndarray]:
+    """Golf deliveries on free club heads: the driver preset and a head symmetric heel-to-toe, struck across the face.
+
+    Strikes from heel to toe and sole to crown, square and open faces, frictions 0.1-0.6, e 0.8 and 1: the
+    cases where the mobility couples the normal and tangential directions and the slip turns.
+    """
+    from .clubs import CLUB_PRESETS, ClubHead, Strike
+    from .scene import Delivery
+
+    symmetric = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, -0.003, 0.035),
+                         loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material)
+    scenes = []
+    for club in (CLUB_PRESETS["driver"], symmetric):
+        face = Scene.face_of(club)
+        for toe, high in ((-0.02, 0.0), (0.015, 0.005), (0.0, -0.01), (0.01, 0.01)):
+            for friction, restitution in ((0.1, 1.0), (0.4, 0.8), (0.6, 0.8)):
+                for face_angle in (0.0, 0.06):
+                    delivery = Delivery(45.0, path=0.02, face_angle=face_angle, attack_angle=-0.02,
+                                        dynamic_loft=0.22)
+                    scenes.append(Scene.from_delivery(BALL_PRESETS["urethane_tour"], face,
+                                                      Contact(friction, restitution), delivery, 0.0, club,
+                                                      Strike(toe, high)))
+    keys = scenes[0].inputs().keys()
+    return {key: np.array([scene.inputs()[key] for scene in scenes]) for key in keys}
+
+
+def _complete(inputs: dict) -> dict:
+    from .scene import complete_inputs
+
+    return complete_inputs(dict(inputs))
+
+
 def _model(model) -> ImpactModel:
     return model() if isinstance(model, type) else model
 
@@ -170,6 +202,51 @@ def check_batch_independence(model) -> None:
                 f"{name} of case {case} depends on the batch around it"
 
 
+def _solves_3d(model) -> bool:
+    return "lateral_impulse" in type(model).provides
+
+
+def check_3d_energy_never_increases(model) -> None:
+    """On free club heads struck off-centre, no model may create kinetic energy (ball plus head, rotation included)."""
+    if not _solves_3d(model):
+        return  # a model on one line: its derived outputs on a free head are NaN with the reason (plan)
+    inputs = _complete(reference_inputs_3d())
+    result = model.compute(inputs, ["energy_loss", "lateral_impulse"])
+    kinetic = 0.5 * inputs["ball_mass"] * inputs["speed"] ** 2
+    loss = result["energy_loss"].values
+    assert np.all(np.isfinite(loss)), "3-D energy loss is not finite"
+    assert np.all(loss >= -1e-6 * kinetic), f"3-D impact creates energy: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
+
+
+def check_3d_heel_toe_mirror(model) -> None:
+    """A head symmetric heel-to-toe, square face, path along the target: heel and toe strikes are mirror images."""
+    if not _solves_3d(model):
+        return
+    inputs = reference_inputs_3d()
+    symmetric = (inputs["club_inertia_toe_up"] == 0.0) & (inputs["face_angle"] == 0.0)
+    inputs = _complete(_with({key: value[symmetric] for key, value in inputs.items()}, path=0.0))
+    mirrored = _complete(_with(inputs, strike_toe=-inputs["strike_toe"]))
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
+    a, b = model.compute(inputs, names), model.compute(mirrored, names)
+    scale = inputs["ball_mass"] * inputs["speed"]
+    for name, sign in zip(names, (1.0, 1.0, -1.0)):
+        assert np.allclose(a[name].values, sign * b[name].values, rtol=1e-9, atol=1e-12 * scale.max()), \
+            f"heel and toe strikes do not mirror in {name}"
+
+
+def check_3d_batch_independence(model) -> None:
+    if not _solves_3d(model):
+        return
+    inputs = _complete(reference_inputs_3d())
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
+    whole = model.compute(inputs, names)
+    for case in (0, len(inputs["speed"]) // 2, len(inputs["speed"]) - 1):
+        single = model.compute({key: value[case:case + 1] for key, value in inputs.items()}, names)
+        for name in names:
+            assert np.allclose(whole[name].values[case], single[name].values[0], rtol=1e-12, atol=0), \
+                f"3-D {name} of case {case} depends on the batch around it"
+
+
 def check_inputs_untouched(model) -> None:
     inputs = reference_inputs(n_angles=3)
     copies = {key: value.copy() for key, value in inputs.items()}
@@ -189,6 +266,9 @@ CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "mirror_symmetry": check_mirror_symmetry,
     "batch_independence": check_batch_independence,
     "inputs_untouched": check_inputs_untouched,
+    "3d_energy_never_increases": check_3d_energy_never_increases,
+    "3d_heel_toe_mirror": check_3d_heel_toe_mirror,
+    "3d_batch_independence": check_3d_batch_independence,
 }
 
 

@@ -163,18 +163,18 @@ for _index, (_key, _words) in enumerate((("toe", "towards the toe"), ("high", "u
                                          ("depth", "behind the face"))):
     INPUTS[f"club_cg_{_key}"] = InputSpec(
         f"club.center_of_mass.{_key}", "m", "length", f"club-head centre of mass from the face centre, {_words}",
-        _club_value("center_of_mass", _index), low_open=True, high_open=True)
+        _club_value("center_of_mass", _index), "mm", 1e3, low_open=True, high_open=True)
 INPUTS.update({
     "club_loft": InputSpec("club.loft", "rad", "angle", "static loft of the club head", _club_value("loft"), "deg",
                            RAD_TO_DEG, low=0.0, high=math.pi / 2, high_open=True),
     "face_bulge_radius": InputSpec("club.bulge_radius", "m", "length", "face bulge radius (heel to toe; inf: flat)",
-                                   _club_value("bulge_radius"), low=0.0, low_open=True),
+                                   _club_value("bulge_radius"), "mm", 1e3, low=0.0, low_open=True),
     "face_roll_radius": InputSpec("club.roll_radius", "m", "length", "face roll radius (sole to crown; inf: flat)",
-                                  _club_value("roll_radius"), low=0.0, low_open=True),
+                                  _club_value("roll_radius"), "mm", 1e3, low=0.0, low_open=True),
     "strike_toe": InputSpec("strike.toe", "m", "length", "impact point from the face centre towards the toe",
-                            _strike_value("toe"), low=-0.1, high=0.1, low_open=True, high_open=True),
+                            _strike_value("toe"), "mm", 1e3, low=-0.1, high=0.1, low_open=True, high_open=True),
     "strike_high": InputSpec("strike.high", "m", "length", "impact point from the face centre up the face",
-                             _strike_value("high"), low=-0.1, high=0.1, low_open=True, high_open=True),
+                             _strike_value("high"), "mm", 1e3, low=-0.1, high=0.1, low_open=True, high_open=True),
 })
 
 #: study path -> input name (a delivery's club speed is the impact speed)

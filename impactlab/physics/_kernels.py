@@ -488,7 +488,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             v1 = s1 + 0.5 * dt * as1
             h_old = h
             h = h + dt * h_half
-            load = 1.0 + c * h_half if c > 0.0 else 1.0
+            # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
+            load = 1.0 + c * (h_half + 0.5 * dt * ah) if c > 0.0 else 1.0
             if load < 0.0:
                 load = 0.0
             hp = h if h > 0.0 else 0.0
