@@ -129,6 +129,14 @@ class ImpactModel:
         """Options of the converged reference run for a work-precision study (see impactlab.convergence)."""
         return attrs.evolve(self.options, tolerance=tolerance)
 
+    def solves_3d(self) -> bool:
+        """Whether this configuration solves 3-D contacts (a free head struck off-centre, a curved face).
+
+        A model does by providing ``lateral_impulse``; a configuration of it may not (and then refuses such
+        scenes with a message saying what does).
+        """
+        return "lateral_impulse" in self.provides
+
     def can_reach(self, tolerance: float) -> bool:
         """Whether this configuration resolves ``tolerance`` without hitting a resolution cap."""
         return True

@@ -203,7 +203,7 @@ def check_batch_independence(model) -> None:
 
 
 def _solves_3d(model) -> bool:
-    return "lateral_impulse" in type(model).provides
+    return model.solves_3d()
 
 
 def check_3d_energy_never_increases(model) -> None:

@@ -144,6 +144,9 @@ class MawModel(HertzTangentialModel):
         options = attrs.evolve(self.options, tolerance=tolerance)
         return not bool(options.resolution(1.0, np.array([mdr.SMALLEST_SCALE]))[1][0])
 
+    def solves_3d(self):
+        return self.options.method != "annuli"
+
     def _check_dimensions(self, three_d):
         if self.options.method == "annuli" and np.any(three_d):
             raise ModelInputError(
