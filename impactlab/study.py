@@ -521,6 +521,32 @@ def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
     return name, _sweep_values(path, spec, INPUTS[name].dimension)
 
 
+#: inputs a club preset sets (a sweep over ``club.preset`` sets them all together)
+CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_inertia_target", "club_inertia_toe_up",
+                      "club_inertia_toe_target", "club_inertia_up_target", "club_cg_toe", "club_cg_high",
+                      "club_cg_depth", "club_loft", "face_bulge_radius", "face_roll_radius", "face_youngs_modulus",
+                      "face_poisson_ratio")
+
+
+def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str, str, list[float]]]:
+    """The club inputs of each preset in ``names`` (with the study's other club keys applied), as sweep fields."""
+    if not isinstance(names, list) or not names or not all(isinstance(name, str) for name in names) \
+            or len(set(names)) != len(names):
+        raise FieldError(where, "a list of distinct club preset names", names)
+    if "club" not in document:
+        raise FieldError(where, "a club block in the study to sweep the preset of", "no club")
+    values = {name: [] for name in CLUB_PRESET_INPUTS}
+    for index, preset in enumerate(names):
+        trial = dict(document, club=dict(document.get("club") or {}, preset=preset))
+        try:
+            inputs = build_scene(trial).inputs()
+        except FieldError as exc:
+            raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
+        for name in CLUB_PRESET_INPUTS:
+            values[name].append(inputs[name])
+    return [(INPUTS[name].path, name, values[name]) for name in CLUB_PRESET_INPUTS]
+
+
 def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
@@ -528,6 +554,10 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     raw_axes = []  # (dim or None, labels, [(path, input, values)])
     for key, spec in sweep.items():
         key = str(key)
+        if key == "club.preset":  # a dimension "club" labelled by preset, setting every input of the head
+            raw_axes.append(("club", tuple(spec) if isinstance(spec, list) else None,
+                             _club_preset_fields(document, spec, f"sweep.{key}")))
+            continue
         if "." in key or not isinstance(spec, Mapping) or set(spec) <= set(SWEEP_RANGE_KEYS):
             name, values = _sweep_field_values(key, spec, f"sweep.{key}")
             _check_sweep_values(document, f"sweep.{key}", [(key, values)])
@@ -538,7 +568,10 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
             raise FieldError(f"sweep.{key}", "a dimension name (letters, digits, _; not model or time)", key)
         labels = spec.get("labels")
         fields = [(path, *_sweep_field_values(path, values, f"sweep.{key}.{path}"))
-                  for path, values in spec.items() if path != "labels"]
+                  for path, values in spec.items() if path not in ("labels", "club.preset")]
+        if "club.preset" in spec:
+            fields += _club_preset_fields(document, spec["club.preset"], f"sweep.{key}.club.preset")
+            labels = labels if labels is not None else spec["club.preset"]
         if not fields:
             raise FieldError(f"sweep.{key}", "at least one dotted field path with its values", "none")
         sizes = {len(values) for _, _, values in fields} | ({len(labels)} if isinstance(labels, list) else set())
@@ -547,17 +580,21 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
             raise FieldError(f"sweep.{key}.labels", "a list of distinct names, one per value", labels)
         if len(sizes) != 1:
             raise FieldError(f"sweep.{key}", "lists of one length for every field (and labels)", sorted(sizes))
-        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields])
+        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, name, values in fields
+                                                         if name not in CLUB_PRESET_INPUTS])
         raw_axes.append((key, tuple(labels) if labels else None, fields))
 
     paths = [path for _, _, fields in raw_axes for path, _, _ in fields]
     repeated = sorted({path for path in paths if paths.count(path) > 1})
     if repeated:
         raise FieldError(f"sweep.{repeated[0]}", "each field swept at most once", "swept twice")
-    short = [path.split(".")[-1] for path in paths]
+    preset_paths = {INPUTS[name].path for name in CLUB_PRESET_INPUTS}
+    short = [path.split(".")[-1] for path in paths if path not in preset_paths]
     taken = {dim for dim, _, _ in raw_axes if dim}
 
     def name_of(path):
+        if path in preset_paths:  # set by a club preset: named by its input, which never clashes
+            return next(name for name in CLUB_PRESET_INPUTS if INPUTS[name].path == path)
         last = path.split(".")[-1]
         clash = short.count(last) > 1 or last in (MODEL_DIM, "time") or last in taken
         return path.replace(".", "_") if clash else last

@@ -36,7 +36,8 @@ class HertzTangentialModel(ImpactModel):
     chi = (kappa/2) m*/m_t and psi1 = kappa V_x/(mu V_z), and solved by the
     subclass's :meth:`_solve`, which returns a :class:`~impactlab.physics.mdr.TangentialSolution`.
     Its options must provide ``resolution(chi, psi1)`` (resolution and "tolerance not met" per
-    case), ``resolution_steps(count)``, ``history_points`` and ``inelastic``.
+    case), ``resolution_steps(count)``, ``resolution_3d()`` (springs, steps and "tolerance not met" of the
+    3-D kernel), ``history_points`` and ``inelastic``.
     """
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
@@ -87,9 +88,11 @@ class HertzTangentialModel(ImpactModel):
         # each case's resolution depends on its own chi and psi1 only: its result never depends on its batch
         resolution = np.zeros(slip.size, dtype=int)
         capped = np.zeros(slip.size, dtype=bool)
-        for value in np.unique(chi[sliding | three_d]):
-            members = (sliding | three_d) & (chi == value)
+        for value in np.unique(chi[sliding & line]):
+            members = sliding & line & (chi == value)
             resolution[members], capped[members] = self.options.resolution(float(value), psi1[members])
+        springs_3d, steps_3d, capped_3d = self.options.resolution_3d()
+        resolution[three_d], capped[three_d] = springs_3d, capped_3d
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
@@ -154,7 +157,7 @@ class HertzTangentialModel(ImpactModel):
             rows = members & (law_of_case == law_index) & (resolution == count)
             if self._3d_depends_on_kappa:
                 rows &= kappa == kappa_value
-            springs, steps = int(count), self.options.resolution_steps(int(count))
+            springs, steps = int(count), self.options.resolution_3d()[1]
             solved = compliant3d.solve(state["mobility"][rows], scale_speed[rows], state["slip_speed"][rows],
                                        friction=friction[rows], kappa=kappa[rows], modulus=modulus[rows],
                                        radius=state["contact_radius"][rows], normal=laws[int(law_index)],
@@ -165,8 +168,7 @@ class HertzTangentialModel(ImpactModel):
             result["lateral_impulse"][rows] = impulse[:, 1]
             result["contact_time"][rows] = solved.contact_time
             result["steps"][rows] = solved.steps
-            unfinished = solved.steps >= compliant3d.STEP_ALLOWANCE * steps
-            result["validity"][rows] = (result["validity"][rows].astype(int) | np.where(unfinished, 8, 0))
+            result["validity"][rows] = (result["validity"][rows].astype(int) | np.where(solved.unfinished, 8, 0))
             # energy balance of the solved (scaled-speed) problem: kinetic energy change = work of the forces
             initial = np.stack([state["slip_speed"][rows], np.zeros(impulse.shape[0]), -scale_speed[rows]], -1)
             mean = initial + 0.5 * np.einsum("nij,nj->ni", state["mobility"][rows], impulse)

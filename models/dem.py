@@ -6,7 +6,7 @@ import attrs
 import numpy as np
 
 from impactlab._validate import check
-from impactlab.physics import dem
+from impactlab.physics import compliant3d, dem
 
 from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
 
@@ -39,6 +39,16 @@ class _SpringOptions:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""
         capped = self.steps is None and dem.steps_for(self.tolerance)[1]
         return np.ones(psi1.size, dtype=np.int64), np.full(psi1.size, capped)
+
+    def resolution_3d(self) -> tuple[int, int, bool]:
+        """(one spring, steps, tolerance not met) of the 3-D kernel: the 1-D rule's steps or the 3-D kernel's."""
+        if self.steps is not None:
+            return 1, self.steps, False
+        # the 1-D rule's steps cover the spring's own order (1.5 for the incremental laws); the 3-D kernel runs
+        # N and 2N and extrapolates (compliant3d.solve), so a quarter of them keeps the cost of the 1-D rule
+        steps, capped = dem.steps_for(self.tolerance)
+        _, steps_3d, capped_3d = compliant3d.resolution(self.tolerance, springs_needed=False)
+        return 1, max(steps // 4, steps_3d), capped or capped_3d
 
     def resolution_steps(self, count: int) -> int:
         return self.steps if self.steps is not None else dem.steps_for(self.tolerance)[0]

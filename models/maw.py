@@ -7,7 +7,7 @@ import numpy as np
 
 from impactlab._validate import check
 from impactlab.errors import ModelInputError
-from impactlab.physics import annuli, mdr
+from impactlab.physics import annuli, compliant3d, mdr
 
 from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
 
@@ -80,6 +80,13 @@ class MawOptions:
             rings, capped = annuli.resolution(self.tolerance)
             return np.full(psi1.size, rings), np.full(psi1.size, capped)
         return mdr.resolution(self.tolerance, chi, psi1)
+
+    def resolution_3d(self) -> tuple[int, int, bool]:
+        """(springs, steps, tolerance not met) of the 3-D kernel: the expert resolution, or the tolerance's."""
+        if self.springs is not None:
+            return self.springs, self.steps if self.steps is not None else mdr.STEPS_PER_SPRING * self.springs, False
+        springs, steps, capped = compliant3d.resolution(self.tolerance)
+        return springs, self.steps if self.steps is not None else steps, capped
 
     def resolution_steps(self, count: int) -> int:
         """Uniform time steps that go with ``count`` springs or rings (unless given)."""

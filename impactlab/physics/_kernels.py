@@ -516,10 +516,11 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                         inside = (h - xi2[i]) / (h - h_old)
                     x0 = u[i, 0] + inside * d0
                     x1 = u[i, 1] + inside * d1
-                    size = np.sqrt(x0 * x0 + x1 * x1)
-                    if size > cap:
-                        x0 *= cap / size
-                        x1 *= cap / size
+                    squared = x0 * x0 + x1 * x1
+                    if squared > cap * cap:  # back to the Coulomb circle (the square root only when needed)
+                        shrink_to = cap / np.sqrt(squared)
+                        x0 *= shrink_to
+                        x1 *= shrink_to
                         if first_slip == springs:
                             first_slip = i
                     u[i, 0] = x0
