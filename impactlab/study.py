@@ -528,6 +528,10 @@ CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_
                       "face_poisson_ratio")
 
 
+#: study path of a field set by a club preset sweep: "club.preset:" + the field's own path
+PRESET_MARK = "club.preset:"
+
+
 def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str, str, list[float]]]:
     """The club inputs of each preset in ``names`` (with the study's other club keys applied), as sweep fields."""
     if not isinstance(names, list) or not names or not all(isinstance(name, str) for name in names) \
@@ -544,7 +548,7 @@ def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str,
             raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
         for name in CLUB_PRESET_INPUTS:
             values[name].append(inputs[name])
-    return [(INPUTS[name].path, name, values[name]) for name in CLUB_PRESET_INPUTS]
+    return [(f"{PRESET_MARK}{INPUTS[name].path}", name, values[name]) for name in CLUB_PRESET_INPUTS]
 
 
 def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
@@ -580,21 +584,27 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
             raise FieldError(f"sweep.{key}.labels", "a list of distinct names, one per value", labels)
         if len(sizes) != 1:
             raise FieldError(f"sweep.{key}", "lists of one length for every field (and labels)", sorted(sizes))
-        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, name, values in fields
-                                                         if name not in CLUB_PRESET_INPUTS])
+        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields
+                                                         if not path.startswith(PRESET_MARK)])
         raw_axes.append((key, tuple(labels) if labels else None, fields))
 
     paths = [path for _, _, fields in raw_axes for path, _, _ in fields]
     repeated = sorted({path for path in paths if paths.count(path) > 1})
+    swept_inputs = [(name, path) for _, _, fields in raw_axes for path, name, _ in fields]
+    names = [name for name, _ in swept_inputs]
+    twice = [path for name, path in swept_inputs if names.count(name) > 1 and not path.startswith(PRESET_MARK)]
+    if twice and not repeated:
+        raise FieldError(f"sweep.{twice[0]}", "each field swept at most once (a swept club preset sets it)",
+                         "swept twice")
     if repeated:
         raise FieldError(f"sweep.{repeated[0]}", "each field swept at most once", "swept twice")
-    preset_paths = {INPUTS[name].path for name in CLUB_PRESET_INPUTS}
-    short = [path.split(".")[-1] for path in paths if path not in preset_paths]
+    short = [path.split(".")[-1] for path in paths if not path.startswith(PRESET_MARK)]
     taken = {dim for dim, _, _ in raw_axes if dim}
 
     def name_of(path):
-        if path in preset_paths:  # set by a club preset: named by its input, which never clashes
-            return next(name for name in CLUB_PRESET_INPUTS if INPUTS[name].path == path)
+        if path.startswith(PRESET_MARK):  # set by a club preset: named by its input, which never clashes
+            own = path[len(PRESET_MARK):]
+            return next(name for name in CLUB_PRESET_INPUTS if INPUTS[name].path == own)
         last = path.split(".")[-1]
         clash = short.count(last) > 1 or last in (MODEL_DIM, "time") or last in taken
         return path.replace(".", "_") if clash else last
