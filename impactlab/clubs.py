@@ -171,31 +171,78 @@ class Strike:
 G_CM2 = 1e-7  # kg m^2 per g cm^2
 MM = 1e-3
 
+#: Proceedings 49 (2020) 47 (ISEA 2020), https://www.mdpi.com/2504-3900/49/1/47,
+#: Table 1, a measured driver head. Its frame (Figure 1 there) has x along the face normal towards the ball (the ball's
+#: impact point lies at x = -21.3 mm from its centre, the head's CG at x = -42.3 mm); we take y vertical and z towards
+#: the toe (y: the largest moment, 5679 g cm^2, as a driver's about its vertical axis is, near the USGA limit of
+#: 5900; x, y, z right-handed puts z at the toe of a right-handed head), and the tensor's axes parallel to the head
+#: frame at address. Those two readings are ours, not the paper's words.
+DRIVER_2020 = dict(mass=0.204, center=(1.0, 2.9, 42.3),
+                   tensor=[[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]])
 
-def _driver_2020():
-    """The measured driver of Proceedings 49 (2020) 47, in the head frame (see docs/clubs.md for the mapping)."""
-    # published: CG [-42.3, 2.9, 1.0] mm from the face centre and the tensor below [g cm^2], in the paper's
-    # (x: towards the target, y: vertical, z: heel-toe) axes; reordered here to (toe, up, target)
-    published = np.array([[2843.0, -733.0, 530.0], [-733.0, 5679.0, 0.5], [530.0, 0.5, 4085.0]])
+
+def _driver_2020_tensor():
+    published = np.array(DRIVER_2020["tensor"])
     order = [2, 1, 0]  # toe <- z, up <- y, target <- x
-    tensor = published[np.ix_(order, order)] * G_CM2
-    return tensor
+    return published[np.ix_(order, order)] * G_CM2
 
+
+_ESTIMATE = ("Estimate, not a measurement: {what}. Moments: {moments}. Mass: {mass}. CG: {cg}. Sources of the "
+             "anchors: Golf Digest (Stachura 2008; 2010) quote manufacturers' iron MOIs of 2400-3000 g cm^2 about the "
+             "vertical axis (Ping S56 7-iron 2400, K15 3000; a typical cavity back about 2600); R. Maltby (Golf "
+             "Club Design, Fitting, Alteration and Repair; ralphmaltby.com) gives a standard 5-iron head of 254 g "
+             "with 7 g steps through the set. Lofts and lies: typical manufacturer specifications.")
 
 CLUB_SOURCES = {
     "driver": (
-        "Measured head: Proceedings 49 (2020) 47 (ISEA 2020): mass 204 g, CG [-42.3, 2.9, 1.0] mm from the face "
-        "centre, inertia tensor [[2843, -733, 530], [-733, 5679, 0.5], [530, 0.5, 4085]] g cm^2, loft 9.8 deg, "
-        "bulge 305 mm (measurement). Axis mapping to toe/up/target is ours (docs/clubs.md). Roll 254 mm and "
-        "lie 58 deg: typical manufacturer specifications (not measured on this head). Face Ti-6Al-4V."),
+        "Measured head (measurement): Proceedings 49 (2020) 47, https://www.mdpi.com/2504-3900/49/1/47, Table 1: "
+        "mass 204 g, CG [-42.3, 2.9, 1.0] mm from the face centre, inertia tensor [[2843, -733, 530.2], [-733, "
+        "5679, 0.5], [530.2, 0.5, 4085]] g cm^2, loft 9.8 deg, bulge 305 mm. The mapping of its axes to toe/up/"
+        "target is ours (docs/clubs.md). Roll 254 mm and lie 58 deg: typical manufacturer specifications, not "
+        "measured on this head. Face Ti-6Al-4V."),
+    "fairway_wood": _ESTIMATE.format(
+        what="a 15 deg 3-wood scaled from the measured driver",
+        moments="up 3300, toe 1800, target 1700 g cm^2, the driver's scaled by mass and by (head size)^2 ~ 0.6 "
+                "(a 3-wood head of 150-180 cm^3 against 460)",
+        mass="212 g, typical of 3-wood heads (manufacturer specifications 205-220 g)",
+        cg="25 mm behind the face and 5 mm below its centre (fairway woods put the CG low to launch off the turf)"
+        ) + " Bulge 300 mm, roll 280 mm: typical specifications. Face 17-4PH steel.",
+    "6_iron": _ESTIMATE.format(
+        what="a cavity-back 6-iron, 30 deg, lie 62 deg",
+        moments="up 2600 (the typical cavity back above), toe 800 and target 3200 from a perimeter-weighted plate "
+                "75 x 45 mm (the perpendicular-axis theorem: I_target ~ I_up + I_toe less the thickness term)",
+        mass="261 g (Maltby: 254 g + 7 g)", cg="6 mm behind the face, 2 mm towards the heel and 2 mm low"),
+    "7_iron": _ESTIMATE.format(
+        what="a cavity-back 7-iron, 34 deg, lie 62.5 deg",
+        moments="up 2650 (between Ping's 2400 and 3000), toe 820, target 3250 (plate, as for the 6-iron)",
+        mass="268 g (Maltby: 254 g + 2 x 7 g)", cg="6 mm behind the face, 2 mm towards the heel and 2 mm low"),
+    "pitching_wedge": _ESTIMATE.format(
+        what="a cavity-back pitching wedge, 46 deg, lie 64 deg",
+        moments="up 2800, toe 900, target 3500 (plate, as for the 6-iron; the wedge's head is taller)",
+        mass="289 g (Maltby: 254 g + 5 x 7 g)", cg="5 mm behind the face, 2 mm towards the heel and 1 mm low"),
 }
+
+
+def _iron(mass, moments, loft, lie, center, name, key):
+    return ClubHead(mass=mass, inertia=tuple(m * G_CM2 for m in moments),
+                    center_of_mass=tuple(c * MM for c in center), loft=math.radians(loft), lie=math.radians(lie),
+                    material=MATERIAL_PRESETS["steel"], name=name, source=CLUB_SOURCES[key])
 
 
 CLUB_PRESETS: dict[str, ClubHead] = {
     "driver": ClubHead(
-        mass=0.204, inertia=_driver_2020(), center_of_mass=(1.0 * MM, 2.9 * MM, 42.3 * MM),
-        loft=math.radians(9.8), lie=math.radians(58.0), bulge_radius=0.305, roll_radius=0.254,
-        material=MATERIAL_PRESETS["titanium"], name="driver (measured head, 2020)", source=CLUB_SOURCES["driver"]),
+        mass=DRIVER_2020["mass"], inertia=_driver_2020_tensor(),
+        center_of_mass=tuple(c * MM for c in DRIVER_2020["center"]), loft=math.radians(9.8), lie=math.radians(58.0),
+        bulge_radius=0.305, roll_radius=0.254, material=MATERIAL_PRESETS["titanium"],
+        name="driver (measured head, 2020)", source=CLUB_SOURCES["driver"]),
+    "fairway_wood": ClubHead(
+        mass=0.212, inertia=tuple(m * G_CM2 for m in (1800.0, 3300.0, 1700.0)), center_of_mass=(0.0, -0.005, 0.025),
+        loft=math.radians(15.0), lie=math.radians(57.0), bulge_radius=0.300, roll_radius=0.280,
+        material=MATERIAL_PRESETS["steel"], name="3-wood (estimate)", source=CLUB_SOURCES["fairway_wood"]),
+    "6_iron": _iron(0.261, (800.0, 2600.0, 3200.0), 30.0, 62.0, (-2.0, -2.0, 6.0), "6-iron (estimate)", "6_iron"),
+    "7_iron": _iron(0.268, (820.0, 2650.0, 3250.0), 34.0, 62.5, (-2.0, -2.0, 6.0), "7-iron (estimate)", "7_iron"),
+    "pitching_wedge": _iron(0.289, (900.0, 2800.0, 3500.0), 46.0, 64.0, (-2.0, -1.0, 5.0), "pitching wedge (estimate)",
+                            "pitching_wedge"),
 }
 
 

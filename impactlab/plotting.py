@@ -77,6 +77,8 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     single_model = dataset.sizes[MODEL_DIM] == 1
     for axis, name in zip(axes.flat, names):
         variable = dataset[name]
+        drawn = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
+        span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) if variable.size else 0.0
         for m_index, model in enumerate(dataset[MODEL_DIM].values):
             per_model = variable.sel({MODEL_DIM: model})
             stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
@@ -94,8 +96,18 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
                 # one model: a colour per line; several: a colour per model, a line style per other value
                 colour = colours[(l_index if single_model else m_index) % len(colours)]
                 style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
-                axis.plot(xs, np.atleast_1d(line.values), linestyle=style, color=colour, label=label,
-                          marker="" if x else "o")
+                ys = np.atleast_1d(line.values)
+                hidden = next((other for other_xs, other_ys, other in drawn
+                               if np.shape(other_xs) == np.shape(xs) and np.allclose(other_xs, xs)
+                               and np.allclose(other_ys, ys, rtol=0, atol=2e-3 * span + 1e-300, equal_nan=True)),
+                              None)
+                drawn.append((xs, ys, label))
+                if hidden is not None:
+                    # the same curve as one drawn before: say so, and mark it so that both stay visible
+                    label += f" (on {hidden})"
+                axis.plot(xs, ys, linestyle=style, color=colour, label=label,
+                          marker=("x" if hidden is not None else "") if x else "o",
+                          markevery=max(1, len(xs) // 8) if hidden is not None else None)
         axis.set_title(OUTPUTS[name].long_name, fontsize=9)
         axis.set_ylabel(f"{name} [{OUTPUTS[name].units}]")
         if x:
