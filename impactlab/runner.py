@@ -29,11 +29,33 @@ class StudyPlan:
     study: str
     n_cases: int
     models: tuple[tuple[str, OutputPlan], ...]
+    #: which solver path the cases take, and why (one paragraph; empty without a club head)
+    paths: str = ""
 
     def describe(self) -> str:
         lines = [f"study {self.study!r}: {self.n_cases} case(s) x {len(self.models)} model(s)"]
         lines += [f"  [{entry_id}] {plan.describe()}" for entry_id, plan in self.models]
+        if self.paths:
+            lines.append(f"  contact: {self.paths}")
         return "\n".join(lines)
+
+
+def describe_paths(study: Study) -> str:
+    """How many cases lie on one line (the 1-D solvers) and how many need the 3-D ones, and why."""
+    from .physics.contact import contact_state
+
+    if study.scene.club is None:
+        return ""
+    one_line = int(np.sum(contact_state(case_inputs(study))["one_dimensional"]))
+    coupled = study.n_cases - one_line
+    text = (f"{one_line} case(s) on one line (the mobility matrix is diagonal in the contact frame: a strike on the "
+            f"centre-of-mass line of a flat face) take the closed forms and the scaled 1-D solvers; {coupled} case(s) "
+            "are coupled (off the centre-of-mass line or on a curved face: the slip may turn) and take Stronge's "
+            "integration (rigid_coulomb) and the 3-D kernel (compliant models); restitution solves both with the "
+            "full mobility")
+    if "face_rotation" in study.outputs:
+        text += "; face_rotation is asked for, so the compliant models take the 3-D kernel for every case"
+    return text
 
 
 def plan_study(study: Study) -> StudyPlan:
@@ -48,7 +70,7 @@ def plan_study(study: Study) -> StudyPlan:
             raise ModelInputError(f"{study.file or study.name}: model {entry.id!r} needs {fields}, which the study "
                                   f"does not give; add it or remove the model")
         plans.append((entry.id, plan))
-    return StudyPlan(study.name, study.n_cases, tuple(plans))
+    return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study))
 
 
 def case_inputs(study: Study) -> dict[str, np.ndarray]:
