@@ -501,32 +501,50 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             stuck_to = 0.0
             if law == 0:
                 reach_h = h if h > h_old else h_old
+                both_h = h if h < h_old else h_old
                 first_slip = springs
-                for i in range(springs):
-                    if xi2[i] >= reach_h:
-                        break
+                i = 0
+                # springs inside the contact for the whole step: the common case, kept free of the edge logic
+                while i < springs and xi2[i] < both_h:
                     cap = (hp - xi2[i]) * load
-                    if cap <= 0.0:
-                        u[i, 0] = 0.0
-                        u[i, 1] = 0.0
-                        continue
-                    # a spring that enters during the step slips with the contact only for the part after entry
-                    inside = 1.0
-                    if xi2[i] > h_old:
-                        inside = (h - xi2[i]) / (h - h_old)
-                    x0 = u[i, 0] + inside * d0
-                    x1 = u[i, 1] + inside * d1
+                    x0 = u[i, 0] + d0
+                    x1 = u[i, 1] + d1
                     squared = x0 * x0 + x1 * x1
                     if squared > cap * cap:  # back to the Coulomb circle (the square root only when needed)
                         shrink_to = cap / np.sqrt(squared)
                         x0 *= shrink_to
                         x1 *= shrink_to
-                        if first_slip == springs:
+                        if record and first_slip == springs:
                             first_slip = i
                     u[i, 0] = x0
                     u[i, 1] = x1
                     f0 += x0
                     f1 += x1
+                    i += 1
+                # springs entering or leaving during the step
+                while i < springs and xi2[i] < reach_h:
+                    cap = (hp - xi2[i]) * load
+                    if cap <= 0.0:
+                        u[i, 0] = 0.0
+                        u[i, 1] = 0.0
+                        i += 1
+                        continue
+                    # a spring that enters during the step slips with the contact only for the part after entry
+                    inside = (h - xi2[i]) / (h - h_old) if xi2[i] > h_old else 1.0
+                    x0 = u[i, 0] + inside * d0
+                    x1 = u[i, 1] + inside * d1
+                    squared = x0 * x0 + x1 * x1
+                    if squared > cap * cap:
+                        shrink_to = cap / np.sqrt(squared)
+                        x0 *= shrink_to
+                        x1 *= shrink_to
+                        if record and first_slip == springs:
+                            first_slip = i
+                    u[i, 0] = x0
+                    u[i, 1] = x1
+                    f0 += x0
+                    f1 += x1
+                    i += 1
                 f0 *= 1.5 * weight
                 f1 *= 1.5 * weight
                 radius = first_slip / springs
@@ -623,4 +641,4 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         out[case, 8] = steps
 
 
-contact3d_cases = _compiled(_contact3d_cases)
+contact3d_cases = _compiled(_contact3d_cases, fastmath={"reassoc", "nsz", "arcp", "contract"})
