@@ -48,9 +48,14 @@ def test_a_freshly_compiled_kernel_and_one_loaded_from_the_cache_give_the_same_b
     import sys
 
     script = ("import hashlib, numpy as np\n"
-              "from impactlab.physics import mdr\n"
+              "from impactlab.physics import compliant3d, hertz, mdr\n"
               "r = mdr.solve_scaled(np.full(64, 1.3), np.geomspace(0.05, 9.0, 64), springs=60, steps=360)\n"
-              "print(hashlib.sha256(r.slip_change.tobytes() + r.dissipation.tobytes()).hexdigest())\n")
+              "w = np.tile(np.array([[80.0, 5.0, 9.0], [5.0, 70.0, -4.0], [9.0, -4.0, 30.0]]), (16, 1, 1))\n"
+              "s = compliant3d.solve(w, np.full(16, 40.0), np.linspace(0.0, 30.0, 16), friction=np.full(16, 0.4),\n"
+              "                      kappa=np.full(16, 0.7), modulus=np.full(16, 1.5e8), radius=np.full(16, 0.02),\n"
+              "                      normal=hertz.ELASTIC, springs=40, steps=200)\n"
+              "print(hashlib.sha256(r.slip_change.tobytes() + r.dissipation.tobytes() + s.impulse.tobytes())"
+              ".hexdigest())\n")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     fresh = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
     cached = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
