@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import attrs
+import numpy as np
 
 from ._validate import in_range, positive, positive_or_inf, to_float
 from .errors import FieldError
@@ -44,6 +45,75 @@ class Material:
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
 
+RESTITUTION_LAWS = ("constant", "linear", "power", "table")
+
+
+def _tuple_of_floats(value):
+    try:
+        return tuple(float(x) for x in value)
+    except (TypeError, ValueError):
+        return value
+
+
+@attrs.frozen
+class RestitutionLaw:
+    """Normal coefficient of restitution of a ball against a steel face as a function of the normal impact speed.
+
+    Parameters
+    ----------
+    kind : str
+        ``constant``: e = value. ``linear``: e = value + slope (v - reference_speed). ``power``:
+        e = value (v / reference_speed)^(-exponent). ``table``: linear interpolation in ``speeds``/``values``,
+        constant beyond the ends. Every law is clipped to [0.05, 1].
+    value : float
+        e at ``reference_speed`` [1].
+    reference_speed : float
+        Normal speed where e = value [m/s].
+    slope : float
+        de/dv of the linear law [s/m].
+    exponent : float
+        Exponent of the power law [1].
+    speeds, values : tuple of float
+        The table: increasing normal speeds [m/s] and e there.
+    source : str
+        Where the law and its numbers come from (measurement, fit, and to what).
+    """
+
+    kind: str = attrs.field(default="constant", validator=attrs.validators.in_(RESTITUTION_LAWS))
+    value: float = attrs.field(default=0.8, converter=to_float,
+                               validator=in_range(0.0, 1.0, "a coefficient of restitution 0 <= e <= 1"))
+    reference_speed: float = attrs.field(default=40.0, converter=to_float,
+                                         validator=positive("a positive reference speed in m/s"))
+    slope: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -1.0, 1.0, "a slope de/dv within +-1 s/m"))
+    exponent: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -2.0, 2.0, "an exponent within +-2"))
+    speeds: tuple = attrs.field(default=(), converter=_tuple_of_floats)
+    values: tuple = attrs.field(default=(), converter=_tuple_of_floats)
+    source: str = ""
+
+    def __attrs_post_init__(self):
+        if self.kind == "table":
+            speeds, values = np.asarray(self.speeds, float), np.asarray(self.values, float)
+            if speeds.size < 2 or speeds.shape != values.shape or np.any(np.diff(speeds) <= 0) \
+                    or np.any(speeds < 0) or np.any((values < 0) | (values > 1)):
+                raise FieldError("restitution", "a table of at least two increasing speeds [m/s] and as many "
+                                 "restitutions in [0, 1]", f"speeds {self.speeds}, values {self.values}")
+
+    def __call__(self, normal_speed):
+        """e at the normal approach speed(s) [m/s]."""
+        v = np.asarray(normal_speed, dtype=float)
+        if self.kind == "constant":
+            e = np.full_like(v, self.value)
+        elif self.kind == "linear":
+            e = self.value + self.slope * (v - self.reference_speed)
+        elif self.kind == "power":
+            e = self.value * (np.maximum(v, 1e-9) / self.reference_speed) ** (-self.exponent)
+        else:
+            e = np.interp(v, self.speeds, self.values)
+        return np.clip(e, 0.05, 1.0)
+
+
 @attrs.frozen
 class Ball:
     """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) [1] and, for compliant models, its material."""
@@ -58,6 +128,13 @@ class Ball:
     material: Material | None = None
     name: str = ""
     source: str = ""
+    #: contact data against a steel face, used where the study's contact block leaves them out
+    friction: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        0.0, math.inf, "a friction coefficient >= 0", high_open=True, optional=True))
+    restitution: RestitutionLaw | None = None
+    #: loss factor (tan delta) of the ball's cover in tangential shear; 0: elastic (the paper's model)
+    tangential_loss: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        0.0, 2.0, "a loss factor 0 <= eta <= 2"))
 
     @property
     def moment_of_inertia(self) -> float:

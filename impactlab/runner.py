@@ -17,7 +17,7 @@ from .assemble import assemble
 from .diagnostics import warn as warn_validity
 from .errors import FieldError, ModelInputError
 from .planning import OutputPlan
-from .scene import complete_inputs
+from .scene import ball_restitution, complete_inputs
 from .study import Study, load_study
 from .vocabulary import INPUTS
 
@@ -82,6 +82,10 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
         for field in axis.fields:
             inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
     complete_inputs(inputs)
+    if study.scene.contact.restitution is None and study.scene.ball.restitution is not None \
+            and "contact.restitution" not in {field.path for axis in study.sweep for field in axis.fields}:
+        # the ball's restitution law at each case's own normal speed
+        inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
     if np.any(inputs["angle"] >= np.pi / 2):
         case = int(np.argmax(inputs["angle"] >= np.pi / 2))
         raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",

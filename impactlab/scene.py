@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import attrs
+import numpy as np
 
 from ._validate import check, finite, in_range, positive, to_float
 from .clubs import ClubHead, Strike
@@ -167,6 +168,9 @@ class Scene:
             value = spec.getter(self)
             if value is not None:
                 values[name] = value
+        if "restitution" not in values and self.ball.restitution is not None:
+            values["restitution"] = float(ball_restitution(self.ball, complete_inputs(
+                {name: np.atleast_1d(value) for name, value in values.items()}))[0])
         return values
 
 
@@ -177,3 +181,16 @@ def complete_inputs(inputs: dict) -> dict:
     if all(name in inputs for name in DELIVERY_INPUTS):
         inputs["angle"] = spin_loft(*(inputs[name] for name in DELIVERY_INPUTS))
     return inputs
+
+
+def ball_restitution(ball, inputs: dict):
+    """The ball's restitution law at each case's normal approach speed (arrays, SI), or None without a law.
+
+    The normal approach speed is that of the contact (club speed along the contact normal, so that a lofted,
+    open or curved face meets the ball more slowly than its club speed).
+    """
+    from .physics.contact import contact_state
+
+    if ball.restitution is None:
+        return None
+    return ball.restitution(contact_state(inputs)["normal_speed"])

@@ -22,7 +22,8 @@ import yaml
 
 from .clubs import INERTIA_COMPONENTS, ClubHead, Strike, club_preset
 from .errors import FieldError, StudyError
-from .materials import MATERIAL_PRESETS, Ball, Face, Material, ball_preset, face_preset
+from .materials import MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, \
+    face_preset
 from .model import ImpactModel
 from .registry import available, get_model
 from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
@@ -38,7 +39,8 @@ INERTIA_KEYS = ("toe", "up", "target", "toe_up", "toe_target", "up_target", "pri
 CENTER_KEYS = ("toe", "high", "depth")
 STRIKE_KEYS = ("toe", "high")
 DELIVERY_KEYS = ("club_speed", "path", "face_angle", "attack_angle", "dynamic_loft", "handedness")
-BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio")
+BALL_KEYS = ("preset", "radius", "mass", "inertia_factor", "youngs_modulus", "poisson_ratio", "friction", "restitution",
+             "tangential_loss")
 FACE_KEYS = ("preset", "rigid", "youngs_modulus", "poisson_ratio", "mass")
 CONTACT_KEYS = ("friction", "restitution")
 IMPACT_KEYS = ("speed", "angle", "spin")
@@ -290,8 +292,55 @@ def build_ball(value, path: str = "ball") -> Ball:
     inertia = _quantity(block, "inertia_factor", "dimensionless", path)
     fields["inertia_factor"] = inertia if inertia is not None else (base.inertia_factor if base else 0.4)
     material = _material(block, path, base.material if base else None)
+    friction = _quantity(block, "friction", "dimensionless", path)
+    fields["friction"] = friction if friction is not None else (base.friction if base else None)
+    loss = _quantity(block, "tangential_loss", "dimensionless", path)
+    fields["tangential_loss"] = loss if loss is not None else (base.tangential_loss if base else 0.0)
+    fields["restitution"] = (_restitution_law(block["restitution"], f"{path}.restitution") if "restitution" in block
+                             else (base.restitution if base else None))
     return _construct(Ball, path, material=material, name=base.name if base else "",
                       source=base.source if base else "", **fields)
+
+
+RESTITUTION_KEYS = ("law", "value", "reference_speed", "slope", "exponent", "speeds", "values")
+
+
+def _restitution_law(value, path: str) -> RestitutionLaw:
+    """A restitution law from a number (constant) or a mapping {law, value, reference_speed, slope, ...}."""
+    if not isinstance(value, Mapping):
+        return _construct(RestitutionLaw, path, kind="constant", value=to_si(value, "dimensionless", path),
+                          source="given in the study")
+    block = _require_mapping(value, path, RESTITUTION_KEYS, "a restitution law")
+    kind = block.get("law", "constant")
+    if kind not in RESTITUTION_LAWS:
+        raise FieldError(f"{path}.law", "a restitution law", kind, choices=RESTITUTION_LAWS)
+    fields = {"kind": kind, "source": "given in the study"}
+    for key, dimension in (("value", "dimensionless"), ("reference_speed", "speed"), ("exponent", "dimensionless")):
+        if key in block:
+            fields[key] = _quantity(block, key, dimension, path)
+    if "slope" in block:  # de/dv: a number in s/m, or a string with units of inverse speed
+        slope = block["slope"]
+        fields["slope"] = _inverse_speed(slope, f"{path}.slope")
+    for key, dimension in (("speeds", "speed"), ("values", "dimensionless")):
+        if key in block:
+            items = block[key]
+            if not isinstance(items, list):
+                raise FieldError(f"{path}.{key}", "a list", items)
+            fields[key] = tuple(to_si(item, dimension, f"{path}.{key}[{i}]") for i, item in enumerate(items))
+    return _construct(RestitutionLaw, path, **fields)
+
+
+def _inverse_speed(value, path: str) -> float:
+    """A slope de/dv: a bare number in s/m or a quantity with units of inverse speed (e.g. "-0.002 s/m")."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    try:
+        from .units import registry
+
+        quantity = registry().Quantity(str(value))
+        return float(quantity.to("s/m").magnitude)
+    except Exception:  # noqa: BLE001 - pint raises many kinds; the message says what was expected
+        raise FieldError(path, "a slope de/dv in s/m (a number, or e.g. '-0.002 s/m')", value) from None
 
 
 def build_face(value, path: str = "face") -> Face:

@@ -14,6 +14,8 @@ from impactlab.physics.contact import contact_state
 
 from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
 
+#: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
+MAX_DAMPED_LAWS = 8
 #: how a restitution e < 1 enters the compliant models (option ``inelastic``)
 INELASTIC = ("adjusted_speed", "hysteretic")
 
@@ -42,7 +44,7 @@ class HertzTangentialModel(ImpactModel):
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
-    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution"}
+    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
                               "contact_radius_ratio", "steps", "energy_error", "validity", "face_rotation"}
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
@@ -68,7 +70,11 @@ class HertzTangentialModel(ImpactModel):
         else:
             scale_speed = normal_speed
             levels, law_of_case = np.unique(restitution, return_inverse=True)
-            laws = [self._damped_law(level) for level in levels]
+            per_case = levels.size > MAX_DAMPED_LAWS
+            if per_case:  # a law per case (a restitution law of the speed): tabulated laws, the 3-D kernel
+                laws, law_of_case = [hertz.CaseNormals(restitution)], np.zeros(slip.size, dtype=int)
+            else:
+                laws = [self._damped_law(level) for level in levels]
 
         histories = {"normal_force", "tangential_force", "stick_radius"} & outputs
         record = bool(histories - {"normal_force"})
@@ -76,7 +82,12 @@ class HertzTangentialModel(ImpactModel):
         # the plan of each case: the scaled 1-D solver where the mobility is diagonal in the contact frame (the
         # slip stays on one line, the normal problem is uncoupled) or there is no friction to couple them; the
         # 3-D solver elsewhere, and wherever the head's rotation during contact is asked for
-        three_d = ~state["one_dimensional"] & (friction > 0.0)
+        loss = np.broadcast_to(p.get("tangential_loss", 0.0), slip.shape)
+        # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
+        # the 1-D problem on one line)
+        three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
+            three_d = np.ones(slip.size, dtype=bool)
         turning_head = state["head_inverse_inertia"] is not None
         if "face_rotation" in outputs and turning_head:
             three_d = np.ones(slip.size, dtype=bool)
@@ -111,7 +122,8 @@ class HertzTangentialModel(ImpactModel):
         initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
             p["ball_radius"] * p["spin"]) ** 2
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
-        duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed
+        duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed \
+            if not isinstance(laws[0], hertz.CaseNormals) else laws[0].tau_end * approach_scale / scale_speed
         contact_ratio = np.sqrt(approach_scale / radius)
         face_compliance = (1.0 - p["face_poisson_ratio"] ** 2) / p["face_youngs_modulus"]
         ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
@@ -132,7 +144,7 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy)
+                           record, result, solution_of_case, initial_energy, loss)
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
             scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
@@ -149,7 +161,7 @@ class HertzTangentialModel(ImpactModel):
         raise NotImplementedError
 
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy):
+                  result, solution_of_case, initial_energy, loss):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -158,10 +170,14 @@ class HertzTangentialModel(ImpactModel):
             if self._3d_depends_on_kappa:
                 rows &= kappa == kappa_value
             springs, steps = int(count), self.options.resolution_3d()[1]
+            normal = laws[int(law_index)]
+            if isinstance(normal, hertz.CaseNormals):
+                normal = normal.subset(rows)
             solved = compliant3d.solve(state["mobility"][rows], scale_speed[rows], state["slip_speed"][rows],
                                        friction=friction[rows], kappa=kappa[rows], modulus=modulus[rows],
-                                       radius=state["contact_radius"][rows], normal=laws[int(law_index)],
-                                       springs=springs, steps=steps, record=record, **self._law_3d(kappa_value))
+                                       radius=state["contact_radius"][rows], normal=normal,
+                                       springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
+                                       **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]
             result["tangential_impulse"][rows] = -impulse[:, 0]
@@ -196,11 +212,7 @@ class HertzTangentialModel(ImpactModel):
         out = {"time": time}
         shapes = {name: np.full((duration.size, time.size), np.nan) for name in wanted}
         for case in range(duration.size):
-            law = laws[law_of_case[case]]
-            tau = time / time_scale[case]
-            inside = tau <= law.tau_end * (1 + 1e-12)
-            h = law.approach(tau)
-            solved, row = solution_of_case[case] or (None, None)
+            solved, row = (solution_of_case[case] or (None, None))[:2]
             if solved == "3d":  # its own time grid, in SI: interpolate onto the shared axis
                 _, solved3, row = solution_of_case[case]
                 for name in wanted:
@@ -210,6 +222,10 @@ class HertzTangentialModel(ImpactModel):
                     shapes[name][case] = np.where(time <= solved3.time[row][valid][-1] * (1 + 1e-12), np.interp(
                         time, solved3.time[row][valid], own[valid]), np.nan) / scale
                 continue
+            law = laws[law_of_case[case]]
+            tau = time / time_scale[case]
+            inside = tau <= law.tau_end * (1 + 1e-12)
+            h = law.approach(tau)
             for name in wanted:
                 if name == "normal_force":
                     shape = h**1.5 * law.load_factor(tau)

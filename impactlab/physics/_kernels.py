@@ -423,7 +423,7 @@ stronge_cases = _compiled(_stronge_cases)
 
 
 def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
-                     store_force, rescale, tangential_damping, xi2, weight, record, history_normal,
+                     store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
                      history_tangential, history_stick, out):
     """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
 
@@ -434,7 +434,10 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
 
         h'' = -(5/4) (h^1.5 L - mu b.f),      S' = -(5/4) kappa a f + (5/4) (kappa/mu) b h^1.5 L,
 
-    L = max(1 + c H, 0) the Hunt-Crossley load factor (c = 0: elastic). Velocity Verlet on a uniform grid;
+    L = max(1 + c H, 0) the Hunt-Crossley load factor (c = 0: elastic). ``relaxation`` (per case, scaled time)
+    puts a dashpot beside every tangential spring (Kelvin-Voigt: force = k (u + relaxation u')) in series with the
+    Coulomb slider: stuck, the pair extends with the slip; sliding, it carries the cap and its spring relaxes
+    towards it (for the MDR springs; the DEM springs keep their codes' reset to the cap less the dashpot's part). Velocity Verlet on a uniform grid;
     the springs take the step's slip and return to their circle (a radial return map). Stops when the bodies
     separate. Impulses are the trapezoid sums of the forces, the ones velocity Verlet applies, so momentum is
     kept exactly; with mu = 0 the tangential problem is skipped (no force, no scale). ``out`` columns:
@@ -448,6 +451,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         mu = friction[case]
         k = kappa[case]
         c = damping[case]
+        lag = relaxation[case]
         a00 = ratio_tt[case, 0, 0]
         a01 = ratio_tt[case, 0, 1]
         a10 = ratio_tt[case, 1, 0]
@@ -496,6 +500,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             normal = hp ** 1.5 * load
             d0 = dt * v0
             d1 = dt * v1
+            ratio = dt / lag if lag > 0.0 else 1e300  # step over the dashpot's relaxation time
             f0 = 0.0
             f1 = 0.0
             stuck_to = 0.0
@@ -507,8 +512,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 # springs inside the contact for the whole step: the common case, kept free of the edge logic
                 while i < springs and xi2[i] < both_h:
                     cap = (hp - xi2[i]) * load
-                    x0 = u[i, 0] + d0
-                    x1 = u[i, 1] + d1
+                    x0 = u[i, 0] + d0 + lag * v0
+                    x1 = u[i, 1] + d1 + lag * v1
                     squared = x0 * x0 + x1 * x1
                     if squared > cap * cap:  # back to the Coulomb circle (the square root only when needed)
                         shrink_to = cap / np.sqrt(squared)
@@ -516,8 +521,13 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                         x1 *= shrink_to
                         if record and first_slip == springs:
                             first_slip = i
-                    u[i, 0] = x0
-                    u[i, 1] = x1
+                        # sliding: the spring-dashpot carries the cap and relaxes towards it (backward Euler of
+                        # k u + c u' = cap); without a dashpot it sits on the circle
+                        u[i, 0] = (u[i, 0] + ratio * x0) / (1.0 + ratio)
+                        u[i, 1] = (u[i, 1] + ratio * x1) / (1.0 + ratio)
+                    else:
+                        u[i, 0] = x0 - lag * v0
+                        u[i, 1] = x1 - lag * v1
                     f0 += x0
                     f1 += x1
                     i += 1
@@ -531,8 +541,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                         continue
                     # a spring that enters during the step slips with the contact only for the part after entry
                     inside = (h - xi2[i]) / (h - h_old) if xi2[i] > h_old else 1.0
-                    x0 = u[i, 0] + inside * d0
-                    x1 = u[i, 1] + inside * d1
+                    x0 = u[i, 0] + inside * d0 + lag * v0
+                    x1 = u[i, 1] + inside * d1 + lag * v1
                     squared = x0 * x0 + x1 * x1
                     if squared > cap * cap:
                         shrink_to = cap / np.sqrt(squared)
@@ -540,8 +550,11 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                         x1 *= shrink_to
                         if record and first_slip == springs:
                             first_slip = i
-                    u[i, 0] = x0
-                    u[i, 1] = x1
+                        u[i, 0] = (u[i, 0] + ratio * x0) / (1.0 + ratio)
+                        u[i, 1] = (u[i, 1] + ratio * x1) / (1.0 + ratio)
+                    else:
+                        u[i, 0] = x0 - lag * v0
+                        u[i, 1] = x1 - lag * v1
                     f0 += x0
                     f1 += x1
                     i += 1
@@ -572,9 +585,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 spring1 *= shrink
                 e0 = spring0 if store_force else stiff * spring0
                 e1 = spring1 if store_force else stiff * spring1
-                visc = 0.0
+                visc = stiff * lag
                 if tangential_damping > 0.0 and chi_along > 0.0:
-                    visc = 2.0 * tangential_damping * np.sqrt(stiff / (2.5 * chi_along))
+                    visc += 2.0 * tangential_damping * np.sqrt(stiff / (2.5 * chi_along))
                 f0 = e0 + visc * v0
                 f1 = e1 + visc * v1
                 size = np.sqrt(f0 * f0 + f1 * f1)

@@ -89,7 +89,7 @@ class Contact3DSolution:
 
 def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
           steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
-          rescale: bool = False, tangential_damping: float = 0.0, record: bool = False,
+          rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0, record: bool = False,
           extrapolate: bool = True) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case; by default at ``steps`` and ``2 steps``, extrapolated.
 
@@ -99,7 +99,7 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
     """
     arguments = dict(friction=friction, kappa=kappa, modulus=modulus, radius=radius, normal=normal, springs=springs,
                      law=law, stiffness_factor=stiffness_factor, store_force=store_force, rescale=rescale,
-                     tangential_damping=tangential_damping)
+                     tangential_damping=tangential_damping, tangential_loss=tangential_loss)
     fine = solve_once(mobility, normal_speed, slip_speed, steps=2 * steps, record=record, **arguments)
     if not extrapolate:
         return fine
@@ -112,7 +112,8 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
 
 def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
                steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
-               rescale: bool = False, tangential_damping: float = 0.0, record: bool = False) -> Contact3DSolution:
+               rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0,
+               record: bool = False) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case.
 
     Parameters
@@ -125,12 +126,16 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         The contact point's slip along s [m/s] (the lateral slip is 0 by the frame's choice).
     friction, kappa, modulus, radius : ndarray (n,)
         mu, kappa = G*/E*, E* [Pa] and the Hertz radius [m].
-    normal : ElasticNormal or DampedNormal
-        The normal law (its damping, and its duration for the step size); one per call.
+    normal : ElasticNormal, DampedNormal or CaseNormals
+        The normal law (its damping, and its duration for the step size): one for all cases, or one per case.
     springs, steps : int
         MDR springs on the half-contact (1 for a DEM law) and uniform steps over the uncoupled contact.
     law, stiffness_factor, store_force, rescale, tangential_damping
         The tangential law (see :mod:`.dem`; ``"mdr"`` for Maw's).
+    tangential_loss : array_like
+        Loss factor eta (tan delta) of the ball's cover in shear, per case: a dashpot beside each tangential
+        spring with relaxation time eta / omega, omega = pi / t_c the frequency of the contact's half-sine
+        pulse (a Kelvin-Voigt solid whose loss factor at omega is eta). 0: elastic springs.
     """
     n = normal_speed.size
     m_normal = 1.0 / mobility[:, 2, 2]
@@ -141,16 +146,19 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         psi = np.where(friction > 0.0, kappa * slip_speed / np.where(friction > 0.0, friction * normal_speed, 1.0),
                        0.0)
     psi = np.stack([psi, np.zeros(n)], -1)
-    dtau = np.full(n, normal.tau_end / steps)
+    dtau = np.broadcast_to(np.asarray(normal.tau_end, float), (n,)) / steps
     max_steps = STEP_ALLOWANCE * steps
     xi2 = ((np.arange(springs) + 0.5) / springs) ** 2
     out = np.zeros((n, 9))
     shape = (n, max_steps + 1) if record else (1, 1)
     histories = [np.zeros(shape) for _ in range(3)]
     kernel = _kernels.contact3d_cases if _kernels.HAVE_NUMBA else _kernels._contact3d_cases
-    kernel(ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, np.full(n, normal.damping), dtau,
+    # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
+    relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
+    damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
+    kernel(ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping, np.ascontiguousarray(dtau),
            max_steps, LAWS[law], float(stiffness_factor), bool(store_force), bool(rescale), float(tangential_damping),
-           xi2, 1.0 / springs, bool(record), *histories, out)
+           np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), *histories, out)
 
     approach = hertz.max_approach(m_normal, radius, modulus, normal_speed)
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5

@@ -213,3 +213,80 @@ def damping_for_restitution(restitution: float) -> float:
     index = int(np.searchsorted(-restitutions, -restitution))
     low, high = dampings[max(index - 1, 0)], dampings[min(index, dampings.size - 1)]
     return float(brentq(lambda c: DampedNormal(c).restitution - restitution, low, high, xtol=1e-10))
+
+
+def _damped_exit(damping: float, steps: int = 20000) -> tuple[float, float]:
+    """Exit speed (the restitution) and scaled duration of h'' = -(5/4) h^1.5 (1 + c h'), h(0) = 0, h'(0) = 1 (RK4).
+
+    The contact ends when h returns to 0 or the force vanishes on the way out (1 + c h' = 0).
+    """
+    dt = 2.0 * TAU_CONTACT / steps
+
+    def acceleration(h, v):
+        return -1.25 * max(h, 0.0) ** 1.5 * max(1.0 + damping * v, 0.0)
+
+    h, v, tau = 0.0, 1.0, 0.0
+    for _ in range(4 * steps):
+        k1h, k1v = v, acceleration(h, v)
+        k2h, k2v = v + 0.5 * dt * k1v, acceleration(h + 0.5 * dt * k1h, v + 0.5 * dt * k1v)
+        k3h, k3v = v + 0.5 * dt * k2v, acceleration(h + 0.5 * dt * k2h, v + 0.5 * dt * k2v)
+        k4h, k4v = v + dt * k3v, acceleration(h + dt * k3h, v + dt * k3v)
+        h_new = h + dt * (k1h + 2 * k2h + 2 * k3h + k4h) / 6
+        v_new = v + dt * (k1v + 2 * k2v + 2 * k3v + k4v) / 6
+        if v_new < 0.0 and (h_new <= 0.0 or 1.0 + damping * v_new <= 0.0):
+            # the end inside this step: linear interpolation of the crossing
+            if h_new <= 0.0:
+                fraction = h / (h - h_new) if h != h_new else 1.0
+            else:
+                fraction = (1.0 + damping * v) / (damping * (v - v_new)) if v != v_new else 1.0
+            fraction = min(max(fraction, 0.0), 1.0)
+            return float(-(v + fraction * (v_new - v))), tau + fraction * dt
+        h, v, tau = h_new, v_new, tau + dt
+    return float(-v), tau
+
+
+_FAST_TABLE: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+
+def damping_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(restitution, damping, scaled duration) on a dense grid of the Hunt-Crossley damping, built once (~1 s).
+
+    A law per case (a speed-dependent restitution makes every case's e distinct) cannot afford the per-law
+    solve of :class:`DampedNormal`; the table, inverted by monotone interpolation, gives c and the duration.
+    """
+    global _FAST_TABLE
+    if _FAST_TABLE is None:
+        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 160)])
+        exits = np.array([_damped_exit(c, steps=4000) for c in dampings])
+        _FAST_TABLE = (exits[:, 0], dampings, exits[:, 1])
+    return _FAST_TABLE
+
+
+def damping_for_restitutions(restitution) -> tuple[np.ndarray, np.ndarray]:
+    """Hunt-Crossley damping c and scaled contact duration for each restitution (vectorised, table + PCHIP)."""
+    from scipy.interpolate import PchipInterpolator
+
+    restitutions, dampings, durations = damping_table()
+    order = np.argsort(restitutions)
+    e = np.clip(np.asarray(restitution, dtype=float), restitutions.min(), 1.0)
+    # interpolate log(1 + c), smooth in e; the table is monotone (more damping, less rebound)
+    c = np.expm1(PchipInterpolator(restitutions[order], np.log1p(dampings[order]))(e))
+    tau = PchipInterpolator(restitutions[order], durations[order])(e)
+    return np.where(e >= 1.0, 0.0, c), tau
+
+
+class CaseNormals:
+    """Hunt-Crossley laws, one per case (arrays of damping and scaled duration), for the 3-D kernel.
+
+    Used when the cases' restitutions are too many to solve a :class:`DampedNormal` for each (a restitution law
+    of the impact speed makes every case's e distinct).
+    """
+
+    def __init__(self, restitution):
+        self.restitution = np.asarray(restitution, dtype=float)
+        self.damping, self.tau_end = damping_for_restitutions(self.restitution)
+
+    def subset(self, rows) -> "CaseNormals":
+        part = object.__new__(CaseNormals)
+        part.restitution, part.damping, part.tau_end = self.restitution[rows], self.damping[rows], self.tau_end[rows]
+        return part
