@@ -184,11 +184,34 @@ MATERIAL_PRESETS: dict[str, Material] = {
                          "Typical handbook values for annealed Ti-6Al-4V: E = 113.8 GPa, nu = 0.342 (ASM handbook)."),
 }
 
+_BALL_INERTIA = ("Inertia: a measured ball, I = 83.63 g cm^2 with m = 45.9 g (Proceedings 49 (2020) 47, Table 1, "
+                 "measurement), K^2 = I/(m R^2) = 0.400 at R = 21.335 mm.")
+#: the contact data of the calibrated presets, fitted by impactlab.calibration (docs/validation.md); until refitted,
+#: the paper's friction and a constant restitution
+CALIBRATED_SOURCE = ("Contact data against a steel face: friction {friction} ({friction_source}); restitution "
+                     "{restitution_source}; tangential loss {loss} ({loss_source}).")
+
 BALL_PRESETS: dict[str, Ball] = {
     "urethane_tour": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["urethane_cover"], "urethane tour ball",
                           MATERIAL_PRESETS["urethane_cover"].source),
     "surlyn_distance": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["surlyn_cover"], "surlyn distance ball",
                             MATERIAL_PRESETS["surlyn_cover"].source),
+    # balls with their contact data against a steel face (a study may leave out contact:)
+    "tour_urethane": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["urethane_cover"],
+                          "tour urethane ball (calibrated contact data)",
+                          " ".join([MATERIAL_PRESETS["urethane_cover"].source, _BALL_INERTIA, CALIBRATED_SOURCE.format(
+                              friction=0.40, friction_source="Henrikson et al. 2020, urethane on a blasted face",
+                              restitution_source="e = 0.80 at 40 m/s normal speed, constant (placeholder until fitted)",
+                              loss=0.0, loss_source="not yet fitted")]),
+                          friction=0.40, restitution=RestitutionLaw("constant", 0.80), tangential_loss=0.0),
+    "two_piece_ionomer": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["surlyn_cover"],
+                              "two-piece ionomer ball (calibrated contact data)",
+                              " ".join([MATERIAL_PRESETS["surlyn_cover"].source, _BALL_INERTIA,
+                                        CALIBRATED_SOURCE.format(
+                                            friction=0.35, friction_source="Henrikson et al. 2020, surlyn",
+                                            restitution_source="e = 0.80 constant (placeholder until fitted)",
+                                            loss=0.0, loss_source="not yet fitted")]),
+                              friction=0.35, restitution=RestitutionLaw("constant", 0.80), tangential_loss=0.0),
 }
 
 FACE_PRESETS: dict[str, Face] = {
