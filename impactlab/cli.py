@@ -294,7 +294,7 @@ def _cmd_fit_shots(table, args) -> int:
     results = []
     for name in args.model or ("maw", "hertz_mindlin", "rigid_coulomb"):
         model = get_model(name)()
-        parameters = args.parameter or [p for p in (*DEFAULT_PARAMETERS, "strike_high")
+        parameters = args.parameter or [p for p in DEFAULT_PARAMETERS
                                         if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
         result = calibrate(model, table, parameters)
         print(f"{name} on {table.name} ({table.size} rows): {result.describe()}")

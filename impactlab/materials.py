@@ -186,10 +186,19 @@ MATERIAL_PRESETS: dict[str, Material] = {
 
 _BALL_INERTIA = ("Inertia: a measured ball, I = 83.63 g cm^2 with m = 45.9 g (Proceedings 49 (2020) 47, Table 1, "
                  "measurement), K^2 = I/(m R^2) = 0.400 at R = 21.335 mm.")
-#: the contact data of the calibrated presets, fitted by impactlab.calibration (docs/validation.md); until refitted,
-#: the paper's friction and a constant restitution
-CALIBRATED_SOURCE = ("Contact data against a steel face: friction {friction} ({friction_source}); restitution "
-                     "{restitution_source}; tangential loss {loss} ({loss_source}).")
+_SLED = ("Friction {mu}: Henrikson et al. (2020), section 2.2, a sled of three {cover}-covered balls pulled over a "
+         "grooved, blasted iron-type plate (measurement, at loads far below an impact's).")
+#: the ball restitution fitted to TrackMan's tour averages with the club presets (impactlab fit trackman_tour; 
+#: docs/validation.md): maw 0.788 +- 0.013, hertz_mindlin 0.787 +- 0.011 at a normal speed of 40 m/s
+FITTED_RESTITUTION = RestitutionLaw(
+    "linear", 0.787, 40.0, slope=0.0,
+    source="fitted (impactlab fit trackman_tour, models maw and hertz_mindlin agree to 0.001) to TrackMan's PGA and "
+           "LPGA driver and 6-iron averages with the driver's face gain fitted beside it; a model output, not a "
+           "measurement of e. The slope is not identified by four deliveries (two normal speeds per club) and "
+           "is left at 0.")
+_FITTED = ("Restitution: e = 0.787 at any normal speed against a rigid steel face, fitted to TrackMan's tour averages "
+           "(docs/validation.md). Tangential loss 0: the same fit leaves it unidentified (0.08 +- 0.25 with "
+           "hertz_mindlin), so the paper's elastic cover is kept.")
 
 BALL_PRESETS: dict[str, Ball] = {
     "urethane_tour": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["urethane_cover"], "urethane tour ball",
@@ -199,19 +208,17 @@ BALL_PRESETS: dict[str, Ball] = {
     # balls with their contact data against a steel face (a study may leave out contact:)
     "tour_urethane": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["urethane_cover"],
                           "tour urethane ball (calibrated contact data)",
-                          " ".join([MATERIAL_PRESETS["urethane_cover"].source, _BALL_INERTIA, CALIBRATED_SOURCE.format(
-                              friction=0.40, friction_source="Henrikson et al. 2020, urethane on a blasted face",
-                              restitution_source="e = 0.80 at 40 m/s normal speed, constant (placeholder until fitted)",
-                              loss=0.0, loss_source="not yet fitted")]),
-                          friction=0.40, restitution=RestitutionLaw("constant", 0.80), tangential_loss=0.0),
+                          " ".join([MATERIAL_PRESETS["urethane_cover"].source, _BALL_INERTIA,
+                                    _SLED.format(mu=0.40, cover="urethane"), _FITTED]),
+                          friction=0.40, restitution=FITTED_RESTITUTION, tangential_loss=0.0),
     "two_piece_ionomer": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["surlyn_cover"],
-                              "two-piece ionomer ball (calibrated contact data)",
+                              "two-piece ionomer ball (contact data partly assumed)",
                               " ".join([MATERIAL_PRESETS["surlyn_cover"].source, _BALL_INERTIA,
-                                        CALIBRATED_SOURCE.format(
-                                            friction=0.35, friction_source="Henrikson et al. 2020, surlyn",
-                                            restitution_source="e = 0.80 constant (placeholder until fitted)",
-                                            loss=0.0, loss_source="not yet fitted")]),
-                              friction=0.35, restitution=RestitutionLaw("constant", 0.80), tangential_loss=0.0),
+                                        _SLED.format(mu=0.35, cover="surlyn"),
+                                        "Restitution: no shot data of this ball with a stated delivery were found; "
+                                        "the tour urethane ball's fitted e = 0.787 is taken (an assumption). "
+                                        "Tangential loss 0."]),
+                              friction=0.35, restitution=FITTED_RESTITUTION, tangential_loss=0.0),
 }
 
 FACE_PRESETS: dict[str, Face] = {

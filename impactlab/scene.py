@@ -193,4 +193,5 @@ def ball_restitution(ball, inputs: dict):
 
     if ball.restitution is None:
         return None
-    return ball.restitution(contact_state(inputs)["normal_speed"])
+    gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)
+    return np.clip(ball.restitution(contact_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)

@@ -69,6 +69,12 @@ class ShotTable:
         ``MEASURED_FIELDS`` per row and their one-sigma uncertainties [SI].
     ball : dict
         The ball block the table names (a study ``ball:`` mapping), or empty.
+    loft_at : str
+        Where the table's dynamic loft and face angle were measured: ``contact`` (default; what a launch
+        monitor reports: TrackMan defines dynamic loft as the loft "at the center-point of contact between the
+        club and ball") or ``centre`` (the face centre, as impactlab's delivery counts them). On a bulged and
+        rolled face a strike off the centre meets a face turned by atan(offset/radius), so a ``contact`` table's
+        deliveries are turned back to the face centre before the models see them (:func:`centre_delivery`).
     """
 
     name: str
@@ -80,6 +86,7 @@ class ShotTable:
     measured: dict = attrs.field(eq=False)
     sigma: dict = attrs.field(eq=False)
     ball: dict = attrs.field(factory=dict, eq=False)
+    loft_at: str = attrs.field(default="contact", validator=attrs.validators.in_(("contact", "centre")))
 
     @property
     def size(self) -> int:
@@ -132,7 +139,8 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
     return to_si(value, dimension, where)
 
 
-def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, sigma_defaults: dict) -> ShotTable:
+def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, sigma_defaults: dict,
+              loft_at: str = "contact") -> ShotTable:
     if not rows:
         raise StudyError(f"{file}: the shot table has no rows")
     n = len(rows)
@@ -159,7 +167,7 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                                                              for i, row in enumerate(rows)),
                      clubs=tuple(str(row.get("club")) for row in rows),
                      handedness=tuple(str(row.get("handedness", "right")) for row in rows),
-                     delivery=delivery, measured=measured, sigma=sigma, ball=ball)
+                     delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at)
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
@@ -225,6 +233,10 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
     units = document.get("units") or {}
     problems = []
+    loft_at = document.get("loft_at", "contact")
+    if loft_at not in ("contact", "centre"):
+        problems.append(f"{file}:{line_of(lines, ('loft_at',))}: loft_at: expected contact (the launch monitor's "
+                        f"loft at the impact point) or centre (at the face centre), got {loft_at!r}")
     sigma_defaults = {}
     for key, value in (document.get("sigma") or {}).items():
         if key not in MEASURED_FIELDS:
@@ -262,7 +274,7 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     if problems:
         raise StudyError(f"{file}: {len(problems)} problem(s): " + "; ".join(problems))
     return _assemble(rows, str(document.get("name", Path(file).stem)), str(document.get("source", "")), file,
-                     dict(document.get("ball") or {}), sigma_defaults)
+                     dict(document.get("ball") or {}), sigma_defaults, loft_at)
 
 
 def read_shots(path) -> ShotTable:
@@ -289,7 +301,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
     from .clubs import Strike, club_preset
-    from .scene import Contact, Delivery, Scene, complete_inputs
+    from .scene import Contact, Delivery, Scene, ball_restitution, complete_inputs
     from .study import build_ball
 
     ball = build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
@@ -304,7 +316,28 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     keys = set.intersection(*(set(scene.inputs()) for scene in scenes))
-    return complete_inputs({key: np.array([scene.inputs()[key] for scene in scenes]) for key in sorted(keys)})
+    inputs = {key: np.array([scene.inputs()[key] for scene in scenes]) for key in sorted(keys)}
+    if table.loft_at == "contact":
+        inputs = centre_delivery(inputs, inputs)
+    inputs = complete_inputs(inputs)
+    if contact.restitution is None and ball.restitution is not None:
+        inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the centred delivery
+    return inputs
+
+
+def centre_delivery(inputs: dict, measured: dict) -> dict:
+    """The inputs with the face-centre dynamic loft and face angle whose face at the strike point has the
+    ``measured`` (contact-point) loft and face angle, and with the ball's restitution law re-evaluated there.
+
+    The face at a strike ``high`` up a face of roll radius R_r is lofted by atan(high/R_r) more than at its
+    centre; a strike ``toe`` towards the toe of a face of bulge radius R_b is open by atan(toe/R_b) more
+    (impactlab.physics.contact tilts the normal the same way). ``measured`` holds the launch monitor's
+    ``dynamic_loft`` and ``face_angle``; ``inputs`` the strike and face radii [SI].
+    """
+    out = dict(inputs)
+    out["dynamic_loft"] = measured["dynamic_loft"] - np.arctan(inputs["strike_high"] / inputs["face_roll_radius"])
+    out["face_angle"] = measured["face_angle"] - np.arctan(inputs["strike_toe"] / inputs["face_bulge_radius"])
+    return out
 
 
 def predict(model, inputs: dict) -> dict:

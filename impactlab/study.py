@@ -34,7 +34,7 @@ from .yaml_lines import line_of, load_yaml, parse_path
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
                   "models", "outputs", "plots")
 CLUB_KEYS = ("preset", "mass", "inertia", "center_of_mass", "loft", "lie", "bulge_radius", "roll_radius", "material",
-             "rigid", "youngs_modulus", "poisson_ratio")
+             "rigid", "youngs_modulus", "poisson_ratio", "restitution_gain")
 INERTIA_KEYS = ("toe", "up", "target", "toe_up", "toe_target", "up_target", "principal", "axes")
 CENTER_KEYS = ("toe", "high", "depth")
 STRIKE_KEYS = ("toe", "high")
@@ -417,7 +417,7 @@ def build_club(value, path: str = "club") -> ClubHead:
             raise exc.at(prefix=path) from None
     fields = {}
     for key, dimension in (("mass", "mass"), ("loft", "angle"), ("lie", "angle"), ("bulge_radius", "length"),
-                           ("roll_radius", "length")):
+                           ("roll_radius", "length"), ("restitution_gain", "dimensionless")):
         given = _quantity(block, key, dimension, path)
         if given is None and base is not None:
             given = getattr(base, key)
@@ -574,7 +574,7 @@ def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
 CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_inertia_target", "club_inertia_toe_up",
                       "club_inertia_toe_target", "club_inertia_up_target", "club_cg_toe", "club_cg_high",
                       "club_cg_depth", "club_loft", "face_bulge_radius", "face_roll_radius", "face_youngs_modulus",
-                      "face_poisson_ratio")
+                      "face_poisson_ratio", "club_restitution_gain")
 
 
 #: study path of a field set by a club preset sweep: "club.preset:" + the field's own path

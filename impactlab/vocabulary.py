@@ -175,6 +175,10 @@ INPUTS.update({
                                    _club_value("bulge_radius"), "mm", 1e3, low=0.0, low_open=True),
     "face_roll_radius": InputSpec("club.roll_radius", "m", "length", "face roll radius (sole to crown; inf: flat)",
                                   _club_value("roll_radius"), "mm", 1e3, low=0.0, low_open=True),
+    "club_restitution_gain": InputSpec(
+        "club.restitution_gain", "1", "dimensionless",
+        "rise of the restitution over the ball's law from the face's spring-like effect (0: rigid face)",
+        _club_value("restitution_gain"), low=0.0, high=0.2),
     "strike_toe": InputSpec("strike.toe", "m", "length", "impact point from the face centre towards the toe",
                             _strike_value("toe"), "mm", 1e3, low=-0.1, high=0.1, low_open=True, high_open=True),
     "strike_high": InputSpec("strike.high", "m", "length", "impact point from the face centre up the face",
