@@ -28,7 +28,8 @@ from scipy.optimize import least_squares
 
 from .errors import FieldError
 from .materials import RestitutionLaw
-from .shots import MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, table_inputs
+from .shots import ERROR_KEYS, MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, \
+    table_inputs
 
 #: parameter -> (bounds, start, what it is). The bounds are physical, not conveniences: a ball's restitution does
 #: not rise with the impact speed (its viscoelastic losses grow with the strain rate), a face gives back at most
@@ -44,7 +45,6 @@ PARAMETERS = {
 #: normal speed at which the fitted restitution law's ``restitution`` applies [m/s]
 REFERENCE_SPEED = 40.0
 DEFAULT_PARAMETERS = ("friction", "tangential_loss", "restitution", "face_restitution_gain")
-ERROR_KEYS = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
 
 
 @attrs.frozen

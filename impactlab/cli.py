@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
 import shutil
 import sys
 from pathlib import Path
@@ -205,63 +204,17 @@ def _cmd_export(args) -> int:
     return 0
 
 
-def _is_shot_yaml(path: Path) -> bool:
-    """Whether a YAML file is a shot table (top-level ``rows:``) rather than a measured-data file (``points:``)."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        return True  # let the shot reader say what is wrong with it
-    return re.search(r"^rows\s*:", text, flags=re.MULTILINE) is not None
-
-
-def _shot_table(name: str):
-    """A shot table: a .csv/.yaml file, or a shipped one by name (None if ``name`` is neither)."""
-    from importlib import resources
-
-    from .shots import read_shots, read_yaml
-
-    suffix = Path(name).suffix.lower()
-    if suffix == ".csv":
-        return read_shots(name)
-    if suffix in (".yaml", ".yml") and _is_shot_yaml(Path(name)):
-        return read_shots(name)
-    shipped = resources.files("impactlab.validation").joinpath(f"{name}.yaml")
-    if name in SHOT_TABLES and shipped.is_file():
-        return read_yaml(shipped.read_text(), f"impactlab/validation/{name}.yaml")
-    return None
-
-
-#: shot tables shipped with impactlab (impactlab/validation/NAME.yaml)
-SHOT_TABLES = ("trackman_tour",)
-#: the models compared against shot tables
-SHOT_MODELS = ("maw", "hertz_mindlin", "dem_linear", "rigid_coulomb", "restitution")
-
-
-def _print_shot_errors(table, models) -> None:
-    from .registry import get_model
-    from .shots import predict, shot_errors, summary, table_inputs
-
-    print(f"{table.name}: {table.size} row(s) ({', '.join(table.labels)})")
-    print(f"  source: {table.source}")
-    inputs = table_inputs(table)
-    keys = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
-    print(f"  {'model':<16}" + "".join(f"{key:>24}" for key in keys) + "   (RMS over the rows measuring it)")
-    for name in models:
-        model = get_model(name)()
-        rms = summary(shot_errors(predict(model, inputs), table))
-        print(f"  {name:<16}" + "".join(f"{rms[key]:24.2f}" for key in keys))
-    print()
-
-
 def _cmd_validate(args) -> int:
     from .validation import DATASETS, errors, get_dataset
+
+    from .shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
 
     names = args.dataset or sorted(DATASETS) + list(SHOT_TABLES)
     over = []
     for name in names:
-        table = _shot_table(name)
+        table = shot_table(name)
         if table is not None:
-            _print_shot_errors(table, args.model or SHOT_MODELS)
+            over += print_shot_errors(table, args.model or SHOT_MODELS)
             continue
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
@@ -285,48 +238,15 @@ def _cmd_validate(args) -> int:
     return 0
 
 
-def _cmd_fit_shots(table, args) -> int:
-    import numpy as np
-
-    from .calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
-    from .registry import get_model
-
-    results = []
-    for name in args.model or ("maw", "hertz_mindlin", "rigid_coulomb"):
-        model = get_model(name)()
-        parameters = args.parameter or [p for p in DEFAULT_PARAMETERS
-                                        if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
-        result = calibrate(model, table, parameters)
-        print(f"{name} on {table.name} ({table.size} rows): {result.describe()}")
-        keys = list(result.errors_after)
-        print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
-        print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))
-        print("  correlation: " + "; ".join(f"{a}-{b} {result.correlation[i][j]:+.2f}"
-                                           for i, a in enumerate(result.parameters)
-                                           for j, b in enumerate(result.parameters) if j > i))
-        entry = result.as_dict()
-        if args.cross_validate and table.size > 1:
-            held = cross_validate(model, table, parameters)
-            print("  leave-one-out (errors on the row not fitted): " + ", ".join(
-                f"{k} {v:.2f}" for k, v in held["summary"].items()))
-            for label, row in zip(held["labels"], np.stack([held["errors"][k] for k in keys], -1)):
-                print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {v:+.2f}" for k, v in zip(keys, row)
-                                                     if np.isfinite(v)))
-            entry["cross_validation"] = {"summary": held["summary"], "fits": held["fits"]}
-        results.append(entry)
-    if args.json:
-        Path(args.json).write_text(json.dumps(results, indent=1, default=float))
-        print(f"wrote {args.json}", file=sys.stderr)
-    return 0
-
-
 def _cmd_fit(args) -> int:
     from .fitting import describe, fit
     from .validation import get_dataset
 
-    table = _shot_table(args.dataset)
+    from .shot_report import fit_shots, shot_table
+
+    table = shot_table(args.dataset)
     if table is not None:
-        return _cmd_fit_shots(table, args)
+        return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
     data = get_dataset(args.dataset)
     known = [entry.id for entry in data.load_study().models]
     models = args.model or known

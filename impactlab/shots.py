@@ -37,6 +37,8 @@ MEASURED_FIELDS = {
     "spin_rate": "angular_speed", "spin_axis": "angle",
 }
 TEXT_FIELDS = ("label", "club", "handedness")
+#: top-level keys of a YAML shot table
+TABLE_KEYS = ("name", "source", "ball", "units", "sigma", "loft_at", "budgets", "rows")
 #: usual launch-monitor column names -> field (lower case, single spaces)
 ALIASES = {
     "club speed": "club_speed", "clubspeed": "club_speed", "club head speed": "club_speed",
@@ -46,6 +48,8 @@ ALIASES = {
     "ball speed": "ball_speed", "launch angle": "vertical_launch_angle", "launch direction": "horizontal_launch_angle",
     "spin rate": "spin_rate", "total spin": "spin_rate", "spin axis": "spin_axis", "shot": "label", "name": "label",
 }
+#: the errors of a prediction against a shot table, in the data's own units
+ERROR_KEYS = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
 #: default one-sigma measurement uncertainty of a launch monitor's averaged shot (SI), used where a table gives none:
 #: about the spread of repeated radar measurements (TrackMan states 0.1 mph ball speed and 0.05 deg launch on a
 #: single shot; averages of tour players' shots scatter far more, which these cover)
@@ -87,6 +91,9 @@ class ShotTable:
     sigma: dict = attrs.field(eq=False)
     ball: dict = attrs.field(factory=dict, eq=False)
     loft_at: str = attrs.field(default="contact", validator=attrs.validators.in_(("contact", "centre")))
+    #: model id -> {error key of :data:`ERROR_KEYS` -> largest allowed RMS}: regression budgets, not the data's
+    #: uncertainty (tests/test_shots.py holds them and checks they only tighten)
+    budgets: dict = attrs.field(factory=dict, eq=False)
 
     @property
     def size(self) -> int:
@@ -140,7 +147,7 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
 
 
 def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, sigma_defaults: dict,
-              loft_at: str = "contact") -> ShotTable:
+              loft_at: str = "contact", budgets: dict | None = None) -> ShotTable:
     if not rows:
         raise StudyError(f"{file}: the shot table has no rows")
     n = len(rows)
@@ -167,7 +174,8 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                                                              for i, row in enumerate(rows)),
                      clubs=tuple(str(row.get("club")) for row in rows),
                      handedness=tuple(str(row.get("handedness", "right")) for row in rows),
-                     delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at)
+                     delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at,
+                     budgets=budgets or {})
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
@@ -232,7 +240,11 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     if not isinstance(document, dict) or "rows" not in document:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
     units = document.get("units") or {}
-    problems = []
+    problems = [f"{file}:{line_of(lines, (key,))}: {key}: expected a key of a shot table ({', '.join(TABLE_KEYS)})"
+                for key in document if key not in TABLE_KEYS]
+    problems += [f"{file}:{line_of(lines, ('units', key))}: units.{key}: expected a delivery or measured field "
+                 f"({', '.join((*DELIVERY_FIELDS, *MEASURED_FIELDS))})"
+                 for key in units if key not in DELIVERY_FIELDS and key not in MEASURED_FIELDS]
     loft_at = document.get("loft_at", "contact")
     if loft_at not in ("contact", "centre"):
         problems.append(f"{file}:{line_of(lines, ('loft_at',))}: loft_at: expected contact (the launch monitor's "
@@ -247,6 +259,12 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
             sigma_defaults[key] = _convert(value, key, None, f"{file}: sigma.{key}")
         except FieldError as exc:
             problems.append(str(exc))
+    budgets = document.get("budgets") or {}
+    for model, entry in budgets.items():
+        if not isinstance(entry, dict) or not set(entry) <= set(ERROR_KEYS) \
+                or not all(isinstance(v, (int, float)) and v > 0 for v in entry.values()):
+            problems.append(f"{file}:{line_of(lines, ('budgets', model))}: budgets.{model}: expected a mapping of "
+                            f"error ({', '.join(repr(k) for k in ERROR_KEYS)}) to a positive RMS")
     rows = []
     for index, item in enumerate(document["rows"] or []):
         line = line_of(lines, ("rows", index))
@@ -274,7 +292,7 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     if problems:
         raise StudyError(f"{file}: {len(problems)} problem(s): " + "; ".join(problems))
     return _assemble(rows, str(document.get("name", Path(file).stem)), str(document.get("source", "")), file,
-                     dict(document.get("ball") or {}), sigma_defaults, loft_at)
+                     dict(document.get("ball") or {}), sigma_defaults, loft_at, budgets)
 
 
 def read_shots(path) -> ShotTable:
