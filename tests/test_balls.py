@@ -57,6 +57,30 @@ def test_a_contact_block_overrides_the_ball_data():
         impactlab.load_study(STUDY.replace("law: power", "law: cubic"))
 
 
+def test_a_study_without_contact_takes_the_balls_data_and_the_faces_gain():
+    # a driver and a 6-iron on the calibrated ball: the ball's friction and restitution law, plus the wood face's
+    # gain on the driver only
+    base = """
+ball: {preset: tour_urethane}
+club: {preset: PRESET}
+delivery: {club_speed: 45 m/s, attack_angle: 0 deg, dynamic_loft: 15 deg}
+models: [rigid_coulomb]
+outputs: [normal_velocity, ball_speed]
+"""
+    from impactlab.materials import ball_preset
+    from impactlab.runner import case_inputs
+    ball = ball_preset("tour_urethane")
+    assert ball.friction == 0.40  # the sled measurement (Henrikson et al. 2020)
+    for preset, gain in (("driver", 0.083), ("6_iron", 0.0)):
+        study = impactlab.load_study(base.replace("PRESET", preset))
+        inputs = case_inputs(study)
+        assert inputs["friction"][0] == 0.40
+        assert inputs["restitution"][0] == pytest.approx(ball.restitution(40.0) + gain, abs=1e-12)
+    driver = impactlab.run_study(base.replace("PRESET", "driver"))["ball_speed"].item()
+    iron = impactlab.run_study(base.replace("PRESET", "6_iron"))["ball_speed"].item()
+    assert driver > iron  # the lighter driver head, but the springier face
+
+
 def _lossy(loss, **changes):
     inputs = reference_inputs(n_angles=5)
     inputs.update({key: np.broadcast_to(value, inputs["speed"].shape).copy() for key, value in changes.items()})
