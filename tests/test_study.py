@@ -210,3 +210,21 @@ def test_grouped_sweep_errors_name_the_field():
     bad = {**study, "sweep": {"club": {"delivery.dynamic_loft": [10, 95]}}}
     with pytest.raises(FieldError, match=r"sweep.club\[1\]: expected a dynamic loft between -90 and 90 deg"):
         impactlab.load_study(bad)
+
+
+def test_a_large_sweep_is_validated_with_a_bounded_number_of_scenes(monkeypatch):
+    # each field's validity is an interval: its ends and the first value decide, not one scene per value
+    import impactlab.study as study_module
+
+    built = []
+    real = study_module.build_scene
+    monkeypatch.setattr(study_module, "build_scene", lambda document: built.append(1) or real(document))
+    sweep = {"impact.angle": {"start": "1 deg", "stop": "60 deg", "num": 20000}}
+    study = impactlab.load_study({**MINIMAL, "sweep": sweep})
+    assert study.n_cases == 20000 and len(built) <= 5
+    # a bad value anywhere is still reported at its own index, with the field's own message
+    values = [f"{angle} deg" for angle in (10, 20, -95, 30, 95)]
+    with pytest.raises(FieldError, match=r"sweep.impact.angle\[2\]: expected .* \(for impact.angle\)"):
+        impactlab.load_study({**MINIMAL, "sweep": {"impact.angle": values}})
+    with pytest.raises(FieldError, match=r"sweep.ball.mass\[1\]"):
+        impactlab.load_study({**MINIMAL, "sweep": {"ball.mass": ["40 g", "nan g", "46 g"]}})
