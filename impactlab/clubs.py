@@ -26,7 +26,7 @@ import math
 import attrs
 import numpy as np
 
-from ._validate import in_range, positive, positive_or_inf, to_float
+from .validators import in_range, positive, positive_or_inf, to_float
 from .errors import FieldError
 from .materials import MATERIAL_PRESETS, Material
 

@@ -11,7 +11,7 @@ import math
 import attrs
 import numpy as np
 
-from ._validate import in_range, positive, positive_or_inf, to_float
+from .validators import in_range, positive, positive_or_inf, to_float
 from .errors import FieldError
 
 #: Largest possible I/(m R^2) of a sphere whose mass lies within its radius

@@ -7,7 +7,7 @@ import math
 import attrs
 import numpy as np
 
-from ._validate import check, finite, in_range, positive, to_float
+from .validators import check, finite, in_range, positive, to_float
 from .clubs import ClubHead, Strike
 from .errors import FieldError
 from .materials import Ball, Face

@@ -6,7 +6,7 @@ import functools
 
 import numpy as np
 
-from impactlab._validate import check
+from impactlab.validators import check
 from impactlab.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, hertz

@@ -5,7 +5,7 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from impactlab._validate import check
+from impactlab.validators import check
 from impactlab.physics import compliant3d, dem
 
 from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int

@@ -5,7 +5,7 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from impactlab._validate import check
+from impactlab.validators import check
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 

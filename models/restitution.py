@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import attrs
 
-from impactlab._validate import in_range, to_float
+from impactlab.validators import in_range, to_float
 import numpy as np
 
 from impactlab.model import ImpactModel

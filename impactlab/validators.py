@@ -1,4 +1,20 @@
-"""attrs validators whose failures say what was expected and what was given."""
+"""attrs validators and converters whose failures say what was expected and what was given.
+
+Public: plugin authors use them for their ``Options`` classes, as the built-in
+models do (docs/writing-a-model.md). Every validator raises
+:class:`impactlab.errors.FieldError` naming the field, the expectation and the
+value, which the study loader turns into ``file:line: path: expected ..., got
+...``.
+
+Examples
+--------
+>>> import attrs
+>>> from impactlab.validators import in_range, to_float
+>>> @attrs.frozen
+... class Options:
+...     beta: float = attrs.field(default=0.0, converter=to_float,
+...                               validator=in_range(-1.0, 1.0, "-1 <= beta <= 1"))
+"""
 
 from __future__ import annotations
 
@@ -29,14 +45,21 @@ def _is_number(value) -> bool:
 
 
 def positive(expected: str = "a positive, finite number", optional: bool = False):
+    """An attrs validator: a number with 0 < value < inf (``None`` too when ``optional``)."""
     return check(lambda v: _is_number(v) and 0 < v < math.inf, expected, optional)
 
 
 def positive_or_inf(expected: str = "a positive number (or inf)", optional: bool = False):
+    """An attrs validator: a number with value > 0, ``inf`` allowed (a flat face's radius, a fixed face's mass)."""
     return check(lambda v: _is_number(v) and v > 0, expected, optional)
 
 
 def in_range(low: float, high: float, expected: str, low_open=False, high_open=False, optional=False):
+    """An attrs validator: a number in [low, high], either end excluded when ``low_open``/``high_open``.
+
+    ``expected`` is the message's expectation, in the user's words (e.g. "a friction coefficient >= 0").
+    """
+
     def predicate(v):
         if not _is_number(v):
             return False
@@ -48,6 +71,7 @@ def in_range(low: float, high: float, expected: str, low_open=False, high_open=F
 
 
 def finite(expected: str = "a finite number", optional: bool = False):
+    """An attrs validator: a finite number (not NaN, not inf)."""
     return check(lambda v: _is_number(v) and math.isfinite(v), expected, optional)
 
 
