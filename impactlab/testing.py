@@ -5,11 +5,13 @@ Every registered model must pass it; run it on your own plugin with::
     from impactlab.testing import check_model
     check_model(MyModel)                 # raises AssertionError listing failures
 
-or, one pytest test per check::
+or, one pytest test per model and check::
 
-    @pytest.mark.parametrize("check", [name for name, _ in iter_checks(MyModel)])
-    def test_conformance(check):
-        dict(iter_checks(MyModel))[check]()
+    from impactlab.testing import parametrize_with_checks
+
+    @parametrize_with_checks(MyModel, MyModel(some_option=2))
+    def test_conformance(model, check):
+        check(model)
 
 The checks are physics every impact model must respect whatever its
 approximations: energy of a fixed-face impact never increases, a frictionless
@@ -100,6 +102,7 @@ def _scalar_outputs(model, inputs) -> list[str]:
 
 
 def check_declarations(model) -> None:
+    """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
     cls = type(model)
     assert isinstance(cls.name, str) and cls.name.isidentifier() and not keyword.iskeyword(cls.name), \
         f"name must be a Python identifier, got {cls.name!r}"
@@ -129,6 +132,7 @@ def check_declarations(model) -> None:
 
 
 def check_runs_finite(model) -> None:
+    """Every scalar output the model can give on the reference batch (fixed, point-mass and rigid faces, loft 0-75 deg) is finite."""
     inputs = reference_inputs()
     names = _scalar_outputs(model, inputs)
     result = model.compute(inputs, names)
@@ -138,6 +142,7 @@ def check_runs_finite(model) -> None:
 
 
 def check_energy_never_increases(model) -> None:
+    """Kinetic energy after impact never exceeds that before (``energy_loss`` >= 0 to round-off)."""
     inputs = reference_inputs()
     result = model.compute(inputs, ["energy_loss", "ball_speed"])
     kinetic = 0.5 * inputs["ball_mass"] * inputs["speed"] ** 2
@@ -146,6 +151,7 @@ def check_energy_never_increases(model) -> None:
 
 
 def check_normal_impulse_bounds(model) -> None:
+    """The normal impulse lies in (0, 2 m_eff V_n]: positive, and at most that of an elastic impact."""
     inputs = reference_inputs()
     jn = model.compute(inputs, ["normal_impulse"])["normal_impulse"].values
     elastic = 2.0 * effective_mass(inputs["ball_mass"], inputs["club_mass"]) * inputs["speed"] * np.cos(inputs["angle"])
@@ -154,6 +160,7 @@ def check_normal_impulse_bounds(model) -> None:
 
 
 def check_tangential_restitution_bounds(model) -> None:
+    """Tangential restitution beta lies in [-1, 1] (it cannot reverse the contact slip faster than it came in)."""
     beta = model.compute(reference_inputs(), ["tangential_restitution"])["tangential_restitution"].values
     assert np.all((beta >= -1 - 1e-9) & (beta <= 1 + 1e-9)), f"beta outside [-1, 1]: {beta.min():.4g}..{beta.max():.4g}"
 
@@ -168,6 +175,7 @@ def _without_tangential_impulse(model, what: str, outputs: list[str], **changes)
 
 
 def check_frictionless(model) -> None:
+    """With mu = 0 there is no tangential impulse, no spin, and beta = -1 (the slip passes unchanged)."""
     result = _without_tangential_impulse(model, "frictionless", ["spin_rate", "tangential_restitution"],
                                          friction=0.0)
     assert np.allclose(result["spin_rate"].values, 0.0, atol=1e-9), "frictionless impact spins the ball"
@@ -175,11 +183,13 @@ def check_frictionless(model) -> None:
 
 
 def check_head_on(model) -> None:
+    """A head-on impact (angle 0, no spin) gives no tangential impulse and launches along the path."""
     result = _without_tangential_impulse(model, "head-on", ["launch_angle"], angle=0.0)
     assert np.allclose(result["launch_angle"].values, 0.0, atol=1e-9), "head-on impact launches off the path"
 
 
 def check_mirror_symmetry(model) -> None:
+    """Mirroring the impact (angle and spin negated) keeps J_n and flips J_t and the launch angle."""
     inputs = reference_inputs()
     mirrored = _with(inputs, angle=-inputs["angle"], spin=-inputs["spin"])
     a = model.compute(inputs, ["normal_impulse", "tangential_impulse", "launch_angle"])
@@ -191,6 +201,7 @@ def check_mirror_symmetry(model) -> None:
 
 
 def check_batch_independence(model) -> None:
+    """A case computed alone equals the same case inside a batch (rule 5), to 1e-12."""
     inputs = reference_inputs(n_angles=3)
     names = [name for name in ("normal_impulse", "tangential_impulse") if name in model.provides] or \
         sorted(model.provides)[:1]
@@ -235,6 +246,7 @@ def check_3d_heel_toe_mirror(model) -> None:
 
 
 def check_3d_batch_independence(model) -> None:
+    """On free heads struck off-centre, a case computed alone equals the same case inside a batch."""
     if not _solves_3d(model):
         return
     inputs = _complete(reference_inputs_3d())
@@ -248,6 +260,7 @@ def check_3d_batch_independence(model) -> None:
 
 
 def check_inputs_untouched(model) -> None:
+    """The model leaves its input arrays as it found them (rule 5)."""
     inputs = reference_inputs(n_angles=3)
     copies = {key: value.copy() for key, value in inputs.items()}
     model.compute(inputs, sorted(model.provides))
@@ -277,6 +290,27 @@ def iter_checks(model) -> Iterator[tuple[str, Callable[[], None]]]:
     instance = _model(model)
     for name, check in CHECKS.items():
         yield name, (lambda check=check: check(instance))
+
+
+def parametrize_with_checks(*models):
+    """A ``pytest.mark.parametrize`` over every (model, check) pair, one test each, as scikit-learn's is.
+
+    Examples
+    --------
+    >>> from impactlab.testing import parametrize_with_checks
+    >>> @parametrize_with_checks(MyModel, MyModel(option=2))            # doctest: +SKIP
+    ... def test_conformance(model, check):
+    ...     check(model)
+    """
+    import pytest
+
+    cases, ids = [], []
+    for model in models:
+        instance = _model(model)
+        for name, check in CHECKS.items():
+            cases.append((instance, check))
+            ids.append(f"{instance.name}-{name}")
+    return pytest.mark.parametrize(("model", "check"), cases, ids=ids)
 
 
 def check_model(model) -> None:

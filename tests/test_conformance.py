@@ -3,7 +3,7 @@
 import pytest
 
 from impactlab.registry import available
-from impactlab.testing import CHECKS, check_model, iter_checks
+from impactlab.testing import check_model, parametrize_with_checks
 
 MODELS = sorted(available())
 
@@ -12,10 +12,9 @@ def test_builtin_models_are_registered():
     assert {"maw", "rigid_coulomb", "restitution"} <= set(MODELS)
 
 
-@pytest.mark.parametrize("check", sorted(CHECKS))
-@pytest.mark.parametrize("name", MODELS)
-def test_conformance(name, check):
-    dict(iter_checks(available()[name]))[check]()
+@parametrize_with_checks(*(available()[name] for name in MODELS))
+def test_conformance(model, check):
+    check(model)
 
 
 def test_conformance_catches_a_model_that_creates_energy():
