@@ -20,9 +20,9 @@ class Contact:
     Parameters
     ----------
     friction : float, optional
-        Coulomb coefficient mu >= 0 [1], the same for static and kinetic friction.
+        Coulomb coefficient mu >= 0 (dimensionless), the same for static and kinetic friction.
     restitution : float, optional
-        Normal coefficient of restitution e in [0, 1] [1].
+        Normal coefficient of restitution e, 0 <= e <= 1 (dimensionless).
     """
 
     friction: float | None = attrs.field(

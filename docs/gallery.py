@@ -1,0 +1,50 @@
+"""Write docs/gallery.md: every figure in docs/figures with the title its study gives it.
+
+Run from the project root: ``python docs/gallery.py``. tests/test_docs_site.py checks the page is up to date.
+The figures themselves come from ``impactlab run STUDY --plot`` (file name: study name, underscore, plot name).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import yaml
+
+ROOT = Path(__file__).resolve().parent.parent
+FIGURES = ROOT / "docs" / "figures"
+#: figures drawn by other commands than ``impactlab run --plot``
+OTHER = {"work_precision": ("Work-precision diagram: error against run time per impact, every model",
+                            "impactlab convergence studies/work_precision.yaml --plot")}
+
+
+def _titles() -> dict[str, tuple[str, str]]:
+    """Figure file stem -> (title, study file) for every declared plot of the shipped studies."""
+    titles = {}
+    for path in sorted([*ROOT.glob("studies/*.yaml"), *ROOT.glob("studies/paper/*.yaml")]):
+        study = yaml.safe_load(path.read_text())
+        name = study.get("name", path.stem)
+        for plot in study.get("plots") or []:
+            titles[f"{name}_{plot['name']}"] = (plot.get("title", plot["name"]), path.relative_to(ROOT).as_posix())
+        titles.setdefault(name, (study.get("description", name).strip().split("\n")[0],
+                                 path.relative_to(ROOT).as_posix()))
+    return titles
+
+
+def gallery() -> str:
+    titles = {**_titles(), **OTHER}
+    lines = ["# Gallery", "",
+             "Every figure of the shipped studies, as `impactlab run STUDY --plot` draws it; the caption is the "
+             "plot's title in its study, and the study file says the conditions in full. Regenerate the page "
+             "with `python docs/gallery.py`.", ""]
+    for png in sorted(FIGURES.glob("*.png")):
+        title, study = titles.get(png.stem, (png.stem.replace("_", " "), "a study no longer shipped"))
+        lines += [f"## {title}", "", f"![{title}](figures/{png.name})", "",
+                  f"*`{png.name}`, from `{study}`.*", ""]
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    target = ROOT / "docs" / "gallery.md"
+    target.write_text(gallery())
+    print(f"wrote {target.relative_to(ROOT)}", file=sys.stderr)
