@@ -15,7 +15,10 @@ ROOT = Path(__file__).resolve().parent.parent
 FIGURES = ROOT / "docs" / "figures"
 #: figures drawn by other commands than ``impactlab run --plot``
 OTHER = {"work_precision": ("Work-precision diagram: error against run time per impact, every model",
-                            "impactlab convergence studies/work_precision.yaml --plot")}
+                            "impactlab convergence studies/work_precision.yaml --plot"),
+         "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
+                                      "with the calibrated ball and club presets",
+                                      "impactlab validate --dataset trackman_tour --plot FILE")}
 
 
 def _titles() -> dict[str, tuple[str, str]]:

@@ -214,7 +214,7 @@ def _cmd_validate(args) -> int:
     for name in names:
         table = shot_table(name)
         if table is not None:
-            over += print_shot_errors(table, args.model or SHOT_MODELS)
+            over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot)
             continue
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
@@ -332,6 +332,7 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--dataset", action="append",
                           help="only this dataset, or a shot table file (.csv, .yaml) (repeatable; default: all)")
     validate.add_argument("--model", action="append", help="models to compare on shot tables (default: all)")
+    validate.add_argument("--plot", help="shot tables: draw measured beside predicted launch to this PNG")
     validate.set_defaults(handler=_cmd_validate)
 
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")

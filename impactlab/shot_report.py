@@ -62,7 +62,43 @@ def data_uncertainty(table: ShotTable) -> dict:
     return summary(values)
 
 
-def print_shot_errors(table: ShotTable, models) -> list[str]:
+#: display units of the measured quantities on the validation figure: (label, factor from SI)
+_PANELS = (("ball_speed", "ball speed [mph]", 1.0 / 0.44704), ("vertical_launch_angle", "launch angle [deg]",
+                                                                   180.0 / math.pi),
+           ("spin_rate", "spin rate [rpm]", 60.0 / (2.0 * math.pi)))
+
+
+def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
+    """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
+
+    ``predictions`` maps a model id to :func:`impactlab.shots.predict`'s arrays (SI).
+    """
+    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
+
+    panels = [entry for entry in _PANELS if np.isfinite(table.measured[entry[0]]).any()]
+    figure = Figure(figsize=(4.2 * len(panels), 4.2), layout="constrained")
+    axes = figure.subplots(1, len(panels), squeeze=False)[0]
+    rows = np.arange(table.size)
+    markers = ("o", "s", "^", "D", "v", "P", "X")
+    width = 0.6 / max(len(predictions), 1)
+    for axis, (key, label, factor) in zip(axes, panels):
+        axis.errorbar(rows, table.measured[key] * factor, yerr=table.sigma[key] * factor, fmt="k_", ms=22, mew=2,
+                      capsize=4, label="measured (+- 1 sigma)", zorder=3)
+        for index, (name, predicted) in enumerate(predictions.items()):
+            offset = (index - (len(predictions) - 1) / 2) * width
+            axis.plot(rows + offset, predicted[key] * factor, markers[index % len(markers)], ls="none", label=name)
+        axis.set_xticks(rows, table.labels, rotation=20)
+        axis.set_ylabel(label)
+        axis.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    figure.suptitle(f"{table.name}: measured launch beside each model (ball and club presets, square centred "
+                    f"strikes unless the table says otherwise)", fontsize=10)
+    path = Path(path)
+    figure.savefig(path, dpi=110)
+    return path
+
+
+def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list[str]:
     """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget."""
     from .registry import get_model
 
@@ -73,9 +109,10 @@ def print_shot_errors(table: ShotTable, models) -> list[str]:
     sigma = data_uncertainty(table)
     print(f"  {'data 1-sigma':<16}" + "".join(f"{sigma[key]:22.2f}" for key in keys))
     inputs = table_inputs(table)
-    over = []
+    over, predictions = [], {}
     for name in models:
-        rms = summary(shot_errors(predict(get_model(name)(), inputs), table))
+        predictions[name] = predict(get_model(name)(), inputs)
+        rms = summary(shot_errors(predictions[name], table))
         budget = table.budgets.get(name, {})
         cells = []
         for key in keys:
@@ -86,6 +123,8 @@ def print_shot_errors(table: ShotTable, models) -> list[str]:
         print(f"  {name:<16}" + "".join(cells))
     print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
           "getting worse)\n")
+    if plot:
+        print(f"wrote {plot_shots(table, predictions, plot)}", file=sys.stderr)
     return sorted(set(over))
 
 
