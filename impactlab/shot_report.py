@@ -69,9 +69,17 @@ _PANELS = (("ball_speed", "ball speed [mph]", 1.0 / 0.44704), ("vertical_launch_
 
 
 def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
+    """Draw :func:`shots_figure` to the PNG ``path``."""
+    path = Path(path)
+    shots_figure(table, predictions).savefig(path, dpi=110)
+    return path
+
+
+def shots_figure(table: ShotTable, predictions: dict):
     """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
 
-    ``predictions`` maps a model id to :func:`impactlab.shots.predict`'s arrays (SI).
+    ``predictions`` maps a model id to :func:`impactlab.shots.predict`'s arrays (SI). Returns a matplotlib
+    ``Figure`` (no pyplot state is touched).
     """
     from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
 
@@ -93,9 +101,7 @@ def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
     axes[0].legend(fontsize=8)
     figure.suptitle(f"{table.name}: measured launch beside each model (ball and club presets, square centred "
                     f"strikes unless the table says otherwise)", fontsize=10)
-    path = Path(path)
-    figure.savefig(path, dpi=110)
-    return path
+    return figure
 
 
 def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list[str]:

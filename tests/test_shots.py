@@ -191,3 +191,21 @@ def test_a_bad_csv_ends_in_one_message_and_exit_2(tmp_path, capsys):
     assert main(["validate", "--dataset", str(path)]) == 2
     err = capsys.readouterr().err
     assert "session.csv:2:8" in err and "Traceback" not in err
+
+
+def test_the_validation_figure_draws_the_measured_values_and_every_model():
+    from impactlab.shot_report import shots_figure
+
+    table = shot_table("trackman_tour")
+    predictions = {"a": {key: value * 1.1 for key, value in table.measured.items()},
+                   "b": {key: value * 0.9 for key, value in table.measured.items()}}
+    figure = shots_figure(table, predictions)
+    speed, launch, spin = figure.axes[:3]
+    assert speed.get_ylabel() == "ball speed [mph]" and spin.get_ylabel() == "spin rate [rpm]"
+    drawn = {line.get_label(): line.get_ydata() for line in spin.get_lines() if not line.get_label().startswith("_")}
+    np.testing.assert_allclose(drawn["a"], 1.1 * table.measured["spin_rate"] / RPM)
+    np.testing.assert_allclose(drawn["b"], 0.9 * table.measured["spin_rate"] / RPM)
+    measured = spin.containers[0].lines[0].get_ydata()  # the error-bar container: its data line
+    np.testing.assert_allclose(measured, [2545, 6204, 2506, 5904])
+    legend = [text.get_text() for text in speed.get_legend().get_texts()]
+    assert set(legend) == {"a", "b", "measured (+- 1 sigma)"}
