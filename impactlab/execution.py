@@ -31,6 +31,7 @@ import xarray as xr
 
 from .errors import StudyError
 from .results_io import write_atomically
+from .vocabulary import CASE_DIM, OUTPUTS, TIME_DIM
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
 #: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
@@ -58,12 +59,18 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
 def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
     """Worker side: run ``model`` on the chunk's cases; plain arrays and attributes come back."""
     part = {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
-    result = model.compute(part, outputs)
-    return {"data": {name: variable.values for name, variable in result.data_vars.items()},
-            "attrs": {name: dict(variable.attrs) for name, variable in result.data_vars.items()},
-            "dims": {name: variable.dims for name, variable in result.data_vars.items()},
-            "time": result["time"].values if "time" in result.coords else None,
-            "global": dict(result.attrs)}
+    result = model.compute_arrays(part, outputs)  # arrays inside: no Dataset built per chunk
+    attributes = {}
+    for name in result.values:
+        attributes[name] = {"units": OUTPUTS[name].units, "long_name": OUTPUTS[name].long_name}
+        if name in result.missing:
+            attributes[name]["missing_reason"] = result.missing[name]
+    return {"data": {name: result.in_units(name) for name in result.values},
+            "attrs": attributes,
+            "dims": {name: (CASE_DIM, TIME_DIM) if values.ndim == 2 else (CASE_DIM,)
+                     for name, values in result.values.items()},
+            "time": result.time,
+            "global": result.provenance()}
 
 
 def _serial(tasks) -> Iterator:
@@ -212,7 +219,7 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
                show_progress: bool = False) -> list[xr.Dataset]:
     """Compute every model entry on every case; one per-model dataset (dimension ``case``) per entry."""
-    from .vocabulary import HISTORY, OUTPUTS
+    from .vocabulary import HISTORY
 
     n_cases = study.n_cases
     has_histories = any(OUTPUTS[name].kind == HISTORY for name in outputs)

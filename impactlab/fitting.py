@@ -89,7 +89,7 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
             else:
                 model_options[name] = float(value)
         model = type(entry.model)(**model_options)
-        return model.compute(inputs, [data.quantity])[data.quantity].values[order]
+        return model.compute_arrays(inputs, [data.quantity]).in_units(data.quantity)[order]
 
     def residuals(vector):
         return (predict(vector) - measured) / sigma

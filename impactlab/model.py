@@ -171,6 +171,14 @@ class ImpactModel:
             ``time`` for histories), in the vocabulary's units; outputs the
             model cannot give are NaN with the reason in ``missing_reason``.
         """
+        return self.compute_arrays(inputs, outputs).to_dataset()
+
+    def compute_arrays(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> "ModelResult":
+        """:meth:`compute` without the Dataset: the outputs as SI arrays in a light :class:`ModelResult`.
+
+        For callers that evaluate a model many times (fits, executors): the same validation and derivation,
+        and no xarray object until one is asked for (:meth:`ModelResult.to_dataset`).
+        """
         inputs = _as_input_arrays(inputs)
         if outputs is None:
             outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
@@ -186,7 +194,16 @@ class ImpactModel:
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
         raw.update(derive(plan.derived, raw, inputs))
-        return self._wrap(raw, plan, n_cases)
+        time = np.asarray(raw.pop("time"), dtype=float) if "time" in raw else None
+        values = {}
+        for name in plan.requested:
+            if name in raw:
+                values[name] = np.asarray(raw[name], dtype=float)
+            else:
+                history = OUTPUTS[name].kind == HISTORY and time is not None
+                values[name] = np.full((n_cases, time.size) if history else (n_cases,), np.nan)
+        return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
+                                                 if name not in raw})
 
     def _compute(self, inputs: Mapping[str, np.ndarray], outputs: frozenset[str]) -> dict[str, np.ndarray]:
         raise NotImplementedError(f"model {self.name!r} does not implement _compute")
@@ -246,31 +263,59 @@ class ImpactModel:
                 raise ModelContractError(
                     f"model {self.name!r}: output {name!r} has shape {value.shape}, expected {shape}")
 
-    def _wrap(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> xr.Dataset:
-        data_vars = {}
+
+@attrs.frozen
+class ModelResult:
+    """One model run's outputs as plain arrays: what :meth:`ImpactModel.compute_arrays` returns.
+
+    Attributes
+    ----------
+    model : ImpactModel
+    values : dict of ndarray
+        Output name -> SI values, shape (n,) or (n, n_time) for histories; NaN where not given.
+    time : ndarray or None
+        The histories' shared time axis [s].
+    missing : dict of str
+        Output name -> why the model cannot give it.
+    """
+
+    model: ImpactModel
+    values: dict = attrs.field(eq=False)
+    time: np.ndarray | None = attrs.field(eq=False)
+    missing: dict = attrs.field(eq=False)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.values[name]
+
+    def in_units(self, name: str) -> np.ndarray:
+        """The output in the vocabulary's units (deg, rpm...)."""
+        return self.values[name] * OUTPUTS[name].factor
+
+    def to_dataset(self) -> xr.Dataset:
+        """The result as an xarray Dataset on dimension ``case`` (and ``time``), in the vocabulary's units."""
         coords = {}
-        if "time" in raw:
-            coords[TIME_DIM] = (TIME_DIM, np.asarray(raw["time"], dtype=float),
-                                {"units": "s", "long_name": "time since first contact"})
-        for name in plan.requested:
+        if self.time is not None:
+            coords[TIME_DIM] = (TIME_DIM, self.time, {"units": "s", "long_name": "time since first contact"})
+        data_vars = {}
+        for name, values in self.values.items():
             spec = OUTPUTS[name]
             attributes = {"units": spec.units, "long_name": spec.long_name}
-            if name in raw:
-                values = np.asarray(raw[name], dtype=float) * spec.factor
-            else:
-                shape = (n_cases, len(coords[TIME_DIM][1])) if spec.kind == HISTORY and TIME_DIM in coords \
-                    else (n_cases,)
-                values = np.full(shape, np.nan)
-                attributes["missing_reason"] = plan.missing[name]
+            if name in self.missing:
+                attributes["missing_reason"] = self.missing[name]
             dims = (CASE_DIM, TIME_DIM) if values.ndim == 2 else (CASE_DIM,)
-            data_vars[name] = (dims, values, attributes)
-        return xr.Dataset(data_vars, coords=coords, attrs={
-            "model": self.name,
-            "model_label": self.label,
-            "model_options": json.dumps(self.options_dict(), sort_keys=True),
-            "model_references": "; ".join(self.references),
+            data_vars[name] = (dims, values * spec.factor, attributes)
+        return xr.Dataset(data_vars, coords=coords, attrs=self.provenance())
+
+    def provenance(self) -> dict[str, str]:
+        """The model's name, label, resolved options, references and impactlab's version."""
+        model = self.model
+        return {
+            "model": model.name,
+            "model_label": model.label,
+            "model_options": json.dumps(model.options_dict(), sort_keys=True),
+            "model_references": "; ".join(model.references),
             "impactlab_version": __version__,
-        })
+        }
 
 
 def _jsonable(value: Any) -> Any:

@@ -360,15 +360,8 @@ def centre_delivery(inputs: dict, measured: dict) -> dict:
 
 def predict(model, inputs: dict) -> dict:
     """The measured quantities as the model predicts them (SI arrays)."""
-    result = model.compute(inputs, list(MEASURED_FIELDS))
-    factor = {name: 1.0 / spec for name, spec in ((n, _display_factor(n)) for n in MEASURED_FIELDS)}
-    return {name: result[name].values * factor[name] for name in MEASURED_FIELDS}
-
-
-def _display_factor(name: str) -> float:
-    from .vocabulary import OUTPUTS
-
-    return OUTPUTS[name].factor
+    result = model.compute_arrays(inputs, list(MEASURED_FIELDS))
+    return {name: result[name] for name in MEASURED_FIELDS}
 
 
 def shot_errors(predicted: dict, table: ShotTable) -> dict:
