@@ -1,0 +1,79 @@
+"""What the framework costs around the physics, measured in one run (issue: the framework gets out of the way).
+
+Prints, each as a ratio of times measured here and now:
+- ``run_study`` end to end (load, plan, compute, assemble) against the models' hooks alone on a 540-case
+  Fig.-6-sized sweep (target: within 1.2x);
+- one case through ``ImpactModel.compute`` (and ``compute_arrays``) against its hook (target: within 3x);
+- loading a study with 10^5 swept values (target: under a second).
+
+Run: ``python benchmarks/bench_framework.py``. Times are the best of several repeats (the machine is shared).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+import impactlab
+from impactlab.runner import case_inputs
+from impactlab.study import load_study
+
+STUDY = """
+name: bench-540
+ball: {preset: urethane_tour}
+face: {preset: steel}
+contact: {friction: 0.4, restitution: 0.8}
+impact: {speed: 80 mph, angle: 20 deg}
+sweep:
+  impact.angle: {start: 1 deg, stop: 60 deg, num: 60}
+  contact.friction: [0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5]
+models: [maw, rigid_coulomb, restitution]
+outputs: [launch_angle, spin_rate, tangential_restitution]
+"""
+
+
+def best(function, repeats: int = 7) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def hooks(study) -> None:
+    inputs = case_inputs(study)
+    for entry in study.models:
+        model = entry.model
+        given = {name: inputs[name] for name in model.requires | model.optional_inputs if name in inputs}
+        model._compute(given, frozenset(model.provides & {"normal_impulse", "tangential_impulse"}))
+
+
+def main() -> None:
+    study = load_study(STUDY)
+    impactlab.run_study(study)  # warm-up: compiled kernels, caches
+    end_to_end = best(lambda: impactlab.run_study(STUDY))
+    kernel = best(lambda: hooks(study))
+    print(f"540-case sweep, 3 models: run_study {end_to_end * 1e3:.1f} ms, hooks {kernel * 1e3:.1f} ms, "
+          f"ratio {end_to_end / kernel:.2f} (target 1.2)")
+
+    one = {name: np.array([value[0]]) for name, value in case_inputs(study).items()}
+    for entry in study.models[:1]:
+        model = entry.model
+        given = {name: one[name] for name in model.requires | model.optional_inputs if name in one}
+        outputs = ["launch_angle", "spin_rate", "tangential_restitution"]
+        physics = best(lambda: model._compute(given, frozenset({"normal_impulse", "tangential_impulse"})), 50)
+        arrays = best(lambda: model.compute_arrays(one, outputs), 50)
+        dataset = best(lambda: model.compute(one, outputs), 50)
+        print(f"one case, {model.name}: hook {physics * 1e6:.0f} us, compute_arrays {arrays * 1e6:.0f} us "
+              f"({arrays / physics:.1f}x), compute {dataset * 1e6:.0f} us ({dataset / physics:.1f}x) (target 3x)")
+
+    big = STUDY.replace("  contact.friction: [0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5]\n", "").replace(
+        "num: 60", "num: 100000")
+    load = best(lambda: load_study(big), 3)
+    print(f"load a study with 10^5 swept values: {load * 1e3:.0f} ms (target under 1000 ms)")
+
+
+if __name__ == "__main__":
+    main()
