@@ -27,7 +27,7 @@ import numpy as np
 from .errors import FieldError, StudyError
 from .units import to_si
 
-#: field -> (physical dimension, plain unit of bare numbers in this module's YAML rows)
+#: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
     "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle", "dynamic_loft": "angle",
     "strike_toe": "length", "strike_high": "length",
@@ -50,9 +50,8 @@ ALIASES = {
 }
 #: the errors of a prediction against a shot table, in the data's own units
 ERROR_KEYS = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
-#: default one-sigma measurement uncertainty of a launch monitor's averaged shot (SI), used where a table gives none:
-#: about the spread of repeated radar measurements (TrackMan states 0.1 mph ball speed and 0.05 deg launch on a
-#: single shot; averages of tour players' shots scatter far more, which these cover)
+#: default one-sigma uncertainty of a shot (SI), used where a table gives none: this project's assumption of how well
+#: one launch-monitor shot or average represents its delivery, not a manufacturer's figure
 DEFAULT_SIGMA = {"ball_speed": 0.5, "vertical_launch_angle": math.radians(0.3),
                  "horizontal_launch_angle": math.radians(0.3), "spin_rate": 200.0 * 2 * math.pi / 60,
                  "spin_axis": math.radians(1.0)}
@@ -141,6 +140,8 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
                 pass
     elif unit is not None and value is not None and not isinstance(value, bool):
         value = f"{value} {unit}"
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        raise FieldError(where, "a value with its unit (in the column header, the units: block or the value)", value)
     if value is None:
         return math.nan
     return to_si(value, dimension, where)
@@ -150,7 +151,6 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
               loft_at: str = "contact", budgets: dict | None = None) -> ShotTable:
     if not rows:
         raise StudyError(f"{file}: the shot table has no rows")
-    n = len(rows)
     delivery = {key: np.array([row.get(key, math.nan) for row in rows], float) for key in DELIVERY_FIELDS}
     measured = {key: np.array([row.get(key, math.nan) for row in rows], float) for key in MEASURED_FIELDS}
     sigma = {key: np.array([row.get(f"{key}_sigma", math.nan) for row in rows], float) for key in MEASURED_FIELDS}
@@ -166,6 +166,9 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                 problems.append(f"{where}: {key}: expected the delivery's {key.replace('_', ' ')}, got nothing")
         if "club" not in row:
             problems.append(f"{where}: club: expected a club preset name, got nothing")
+        for key in MEASURED_FIELDS:
+            if not sigma[key][index] > 0:
+                problems.append(f"{where}: {key}_sigma: expected a positive uncertainty, got {sigma[key][index]:g}")
         if all(np.isnan(measured[key][index]) for key in MEASURED_FIELDS):
             problems.append(f"{where}: expected at least one measured quantity ({', '.join(MEASURED_FIELDS)})")
     if problems:

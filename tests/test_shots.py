@@ -209,3 +209,11 @@ def test_the_validation_figure_draws_the_measured_values_and_every_model():
     np.testing.assert_allclose(measured, [2545, 6204, 2506, 5904])
     legend = [text.get_text() for text in speed.get_legend().get_texts()]
     assert set(legend) == {"a", "b", "measured (+- 1 sigma)"}
+
+
+def test_a_number_without_a_unit_is_refused_not_guessed():
+    # 115 could be mph or m/s: a launch-monitor export without units is refused, naming the cell
+    with pytest.raises(StudyError, match=r"shots.csv:2:3 \(Club Speed\): expected a value with its unit"):
+        read_csv(CSV.replace("Club Speed [mph]", "Club Speed"), "shots.csv")
+    with pytest.raises(StudyError, match="ball_speed_sigma: expected a positive uncertainty"):
+        read_csv(CSV.replace("Spin Axis [deg]", "Ball Speed Sigma [mph]").replace("2545,", "2545,0"), "shots.csv")
