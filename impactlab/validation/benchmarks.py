@@ -355,9 +355,9 @@ BUDGETS: dict[str, dict[str, float]] = {
                     "rigid_coulomb": 1.04, "restitution": 1.04},
     "co5_spin": {"maw": 0.05, "maw_hysteretic": 0.05, "hertz_mindlin": 0.3, "dem_linear": 0.67,
                  "rigid_coulomb": 0.75, "restitution": 0.75},
-    "co6_beta": {"maw": 0.34, "maw_hysteretic": 0.52, "hertz_mindlin": 0.21, "dem_linear": 0.89,
+    "co6_beta": {"maw": 0.34, "maw_hysteretic": 0.51, "hertz_mindlin": 0.21, "dem_linear": 0.89,
                  "rigid_coulomb": 0.17, "restitution": 0.17},
-    "co6_recoil": {"maw": 0.53, "maw_hysteretic": 0.62, "hertz_mindlin": 0.37, "dem_linear": 1.05,
+    "co6_recoil": {"maw": 0.53, "maw_hysteretic": 0.6, "hertz_mindlin": 0.37, "dem_linear": 1.05,
                    "rigid_coulomb": 0.19, "restitution": 0.19},
 }
 BENCHMARKS: dict[str, Benchmark] = {}
