@@ -13,7 +13,7 @@ import pytest
 
 from impactlab.cli import main
 from impactlab.validation.benchmarks import BENCHMARKS, MODELS, SPHERES, benchmark_errors, kharaz_quantities, \
-    make_model, plate_inputs, read_reference, chung_ooi_5_quantities, chung_ooi_6_quantities
+    make_model, plate_inputs, read_reference, chung_ooi_5_quantities, chung_ooi_6_quantities, two_sphere_inputs
 from impactlab.validation.benchmark_report import format_table, over_budget
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
@@ -83,7 +83,7 @@ def test_normal_impacts_reproduce_hertz_and_the_published_values_of_tests_1_and_
     for key, (published, two_spheres) in cases.items():
         s = SPHERES[key]
         if two_spheres:
-            inputs = plate_inputs(s, speed=20.0, radius=s.radius / 2, face=s, face_mass=s.mass)
+            inputs = two_sphere_inputs(s, s, speed=20.0)
             oracle = _hertz(s.mass / 2, s.radius / 2, s.youngs_modulus / (2 * (1 - s.poisson_ratio**2)), 20.0)
         else:
             inputs = plate_inputs(s, speed=0.2)

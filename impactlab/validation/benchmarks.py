@@ -18,9 +18,8 @@ closed forms and the definition of e; the published curves of tests 1-2
 
 Mapping onto impactlab's scene. Tests 2-6 are a sphere on a rigid plane: a
 ball on a fixed rigid face. Test 1 is two identical spheres meeting head-on at
-10 m/s each; it maps exactly (normal impact) onto a ball of the Hertz radius
-R/2 and the sphere's mass striking, at the relative speed 20 m/s, a free face
-of the same mass and material.
+10 m/s each: a ball struck at the relative speed 20 m/s by a free sphere of
+the same size, mass and material (:meth:`impactlab.clubs.ClubHead.sphere`).
 
 References
 ----------
@@ -169,6 +168,26 @@ def plate_inputs(sphere: Sphere, *, speed, angle=0.0, spin=0.0, friction=0.0, re
     }
 
 
+def two_sphere_inputs(sphere: Sphere, striker: Sphere, *, speed, angle=0.0, spin=0.0, friction=0.0,
+                      restitution=1.0) -> dict:
+    """Model inputs (SI arrays) of a free sphere struck by another free sphere (:meth:`ClubHead.sphere`).
+
+    ``speed`` [m/s] is the striker's velocity relative to the struck sphere, ``angle`` [rad] its angle from
+    the line of centres, ``spin`` [rad/s] the struck sphere's (the striker arrives without spin).
+    """
+    from ..clubs import ClubHead
+    from ..materials import Ball, Material
+    from ..scene import Contact, Impact, Scene
+
+    speed, angle, spin = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, float)) for v in (speed, angle, spin)))
+    ball = Ball(sphere.radius, sphere.mass, 0.4, Material(sphere.youngs_modulus, sphere.poisson_ratio))
+    club = ClubHead.sphere(striker.radius, striker.mass, 0.4, Material(striker.youngs_modulus,
+                                                                        striker.poisson_ratio))
+    rows = [Scene(ball, Scene.face_of(club), Contact(friction, restitution), Impact(v, a, w), club=club).inputs()
+            for v, a, w in zip(speed, angle, spin)]
+    return {name: np.array([row[name] for row in rows], dtype=float) for name in rows[0]}
+
+
 def _outputs(model, inputs, names):
     ds = model.compute(inputs, names)
     return {name: np.asarray(ds[name].values, dtype=float) for name in names}
@@ -182,10 +201,10 @@ def _provides(model, name) -> bool:
 def _normal_cases(test):
     """(sphere, inputs, m*, R*, E*, V) of the two spheres of test 1 or 2."""
     cases = []
-    if test == 1:  # two identical spheres, 10 m/s each: ball of radius R/2 on a free face of the same sphere
+    if test == 1:  # two identical free spheres meeting at 20 m/s
         for key in ("glass", "limestone"):
             s = SPHERES[key]
-            inputs = plate_inputs(s, speed=20.0, friction=0.35, radius=s.radius / 2, face=s, face_mass=s.mass)
+            inputs = two_sphere_inputs(s, s, speed=20.0, friction=0.35)
             modulus = hertz.effective_modulus(s.youngs_modulus, s.poisson_ratio, s.youngs_modulus, s.poisson_ratio)
             cases.append((s, inputs, s.mass / 2, s.radius / 2, modulus, 20.0))
     else:  # a sphere at 0.2 m/s on a rigid plane, frictionless
