@@ -148,8 +148,8 @@ class ClubHead:
         contact normal from its centre: here a head with that inertia, its centre of mass R behind the face
         centre, and a face of bulge and roll radii R, struck at the face centre. The contact's Hertz radius
         is then R1 R2/(R1 + R2) and its mobility W_head = (1/M) [1 + (1 - n n^T)/K^2] (Stronge 2000, ch. 5);
-        R -> inf with M -> inf is a fixed half-space. The striker arrives without spin (impact speed and
-        angle give its velocity relative to the ball, whose own spin is the scene's).
+        R -> inf with M -> inf is a fixed half-space. Impact speed and angle give its velocity relative to
+        the ball; ``Impact.spin`` is the ball's spin and ``Impact.club_spin`` the striker's.
 
         Parameters
         ----------

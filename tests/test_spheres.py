@@ -98,6 +98,36 @@ def test_a_large_heavy_rigid_sphere_is_a_fixed_rigid_plane(model):
         np.testing.assert_allclose(big[name].values, plane[name].values, rtol=2e-4, atol=1e-4)
 
 
+@pytest.mark.parametrize("model", MODELS)
+def test_equal_and_opposite_spins_of_equal_spheres_leave_no_slip(model):
+    # Chung & Ooi's test-7 geometry: the contact points move together, so nothing changes the spins
+    w = 30.0
+    ds = get_model(model)().compute(two_sphere_inputs(GLASS, GLASS, speed=0.4, spin=w, club_spin=-w, friction=0.4),
+                                    ["tangential_impulse", "spin_rate", "club_angular_velocity"])
+    assert abs(float(ds.tangential_impulse.values[0])) < 1e-15
+    assert float(ds.spin_rate.values[0]) * math.pi / 30 == pytest.approx(w, rel=1e-12)
+    assert float(ds.club_angular_velocity.values[0]) * math.pi / 30 == pytest.approx(w, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_spinning_striker_acts_through_the_slip_it_adds(model):
+    # the impulse depends on the relative contact velocity only: a striker of radius 2R spinning at w adds the
+    # slip -2R w, as the struck ball spinning at 2w would
+    big = SPHERES["glass"]
+    import attrs
+
+    striker = attrs.evolve(big, radius=2 * big.radius)
+    angles, w = np.radians([0.0, 15.0, 40.0]), 40.0
+    outputs = ["tangential_impulse", "normal_impulse"]
+    by_striker = get_model(model)().compute(two_sphere_inputs(big, striker, speed=5.0, angle=angles, club_spin=w,
+                                                              friction=0.3), outputs)
+    by_ball = get_model(model)().compute(two_sphere_inputs(big, striker, speed=5.0, angle=angles, spin=2 * w,
+                                                           friction=0.3), outputs)
+    for name in outputs:
+        np.testing.assert_allclose(by_striker[name].values, by_ball[name].values, rtol=1e-9, atol=1e-15)
+    assert np.all(np.abs(by_striker["tangential_impulse"].values) > 0.0)
+
+
 def test_sphere_striker_refuses_impossible_spheres():
     with pytest.raises(FieldError):
         ClubHead.sphere(-1.0, 1.0)

@@ -168,23 +168,25 @@ def plate_inputs(sphere: Sphere, *, speed, angle=0.0, spin=0.0, friction=0.0, re
     }
 
 
-def two_sphere_inputs(sphere: Sphere, striker: Sphere, *, speed, angle=0.0, spin=0.0, friction=0.0,
-                      restitution=1.0) -> dict:
+def two_sphere_inputs(sphere: Sphere, striker: Sphere, *, speed, angle=0.0, spin=0.0, club_spin=0.0,
+                      friction=0.0, restitution=1.0) -> dict:
     """Model inputs (SI arrays) of a free sphere struck by another free sphere (:meth:`ClubHead.sphere`).
 
     ``speed`` [m/s] is the striker's velocity relative to the struck sphere, ``angle`` [rad] its angle from
-    the line of centres, ``spin`` [rad/s] the struck sphere's (the striker arrives without spin).
+    the line of centres, ``spin`` and ``club_spin`` [rad/s] the struck sphere's and the striker's, about the
+    same axis and counted alike (:class:`impactlab.scene.Impact`).
     """
     from ..clubs import ClubHead
     from ..materials import Ball, Material
     from ..scene import Contact, Impact, Scene
 
-    speed, angle, spin = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, float)) for v in (speed, angle, spin)))
+    speed, angle, spin, club_spin = np.broadcast_arrays(
+        *(np.atleast_1d(np.asarray(v, float)) for v in (speed, angle, spin, club_spin)))
     ball = Ball(sphere.radius, sphere.mass, 0.4, Material(sphere.youngs_modulus, sphere.poisson_ratio))
     club = ClubHead.sphere(striker.radius, striker.mass, 0.4, Material(striker.youngs_modulus,
                                                                         striker.poisson_ratio))
-    rows = [Scene(ball, Scene.face_of(club), Contact(friction, restitution), Impact(v, a, w), club=club).inputs()
-            for v, a, w in zip(speed, angle, spin)]
+    rows = [Scene(ball, Scene.face_of(club), Contact(friction, restitution), Impact(v, a, w, c), club=club).inputs()
+            for v, a, w, c in zip(speed, angle, spin, club_spin)]
     return {name: np.array([row[name] for row in rows], dtype=float) for name in rows[0]}
 
 
