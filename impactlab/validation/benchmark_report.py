@@ -20,7 +20,7 @@ def over_budget(errors: dict) -> list[str]:
 def format_table(errors: dict) -> str:
     """The RMS error of every model on every benchmark, with each budget, as text."""
     models = list(next(iter(errors.values())))
-    lines = ["Benchmarks (Chung & Ooi 2011 tests 1-6; test 4 = Kharaz et al. 2001): RMS error (budget)",
+    lines = ["Benchmarks (Chung & Ooi 2011 tests 1-6 and 8; test 4 = Kharaz et al. 2001): RMS error (budget)",
              f"  {'test':<32}{'units':<7}{'reference':<14}" + "".join(f"{model:>19}" for model in models)]
     for key, per_model in errors.items():
         bench = BENCHMARKS[key]

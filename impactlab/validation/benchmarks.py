@@ -307,6 +307,18 @@ def chung_ooi_6_quantities(model, tan_incidence):
     return {"beta": beta, "recoil": -beta * tan_incidence * vn / out["normal_velocity"]}
 
 
+def chung_ooi_8_quantities(model, tan_incidence):
+    """Test 6 with two spheres (Chung & Ooi's test 8): the spinning aluminium-alloy sphere strikes an identical
+    free sphere at rest; beta of the contact point and the tangent of its recoil angle, relative velocities."""
+    s, vn = SPHERES["aluminium_alloy_t6"], TEST6["normal_speed"]
+    tan_incidence = np.asarray(tan_incidence, float)
+    inputs = two_sphere_inputs(s, s, speed=vn, angle=0.0, spin=tan_incidence * vn / s.radius,
+                               friction=TEST6["friction"], restitution=TEST6["restitution"])
+    out = _outputs(model, inputs, ["tangential_restitution", "normal_velocity"])
+    beta = out["tangential_restitution"]
+    return {"beta": beta, "recoil": -beta * tan_incidence * vn / out["normal_velocity"]}
+
+
 def chung_ooi_6_incidence(special):
     """tan(theta) = v_t/v_n from Chung & Ooi's abscissa 3.5 mu (1 + e) v_n / v_t of their beta plot."""
     return 3.5 * TEST6["friction"] * (1.0 + TEST6["restitution"]) / np.asarray(special, float)
@@ -378,6 +390,8 @@ BUDGETS: dict[str, dict[str, float]] = {
                  "rigid_coulomb": 0.75, "restitution": 0.75},
     "co6_beta": {"maw": 0.34, "maw_hysteretic": 0.51, "hertz_mindlin": 0.21, "dem_linear": 0.89,
                  "rigid_coulomb": 0.17, "restitution": 0.17},
+    "co8_beta": {"maw": 0.34, "maw_hysteretic": 0.52, "hertz_mindlin": 0.22, "dem_linear": 0.89,
+                 "rigid_coulomb": 0.16, "restitution": 0.16},
     "co6_recoil": {"maw": 0.53, "maw_hysteretic": 0.6, "hertz_mindlin": 0.37, "dem_linear": 1.05,
                    "rigid_coulomb": 0.19, "restitution": 0.19},
 }
@@ -444,6 +458,15 @@ for _key, _file, _quantity, _at in (
         reference=f"a DEM curve in Chung & Ooi's figure; {_file}", kind="model output (DEM)", budgets=BUDGETS[_key],
         file=_file, series="dem_aluminium_alloy",
         **_callables(_curve(_file, "dem_aluminium_alloy", _key.removeprefix("co6_"), chung_ooi_6_quantities, _at))))
+
+_add(Benchmark(
+    key="co8_beta", test="Chung & Ooi test 8", quantity="contact-point tangential restitution beta", units="1",
+    conditions="test 6 with two spheres: the spinning aluminium-alloy sphere strikes an identical free sphere at "
+               "rest at 0.2 m/s, mu = 0.4, e = 0.5 (ClubHead.sphere)",
+    reference="a DEM curve in Chung & Ooi's figure; chung_ooi_test8_beta.csv", kind="model output (DEM)",
+    budgets=BUDGETS["co8_beta"], file="chung_ooi_test8_beta.csv", series="dem_case_a",
+    **_callables(_curve("chung_ooi_test8_beta.csv", "dem_case_a", "beta", chung_ooi_8_quantities,
+                        chung_ooi_6_incidence))))
 
 
 def make_model(model_id: str):
