@@ -18,7 +18,16 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                             "impactlab convergence studies/work_precision.yaml --plot"),
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
-                                      "impactlab validate --dataset trackman_tour --plot FILE")}
+                                      "impactlab validate --dataset trackman_tour --plot FILE"),
+         **{stem: (title, "impactlab.validation.benchmark_report.plot_figures (docs/benchmarks.md)") for stem, title in (
+             ("benchmark_tests12_force", "Chung & Ooi tests 1-2: normal force history of elastic impacts against "
+                                         "Hertz, every compliant model"),
+             ("benchmark_test4_kharaz", "Chung & Ooi test 4 = Kharaz et al. (2001, measured): tangential "
+                                        "restitution, spin and rebound angle against incidence, every model"),
+             ("benchmark_test5_fem", "Chung & Ooi test 5: normalised rebound and spin against the FEM curve "
+                                     "(a model output), every model"),
+             ("benchmark_test6_spin", "Chung & Ooi test 6: a spinning sphere on a rigid plane against the DEM curve "
+                                      "(a model output), every model"))}}
 
 
 def _titles() -> dict[str, tuple[str, str]]:

@@ -204,12 +204,29 @@ def _cmd_export(args) -> int:
     return 0
 
 
+def _print_benchmarks(keys) -> list[str]:
+    """Run the Chung & Ooi / Kharaz benchmarks for every model, print the table; return what is over budget."""
+    from .errors import FieldError
+    from .validation.benchmark_report import describe, format_table, over_budget
+    from .validation.benchmarks import BENCHMARKS, benchmark_errors
+
+    keys = None if not keys or "all" in keys else keys
+    for key in keys or ():
+        if key not in BENCHMARKS:
+            raise FieldError("benchmark", "a benchmark of impactlab validate", key, choices=sorted(BENCHMARKS))
+    errors = benchmark_errors(keys)
+    if keys:
+        print("\n".join(describe(key) for key in keys))
+    print(format_table(errors))
+    print()
+    return over_budget(errors)
+
+
 def _cmd_validate(args) -> int:
+    from .shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
     from .validation import DATASETS, errors, get_dataset
 
-    from .shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
-
-    names = args.dataset or sorted(DATASETS) + list(SHOT_TABLES)
+    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
     over = []
     for name in names:
         table = shot_table(name)
@@ -232,6 +249,8 @@ def _cmd_validate(args) -> int:
             print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
                   f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")
         print()
+    if args.benchmark or not args.dataset:
+        over += _print_benchmarks(args.benchmark)
     if over:
         print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
         return 1
@@ -333,6 +352,9 @@ def build_parser() -> argparse.ArgumentParser:
                           help="only this dataset, or a shot table file (.csv, .yaml) (repeatable; default: all)")
     validate.add_argument("--model", action="append", help="models to compare on shot tables (default: all)")
     validate.add_argument("--plot", help="shot tables: draw measured beside predicted launch to this PNG")
+    validate.add_argument("--benchmark", action="append",
+                          help="only this Chung & Ooi / Kharaz benchmark, or 'all' (repeatable; default: all, "
+                               "unless --dataset is given)")
     validate.set_defaults(handler=_cmd_validate)
 
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")

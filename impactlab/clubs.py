@@ -148,6 +148,39 @@ class ClubHead:
         return out
 
     @classmethod
+    def sphere(cls, radius: float, mass: float, inertia_factor: float = 0.4, material: Material | None = None,
+               name: str = "", source: str = "") -> "ClubHead":
+        """A free sphere as the striking body: the two-sphere impact of discrete-element benchmarks.
+
+        A sphere is a rigid body with the isotropic inertia K^2 M R^2 whose contact point lies at -R along the
+        contact normal from its centre: here a head with that inertia, its centre of mass R behind the face
+        centre, and a face of bulge and roll radii R, struck at the face centre. The contact's Hertz radius
+        is then R1 R2/(R1 + R2) and its mobility W_head = (1/M) [1 + (1 - n n^T)/K^2] (Stronge 2000, ch. 5);
+        R -> inf with M -> inf is a fixed half-space. Impact speed and angle give its velocity relative to
+        the ball; ``Impact.spin`` is the ball's spin and ``Impact.club_spin`` the striker's.
+
+        Parameters
+        ----------
+        radius : float
+            Sphere radius R [m].
+        mass : float
+            Sphere mass M [kg].
+        inertia_factor : float
+            K^2 = I/(M R^2) [1] (0.4: a solid sphere).
+        material : Material, optional
+            The sphere's material (None: rigid).
+        """
+        radius, mass, inertia_factor = float(radius), float(mass), float(inertia_factor)
+        if not (radius > 0.0 and math.isfinite(radius)):
+            raise FieldError("radius", "a positive, finite sphere radius in m", radius)
+        if not 0.0 < inertia_factor <= 2.0 / 3.0:
+            raise FieldError("inertia_factor", "K^2 of a sphere, 0 < K^2 <= 2/3", inertia_factor)
+        moment = inertia_factor * mass * radius**2
+        return cls(mass=mass, inertia=(moment, moment, moment), center_of_mass=(0.0, 0.0, radius), loft=0.0,
+                   bulge_radius=radius, roll_radius=radius, material=material, name=name or "sphere",
+                   source=source or "a free sphere (ClubHead.sphere)")
+
+    @classmethod
     def from_principal(cls, moments, axes, **fields) -> "ClubHead":
         """A head from principal moments [kg m^2] and their axes (rows: unit vectors in toe, up, target)."""
         axes = np.asarray(axes, dtype=float)

@@ -50,6 +50,11 @@ class Impact:
         positive in the sense friction gives a ball sliding along the face
         (backspin for a lofted club). The contact-point slip speed is
         ``V sin(alpha) - R * spin``.
+    club_spin : float
+        Spin of the striking body [rad/s] about the same axis, counted the same
+        way; it matters for a striker with inertia (a free sphere,
+        :meth:`impactlab.clubs.ClubHead.sphere`): the slip speed gains
+        ``-(lever) * club_spin``, ``-R2 * club_spin`` for a sphere of radius R2.
     """
 
     speed: float = attrs.field(converter=to_float, validator=positive("a positive, finite speed in m/s"))
@@ -58,6 +63,9 @@ class Impact:
         validator=in_range(-math.pi / 2, math.pi / 2, "an angle between -90 and 90 deg", low_open=True,
                            high_open=True))
     spin: float = attrs.field(default=0.0, converter=to_float, validator=finite("a finite spin rate"))
+    #: spin of the striking body [rad/s] about the same axis and counted like ``spin`` (a sphere striker,
+    #: ClubHead.sphere; a club head's is taken as zero): it moves the striker's contact point by w x lever
+    club_spin: float = attrs.field(default=0.0, converter=to_float, validator=finite("a finite spin rate"))
 
 
 HANDEDNESS = ("right", "left")

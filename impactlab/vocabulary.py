@@ -106,6 +106,9 @@ INPUTS: dict[str, InputSpec] = {
                        low_open=True, high_open=True),
     "spin": InputSpec("impact.spin", "rad/s", "angular_speed", "incoming spin (backspin positive)",
                       _attr("impact", "spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
+    "club_spin": InputSpec("impact.club_spin", "rad/s", "angular_speed",
+                           "incoming spin of the striking body about the ball's spin axis (a sphere striker)",
+                           _attr("impact", "club_spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
 }
 
 

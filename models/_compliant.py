@@ -112,6 +112,8 @@ class HertzTangentialModel(ImpactModel):
                 solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
                                      kappa=kappa[members])
                 slip_change[members] = solved.slip_change
+                if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
+                    capped[members] |= solved.capped
                 residual[members] = solved.energy_residual(chi[members], psi1[members])
                 steps[members] = solved.steps
                 for row, case in enumerate(np.nonzero(members)[0]):

@@ -157,9 +157,16 @@ def test_the_3d_solver_equals_the_1d_solver_on_centred_strikes(model, options):
     three = instance.compute(inputs, IMPULSES + ["face_rotation"])
     assert np.all(three["face_rotation"].values > 0.0)
     scale = inputs["friction"] * one["normal_impulse"].values
+    same = np.ones(len(scenes), dtype=bool)
+    if options.get("inelastic") == "hysteretic":
+        # the 1-D plan re-solves by annular strips (85 rings here) the cases whose MDR springs break the 3-D
+        # Coulomb limit; the 3-D kernel's springs keep that limit (docs/models.md): compare where MDR stayed
+        strips = get_model("maw")(method="annuli", rings=85, inelastic="hysteretic").compute(inputs, IMPULSES)
+        same = np.abs(strips["tangential_impulse"].values - one["tangential_impulse"].values) > 1e-14
+        assert 1 <= np.sum(~same) <= 2
     for name in IMPULSES:
-        np.testing.assert_allclose(three[name].values, one[name].values, rtol=0, atol=1e-6 * scale.max(),
-                                   err_msg=name)
+        np.testing.assert_allclose(three[name].values[same], one[name].values[same], rtol=0,
+                                   atol=1e-6 * scale.max(), err_msg=name)
 
 
 def test_stronge_integration_equals_the_closed_form_on_one_line():

@@ -27,8 +27,14 @@ def _compiled(function, fastmath=False):
     return numba.njit(cache=True, nogil=True, fastmath=fastmath)(function) if HAVE_NUMBA else None
 
 
-def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_factor, record, history, stick):
-    """MDR time loop for each case; see mdr.solve_scaled for the method. Returns (slip change, dissipation)."""
+def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_factor, record, history, stick,
+               detect, kernel, check_every, excess, interior):
+    """MDR time loop for each case; see mdr.solve_scaled for the method. Returns (slip change, dissipation).
+
+    With ``detect``, ``interior[case]`` is set when, at one of the steps checked (every ``check_every``), the
+    3-D traction the springs represent exceeds the 3-D Coulomb limit by more than ``excess`` somewhere (see
+    mdr.coulomb_excess); ``kernel`` is mdr.transform_kernel(springs).
+    """
     cases = chi.size
     springs = xi2.size
     nodes = tau.size
@@ -77,6 +83,23 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
                             first_slip = i
                     u[i] = value
                     total += value
+            if detect and not interior[case] and k % check_every == 0:
+                # the 3-D traction and pressure the springs in contact represent (inverse MDR transform, at the
+                # cell mid-points, the two edge cells left out); a traction beyond the Coulomb limit flags the case
+                m = 0
+                while m < reach and (h - xi2[m]) * load > 0.0:
+                    m += 1
+                for i in range(m - 2):
+                    traction = 0.0
+                    pressure = 0.0
+                    for j in range(i, m):
+                        next_u = u[j + 1] if j + 1 < m else 0.0
+                        next_cap = (h - xi2[j + 1]) * load if j + 1 < m else 0.0
+                        traction += (u[j] - next_u) * kernel[i, j]
+                        pressure += ((h - xi2[j]) * load - next_cap) * kernel[i, j]
+                    if abs(traction) > pressure * (1.0 + excess):
+                        interior[case] = True
+                        break
             dissipation += 0.5 * weight * (previous_total + total) * dx
             previous_total = total
             acceleration = -gain * total

@@ -44,8 +44,8 @@ INERTIA_INPUTS = tuple(f"club_inertia_{name}" for name in ("toe", "up", "target"
 CENTER_INPUTS = ("club_cg_toe", "club_cg_high", "club_cg_depth")
 FACE_SHAPE_INPUTS = ("club_loft", "face_bulge_radius", "face_roll_radius")
 STRIKE_INPUTS = ("strike_toe", "strike_high")
-#: every input of the 3-D geometry beyond the ball, speed, angle and spin
-GEOMETRY_INPUTS = INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS
+#: every input of the 3-D geometry beyond the ball, speed, angle and spin (and the striking body's spin)
+GEOMETRY_INPUTS = INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS + ("club_spin",)
 #: relative tolerance under which off-diagonal mobilities count as zero (the 1-D path applies)
 DIAGONAL_TOLERANCE = 1e-12
 
@@ -158,7 +158,6 @@ def contact_state(inputs: dict) -> dict:
     spin = value("spin", 0.0)
     ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
     ball_point_velocity = -radius[:, None] * np.cross(ball_spin, normal)
-    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - speed[:, None] * club_direction)
 
     eye = np.eye(3)
     ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
@@ -174,6 +173,12 @@ def contact_state(inputs: dict) -> dict:
         head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     else:
         lever = np.zeros((n, 3))
+    # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
+    # head's contact point by w x lever (nothing for a point mass or a fixed face, which have no lever)
+    head_spin = value("club_spin", 0.0)[:, None] * lateral_direction
+    head_point_velocity = np.cross(head_spin, lever)
+    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - speed[:, None] * club_direction
+                        - head_point_velocity)
     mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
     mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
     off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
@@ -188,7 +193,7 @@ def contact_state(inputs: dict) -> dict:
         "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
         "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": mobility,
         "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
-        "ball_spin": ball_spin, "one_dimensional": one_dimensional, "frame": frame,
+        "ball_spin": ball_spin, "head_spin": head_spin, "one_dimensional": one_dimensional, "frame": frame,
     }
 
 
@@ -226,7 +231,8 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     club_velocity = speed[:, None] * state["club_direction"] - np.where(
         np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
     if state["head_inverse_inertia"] is not None:
-        club_spin = -np.einsum("nij,nj->ni", state["head_inverse_inertia"], np.cross(state["lever"], impulse_ground))
+        club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
+                                                   np.cross(state["lever"], impulse_ground))
     else:
         club_spin = np.zeros((n, 3))
     relative_after = state["initial_velocity"] + np.einsum("nij,nj->ni", state["mobility"], impulse)

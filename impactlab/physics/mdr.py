@@ -21,7 +21,9 @@ Numerics: springs at the mid-points of n equal cells of [0, 1]; the time grid
 is a uniform grid merged with the exact instants at which each spring enters
 and leaves contact (in closed form for the elastic law), so contact changes
 fall on steps. A damped normal law (:class:`.hertz.DampedNormal`) scales the
-springs' normal force, hence their Coulomb caps, by its load factor.
+springs' normal force, hence their Coulomb caps, by its load factor; the
+springs then stop being exact where their 3-D traction exceeds mu p(r), which
+is checked (:func:`coulomb_excess`, ``TangentialSolution.breaks_3d_limit``).
 Between nodes, velocity Verlet; each step adds the slip increment to every
 spring and returns it to its Coulomb cap (a return map, exact for a
 monotonic slip within a step).
@@ -79,6 +81,11 @@ class TangentialSolution:
     stick_radius: np.ndarray | None
     steps: int
     dissipation: np.ndarray | None = None
+    #: (cases,) bool: at a step checked, the 3-D traction the springs represent exceeded the 3-D Coulomb limit
+    #: (damped normal laws only, see coulomb_excess; None: not checked)
+    breaks_3d_limit: np.ndarray | None = None
+    #: (cases,) bool: the resolution the tolerance asks for exceeds what the method allows (None: not set here)
+    capped: np.ndarray | None = None
 
     def energy_residual(self, chi, psi1):
         """Scaled energy-balance residual: tangential kinetic energy lost minus friction work."""
@@ -103,7 +110,7 @@ def _spring_grid(normal, springs: int, steps: int):
 
 
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
-                 normal=None, _force_numpy: bool = False) -> TangentialSolution:
+                 normal=None, observe=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
 
     Parameters
@@ -120,6 +127,10 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
         Keep the scaled force and stick-radius histories.
     normal : ElasticNormal or DampedNormal, optional
         The scaled normal history h(tau) and its load factor (default: elastic Hertz).
+    observe : callable, optional
+        Called after every step as ``observe(tau, u, cap)`` with the springs' scaled forces u (cases,
+        springs) and their Coulomb caps (springs,); runs the numpy path (for diagnostics such as
+        :func:`traction_3d`).
     """
     normal = normal or ELASTIC
     chi = np.atleast_1d(np.asarray(chi, dtype=float))
@@ -128,13 +139,20 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     gain = TANGENTIAL_GAIN * chi * weight
     cap_offset, tau, h_nodes, load_nodes, inside = cached_grid(normal, ("mdr", springs, steps),
                                                                lambda: _spring_grid(normal, springs, steps))
-    if _kernels.HAVE_NUMBA and not _force_numpy:
+    # a load factor that varies (a damped law) can make the springs' 3-D traction exceed mu p(r): MDR's limit
+    detect = bool(np.ptp(load_nodes) > 0.0)
+    interior = np.zeros(chi.size, dtype=bool)
+    check_every = max(1, (tau.size - 1) // CHECKS)
+    if _kernels.HAVE_NUMBA and not _force_numpy and observe is None:
         history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         velocity_change, dissipation = _kernels.mdr_cases(chi, psi1, cap_offset, tau, h_nodes, load_nodes, inside,
-                                                          weight, TANGENTIAL_GAIN, record, history, stick)
+                                                          weight, TANGENTIAL_GAIN, record, history, stick, detect,
+                                                          transform_kernel(springs) if detect else np.zeros((1, 1)),
+                                                          check_every, EXCESS, interior)
         return TangentialSolution(velocity_change, tau if record else None, 1.5 * history if record else None,
-                                  stick if record else None, tau.size - 1, dissipation)
+                                  stick if record else None, tau.size - 1, dissipation,
+                                  interior if detect else None)
 
     u = np.zeros((chi.size, springs))
     velocity_change = np.zeros(chi.size)  # X' - psi1, kept apart so a huge psi1 loses no digits
@@ -157,11 +175,16 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
         if record:
             history[:, k] = total * weight
             stick[:, k] = _stick_radius(u, cap, h_nodes[k], springs)
+        if observe is not None:
+            observe(tau[k], u, cap)
+        if detect and k % check_every == 0:
+            interior |= coulomb_excess(u, cap) > EXCESS
     force = None
     if record:
         # F_t = mu * 2 E* a_max delta_max * integral u  and  F_max = (4/3) E* a_max delta_max
         force = 1.5 * history
-    return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation)
+    return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation,
+                              interior if detect else None)
 
 
 #: uniform time steps per spring: the cheapest split between time and spring error (measured)
@@ -194,6 +217,75 @@ def resolution(tolerance: float, chi, psi1) -> tuple[np.ndarray, np.ndarray]:
     wanted = np.maximum(12.0, wanted)
     springs = np.ceil(12.0 * 2.0 ** (np.ceil(4.0 * np.log2(wanted / 12.0) - 1e-9) / 4.0)).astype(np.int64)
     return np.minimum(springs, MAX_SPRINGS), springs > MAX_SPRINGS
+
+
+#: steps at which a damped law's MDR state is checked against the 3-D Coulomb limit (about; see solve_scaled)
+CHECKS = 64
+#: relative excess of the 3-D traction over mu p(r) that flags a case (elastic laws give 0 to round-off)
+EXCESS = 1e-3
+
+
+def transform_kernel(cells: int) -> np.ndarray:
+    """K[i, j] = 1/(pi sqrt(x_j^2 - r_i^2)) for the outer cell edges x_j > mid-points r_i, in cell widths."""
+    edges = np.arange(1, cells + 1, dtype=float)
+    mids = np.arange(cells, dtype=float) + 0.5
+    return np.where(edges[None, :] > mids[:, None],
+                    1.0 / (np.pi * np.sqrt(np.maximum(edges[None, :] ** 2 - mids[:, None] ** 2, 1e-300))), 0.0)
+
+
+def traction_3d(line_load) -> np.ndarray:
+    """The 3-D axisymmetric distribution at the cell mid-points that a row of MDR springs represents.
+
+    The inverse MDR transform (Popov & Hess 2015, ch. 3), p(r) = -(1/pi) int_r^a q'(x) / sqrt(x^2 - r^2) dx,
+    for a line load q piecewise constant on equal cells from the centre (q = 0 beyond the last cell given):
+    it maps the springs' normal forces to the contact pressure and their tangential forces to the
+    tangential traction.
+
+    Parameters
+    ----------
+    line_load : ndarray (..., m)
+        Forces of the springs of the first m cells (those in contact), any units.
+
+    Returns
+    -------
+    ndarray (..., m)
+        The 3-D distribution at the m cell mid-points, with lengths counted in cell widths (times the number
+        of cells n per unit radius: per unit of the radius). The cell edges sample the integrable
+        1/sqrt(x - r) singularity, so the error falls as n^-1/2 (3 % at 400 cells); a ratio of two transforms
+        on the same cells (a traction over a pressure) is exact where both are proportional.
+    """
+    q = np.asarray(line_load, dtype=float)
+    jumps = -np.diff(np.concatenate([q, np.zeros(q.shape[:-1] + (1,))], axis=-1), axis=-1)
+    return jumps @ transform_kernel(q.shape[-1]).T
+
+
+def coulomb_excess(u, cap) -> np.ndarray:
+    """Largest max(|tau(r)| / (mu p(r))) - 1 over the contact of the 3-D state that MDR springs represent.
+
+    ``u`` (cases, springs) are the springs' tangential forces, ``cap`` (springs,) their Coulomb caps, both in
+    the scaled units of :func:`solve_scaled`. The two cells at the contact's edge, where both transforms vanish,
+    are left out. With an elastic (Hertz) pressure the MDR state satisfies the 3-D limit exactly (0 to
+    round-off); a damped law's does not everywhere (docs/models.md).
+    """
+    u = np.atleast_2d(u)
+    m = int(np.count_nonzero(cap > 0.0))
+    if m < 3:
+        return np.zeros(u.shape[0])
+    traction = traction_3d(u[:, :m])[:, : m - 2]
+    pressure = traction_3d(cap[:m])[: m - 2]
+    return np.max(np.abs(traction) / pressure[None, :], axis=1) - 1.0
+
+
+def slip_inside_stick(u, cap) -> np.ndarray:
+    """Whether a spring slips (at its cap) inside a spring that sticks, per case: a slip zone that is not an
+    annulus at the contact's edge."""
+    u = np.atleast_2d(u)
+    inside = cap > 0.0
+    slipping = (np.abs(u) >= cap * (1.0 - 1e-12)) & inside
+    stuck = ~slipping & inside
+    outermost_stuck = np.where(stuck.any(axis=1), stuck.shape[1] - 1 - np.argmax(stuck[:, ::-1], axis=1), -1)
+    index = np.arange(u.shape[1])
+    return np.any(slipping & (index[None, :] < outermost_stuck[:, None]), axis=1)
 
 
 def _stick_radius(u, cap, h, springs):

@@ -7,10 +7,10 @@ error (in the quantity's units) that model is allowed. ``impactlab validate``
 runs them all; tests/test_validation.py asserts every model stays inside its
 budget and that budgets only ever tighten.
 
-Only tabulated data are included. Data published only as figures (the
-paper's Fig. 3 air-cannon angles; oblique impacts of spheres such as Kharaz,
-Gorham & Salman 2001) are not digitised here and are listed in
-docs/validation.md as wanted.
+Only tabulated data are included here. Curves published as figures enter only
+as digitised by a source that can be cited: the Chung & Ooi (2011) benchmarks
+and Kharaz, Gorham & Salman's (2001) experiment, in :mod:`.benchmarks`
+(docs/benchmarks.md). The paper's Fig. 3 air-cannon angles are still wanted.
 """
 
 from __future__ import annotations
