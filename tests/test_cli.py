@@ -77,6 +77,7 @@ def test_missing_file_and_unwritable_output(tmp_path):
     assert result.returncode == 2 and "does not exist" in result.stderr and "Traceback" not in result.stderr
 
 
+@pytest.mark.slow
 def test_plot_redraws_the_figures_a_study_declares(tmp_path):
     study = ROOT / "studies" / "paper" / "fig7_tangential_force.yaml"
     out = tmp_path / "fig7.h5"
@@ -87,6 +88,7 @@ def test_plot_redraws_the_figures_a_study_declares(tmp_path):
     assert all(path.stat().st_size > 20_000 for path in tmp_path.glob("*.png"))
 
 
+@pytest.mark.slow
 def test_validity_is_warned_once_per_flag_in_words(tmp_path):
     study = small_study(tmp_path, **{"youngs_modulus: 136 MPa": "youngs_modulus: 5 MPa"})
     result = run_cli("run", study, "-o", tmp_path / "soft.h5")

@@ -275,6 +275,22 @@ def test_hertz_mindlin_step_rule_meets_its_tolerance_against_an_independent_inte
 
 # --- physics/annuli.py ------------------------------------------------------------------------------------------
 
+@pytest.mark.slow
+def test_the_annular_method_meets_its_tolerance_against_an_independent_mdr():
+    """The annular-strip method at its default tolerance (1e-3 of mu J_n, i.e. |d psi2| <= 1e-3 * 4 chi in
+    scaled units) against the independent MDR above: two methods for the same Mindlin problem."""
+    from impactlab_models.maw import MawOptions
+
+    options = MawOptions(method="annuli")
+    for chi in (0.7, 4.0):
+        chis = np.full(8, chi)
+        psi1 = np.geomspace(0.05, 6 * chi, 8)
+        rings, _ = options.resolution(chi, psi1)
+        solved = annuli.solve_scaled(chis, psi1, rings=int(rings[0]), steps=options.resolution_steps(int(rings[0])))
+        reference = reference_mdr_psi2(chis, psi1, springs=300)
+        assert np.all(np.abs(solved.slip_change + psi1 - reference) <= options.tolerance * 4 * chi)
+
+
 def test_annulus_influence_outside_its_circle_is_cerrutis_far_field_and_continuous():
     """Kills: the annular method's outside influence coefficient halved (physics/annuli.py).
 
