@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from impactlab.cli import main
@@ -27,11 +28,18 @@ def small_study(tmp_path, **replace):
     return path
 
 
-def test_run_show_and_plot(tmp_path, capsys):
+def test_run_show_and_plot(tmp_path, capsys, drawn_figures):
     study = small_study(tmp_path)
     out, png = tmp_path / "r.h5", tmp_path / "r.png"
     assert main(["run", str(study), "-o", str(out), "--plot", str(png), "-q"]) == 0
-    assert out.is_file() and png.stat().st_size > 10_000
+    assert out.is_file()
+    figure = next(f for f in drawn_figures if f["path"] == png)
+    assert not figure["problems"] and figure["ink"] > 0.02
+    # one panel per output, labelled in words and units; a line per model and friction, none of them empty
+    labels = [panel["ylabel"].replace("\n", " ") for panel in figure["panels"]]
+    assert any(label.startswith("launch ratio") and label.endswith("[1]") for label in labels)
+    assert all(np.isfinite(ys).any() for panel in figure["panels"] for _, ys in panel["lines"].values())
+    assert "mph" in figure["title"]  # the conditions are in the title
     assert main(["show", str(out)]) == 0
     shown = capsys.readouterr().out
     assert "compare-models" in shown and "launch_ratio" in shown and "maw, rigid_coulomb, restitution" in shown
@@ -78,14 +86,18 @@ def test_missing_file_and_unwritable_output(tmp_path):
 
 
 @pytest.mark.slow
-def test_plot_redraws_the_figures_a_study_declares(tmp_path):
+def test_plot_redraws_the_figures_a_study_declares(tmp_path, drawn_figures):
     study = ROOT / "studies" / "paper" / "fig7_tangential_force.yaml"
     out = tmp_path / "fig7.h5"
     assert main(["run", str(study), "-o", str(out), "-q"]) == 0
     assert main(["plot", str(out)]) == 0
     drawn = sorted(path.name for path in tmp_path.glob("*.png"))
     assert drawn == ["fig7_fig7.png", "fig7_fig7_annuli.png", "fig7_stick_radius.png"]
-    assert all(path.stat().st_size > 20_000 for path in tmp_path.glob("*.png"))
+    assert all(not figure["problems"] and figure["ink"] > 0.02 for figure in drawn_figures)
+    stick = next(f for f in drawn_figures if f["path"].name == "fig7_stick_radius.png")["panels"][0]
+    assert "[mm]" in stick["ylabel"]  # a contact radius in millimetres, not metres
+    # the stuck radius never exceeds the Hertz contact radius sqrt(R delta_max), about 10 mm at 80 mph
+    assert max(np.nanmax(ys) for _, ys in stick["lines"].values()) < 11.0
 
 
 @pytest.mark.slow
