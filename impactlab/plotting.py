@@ -39,10 +39,11 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
         scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
     except ValueError:
         return ""
-    swept = set(dataset.dims) | set(skip)
-    for name in dataset.coords:  # a selected value (a dropped dimension) is named in the legend or title
-        if dataset[name].ndim == 0:
-            swept.add(name)
+    # swept fields (dimensions, fields a labelled dimension sets) vary between the lines, and a selected value
+    # is named in the title or legend: only what no coordinate carries is a condition of the whole figure
+    swept = set(dataset.dims) | set(dataset.coords) | set(skip)
+    if "club_speed" in swept:  # a delivery's impact speed follows its club speed
+        swept.add("speed")
     words = []
 
     def value(key):
@@ -133,8 +134,13 @@ def _zoom(axis, xlim) -> None:
         axis.set_ylim(bottom - margin, top + margin)
 
 
+def _relation(other: str) -> str:
+    return other.replace("partly ", "partly on ", 1) if other.startswith("partly ") else f"on {other}"
+
+
 def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
-    """The first earlier line (label) this one lies on, wholly (1.0) or over at least a fifth of its points."""
+    """The earlier line (label) this one lies on: wholly (share 1.0), else over the largest share >= half its points."""
+    best, share = None, 0.0
     for other_xs, other_ys, other in drawn:
         if np.shape(other_xs) != np.shape(xs) or not np.allclose(other_xs, xs):
             continue
@@ -142,9 +148,9 @@ def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
         same = np.abs(np.where(both, other_ys - ys, 0.0)) <= tolerance
         if np.array_equal(np.isnan(other_ys), np.isnan(ys)) and np.all(same):
             return other, 1.0
-        if both.any() and np.mean(same[both]) >= 0.2:
-            return other, float(np.mean(same[both]))
-    return None, 0.0
+        if both.any() and 0.5 <= np.mean(same[both]) > share:
+            best, share = other, float(np.mean(same[both]))
+    return best, share
 
 
 def _save(figure, path) -> Path:
@@ -290,9 +296,10 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         for line in axis.get_lines():
             notes = coincide.get(line.get_label()) if not line.get_label().startswith("_") else None
             if notes:
-                where = "; ".join((other.replace("partly ", "partly on ") if other.startswith("partly ") else f"on {other}")
-                                  + (f" in {' '.join(panels)}" if len(names) > 1 else "")
-                                  for other, panels in notes.items())
+                # whole coincidences first; at most two relations, so that the legend stays readable
+                ordered = sorted(notes.items(), key=lambda item: (item[0].startswith("partly "), -len(item[1])))
+                where = "; ".join(_relation(other) + (f" in {' '.join(panels)}" if len(names) > 1 else "")
+                                  for other, panels in ordered[:2]) + ("; ..." if len(ordered) > 2 else "")
                 line.set_label(f"{line.get_label()} ({where})")
     heading = title or dataset.attrs.get("title", "")
     context = conditions(dataset)
@@ -302,10 +309,15 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         figure.tight_layout(rect=(0, 0, 1, 0.95))
     elif names:  # many entries: below the panels, where they hide no data
         handles, labels = axes.flat[0].get_legend_handles_labels()
-        columns_of_legend = min(3 if len(names) > 1 else 2, len(labels))
+        # as many columns as the longest entry leaves room for (about 14 characters of 8-point text per inch)
+        width = int(size[0] * 14)
+        columns_of_legend = max(1, min(3 if len(names) > 1 else 2, len(labels), width // max(map(len, labels))))
         legend_rows = -(-len(labels) // columns_of_legend)
+        # the figure grows by the legend's height (0.17 in per row), so the panels keep their size
+        legend_height = 0.17 * legend_rows + 0.15
+        figure.set_figheight(size[1] + legend_height)
         figure.legend(handles, labels, loc="lower center", ncol=columns_of_legend, fontsize=8, frameon=False)
-        figure.tight_layout(rect=(0, 0.02 + 0.035 * legend_rows, 1, 0.95))
+        figure.tight_layout(rect=(0, (legend_height + 0.1) / (size[1] + legend_height), 1, 0.95))
     path = _save(figure, path)
     plt.close(figure)
     return path
