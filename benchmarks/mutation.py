@@ -9,6 +9,7 @@ killed (a test failed, errored or timed out) and which survived.
     .venv/bin/python benchmarks/mutation.py                 # every mutant
     .venv/bin/python benchmarks/mutation.py -k hertz dem    # mutants whose id contains a word
     .venv/bin/python benchmarks/mutation.py --list          # what would run
+    .venv/bin/python benchmarks/mutation.py --tests tests/test_mutation_oracles.py   # the oracles alone
 
 The copy's modules shadow the installed ones (the copy goes first on PYTHONPATH, and ``impactlab_models``
 is a link to its ``models``); numba's on-disk cache is copied with the sources, so only a mutated kernel
@@ -247,9 +248,13 @@ def main(argv=None) -> int:
     parser.add_argument("-k", nargs="*", default=[], help="run only mutants whose id contains one of these words")
     parser.add_argument("--timeout", type=float, default=240.0, help="seconds per mutant before it counts as killed")
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    parser.add_argument("--tests", nargs="*", help="run these test files for every mutant instead of the mapped ones "
+                        "(e.g. tests/test_mutation_oracles.py: does the oracle alone kill it?)")
     parser.add_argument("--output", default=str(ROOT / "benchmarks" / "mutation_results.json"))
     args = parser.parse_args(argv)
     selected = [m for m in MUTANTS if not args.k or any(word in m[0] for word in args.k)]
+    if args.tests:
+        selected = [(ident, file, old, new, list(args.tests), what) for ident, file, old, new, _, what in selected]
     if args.list:
         for ident, file, _, _, tests, what in selected:
             print(f"{ident:34s} {file:32s} {what}")

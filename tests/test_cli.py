@@ -66,23 +66,30 @@ def test_models_lists_needs_and_provides(capsys):
     ({"- name: maw": "- name: mow"}, "models[0].name: expected a registered model, got mow"),
     ({"radius: 21.335 mm": "radius: -1 mm"}, "ball.radius: expected a positive"),
 ])
-def test_bad_input_exits_2_with_one_message_and_leaves_results_alone(tmp_path, replace, fragment):
+def test_bad_input_exits_2_with_one_message_and_leaves_results_alone(tmp_path, replace, fragment, capsys):
+    # in-process: main() returns the exit code and an uncaught exception would fail the test (no traceback
+    # can slip through); the subprocess adds nothing but a second of imports (one test below keeps it)
     study = small_study(tmp_path, **replace)
     existing = tmp_path / "keep.h5"
     existing.write_bytes(b"previous results")
-    result = run_cli("run", study, "-o", existing)
-    assert result.returncode == 2
-    assert fragment in result.stderr
-    assert "Traceback" not in result.stderr
-    assert len(result.stderr.strip().splitlines()) == 1
+    assert main(["run", str(study), "-o", str(existing)]) == 2
+    error = capsys.readouterr().err
+    assert fragment in error
+    assert len(error.strip().splitlines()) == 1
     assert existing.read_bytes() == b"previous results"
 
 
-def test_missing_file_and_unwritable_output(tmp_path):
+def test_missing_file_and_unwritable_output(tmp_path, capsys):
+    assert main(["run", str(tmp_path / "nope.yaml")]) == 2
+    assert "no such study file" in capsys.readouterr().err
+    assert main(["run", str(small_study(tmp_path)), "-o", str(tmp_path / "no" / "such" / "dir.h5")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+
+
+def test_the_installed_entry_point_reports_bad_input_without_a_traceback(tmp_path):
+    # the one check that needs a real process: python -m impactlab, its exit status and its stderr
     result = run_cli("run", tmp_path / "nope.yaml")
-    assert result.returncode == 2 and "no such study file" in result.stderr
-    result = run_cli("run", small_study(tmp_path), "-o", tmp_path / "no" / "such" / "dir.h5")
-    assert result.returncode == 2 and "does not exist" in result.stderr and "Traceback" not in result.stderr
+    assert result.returncode == 2 and "no such study file" in result.stderr and "Traceback" not in result.stderr
 
 
 @pytest.mark.slow
