@@ -132,3 +132,29 @@ def test_impactlab_kernels_numpy_switches_the_kernels_off():
     done = subprocess.run([sys.executable, "-c", code], env={**os.environ, "IMPACTLAB_KERNELS": "numpy"},
                           capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "False"
+
+
+@pytest.mark.slow
+@settings(max_examples=4)
+@given(points=st.lists(st.tuples(st.floats(0.5, 4.0), st.floats(np.log(0.01), np.log(6.0))), min_size=3,
+                       max_size=3))
+def test_maws_resolution_rule_meets_its_bound_against_an_independent_mdr(points):
+    # |d psi2| <= tol min(4 chi, psi1) at random (chi, psi1) over chi 0.5-4 (K^2 above about 0.2 for a rubbery
+    # ball) and psi1 from 0.01 to 6 chi; the reference is the MDR written independently in
+    # test_mutation_oracles.py. Beyond chi 4 at grazing lofts the rule misses its bound: see the strict xfail there.
+    from test_mutation_oracles import reference_mdr_psi2
+
+    from impactlab.physics import mdr
+    from impactlab_models.maw import MawOptions
+
+    chi = np.array([c for c, _ in points])
+    psi1 = np.array([c * np.exp(p) for c, p in points])  # psi1 / chi log-uniform in [0.01, 6]
+    tolerance = 1e-3
+    options = MawOptions(tolerance=tolerance)
+    reference = reference_mdr_psi2(chi, psi1, springs=300)
+    for case in range(chi.size):
+        springs, _ = options.resolution(float(chi[case]), psi1[case:case + 1])
+        solved = mdr.solve_scaled(chi[case:case + 1], psi1[case:case + 1], springs=int(springs[0]),
+                                  steps=options.resolution_steps(int(springs[0])))
+        error = abs(solved.slip_change[0] + psi1[case] - reference[case])
+        assert error <= tolerance * min(4 * chi[case], psi1[case]), (chi[case], psi1[case], error)
