@@ -119,33 +119,44 @@ def plot_work_precision(dataset: xr.Dataset, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from .plotting import _axis_label
+
     outputs = list(dataset.output.values)
     columns = min(2, len(outputs))
     rows = -(-len(outputs) // columns)
     figure, axes = plt.subplots(rows, columns, figsize=(6.0 * columns, 4.2 * rows), squeeze=False)
     for axis, output in zip(axes.flat, outputs):
+        closed = 0
         for model in dataset.model.values:
             times = dataset.wall_time.sel(model=model).values * 1e6
             errors = dataset.error.sel(model=model, output=output).values
             keep = np.isfinite(times) & np.isfinite(errors)
             if keep.any() and np.all(errors[keep] == 0):
-                axis.axvline(np.nanmedian(times), linestyle=":", color="0.4")
-                axis.text(np.nanmedian(times), 0.5, f" {model} (closed form)", rotation=90, fontsize=7,
-                          transform=axis.get_xaxis_transform(), va="center")
+                # exact: no error to draw, only its cost (a vertical rule, named in the legend)
+                axis.axvline(np.nanmedian(times), linestyle=(0, (1, 2 + closed)), color=("0.2", "0.55")[closed % 2],
+                             label=f"{model} (closed form, exact)")
+                closed += 1
                 continue
             line, = axis.plot(times[keep], errors[keep], "o-", label=str(model), markersize=3)
-            for t, e, tol in zip(times[keep], errors[keep], dataset.tolerance.values[keep]):
-                axis.annotate(f"{tol:g}", (t, e), fontsize=6, xytext=(3, 3), textcoords="offset points",
+            # tolerances label their points on alternate sides: the fast end of a rule bunches up in time
+            for index, (t, e, tol) in enumerate(zip(times[keep], errors[keep], dataset.tolerance.values[keep])):
+                right = index % 2 == 0
+                axis.annotate(f"{tol:g}", (t, e), fontsize=6, xytext=(4 if right else -4, 0),
+                              textcoords="offset points", ha="left" if right else "right", va="center",
                               color=line.get_color())
         axis.set_xscale("log")
         axis.set_yscale("log")
         axis.set_xlabel("wall time per impact [us] (one core, warm)")
-        axis.set_ylabel(f"{output}: error / largest |value|")
+        axis.set_ylabel(_axis_label(f"error of {OUTPUTS[output].long_name} / its largest |value|", "1", 48),
+                        fontsize=8)
         axis.grid(True, which="both", alpha=0.3)
         axis.legend(fontsize=7)
     for axis in list(axes.flat)[len(outputs):]:
         axis.set_visible(False)
-    figure.suptitle(dataset.attrs.get("title", "") + " (labels: requested tolerance)", fontsize=10)
+    figure.suptitle(dataset.attrs.get("title", "") + f" ({int(dataset.attrs.get('cases', 0))} impacts; "
+                    "point labels: requested tolerance)", fontsize=10)
     figure.tight_layout()
-    figure.savefig(path, dpi=110)
+    from .plotting import _save
+
+    _save(figure, path)
     plt.close(figure)

@@ -86,7 +86,7 @@ class ModelEntry:
         return self.model.name
 
 
-PLOT_KEYS = ("name", "y", "x", "select", "title", "kind")
+PLOT_KEYS = ("name", "y", "x", "select", "title", "kind", "xlim", "measured")
 PLOT_KINDS = ("lines", "history")
 
 
@@ -100,10 +100,14 @@ class PlotSpec:
     select: tuple[tuple[str, Any], ...] = ()
     title: str = ""
     kind: str = "lines"
+    #: a zoomed view: [low, high] of the horizontal axis, in its display units (where the interesting region is small)
+    xlim: tuple[float, float] | None = None
+    #: names of shipped measured datasets (impactlab.validation) drawn beside the curves, with their error bars
+    measured: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         return {"name": self.name, "y": list(self.y), "x": self.x, "select": dict(self.select), "title": self.title,
-                "kind": self.kind}
+                "kind": self.kind, "xlim": list(self.xlim) if self.xlim else None, "measured": list(self.measured)}
 
 
 @attrs.frozen
@@ -791,7 +795,20 @@ def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
                 raise FieldError(f"{where}.select.{key}", "a sweep dimension or model", key,
                                  choices=dims + [MODEL_DIM])
         title = block.get("title", "")
-        plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind))
+        xlim = block.get("xlim")
+        if xlim is not None and not (isinstance(xlim, list) and len(xlim) == 2 and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in xlim) and xlim[0] < xlim[1]):
+            raise FieldError(f"{where}.xlim", "[low, high] of the horizontal axis, low < high", xlim)
+        measured = block.get("measured") or []
+        measured = [measured] if isinstance(measured, str) else measured
+        from .validation import DATASETS
+
+        for position, data in enumerate(measured):
+            if data not in DATASETS or DATASETS[data].quantity not in wanted:
+                raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",
+                                 data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
+        plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind,
+                              tuple(float(v) for v in xlim) if xlim else None, tuple(measured)))
     names = [plot.name for plot in plots]
     if len(set(names)) != len(names):
         raise FieldError("plots", "figures with distinct names", names)

@@ -20,3 +20,39 @@ def golf_inputs():
         return {key: np.broadcast_to(array, (n,)).copy() for key, array in arrays.items()}
 
     return make
+
+
+@pytest.fixture
+def drawn_figures(monkeypatch):
+    """Every figure saved during the test: its file, what plotting.audit finds wrong, its lines and labels.
+
+    Tests then assert on what a figure shows (the values on its lines, its axis labels) instead of the size
+    of the PNG, which a blank figure with a long legend also reaches.
+    """
+    from pathlib import Path
+
+    from matplotlib.figure import Figure
+    from matplotlib.image import imread
+
+    from impactlab.plotting import audit
+
+    record = []
+    original = Figure.savefig
+
+    def savefig(self, fname, *args, **kwargs):
+        panels = [{"xlabel": axis.get_xlabel(), "ylabel": axis.get_ylabel(),
+                   "lines": {line.get_label(): (np.asarray(line.get_xdata(), float),
+                                                np.asarray(line.get_ydata(), float))
+                             for line in axis.get_lines() if not line.get_label().startswith("_")}}
+                  for axis in self.axes if axis.get_visible()]
+        title = self._suptitle.get_text() if self._suptitle is not None else ""
+        entry = {"path": Path(fname), "problems": audit(self), "panels": panels,
+                 "title": title or " ".join(axis.get_title() for axis in self.axes)}
+        result = original(self, fname, *args, **kwargs)
+        pixels = imread(str(fname))[..., :3]
+        entry["ink"] = float(np.mean(np.any(pixels < 0.9, axis=-1)))  # share of pixels that are not near-white
+        record.append(entry)
+        return result
+
+    monkeypatch.setattr(Figure, "savefig", savefig)
+    return record

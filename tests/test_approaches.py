@@ -20,6 +20,7 @@ def chi_of(nu=None, k2=0.4):
     return (1 - nu) / (2 - nu) * (1 + 1 / k2), 2 * (1 - nu) / (2 - nu)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["maw", "hertz_mindlin", "dem_linear", "rigid_coulomb"])
 def test_every_coulomb_model_gives_the_gross_slip_line_and_the_incidence_is_kappa_tan_over_mu(golf_inputs, name):
     chi, kappa = chi_of()
@@ -56,7 +57,7 @@ def small(path: Path, **changes) -> dict:
     return text
 
 
-def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_path):
+def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_path, drawn_figures):
     study = impactlab.load_study(small(STUDIES / "approaches.yaml",
                                        sweep={"impact.angle": {"start": "1 deg", "stop": "70 deg", "num": 12}}))
     result = impactlab.run_study(study, executor="serial")
@@ -65,8 +66,18 @@ def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_pa
     from impactlab.plotting import draw_declared
 
     pictures = draw_declared(result, tmp_path, "approaches")
-    assert {path.name for path in pictures} == {"approaches_psi2_vs_psi1.png", "approaches_beta_vs_incidence.png"}
-    assert all(path.stat().st_size > 10_000 for path in pictures)
+    assert {path.name for path in pictures} == {"approaches_psi2_vs_psi1.png", "approaches_psi2_vs_psi1_zoom.png",
+                                                "approaches_beta_vs_incidence.png"}
+    assert all(not figure["problems"] for figure in drawn_figures)
+    # the figure shows the result's numbers: maw's line is psi2 against psi1 as computed
+    first = next(f for f in drawn_figures if f["path"].name == "approaches_psi2_vs_psi1.png")["panels"][0]
+    xs, ys = first["lines"]["maw"]
+    np.testing.assert_allclose(xs, result["normalised_incidence"].sel(model="maw").values)
+    np.testing.assert_allclose(ys, result["normalised_rebound"].sel(model="maw").values)
+    assert "psi1" in first["xlabel"] and "psi2" in first["ylabel"]
+    # the zoomed view shows psi1 below gross slip only (4 chi = 5.0 for this ball)
+    zoom = next(f for f in drawn_figures if f["path"].name == "approaches_psi2_vs_psi1_zoom.png")
+    assert zoom["ink"] > 0.02
     # the approaches agree in gross slip and differ below it
     psi1 = result["normalised_incidence"].sel(model="maw").values
     rebound = result["normalised_rebound"]

@@ -88,6 +88,7 @@ def _lossy(loss, **changes):
     return inputs
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", COMPLIANT)
 def test_a_lossy_cover_never_creates_energy(model):
     instance = get_model(model)()
@@ -128,6 +129,7 @@ def test_the_loss_lowers_maws_grip_and_leaves_gross_slip_alone():
         np.testing.assert_allclose(result["tangential_impulse"], 0.1 * result["normal_impulse"], rtol=1e-4)
 
 
+@pytest.mark.slow
 def test_tabulated_damping_matches_the_per_law_solution():
     for e in (0.95, 0.8, 0.5):
         c, tau = hertz.damping_for_restitutions([e])
@@ -136,6 +138,7 @@ def test_tabulated_damping_matches_the_per_law_solution():
         assert abs(tau[0] / law.tau_end - 1) < 1e-6
 
 
+@pytest.mark.slow
 def test_hysteretic_law_per_case_equals_the_grouped_solution():
     maw = get_model("maw")(inelastic="hysteretic")
     inputs = reference_inputs(n_angles=3)

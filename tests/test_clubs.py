@@ -142,6 +142,7 @@ def _centred_head():
                     material=DRIVER.material)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model, options", [("maw", {"tolerance": 1e-6}), ("hertz_mindlin", {"tolerance": 1e-6}),
                                             ("dem_linear", {"tolerance": 1e-6}),
                                             ("maw", {"tolerance": 1e-6, "inelastic": "hysteretic"})])

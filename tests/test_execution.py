@@ -39,6 +39,7 @@ def test_processes_give_identical_results(serial):
     same(impactlab.run_study(STUDY, executor="processes", workers=2, chunk_size=40), serial)
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_identical_results(serial):
     pytest.importorskip("dask.distributed")
     same(impactlab.run_study(STUDY, executor="dask", workers=2, chunk_size=50), serial)
@@ -82,6 +83,7 @@ outputs: [launch_ratio, spin_rate]
 """
 
 
+@pytest.mark.slow
 def test_a_killed_run_resumes_to_the_identical_result(tmp_path):
     study = tmp_path / "big.yaml"
     study.write_text(BIG)

@@ -39,6 +39,7 @@ def test_annuli_kernel_matches_the_dense_solve(normal):
     assert_same_solution(fast, dense, rtol=1e-11)
 
 
+@pytest.mark.slow
 def test_a_freshly_compiled_kernel_and_one_loaded_from_the_cache_give_the_same_bits(tmp_path):
     # every process of an executor must run the same machine code: workers load numba's cache that the
     # first process wrote, so a kernel whose code differs between the two would make results depend on

@@ -146,6 +146,7 @@ def test_calibration_recovers_known_parameters_and_says_what_it_cannot_identify(
     assert rigid.identified == (False, True) and math.isinf(rigid.uncertainties[0])
 
 
+@pytest.mark.slow
 def test_cross_validation_reports_the_error_on_rows_it_did_not_fit():
     model = get_model("hertz_mindlin")()
     table = synthetic_table(model, {"friction": 0.3, "restitution": 0.76})

@@ -1,0 +1,269 @@
+"""Mutation testing over impactlab/physics and models: does the test suite notice a small realistic bug?
+
+Each mutant below is one small edit a person could make by mistake (a flipped sign, a dropped factor,
+an off-by-one, a wrong variable, a wrong constant). The script copies the project once into a temporary
+folder (the working tree is never edited), applies one mutant at a time to the copy, runs the tests that
+cover the mutated code with a timeout, restores the file (try/finally) and reports which mutants the tests
+killed (a test failed, errored or timed out) and which survived.
+
+    .venv/bin/python benchmarks/mutation.py                 # every mutant
+    .venv/bin/python benchmarks/mutation.py -k hertz dem    # mutants whose id contains a word
+    .venv/bin/python benchmarks/mutation.py --list          # what would run
+    .venv/bin/python benchmarks/mutation.py --tests tests/test_mutation_oracles.py   # the oracles alone
+
+The copy's modules shadow the installed ones (the copy goes first on PYTHONPATH, and ``impactlab_models``
+is a link to its ``models``); numba's on-disk cache is copied with the sources, so only a mutated kernel
+compiles. A mutant whose ``old`` text is not found exactly once is reported as stale (the source moved on),
+not silently skipped. Results are written to ``benchmarks/mutation_results.json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# the tests that cover each area (the whole suite per mutant would take hours on 2 cores)
+T_MAW = ["tests/test_maw.py", "tests/test_mutation_oracles.py"]
+T_DEM = ["tests/test_dem.py", "tests/test_approaches.py", "tests/test_mutation_oracles.py"]
+T_RIGID = ["tests/test_rigid_models.py", "tests/test_clubs.py", "tests/test_mutation_oracles.py"]
+T_CORE = ["tests/test_maw.py", "tests/test_rigid_models.py", "tests/test_units_and_physics.py",
+          "tests/test_mutation_oracles.py", "tests/test_properties.py"]
+T_CLUB = ["tests/test_clubs.py", "tests/test_delivery.py", "tests/test_mutation_oracles.py"]
+
+# (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
+MUTANTS = [
+    # --- physics/mechanics.py
+    ("mechanics-club-recoil", "impactlab/physics/mechanics.py",
+     "tangential_velocity = speed * sin_a - jt * (1.0 / m + 1.0 / club)", "tangential_velocity = speed * sin_a - jt / m",
+     T_CORE, "club's tangential recoil dropped from the tangential velocity"),
+    ("mechanics-spin-sign", "impactlab/physics/mechanics.py",
+     "spin_after = spin + jt * radius / inertia", "spin_after = spin - jt * radius / inertia",
+     T_CORE, "spin change with the wrong sign"),
+    ("mechanics-tangential-mass-k2", "impactlab/physics/mechanics.py",
+     "return 1.0 / ((1.0 + 1.0 / inertia_factor) / ball_mass + 1.0 / club_mass)",
+     "return 1.0 / ((1.0 + inertia_factor) / ball_mass + 1.0 / club_mass)",
+     T_CORE, "K^2 instead of 1/K^2 in the tangential mass"),
+    ("mechanics-approach-spin-sign", "impactlab/physics/mechanics.py",
+     "speed * np.sin(angle) - radius * spin", "speed * np.sin(angle) + radius * spin",
+     T_CORE, "incoming spin adds to the slip instead of reducing it"),
+    ("mechanics-energy-club-half", "impactlab/physics/mechanics.py",
+     "(jn**2 + jt**2) / (2 * club)", "(jn**2 + jt**2) / club",
+     T_CORE, "club kinetic energy without its 1/2"),
+    # --- physics/hertz.py
+    ("hertz-modulus-nu", "impactlab/physics/hertz.py",
+     "return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)", "return 1.0 / ((1.0 - nu1) / e1 + (1.0 - nu2**2) / e2)",
+     T_MAW, "nu instead of nu^2 in the contact modulus"),
+    ("hertz-tangential-modulus", "impactlab/physics/hertz.py",
+     "return 1.0 / ((2.0 - nu1) / (4.0 * g1) + (2.0 - nu2) / (4.0 * g2))",
+     "return 1.0 / ((2.0 - nu1) / (4.0 * g1) + (2.0 - nu2) / (2.0 * g2))",
+     T_MAW + ["tests/test_approaches.py"], "face term of G* with 2 G instead of 4 G"),
+    ("hertz-max-approach-constant", "impactlab/physics/hertz.py",
+     "(15.0 * effective_mass * normal_speed**2 / (16.0 * modulus", "(16.0 * effective_mass * normal_speed**2 / (15.0 * modulus",
+     T_MAW, "15/16 inverted in delta_max"),
+    ("hertz-damped-load-factor-one", "impactlab/physics/hertz.py",
+     "return np.maximum(1.0 + self.damping * self._solution(tau)[1], 0.0)", "return np.ones_like(tau)",
+     T_MAW + ["tests/test_balls.py"], "damped (Hunt-Crossley) load factor replaced by 1"),
+    ("hertz-damped-rhs-sign", "impactlab/physics/hertz.py",
+     "return [v, -1.25 * max(h, 0.0) ** 1.5 * (1.0 + c * v)]", "return [v, -1.25 * max(h, 0.0) ** 1.5 * (1.0 - c * v)]",
+     T_MAW + ["tests/test_balls.py"], "Hunt-Crossley damping with the wrong sign"),
+    ("hertz-grid-cache-key-steps", "impactlab/physics/mdr.py",
+     'cached_grid(normal, ("mdr", springs, steps),', 'cached_grid(normal, ("mdr", springs),',
+     T_MAW + ["tests/test_work.py"], "MDR grid cache keyed without the step count"),
+    # --- physics/mdr.py
+    ("mdr-midpoints", "impactlab/physics/mdr.py",
+     "xi = (np.arange(springs) + 0.5) / springs", "xi = (np.arange(springs) + 1.0) / springs",
+     T_MAW, "springs at the cell ends instead of the mid-points"),
+    ("mdr-gain", "impactlab/physics/mdr.py", "TANGENTIAL_GAIN = 15.0 / 4.0", "TANGENTIAL_GAIN = 5.0 / 2.0",
+     T_MAW, "wrong constant in the slip equation"),
+    ("mdr-ladder-floor", "impactlab/physics/mdr.py",
+     "np.ceil(4.0 * np.log2(wanted / 12.0) - 1e-9)", "np.floor(4.0 * np.log2(wanted / 12.0) - 1e-9)",
+     T_MAW, "resolution ladder rounded down"),
+    ("mdr-steps-per-spring", "impactlab/physics/mdr.py", "STEPS_PER_SPRING = 6", "STEPS_PER_SPRING = 4",
+     T_MAW, "4 time steps per spring instead of 6"),
+    ("mdr-error-constant", "impactlab/physics/mdr.py", "ERROR_CONSTANT = 1.2", "ERROR_CONSTANT = 0.3",
+     T_MAW, "error constant of the resolution rule 4x too small"),
+    ("mdr-stick-radius-off-by-one", "impactlab/physics/_kernels.py",
+     "for i in range(reach):\n                    limit = max((h - xi2[i]) * load, 0.0)",
+     "for i in range(reach - 1):\n                    limit = max((h - xi2[i]) * load, 0.0)",
+     T_MAW, "kernel loop skips the outermost spring in contact (off by one)"),
+    # --- physics/dem.py
+    ("dem-first-order-stiffness", "impactlab/physics/dem.py",
+     "mean_stiffness = np.concatenate([[0.0], 0.5 * (stiffness[1:] + stiffness[:-1])])",
+     "mean_stiffness = np.concatenate([[0.0], stiffness[1:]])",
+     T_DEM, "end-point (first-order) stiffness in the incremental laws"),
+    ("dem-slip-gain", "impactlab/physics/dem.py", "SLIP_GAIN = 2.5", "SLIP_GAIN = 3.75",
+     T_DEM, "wrong constant in the slip equation"),
+    ("dem-rescale-direction", "impactlab/physics/dem.py",
+     "np.where(h[1:] < h[:-1], ratio, 1.0)", "np.where(h[1:] > h[:-1], ratio, 1.0)",
+     T_DEM, "history rescaled while the contact grows instead of shrinks"),
+    ("dem-mindlin-sqrt", "impactlab/physics/dem.py",
+     "return 1.5 * stiffness_factor * np.sqrt(np.maximum(h, 0.0))", "return 1.5 * stiffness_factor * np.maximum(h, 0.0)",
+     T_DEM, "Mindlin stiffness ~ h instead of sqrt(h) (a instead of a^2 confusion)"),
+    ("dem-steps-rule", "impactlab/physics/dem.py",
+     "wanted = int(np.ceil((100.0 / tolerance) ** (2.0 / 3.0)))", "wanted = int(np.ceil((100.0 / tolerance) ** 0.5))",
+     T_DEM, "step rule with order 2 where the incremental laws are order 1.5"),
+    # --- physics/annuli.py
+    ("annuli-outside-halved", "impactlab/physics/annuli.py",
+     "np.where(inside, 1.0, 2.0 / np.pi * np.arcsin(", "np.where(inside, 1.0, 1.0 / np.pi * np.arcsin(",
+     ["tests/test_maw.py", "tests/test_mutation_oracles.py"], "annuli: outside influence coefficient halved"),
+    ("annuli-sliver-dropped", "impactlab/physics/annuli.py",
+     "cap[last] += cap[last + 1]", "cap[last] += 0.0",
+     ["tests/test_maw.py", "tests/test_mutation_oracles.py"], "annuli: contact beyond the last mid-radius loses its load"),
+    # --- physics/rigid.py
+    ("rigid-sliding-test", "impactlab/physics/rigid.py",
+     "sliding = stop_slip >= cap", "sliding = stop_slip <= cap",
+     T_RIGID, "rigid Coulomb: sliding and rolling branches swapped"),
+    ("rigid-restitution-one-plus-e", "impactlab/physics/rigid.py",
+     "jn = (1.0 + restitution) * m_normal * normal_speed", "jn = restitution * m_normal * normal_speed",
+     T_RIGID, "normal impulse e m* V instead of (1+e) m* V"),
+    ("restitution-beta-target-sign", "impactlab/physics/rigid.py",
+     "target = np.stack([-beta * initial[:, 0]", "target = np.stack([beta * initial[:, 0]",
+     T_RIGID, "tangential restitution with the wrong sign"),
+    # --- physics/contact.py
+    ("contact-ball-mobility-k2", "impactlab/physics/contact.py",
+     "(eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None])",
+     "(eye + (eye - normal[:, :, None] * normal[:, None, :]) * k2[:, None, None])",
+     T_CLUB + ["tests/test_maw.py"], "ball mobility with K^2 instead of 1/K^2"),
+    ("contact-bulge-tilt-sign", "impactlab/physics/contact.py",
+     "normal = _unit(flat_normal + tilt_toe[:, None] * toe", "normal = _unit(flat_normal - tilt_toe[:, None] * toe",
+     T_CLUB, "convex face normal tilted the wrong way"),
+    # --- models/_compliant.py
+    ("compliant-chi-ball-mass", "models/_compliant.py",
+     "chi = 0.5 * kappa * m_normal / m_tangential", "chi = 0.5 * kappa * ball_mass / m_tangential",
+     T_MAW + ["tests/test_clubs.py"], "chi with the ball mass instead of the effective mass"),
+    ("compliant-history-sign", "models/_compliant.py",
+     '"tangential_force": peak * friction * np.sign(slip)', '"tangential_force": peak * friction',
+     T_MAW + ["tests/test_paper.py"], "tangential-force history's sign dropped for negative slip"),
+    ("compliant-adjusted-speed", "models/_compliant.py",
+     "scale_speed = 0.5 * (1.0 + restitution) * normal_speed", "scale_speed = restitution * normal_speed",
+     T_MAW, "adjusted speed e V instead of (1+e) V / 2"),
+    ("compliant-impulse-sign", "models/_compliant.py",
+     '"tangential_impulse": -np.sign(slip) * m_tangential * slip_change',
+     '"tangential_impulse": np.sign(slip) * m_tangential * slip_change',
+     T_MAW, "tangential impulse along the slip instead of against it"),
+    # --- models/maw.py, models/dem.py
+    ("maw-block-slice", "models/maw.py",
+     "parts = [solve(chi[i:i + BLOCK], psi1[i:i + BLOCK])", "parts = [solve(chi[i:i + BLOCK], psi1[i:i + BLOCK - 1])",
+     T_MAW, "off-by-one in the block slicing (crashes or shifts beyond 2047 cases)"),
+    ("maw-annuli-steps", "models/maw.py",
+     "return max(annuli.ANNULI_MIN_STEPS, annuli.STEPS_PER_ANNULUS * count)", "return annuli.ANNULI_MIN_STEPS",
+     T_MAW, "annuli steps not scaled with the ring count"),
+    ("dem-linear-ratio-inverted", "models/dem.py",
+     '"stiffness_factor": self.options.stiffness_ratio / float(kappa)}', '"stiffness_factor": float(kappa) / self.options.stiffness_ratio}',
+     T_DEM, "dem_linear stiffness factor r/kappa inverted"),
+    # --- glue outside physics/models that the issue names
+    ("study-poisson-override", "impactlab/study.py",
+     "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",
+     ["tests/test_study.py", "tests/test_mutation_oracles.py"], "a preset's Poisson ratio override ignored"),
+    ("gspro-knots", "impactlab/interchange.py", "MPH = 0.44704", "MPH = 0.514444",
+     ["tests/test_interchange.py", "tests/test_mutation_oracles.py"], "mph taken as knots in the GSPro export"),
+]
+
+#: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out
+EQUIVALENT: dict[str, str] = {
+    "maw-annuli-steps": "equivalent to the contract: the annular method's error is set by its ring count; 200 "
+                        "steps instead of 10 per annulus stay within its tolerance (measured against an "
+                        "independent MDR: 0.83 of the bound at 40 and 85 annuli, against 0.82 unmutated)",
+}
+
+
+def _copy_tree(destination: Path) -> Path:
+    ignore = shutil.ignore_patterns(".venv", ".git", "results", "*.egg-info", ".pytest_cache")
+    target = destination / "impactlab-mutation"
+    shutil.copytree(ROOT, target, ignore=ignore, copy_function=shutil.copy2)  # copy2 keeps mtimes: numba's cache
+    (target / "impactlab_models").symlink_to(target / "models", target_is_directory=True)
+    return target
+
+
+def run(selected, timeout: float, python: str) -> list[dict]:
+    results = []
+    with tempfile.TemporaryDirectory(prefix="impactlab-mutation-") as folder:
+        tree = _copy_tree(Path(folder))
+        env = {**os.environ, "PYTHONPATH": str(tree), "PYTHONDONTWRITEBYTECODE": "1"}
+        for ident, file, old, new, tests, what in selected:
+            path = tree / file
+            original = path.read_text()
+            if original.count(old) != 1:
+                results.append({"id": ident, "file": file, "what": what, "status": "stale",
+                                "detail": f"the original text occurs {original.count(old)} times"})
+                print(f"{ident:34s} STALE", flush=True)
+                continue
+            start = time.perf_counter()
+            try:
+                path.write_text(original.replace(old, new))
+                try:
+                    existing = [test for test in tests if (tree / test).exists()]
+                    done = subprocess.run([python, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *existing],
+                                          cwd=tree, env=env, capture_output=True, text=True, timeout=timeout)
+                    status = "survived" if done.returncode == 0 else "killed"
+                    lines = [line for line in done.stdout.splitlines() if line.startswith(("FAILED", "ERROR"))]
+                    detail = lines[0] if lines else done.stdout.strip().splitlines()[-1] if done.stdout.strip() else ""
+                except subprocess.TimeoutExpired:
+                    status, detail = "killed", f"timeout after {timeout:.0f} s"
+            finally:
+                path.write_text(original)  # the next mutant starts from the original source
+                os.utime(path, (path.stat().st_atime, (ROOT / file).stat().st_mtime))
+            if ident in EQUIVALENT:
+                status = "equivalent"
+            seconds = time.perf_counter() - start
+            results.append({"id": ident, "file": file, "what": what, "status": status, "detail": detail,
+                            "seconds": round(seconds, 1)})
+            print(f"{ident:34s} {status.upper():9s} {seconds:6.1f} s  {detail[:110]}", flush=True)
+    return results
+
+
+def _area(file: str) -> str:
+    return "physics" if file.startswith("impactlab/physics/") else "models" if file.startswith("models/") else "other"
+
+
+def summary(results: list[dict]) -> str:
+    lines = []
+    for area in ("physics", "models", "other"):
+        rows = [r for r in results if _area(r["file"]) == area]
+        counted = [r for r in rows if r["status"] in ("killed", "survived")]
+        killed = sum(r["status"] == "killed" for r in counted)
+        if counted:
+            lines.append(f"{area}: {killed}/{len(counted)} killed ({100 * killed / len(counted):.0f} %)")
+    counted = [r for r in results if r["status"] in ("killed", "survived")]
+    killed = sum(r["status"] == "killed" for r in counted)
+    if counted:
+        lines.append(f"all: {killed}/{len(counted)} killed ({100 * killed / len(counted):.0f} %)")
+    for r in results:
+        if r["status"] != "killed":
+            lines.append(f"  {r['status']}: {r['id']} ({r['file']}): {r['what']}")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("-k", nargs="*", default=[], help="run only mutants whose id contains one of these words")
+    parser.add_argument("--timeout", type=float, default=240.0, help="seconds per mutant before it counts as killed")
+    parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    parser.add_argument("--tests", nargs="*", help="run these test files for every mutant instead of the mapped ones "
+                        "(e.g. tests/test_mutation_oracles.py: does the oracle alone kill it?)")
+    parser.add_argument("--output", default=str(ROOT / "benchmarks" / "mutation_results.json"))
+    args = parser.parse_args(argv)
+    selected = [m for m in MUTANTS if not args.k or any(word in m[0] for word in args.k)]
+    if args.tests:
+        selected = [(ident, file, old, new, list(args.tests), what) for ident, file, old, new, _, what in selected]
+    if args.list:
+        for ident, file, _, _, tests, what in selected:
+            print(f"{ident:34s} {file:32s} {what}")
+        return 0
+    results = run(selected, args.timeout, sys.executable)
+    Path(args.output).write_text(json.dumps(results, indent=1) + "\n")
+    print(summary(results))
+    return 1 if any(r["status"] in ("survived", "stale") for r in results) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
