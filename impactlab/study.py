@@ -27,9 +27,10 @@ from .materials import MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material,
 from .model import ImpactModel
 from .registry import available, get_model
 from .scene import HANDEDNESS, Contact, Delivery, Impact, Scene
+from .limits import check_cases
 from .units import to_si
 from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR
-from .yaml_lines import line_of, load_yaml, parse_path
+from .yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
                   "models", "outputs", "plots")
@@ -176,12 +177,9 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
         text = yaml.safe_dump(_plain(document), sort_keys=False)
         file = file or "<mapping>"
     else:
-        if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
-                                                and source.strip().endswith((".yaml", ".yml"))):
+        if isinstance(source, os.PathLike) or (isinstance(source, str) and _names_a_file(source)):
             path = Path(source)
-            if not path.is_file():
-                raise StudyError(f"{path}: no such study file")
-            text = path.read_text(encoding="utf-8")
+            text = read_text_file(path)
             file = file or str(path)
         elif isinstance(source, str):
             text = source
@@ -200,6 +198,18 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
             # show what the user wrote, not the SI number it became
             exc = FieldError(exc.path, exc.expected, written, exc.choices)
         raise exc.at(file=file, line=line_of(lines, path)) from None
+
+
+def _names_a_file(text: str) -> bool:
+    """Whether a one-line string is a path (ends in .yaml/.yml in any case, or names something that exists)."""
+    if "\n" in text:
+        return False
+    if text.strip().lower().endswith((".yaml", ".yml")):
+        return True
+    try:
+        return Path(text).exists() and ":" not in text  # 'name: x' is YAML text even if such a file existed
+    except (OSError, ValueError):
+        return False
 
 
 def _document_path(text: str) -> tuple:
@@ -539,19 +549,43 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         num = spec["num"]
         if isinstance(num, bool) or not isinstance(num, int) or num < 1:
             raise FieldError(f"{where}.num", "a whole number of values >= 1", num)
+        check_cases(num, f"{where}.num")  # before the values are generated
         start = to_si(spec["start"], dimension, f"{where}.start")
         stop = to_si(spec["stop"], dimension, f"{where}.stop")
-        return list(np.linspace(start, stop, num))
+        if num > 1 and start == stop:
+            raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
+                             f"start = stop with num: {num}")
+        return _Range(np.linspace(start, stop, num))
     if isinstance(spec, (list, tuple)):
         if not spec:
             raise FieldError(where, "a non-empty list of values", spec)
+        check_cases(len(spec), where)
         return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
     raise FieldError(where, "a list of values or {start, stop, num}", spec)
 
 
+class _Range(list):
+    """Evenly spaced values: every check of a field is a range of allowed values, so checking both ends
+    (and the middle) checks them all, and a range of millions is not validated value by value."""
+
+    def probes(self) -> list[int]:
+        return sorted({0, len(self) // 2, len(self) - 1})
+
+
+def _refuse_repeats(where: str, rows: list, written: list) -> None:
+    """Two equal values of a dimension would make two cases with one coordinate value, silently."""
+    first: dict = {}
+    for index, row in enumerate(rows):
+        if row in first:
+            shown = written[index] if isinstance(written, list) and index < len(written) else row
+            raise FieldError(f"{where}[{index}]", f"distinct values (this one repeats [{first[row]}])", shown)
+        first[row] = index
+
+
 def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, list[float]]]) -> None:
     """Every swept value (all fields of one index together) must make a valid scene, with the base's messages."""
-    for index in range(len(fields[0][1])):
+    ranges = all(isinstance(values, _Range) for _, values in fields)
+    for index in fields[0][1].probes() if ranges else range(len(fields[0][1])):
         trial = copy.deepcopy(dict(document))
         for path, values in fields:
             section, key = path.split(".")
@@ -613,6 +647,7 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
             continue
         if "." in key or not isinstance(spec, Mapping) or set(spec) <= set(SWEEP_RANGE_KEYS):
             name, values = _sweep_field_values(key, spec, f"sweep.{key}")
+            _refuse_repeats(f"sweep.{key}", values, spec)
             _check_sweep_values(document, f"sweep.{key}", [(key, values)])
             raw_axes.append((None, None, [(key, name, values)]))
             continue
@@ -633,6 +668,8 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
             raise FieldError(f"sweep.{key}.labels", "a list of distinct names, one per value", labels)
         if len(sizes) != 1:
             raise FieldError(f"sweep.{key}", "lists of one length for every field (and labels)", sorted(sizes))
+        if labels is None:  # fields changing together may repeat a value, but not a whole row
+            _refuse_repeats(f"sweep.{key}", list(zip(*[values for _, _, values in fields])), [])
         _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields
                                                          if not path.startswith(PRESET_MARK)])
         raw_axes.append((key, tuple(labels) if labels else None, fields))
@@ -726,13 +763,15 @@ def _build_study(document, text: str, file: str | None) -> Study:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
     scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
     sweep = _build_sweep(document)
+    check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
-    return Study(name=name, description=description, scene=scene, sweep=sweep,
-                 models=_build_models(document["models"]), outputs=outputs, source=text, file=file,
-                 plots=_build_plots(document.get("plots"), sweep, outputs))
+    models = _build_models(document["models"])
+    return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
+                 source=text, file=file,
+                 plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]))
 
 
-def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
+def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
     if value is None:
         return ()
     if not isinstance(value, list):
@@ -767,6 +806,8 @@ def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
             if key not in dims + [MODEL_DIM]:
                 raise FieldError(f"{where}.select.{key}", "a sweep dimension or model", key,
                                  choices=dims + [MODEL_DIM])
+            if key == MODEL_DIM and model_ids and select[key] not in model_ids:  # else it fails after the run
+                raise FieldError(f"{where}.select.{key}", "a model of the study", str(select[key]), choices=model_ids)
         title = block.get("title", "")
         plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind))
     names = [plot.name for plot in plots]
