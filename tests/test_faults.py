@@ -332,30 +332,47 @@ def _children(pid: int) -> list[int]:
     return [int(p) for p in subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()]
 
 
-def test_sigterm_stops_process_workers_at_once(tmp_path):
-    process = _start("run", _annuli_study(tmp_path, 600), "-o", "r.h5", "--executor", "processes",
-                     "--workers", "2", "--chunk-size", "300", cwd=tmp_path)
-    _wait_for(lambda: len(_children(process.pid)) >= 2 and any(tmp_path.glob("r.h5.progress/*.npz"))
-              or process.poll() is not None)
-    workers = _children(process.pid)
+def _start_long_pool_run(folder: Path):
+    """A run whose two process workers each compute one ~5 s chunk of compiled code."""
+    process = _start("run", _annuli_study(folder, 1000), "-o", "r.h5", "--executor", "processes", "--workers", "2",
+                     "--chunk-size", "1500", cwd=folder)
+    _wait_for(lambda: len(_children(process.pid)) >= 2)
+    time.sleep(1.5)
+    return process, _children(process.pid)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_to_the_parent_stops_process_workers_at_once(tmp_path, signum):
+    process, workers = _start_long_pool_run(tmp_path)
     sent = time.monotonic()
-    process.send_signal(signal.SIGTERM)
+    process.send_signal(signum)  # to the parent alone, as kill does: the parent must stop its workers
     _, err = process.communicate(timeout=30)
-    assert time.monotonic() - sent < 5  # not the minute it took for the queued chunks to finish
+    assert time.monotonic() - sent < 2  # the running chunks are not waited for (nor, before, the queued ones)
     assert process.returncode == 130 and "Traceback" not in err and "run the same command again" in err
-    _wait_for(lambda: not any(_alive(pid) for pid in workers), 5)
+    _wait_for(lambda: not any(_alive(pid) for pid in workers), 1)
 
 
-def test_kill_9_leaves_no_orphan_and_the_resumed_result_equals_an_uninterrupted_one(tmp_path, capsys, monkeypatch):
-    study = _annuli_study(tmp_path, 200)
-    process = _start("run", study, "-o", "r.h5", "--executor", "processes", "--workers", "2", "--chunk-size", "30",
-                     cwd=tmp_path)
-    _wait_for(lambda: len(list(tmp_path.glob("r.h5.progress/m0-*.npz"))) >= 2)
-    workers = _children(process.pid)
+def test_kill_9_of_the_parent_leaves_no_orphan_worker(tmp_path):
+    process, workers = _start_long_pool_run(tmp_path)
     assert workers
     process.kill()
+    process.wait()  # not communicate(): orphans would hold its pipes open
+    try:
+        _wait_for(lambda: not any(_alive(pid) for pid in workers), 1.5)  # not when their chunk ends, or never
+    finally:
+        for pid in workers:  # a failing run must not leave its orphans behind
+            if _alive(pid):
+                os.kill(pid, signal.SIGKILL)
+        process.stdout.close()
+        process.stderr.close()
+
+
+def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkeypatch):
+    study = _annuli_study(tmp_path, 200)
+    process = _start("run", study, "-o", "r.h5", "--executor", "serial", "--chunk-size", "30", cwd=tmp_path)
+    _wait_for(lambda: len(list(tmp_path.glob("r.h5.progress/m0-*.npz"))) >= 2)
+    process.kill()
     process.communicate()
-    _wait_for(lambda: not any(_alive(pid) for pid in workers), 5)  # they die with their parent
     kept = len(list(tmp_path.glob("r.h5.progress/*.npz")))
     assert not (tmp_path / "r.h5").exists() and kept >= 2
     computed = []
