@@ -196,7 +196,10 @@ def _cmd_convergence(args) -> int:
 
     from .safe_output import check_output, name_in
 
+    from .limits import check as check_limits
+
     study = load_study(Path(args.study))
+    check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
     output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"))
     if args.plot not in (None, True):

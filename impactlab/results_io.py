@@ -29,8 +29,11 @@ def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
 def open_results(path: str | os.PathLike) -> xr.Dataset:
     """Load a result file fully into memory (the file is closed on return)."""
     path = Path(path)
+    if path.is_dir():
+        raise StudyError(f"{path}: is a folder, not a result file; give the .h5 file inside it")
     if not path.is_file():
-        raise StudyError(f"{path}: no such result file")
+        raise StudyError(f"{path}: no such result file" if not path.exists() else
+                         f"{path}: is not a regular file, not a result file")
     try:
         with xr.open_dataset(path, engine=ENGINE) as dataset:
             return dataset.load()

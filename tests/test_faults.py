@@ -109,6 +109,17 @@ def test_a_path_is_read_as_a_file_never_as_yaml_text(tmp_path, capsys, kind):
     assert ("is a folder, not a study file" if kind == "folder" else "is not a regular file") in err
 
 
+def test_shot_tables_and_result_files_are_checked_the_same_way(tmp_path, capsys):
+    table = tmp_path / "shots.csv"
+    table.write_bytes("club_speed,ball_speed\n".encode("utf-16"))
+    code, err = cli(capsys, "validate", "--dataset", table)
+    assert code == 2 and "is UTF-16 text; save the shot table as UTF-8" in err
+    code, err = cli(capsys, "show", tmp_path)
+    assert code == 2 and "is a folder, not a result file" in err
+    code, err = cli(capsys, "show", "/dev/null")
+    assert code == 2 and "is not a regular file" in err
+
+
 def test_a_text_file_that_is_not_a_study_is_reported_by_its_name(tmp_path, capsys):
     path = tmp_path / "notes.txt"
     path.write_text("hello\n")
