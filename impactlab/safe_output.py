@@ -108,8 +108,10 @@ def write_atomically(path: str | os.PathLike, payload: bytes | memoryview) -> Pa
             os.fsync(stream.fileno())  # a full disk shows here, not later after the rename
         os.chmod(temporary, 0o666 & ~_umask())  # mkstemp makes 0600; the result honours the umask
         os.replace(temporary, path)
-    except BaseException:
+    except BaseException as exc:
         Path(temporary).unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename is None:  # writes through a stream do not say where
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
         raise
     finally:
         _temporaries.discard(temporary)

@@ -241,14 +241,17 @@ def test_read_only_folder_is_an_environment_fault(tiny_tmpfs, tmp_path, capsys):
     assert old.read_bytes() == OLD
 
 
-def test_a_real_full_disk_is_reported_and_damages_nothing(tiny_tmpfs, tmp_path, capsys):
+@pytest.mark.parametrize("free_kib, chunks_kept", [(12, 0), (48, 3)])
+def test_a_real_full_disk_is_reported_and_damages_nothing(tiny_tmpfs, tmp_path, capsys, free_kib, chunks_kept):
+    # 12 KiB: the first chunk does not fit; 48 KiB: the three chunks (~40 KiB) fit, the 31 KB result does not
     old = tiny_tmpfs / "old.h5"
     old.write_bytes(OLD)
-    (tiny_tmpfs / "filler").write_bytes(b"\0" * (256 * 1024 - 3 * 4096 - len(OLD)))  # leave a few blocks
+    (tiny_tmpfs / "filler").write_bytes(b"\0" * ((256 - 4 - free_kib) * 1024))
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old, "-q")
-    assert code == 3 and "the disk is full" in err
+    assert code == 3 and "the disk is full" in err and str(tiny_tmpfs) in err  # and where
     assert old.read_bytes() == OLD
     assert not [path for path in tiny_tmpfs.rglob("*") if path.name.endswith((".part", ".tmp.npz"))]
+    assert len(list(tiny_tmpfs.glob("old.h5.progress/*.npz"))) == chunks_kept  # kept for the next run
 
 
 def _full_disk(*args, **kwargs):
