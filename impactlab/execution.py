@@ -214,8 +214,12 @@ class ProgressStore:
 
     def __exit__(self, *exc) -> None:
         if self._lock is not None:
-            os.close(self._lock)
-            self._lock = None
+            try:  # a run that failed before its first chunk leaves no folder behind, only real progress stays
+                if self.folder.is_dir() and {path.name for path in self.folder.iterdir()} <= {"manifest.json"}:
+                    shutil.rmtree(self.folder, ignore_errors=True)
+            finally:
+                os.close(self._lock)
+                self._lock = None
 
     def load(self, chunk: Chunk) -> dict | None:
         path = self.folder / f"{chunk.key}.npz"

@@ -464,6 +464,7 @@ def test_schedulers_bad_or_unreachable_are_said_quickly(tmp_path, capsys, monkey
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "--scheduler", "tcp://127.0.0.1:9")
     assert code == 3 and "no dask scheduler answered within 1 s" in err
     assert time.perf_counter() - start < 20 and old_result.read_bytes() == OLD
+    assert not (tmp_path / "old.h5.progress").exists()  # nothing computed, nothing left to resume
 
 
 def test_debug_shows_the_traceback_and_internal_errors_say_so(tmp_path, capsys, monkeypatch):
