@@ -77,10 +77,54 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
             attrs["missing"] = "; ".join(missing[name])
         if name == "validity":
             attrs.update(flag_attributes())
+            combined[name] = _integer_flags(combined[name])
         combined[name].attrs = attrs
     combined = combined[list(study.all_outputs)]
     combined.attrs = provenance(study, plan)
     return combined
+
+
+#: in the file, a case a model did not compute has this validity (CF _FillValue)
+VALIDITY_FILL = -1
+
+
+def _integer_flags(variable: xr.DataArray) -> xr.DataArray:
+    """Validity bits as the integers CF flag variables are (models compute them as floats, NaN where absent)."""
+    values = variable.values
+    if not np.isnan(values).any():
+        return variable.copy(data=values.astype(np.int16))
+    variable = variable.copy()
+    variable.encoding.update(dtype="int16", _FillValue=VALIDITY_FILL)  # stored as int16; NaN read back
+    return variable
+
+
+def versions() -> dict[str, str]:
+    """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage."""
+    from importlib import metadata
+
+    found = {"impactlab_version": __version__, "python_version": platform.python_version()}
+    for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
+        try:
+            found[f"{package}_version"] = metadata.version(package)
+        except metadata.PackageNotFoundError:
+            found[f"{package}_version"] = "not installed"
+    return found
+
+
+def git_commit() -> str:
+    """The commit of the checkout impactlab runs from ('' if installed from a package), '-dirty' if edited."""
+    import subprocess
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    try:
+        commit = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True,
+                                timeout=5, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(here), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return ""
+    return f"{commit}-dirty" if dirty else commit
 
 
 def provenance(study, plan) -> dict[str, str | int]:
@@ -98,10 +142,8 @@ def provenance(study, plan) -> dict[str, str | int]:
         "models": json.dumps(models),
         "plan": plan.describe(),
         "plots": json.dumps([plot.as_dict() for plot in study.plots]),
-        "impactlab_version": __version__,
-        "python_version": platform.python_version(),
-        "numpy_version": np.__version__,
-        "xarray_version": xr.__version__,
+        **versions(),
+        "git_commit": git_commit(),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
                        "z away from face; backspin positive",

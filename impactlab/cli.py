@@ -8,56 +8,92 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import shutil
 import sys
 from pathlib import Path
 
-EXIT_BAD_INPUT = 2
-EXIT_INTERRUPTED = 130
-
+from .safe_output import write_atomically
+from .faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
 from .vocabulary import OUTPUTS  # noqa: E402  (light: names and units only)
+
+
+def _count(text: str) -> int:
+    """argparse type: a whole number >= 1 (workers, cases per chunk, repeats), refused at once otherwise."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {value}")
+    return value
+
+
+def _size(text: str) -> int:
+    from .limits import parse_size
+
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"expected {exc}") from None
 
 
 def _cmd_run(args) -> int:
     from .errors import StudyError
-    from .results_io import write_results
+    from .faults import set_interrupt_hint
+    from .limits import check as check_limits
     from .runner import plan_study, run_study
+    from .safe_output import check_outdir, check_output, name_in, refuse_clashes
     from .study import load_study
 
     if args.scheduler:
+        _check_scheduler(args.scheduler)
         args.executor = "dask"
     if args.output and len(args.study) > 1:
         raise StudyError("-o/--output names one result file; with several studies use --outdir")
-    studies = [load_study(path) for path in args.study]  # every file is checked before anything runs
+    studies = [load_study(Path(path)) for path in args.study]  # every file is checked before anything runs
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
     if args.plan:
         for study in studies:
             print(plan_study(study).describe())
         return 0
-    outdir = Path(args.outdir) if args.outdir else None
+    # every output is checked before the first case runs: a bad path found after an hour loses the hour
+    outdir = check_outdir(args.outdir) if args.outdir else None
+    outputs = [Path(args.output) if args.output else name_in(outdir or Path("."), study.name, ".h5")
+               for study in studies]
+    refuse_clashes([(f"{study.file} (name {study.name!r})", output) for study, output in zip(studies, outputs)])
+    for study in studies:
+        check_limits(study)  # for every study before the first runs
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
-    for study in studies:
-        output = Path(args.output) if args.output else (outdir or Path(".")) / f"{study.name}.h5"
-        if not output.parent.is_dir():
-            raise StudyError(f"{output}: cannot write results: folder {output.parent} does not exist")
+    for output in outputs:
+        check_output(output)
+        if args.plot not in (None, True):
+            check_output(Path(args.plot), what="picture", suffix=".png")
+    for study, output in zip(studies, outputs):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
-        try:
-            dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
-                                scheduler=args.scheduler, chunk_size=args.chunk_size,
-                                progress_folder=progress_folder, show_progress=not args.quiet)
-        except KeyboardInterrupt:
-            print(f"impactlab: interrupted; finished chunks are kept in {progress_folder}: run the same command "
-                  "again to compute only the rest", file=sys.stderr)
-            return EXIT_INTERRUPTED
-        write_results(dataset, output)
-        shutil.rmtree(progress_folder, ignore_errors=True)
+        set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
+                           "compute only the rest")
+        dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
+                            scheduler=args.scheduler, chunk_size=args.chunk_size,
+                            progress_folder=progress_folder, show_progress=not args.quiet, output=output)
         say(f"wrote {output}")
         if args.plot:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+#: dask scheduler addresses: PROTOCOL://HOST[:PORT] or HOST:PORT
+_SCHEDULER = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(?::\d+)?|[A-Za-z0-9.\-]+:\d+)/?$")
+
+
+def _check_scheduler(address: str) -> None:
+    from .errors import FieldError
+
+    if not _SCHEDULER.match(address):
+        raise FieldError("--scheduler", "a dask scheduler address such as tcp://HOST:8786 or HOST:8786", address)
 
 
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
@@ -118,16 +154,29 @@ def _cmd_show(args) -> int:
 
 
 def _cmd_plot(args) -> int:
+    from .errors import FieldError
     from .plotting import plot_histories, plot_results
     from .results_io import open_results
+    from .safe_output import check_output
+    from .vocabulary import HISTORY, MODEL_DIM
 
     dataset = open_results(args.file)
-    if args.history and args.history not in dataset.data_vars:
-        from .errors import FieldError
-
-        raise FieldError("--history", "a history held by the file", args.history,
-                         choices=[name for name in dataset.data_vars if "time" in dataset[name].dims])
-    output = Path(args.output or Path(args.file).with_suffix(".png"))
+    histories = [name for name in dataset.data_vars if "time" in dataset[name].dims]
+    if args.history and args.history not in histories:
+        raise FieldError("--history", "a history held by the file", args.history, choices=histories)
+    scalars = [name for name in dataset.data_vars if name in OUTPUTS and OUTPUTS[name].kind != HISTORY]
+    for name in args.variables or []:  # an unknown name would draw an empty picture and say "wrote"
+        if name not in scalars:
+            raise FieldError("-v", "a scalar output held by the file", name, choices=scalars)
+    drawable = [name for name in (args.variables or scalars)
+                if not bool(dataset[name].isnull().all())]
+    if (args.variables or args.x or args.output) and not args.history and not drawable:
+        raise FieldError("-v", "an output with at least one computed value", ", ".join(args.variables or scalars))
+    if args.x is not None:
+        dims = [dim for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
+        if args.x not in dims + scalars:
+            raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x, choices=dims + scalars)
+    output = check_output(args.output or Path(args.file).with_suffix(".png"), what="picture", suffix=".png")
     if args.history:
         plot_histories(dataset, output, args.history)
     elif args.variables or args.x or args.output:
@@ -145,10 +194,17 @@ def _cmd_convergence(args) -> int:
     from .results_io import write_results
     from .study import load_study
 
-    study = load_study(args.study)
+    from .safe_output import check_output, name_in
+
+    from .limits import check as check_limits
+
+    study = load_study(Path(args.study))
+    check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
+    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"))
+    if args.plot not in (None, True):
+        check_output(args.plot, what="picture", suffix=".png")
     dataset = work_precision(study, tolerances=args.tolerances or LADDER, repeats=args.repeats, progress=say)
-    output = Path(args.output or f"{study.name}-work-precision.h5")
     write_results(dataset, output)
     say(f"wrote {output}")
     if args.plot:
@@ -186,10 +242,12 @@ def _cmd_paper(args) -> int:
     from .errors import StudyError
     from .paper import report
 
+    from .safe_output import check_output
+
     results = Path(args.results)
     if not results.is_dir():
         raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
-    output = Path(args.output)
+    output = check_output(args.output, what="report", suffix=".md")
     report(results, output, Path(args.figures) if args.figures else output.parent / "figures")
     print(f"wrote {output}", file=sys.stderr)
     return 0
@@ -198,7 +256,9 @@ def _cmd_paper(args) -> int:
 def _cmd_export(args) -> int:
     from .interchange import write_gspro
     from .results_io import open_results
+    from .safe_output import check_output
 
+    check_output(args.output, what="shot file", suffix=".json")
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0
@@ -227,6 +287,10 @@ def _cmd_validate(args) -> int:
     from .validation import DATASETS, errors, get_dataset
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
+    if args.plot:  # refused before the models run, not after
+        from .safe_output import check_output
+
+        check_output(args.plot, what="--plot file", suffix=".png")
     over = []
     for name in names:
         table = shot_table(name)
@@ -261,8 +325,11 @@ def _cmd_fit(args) -> int:
     from .fitting import describe, fit
     from .validation import get_dataset
 
+    from .safe_output import check_output
     from .shot_report import fit_shots, shot_table
 
+    if args.json:  # refused before minutes of fitting, not after
+        check_output(args.json, what="--json file", suffix=".json")
     table = shot_table(args.dataset)
     if table is not None:
         return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
@@ -284,7 +351,7 @@ def _cmd_fit(args) -> int:
         print(f"  {model:<16} {describe(result)}")
         print(f"  {'':<16} residuals {residuals}; rms {result.rms:.4f} (before the fit {result.start_rms:.4f})")
     if args.json:
-        Path(args.json).write_text(json.dumps(results, indent=1))
+        write_atomically(args.json, json.dumps(results, indent=1).encode())
         print(f"wrote {args.json}", file=sys.stderr)
     return 0
 
@@ -294,6 +361,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     commands = parser.add_subparsers(dest="command", required=True)
 
     run = commands.add_parser("run", help="run a study file and write its results (HDF5)")
@@ -306,9 +374,13 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--executor", choices=("auto", "serial", "processes", "dask"), default="auto",
                      help="where cases run: auto (serial for small studies, every core for large), serial, "
                           "processes, dask; results are identical")
-    run.add_argument("--workers", type=int, help="worker processes (default: every core)")
+    run.add_argument("--workers", type=_count, help="worker processes (default: every core)")
     run.add_argument("--scheduler", metavar="ADDRESS", help="dask.distributed scheduler (implies --executor dask)")
-    run.add_argument("--chunk-size", type=int, help="cases per unit of work")
+    run.add_argument("--chunk-size", type=_count, help="cases per unit of work")
+    run.add_argument("--max-cases", type=_count, help="refuse studies of more cases than this (default 10,000,000; "
+                                                       "also IMPACTLAB_MAX_CASES)")
+    run.add_argument("--max-memory", type=_size, help="refuse studies estimated to need more memory than this, e.g. "
+                                                       "16GiB (default 4GiB; also IMPACTLAB_MAX_MEMORY)")
     run.add_argument("-q", "--quiet", action="store_true")
     run.set_defaults(handler=_cmd_run)
 
@@ -333,7 +405,7 @@ def build_parser() -> argparse.ArgumentParser:
     convergence.add_argument("-o", "--output", help="result file (.h5); default: STUDY_NAME-work-precision.h5")
     convergence.add_argument("--plot", metavar="PNG", nargs="?", const=True,
                              help="draw the work-precision diagram (default: next to the result file)")
-    convergence.add_argument("--repeats", type=int, default=3, help="timed repeats per point (median)")
+    convergence.add_argument("--repeats", type=_count, default=3, help="timed repeats per point (median)")
     convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
     convergence.add_argument("-q", "--quiet", action="store_true")
     convergence.set_defaults(handler=_cmd_convergence)
@@ -373,34 +445,20 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("-o", "--output", default="docs/paper.md", help="report file (markdown)")
     paper.add_argument("--figures", help="folder for the figures (default: figures/ beside the report)")
     paper.set_defaults(handler=_cmd_paper)
+    for command in commands.choices.values():  # --debug after the command too; SUPPRESS keeps a global one
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                             help="show the Python traceback of an error")
     return parser
 
 
 def main(argv=None) -> int:
-    from .errors import ImpactLabError
-
-    import warnings
-
-    from .diagnostics import ValidityWarning
+    """Run one command; every failure ends as one message and an exit status (impactlab.faults)."""
+    from . import limits
+    from .faults import run_command
 
     args = build_parser().parse_args(argv)
-
-    def show_warning(message, category, *rest, **kwargs):
-        # one line, in words, for validity; the usual format for anything else
-        if issubclass(category, ValidityWarning):
-            print(f"impactlab: warning: {message}", file=sys.stderr)
-        else:
-            print(warnings.formatwarning(message, category, *rest), file=sys.stderr, end="")
-
-    warnings.showwarning = show_warning
-    try:
-        return args.handler(args)
-    except ImpactLabError as exc:
-        print(f"impactlab: error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    except KeyboardInterrupt:
-        print("impactlab: interrupted; no result file was written or changed", file=sys.stderr)
-        return EXIT_INTERRUPTED
+    limits.configure(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None))
+    return run_command(lambda: args.handler(args), debug=args.debug)
 
 
 if __name__ == "__main__":

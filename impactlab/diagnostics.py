@@ -28,7 +28,9 @@ class ValidityWarning(UserWarning):
 
 
 def flag_attributes() -> dict[str, object]:
-    return {"flag_masks": np.array(sorted(FLAGS), dtype=np.int64),
+    # bit flags in CF: with flag_masks and flag_values both given, flag i is set when value & mask_i == value_i
+    bits = np.array(sorted(FLAGS), dtype=np.int16)
+    return {"flag_masks": bits, "flag_values": bits.copy(),
             "flag_meanings": " ".join(FLAGS[bit][0] for bit in sorted(FLAGS))}
 
 

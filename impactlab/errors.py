@@ -13,7 +13,23 @@ from collections.abc import Iterable
 
 
 class ImpactLabError(Exception):
-    """Base class of every user-facing impactlab error."""
+    """Base class of every user-facing impactlab error.
+
+    ``exit_code`` is the status the command line ends with: 2 for bad input
+    (the default), 3 for a fault of the environment (see :class:`EnvironmentFault`).
+    """
+
+    exit_code = 2
+
+
+class EnvironmentFault(ImpactLabError):
+    """The input is fine but the machine is not: a folder is unwritable, the disk is full, a lock is held."""
+
+    exit_code = 3
+
+
+class ResourceLimitError(ImpactLabError):
+    """A study (or file) would need more cases, memory or nodes than the configured limit allows."""
 
 
 class FieldError(ImpactLabError, ValueError):
@@ -95,6 +111,10 @@ class ModelInputError(ImpactLabError):
 
 class ModelContractError(ImpactLabError):
     """A model's hook broke the plugin contract (wrong keys, shapes...)."""
+
+
+class PlausibilityWarning(UserWarning):
+    """A result computed as asked that no real shot would produce (e.g. sent to a golf simulator)."""
 
 
 class PluginWarning(UserWarning):

@@ -15,12 +15,16 @@ and output computes only the chunks that are missing.
 
 from __future__ import annotations
 
+import ctypes
+import fcntl
 import hashlib
 import json
 import os
 import shutil
+import signal
 import sys
 import time
+import zipfile
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
@@ -29,8 +33,9 @@ import attrs
 import numpy as np
 import xarray as xr
 
-from .errors import StudyError
-from .results_io import write_atomically
+from .errors import EnvironmentFault, StudyError
+from .faults import check_interrupt
+from .safe_output import _temporaries, write_atomically
 from .vocabulary import CASE_DIM, OUTPUTS, TIME_DIM
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
@@ -78,19 +83,49 @@ def _serial(tasks) -> Iterator:
         yield chunk, call()
 
 
+#: seconds to reach a dask scheduler before giving up
+SCHEDULER_TIMEOUT = 10
+PR_SET_PDEATHSIG = 1
+
+
+def _worker_start(parent: int) -> None:
+    """In each worker process: die with the parent, and leave Ctrl-C to it.
+
+    Ctrl-C reaches every process of the terminal's group; the parent decides (it stops the pool), so a
+    worker ignores SIGINT. If the parent is killed (even with kill -9) the kernel sends the worker
+    SIGKILL (Linux prctl PR_SET_PDEATHSIG); a parent already gone before that was set is caught by
+    comparing the parent pid.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a forked worker inherits the parent's Ctrl-C-like handler
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent:
+        os._exit(1)
+
+
 class _Pool:
     def __init__(self, kind: str, workers: int | None, scheduler: str | None):
         self.kind = kind
         self.shared = None
         if kind == "processes":
-            self.pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count())
+            self.pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count(), initializer=_worker_start,
+                                            initargs=(os.getpid(),))
         else:
             try:
                 from dask.distributed import Client, LocalCluster
             except ImportError:
                 raise StudyError("the dask executor needs dask.distributed: pip install 'impactlab[dask]'") from None
             if scheduler:
-                self.client = Client(scheduler)
+                try:
+                    self.client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+                except (OSError, TimeoutError, ValueError) as exc:
+                    raise EnvironmentFault(f"--scheduler {scheduler}: no dask scheduler answered within "
+                                           f"{SCHEDULER_TIMEOUT} s ({type(exc).__name__}); check the address and "
+                                           "that the scheduler runs, or leave --scheduler out") from None
                 self.cluster = None
             else:
                 self.cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
@@ -102,7 +137,8 @@ class _Pool:
             futures = {self.pool.submit(compute_chunk, model, inputs, outputs, chunk): chunk for chunk in chunks}
             pending = set(futures)
             while pending:
-                done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                check_interrupt()  # waits are short, so that Ctrl-C stops the pool within a fraction of a second
+                done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
                 for future in done:
                     yield futures[future], future.result()
         else:
@@ -113,11 +149,15 @@ class _Pool:
             futures = {self.client.submit(compute_chunk, model, self.shared, outputs, chunk, pure=False): chunk
                        for chunk in chunks}
             for future in as_completed(list(futures)):
+                check_interrupt()
                 yield futures[future], future.result()
 
-    def close(self):
+    def close(self, abort: bool = False):
         if self.kind == "processes":
-            self.pool.shutdown(wait=False, cancel_futures=True)
+            if abort:  # an interrupt or error: queued chunks are not wanted, running ones are stopped now
+                for process in list(getattr(self.pool, "_processes", {}).values()):
+                    process.terminate()
+            self.pool.shutdown(wait=not abort, cancel_futures=True)
         else:
             self.client.close()
             if self.cluster is not None:
@@ -149,31 +189,58 @@ class Progress:
 
 
 class ProgressStore:
-    """Finished chunks of one study run, saved atomically next to the result file."""
+    """Finished chunks of one study run, saved atomically next to the result file.
 
-    def __init__(self, folder: Path, fingerprint: str, say: Callable[[str], None]):
-        self.folder = folder
-        manifest = folder / "manifest.json"
-        if folder.is_dir():
-            try:
-                same = json.loads(manifest.read_text())["fingerprint"] == fingerprint
-            except (OSError, ValueError, KeyError):
-                same = False
-            if not same:
-                say(f"{folder}: progress of a different study or version; starting over")
-                shutil.rmtree(folder)
-        folder.mkdir(parents=True, exist_ok=True)
-        if not manifest.exists():
-            write_atomically(manifest, json.dumps({"fingerprint": fingerprint}).encode())
+    Used as a context manager it holds an exclusive lock (``fcntl.flock``) on the folder: a second run
+    writing the same result is refused at once instead of racing this one. A chunk file that cannot
+    be read back (truncated, damaged) is reported, deleted and computed again.
+    """
+
+    def __init__(self, folder: Path, fingerprint: str, say: Callable[[str], None], output=None):
+        self.folder, self.fingerprint, self.say = Path(folder), fingerprint, say
+        self.output = output or self.folder.with_suffix("")
+        self._lock = None
+
+    def __enter__(self) -> "ProgressStore":
+        self._lock = _lock_folder(self.folder, self.output)
+        manifest = self.folder / "manifest.json"
+        try:
+            same = json.loads(manifest.read_text())["fingerprint"] == self.fingerprint
+        except (OSError, ValueError, KeyError, TypeError):
+            same = False
+        entries = list(self.folder.iterdir())
+        if not same and any(path.name != "manifest.json" for path in entries):
+            self.say(f"{self.folder}: progress of a different study or version; starting over")
+        for path in entries:
+            # a different study's chunks, or the temporary file of a run killed while saving a chunk
+            if not same or path.name.endswith(".tmp.npz"):
+                shutil.rmtree(path) if path.is_dir() else path.unlink(missing_ok=True)
+        if not same:
+            write_atomically(manifest, json.dumps({"fingerprint": self.fingerprint}).encode())
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self._lock is not None:
+            try:  # a run that failed before its first chunk leaves no folder behind, only real progress stays
+                if self.folder.is_dir() and {path.name for path in self.folder.iterdir()} <= {"manifest.json"}:
+                    shutil.rmtree(self.folder, ignore_errors=True)
+            finally:
+                os.close(self._lock)
+                self._lock = None
 
     def load(self, chunk: Chunk) -> dict | None:
         path = self.folder / f"{chunk.key}.npz"
         if not path.exists():
             return None
-        with np.load(path, allow_pickle=False) as archive:
-            meta = json.loads(str(archive["__meta__"]))
-            data = {name: archive[name] for name in meta["names"]}
-            time_axis = archive["__time__"] if "__time__" in archive else None
+        try:
+            with np.load(path, allow_pickle=False) as archive:
+                meta = json.loads(str(archive["__meta__"]))
+                data = {name: archive[name] for name in meta["names"]}
+                time_axis = archive["__time__"] if "__time__" in archive else None
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+            self.say(f"{path}: damaged ({type(exc).__name__}: {exc}); computing this chunk again")
+            path.unlink(missing_ok=True)
+            return None
         return {"data": data, "attrs": meta["attrs"], "dims": {k: tuple(v) for k, v in meta["dims"].items()},
                 "time": time_axis, "global": meta["global"]}
 
@@ -184,11 +251,43 @@ class ProgressStore:
         if part["time"] is not None:
             arrays["__time__"] = part["time"]
         temporary = self.folder / f".{chunk.key}.tmp.npz"
-        np.savez(temporary, __meta__=np.array(json.dumps(meta)), **arrays)
-        os.replace(temporary, self.folder / f"{chunk.key}.npz")
+        _temporaries.add(str(temporary))
+        try:
+            with open(temporary, "wb") as stream:
+                np.savez(stream, __meta__=np.array(json.dumps(meta)), **arrays)
+                stream.flush()
+                os.fsync(stream.fileno())  # a full disk shows here, before the rename
+            os.replace(temporary, self.folder / f"{chunk.key}.npz")
+        except BaseException as exc:
+            temporary.unlink(missing_ok=True)
+            if isinstance(exc, OSError) and exc.filename is None:  # zipfile's errors do not say where
+                raise OSError(exc.errno, exc.strerror, str(temporary)) from None
+            raise
+        finally:
+            _temporaries.discard(str(temporary))
 
     def clear(self) -> None:
         shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _lock_folder(folder: Path, output) -> int:
+    """Create ``folder`` and lock it for this process; the lock goes with the descriptor returned."""
+    for _ in range(3):  # another run may remove the folder between our mkdir and our lock: take the new one
+        folder.mkdir(parents=True, exist_ok=True)
+        handle = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(handle)
+            raise EnvironmentFault(f"{output}: another impactlab run is computing this result now (its progress "
+                                   f"folder {folder} is locked); wait for it to finish, or choose another -o") from None
+        try:
+            if os.stat(folder).st_ino == os.fstat(handle).st_ino:
+                return handle
+        except FileNotFoundError:
+            pass
+        os.close(handle)
+    raise EnvironmentFault(f"{folder}: keeps disappearing while being locked; is another run clearing it?")
 
 
 def _jsonable(attrs_by_name: dict) -> dict:
@@ -242,6 +341,7 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                 progress.advance(chunk.stop - chunk.start)
     todo = [chunk for chunk in chunks if chunk not in parts]
     pool = _Pool(kind, workers, scheduler) if todo and kind in ("processes", "dask") else None
+    finished = False
     try:
         for entry_index, entry in enumerate(study.models):
             mine = [chunk for chunk in todo if chunk.entry == entry_index]
@@ -257,9 +357,11 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                     store.save(chunk, part)
                 parts[chunk] = part
                 progress.advance(chunk.stop - chunk.start)
+                check_interrupt()  # the safe point: this chunk is saved, the next has not started
+        finished = True
     finally:
         if pool is not None:
-            pool.close()
+            pool.close(abort=not finished)
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
 
 

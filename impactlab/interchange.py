@@ -30,7 +30,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import FieldError, StudyError
-from .results_io import write_atomically
+from .safe_output import write_atomically
 from .vocabulary import MODEL_DIM
 
 MPH = 0.44704
@@ -92,8 +92,61 @@ def _plain(value):
     return value.item() if hasattr(value, "item") else value
 
 
+#: ball speed over club speed beyond which no real club delivers (conforming drivers reach about 1.50-1.52;
+#: a face fixed in space, i.e. an infinitely heavy club, gives up to about 1.9)
+MAX_SMASH_FACTOR = 1.6
+
+
+def _club_speed(dataset: xr.Dataset) -> xr.DataArray | float | None:
+    """Club speed of every case in m/s: a swept coordinate, or the base scene's."""
+    from .units import to_si
+
+    for name in ("club_speed", "speed"):
+        if name in dataset.coords:
+            units = dataset[name].attrs.get("units", "m/s")
+            return dataset[name] * to_si(f"1 {units}", "speed")
+    try:
+        return float(json.loads(dataset.attrs.get("base_scene_si", "{}"))["speed"])
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def implausible_shots(dataset: xr.Dataset, model: str | None = None) -> list[str]:
+    """Sentences about shots no real club and ball would make, per model: a simulator would fly them anyway."""
+    found = []
+    club = _club_speed(dataset)
+    models = [model] if model is not None else [str(value) for value in dataset[MODEL_DIM].values]
+    for name in models:
+        subset = dataset.sel({MODEL_DIM: name})
+        smash = subset["smash_factor"] if "smash_factor" in subset else (
+            subset["ball_speed"] / club if club is not None else None)
+        if smash is not None:
+            over = int((smash > MAX_SMASH_FACTOR).sum())
+            if over:
+                found.append(f"{name}: {over} shot(s) have a smash factor above {MAX_SMASH_FACTOR} (up to "
+                             f"{float(smash.max()):.2f}); no real club does that: a face fixed in space or a very "
+                             "heavy head? (give the study a club or a face mass)")
+        if "back_spin" in subset:
+            backwards = int((subset["back_spin"] < 0).sum())
+        else:
+            backwards = int((np.abs(subset["spin_axis"]) > 90).sum())
+        if backwards:
+            found.append(f"{name}: {backwards} shot(s) spin forwards (negative backspin, spin axis beyond 90 deg): "
+                         "a loft below the attack angle? simulators fly such shots, but they are not golf shots")
+    return found
+
+
 def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options) -> int:
-    """Write the shots as a JSON array to ``path`` (atomically); return how many."""
+    """Write the shots as a JSON array to ``path`` (atomically); return how many.
+
+    Physically implausible shots are written as computed, with a PlausibilityWarning for each kind.
+    """
+    import warnings
+
+    from .errors import PlausibilityWarning
+
     shots = gspro_shots(dataset, **options)
+    for text in implausible_shots(dataset, options.get("model")):
+        warnings.warn(text, PlausibilityWarning, stacklevel=2)
     write_atomically(Path(path), json.dumps(shots, indent=1).encode())
     return len(shots)

@@ -31,9 +31,13 @@ class StudyPlan:
     models: tuple[tuple[str, OutputPlan], ...]
     #: which solver path the cases take, and why (one paragraph; empty without a club head)
     paths: str = ""
+    #: the resources it will take (impactlab.limits.Estimate.describe)
+    resources: str = ""
 
     def describe(self) -> str:
         lines = [f"study {self.study!r}: {self.n_cases} case(s) x {len(self.models)} model(s)"]
+        if self.resources:
+            lines.append(f"  {self.resources}")
         lines += [f"  [{entry_id}] {plan.describe()}" for entry_id, plan in self.models]
         if self.paths:
             lines.append(f"  contact: {self.paths}")
@@ -59,7 +63,14 @@ def describe_paths(study: Study) -> str:
 
 
 def plan_study(study: Study) -> StudyPlan:
-    """Plan every model of the study; refuse a model that lacks a required input, naming model and input."""
+    """Plan every model of the study; refuse a model that lacks a required input, naming model and input.
+
+    A study that would need more cases or memory than :mod:`impactlab.limits` allows is refused here,
+    before its inputs are built.
+    """
+    from .limits import check
+
+    resources = check(study).describe()
     given = set(study.scene.inputs())
     plans = []
     for entry in study.models:
@@ -70,7 +81,7 @@ def plan_study(study: Study) -> StudyPlan:
             raise ModelInputError(f"{study.file or study.name}: model {entry.id!r} needs {fields}, which the study "
                                   f"does not give; add it or remove the model")
         plans.append((entry.id, plan))
-    return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study))
+    return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
 
 
 def case_inputs(study: Study) -> dict[str, np.ndarray]:
@@ -95,7 +106,8 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
 
 def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
               workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
-              progress_folder: str | Path | None = None, show_progress: bool = False) -> xr.Dataset:
+              progress_folder: str | Path | None = None, show_progress: bool = False,
+              output: str | Path | None = None) -> xr.Dataset:
     """Run a study (path, YAML text, mapping or Study) and return its results as one dataset.
 
     Parameters
@@ -115,20 +127,32 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
         started again with the same folder computes only what is missing.
     show_progress : bool
         Draw a progress bar on stderr.
+    output : path, optional
+        Also write the result file here (atomically); with a progress folder, the folder stays locked
+        against another run until the file is written and the folder removed.
     """
+    import contextlib
+
     from .execution import ProgressStore, fingerprint, run_chunks
+    from .results_io import write_results
 
     study = load_study(source)
     plan = plan_study(study)
     inputs = case_inputs(study)
     outputs = study.all_outputs
     say = progress or (lambda text: None)
-    store = None
-    if progress_folder is not None:
-        store = ProgressStore(Path(progress_folder), fingerprint(study, outputs), say)
-    say(f"running {len(study.models)} model(s) on {study.n_cases} case(s)")
-    results = run_chunks(study, inputs, outputs, executor=executor, workers=workers, scheduler=scheduler,
-                         chunk_size=chunk_size, store=store, show_progress=show_progress)
-    dataset = assemble(study, plan, results)
+    with contextlib.ExitStack() as stack:
+        store = None
+        if progress_folder is not None:
+            store = stack.enter_context(ProgressStore(Path(progress_folder), fingerprint(study, outputs), say,
+                                                      output=output))
+        say(f"running {len(study.models)} model(s) on {study.n_cases} case(s)")
+        results = run_chunks(study, inputs, outputs, executor=executor, workers=workers, scheduler=scheduler,
+                             chunk_size=chunk_size, store=store, show_progress=show_progress)
+        dataset = assemble(study, plan, results)
+        if output is not None:
+            write_results(dataset, output)
+            if store is not None:
+                store.clear()
     warn_validity(dataset)
     return dataset

@@ -70,9 +70,13 @@ _PANELS = (("ball_speed", "ball speed [mph]", 1.0 / 0.44704), ("vertical_launch_
 
 def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
     """Draw :func:`shots_figure` to the PNG ``path``."""
-    path = Path(path)
-    shots_figure(table, predictions).savefig(path, dpi=110)
-    return path
+    import io
+
+    from .safe_output import write_atomically
+
+    buffer = io.BytesIO()
+    shots_figure(table, predictions).savefig(buffer, format="png", dpi=110)
+    return write_atomically(path, buffer.getvalue())
 
 
 def shots_figure(table: ShotTable, predictions: dict):
@@ -166,6 +170,8 @@ def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bo
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
-        Path(json_path).write_text(json.dumps(results, indent=1, default=float))
+        from .safe_output import write_atomically
+
+        write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
         print(f"wrote {json_path}", file=sys.stderr)
     return 0

@@ -300,13 +300,12 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
 
 def read_shots(path) -> ShotTable:
     """A shot table from a .csv or .yaml/.yml file."""
+    from .yaml_lines import read_text_file
+
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise StudyError(f"{path}: not a text file (UTF-8 CSV or YAML expected)") from None
+    text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() == ".csv":
         return read_csv(text, str(path))
     if path.suffix.lower() in (".yaml", ".yml"):

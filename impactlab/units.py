@@ -73,6 +73,16 @@ def to_si(value: object, dimension: str, path: str = "") -> float:
         if not isinstance(quantity, ureg.Quantity):  # a bare number written as a string
             magnitude, unit = float(quantity), plain_unit
         else:
+            # pint counts radians as dimensionless, so "50 %" would pass as 0.5 rad, "30 deg" as a friction of
+            # 0.52, and "50 Hz" as 50 rad/s: whether an angle unit is written decides instead
+            angular = _has_angle(quantity)
+            if dimension == "angle" and not angular:
+                raise FieldError(path, f"{expected}; {quantity.units:~} is not an angle unit (deg, rad)", value)
+            if dimension == "dimensionless" and angular:
+                raise FieldError(path, f"{expected}; an angle unit does not belong here", value)
+            if dimension == "angular_speed" and not angular:
+                # a frequency without an angle counts turns: 50 Hz is 50 rev/s = 3000 rpm (ISO 80000-3)
+                quantity = quantity * ureg.Quantity(1, "revolution")
             try:
                 return float(quantity.to(si_unit).magnitude)
             except Exception:
@@ -83,6 +93,11 @@ def to_si(value: object, dimension: str, path: str = "") -> float:
     if unit == si_unit:
         return magnitude
     return float(registry().Quantity(magnitude, unit).to(si_unit).magnitude)
+
+
+def _has_angle(quantity) -> bool:
+    """Whether a quantity's units include an angle (deg, rad, rpm, revolution...), which pint treats as 1."""
+    return "radian" in str(quantity.to_root_units().units)
 
 
 def format_quantity(si_value: float, dimension: str) -> str:

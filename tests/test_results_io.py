@@ -1,5 +1,6 @@
 """Result files: HDF5 round trip, plain-xarray readability, atomic writes."""
 
+import errno
 import h5py
 import numpy as np
 import pytest
@@ -34,13 +35,11 @@ def test_failed_write_leaves_the_existing_file_intact(dataset, tmp_path, monkeyp
     path = write_results(dataset, tmp_path / "out.h5")
     before = path.read_bytes()
 
-    def explode(self, *args, **kwargs):
-        with open(args[0], "wb") as handle:
-            handle.write(b"half a file")
-        raise RuntimeError("disk full")
+    def explode(descriptor):  # the HDF5 image is written, then the disk turns out full
+        raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", explode)
-    with pytest.raises(RuntimeError):
+    monkeypatch.setattr("impactlab.safe_output.os.fsync", explode)
+    with pytest.raises(OSError):
         write_results(dataset.isel(angle=0), path)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["out.h5"]  # no temporary left behind
