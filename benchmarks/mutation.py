@@ -256,7 +256,7 @@ def main(argv=None) -> int:
     if args.tests:
         selected = [(ident, file, old, new, list(args.tests), what) for ident, file, old, new, _, what in selected]
     if args.list:
-        for ident, file, _, _, tests, what in selected:
+        for ident, file, _, _, _tests, what in selected:
             print(f"{ident:34s} {file:32s} {what}")
         return 0
     results = run(selected, args.timeout, sys.executable)

@@ -19,7 +19,8 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),
-         **{stem: (title, "impactlab.validation.benchmark_report.plot_figures (docs/benchmarks.md)") for stem, title in (
+         **{stem: (title, "impactlab.validation.benchmark_report.plot_figures (docs/benchmarks.md)")
+            for stem, title in (
              ("benchmark_tests12_force", "Chung & Ooi tests 1-2: normal force history of elastic impacts against "
                                          "Hertz, every compliant model"),
              ("benchmark_test4_kharaz", "Chung & Ooi test 4 = Kharaz et al. (2001, measured): tangential "

@@ -144,7 +144,7 @@ def provenance(study, plan) -> dict[str, str | int]:
         "plots": json.dumps([plot.as_dict() for plot in study.plots]),
         **versions(),
         "git_commit": git_commit(),
-        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
         "conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
                        "z away from face; backspin positive",
     }

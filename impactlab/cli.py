@@ -9,7 +9,6 @@ from __future__ import annotations
 import argparse
 import json
 import re
-import shutil
 import sys
 from pathlib import Path
 
@@ -175,7 +174,8 @@ def _cmd_plot(args) -> int:
     if args.x is not None:
         dims = [dim for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
         if args.x not in dims + scalars:
-            raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x, choices=dims + scalars)
+            raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x,
+                             choices=dims + scalars)
     output = check_output(args.output or Path(args.file).with_suffix(".png"), what="picture", suffix=".png")
     if args.history:
         plot_histories(dataset, output, args.history)

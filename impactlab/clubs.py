@@ -149,7 +149,7 @@ class ClubHead:
 
     @classmethod
     def sphere(cls, radius: float, mass: float, inertia_factor: float = 0.4, material: Material | None = None,
-               name: str = "", source: str = "") -> "ClubHead":
+               name: str = "", source: str = "") -> ClubHead:
         """A free sphere as the striking body: the two-sphere impact of discrete-element benchmarks.
 
         A sphere is a rigid body with the isotropic inertia K^2 M R^2 whose contact point lies at -R along the
@@ -181,7 +181,7 @@ class ClubHead:
                    source=source or "a free sphere (ClubHead.sphere)")
 
     @classmethod
-    def from_principal(cls, moments, axes, **fields) -> "ClubHead":
+    def from_principal(cls, moments, axes, **fields) -> ClubHead:
         """A head from principal moments [kg m^2] and their axes (rows: unit vectors in toe, up, target)."""
         axes = np.asarray(axes, dtype=float)
         if axes.shape != (3, 3) or not np.allclose(axes @ axes.T, np.eye(3), atol=1e-6):

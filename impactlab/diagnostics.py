@@ -14,7 +14,8 @@ import numpy as np
 #: bit -> (short name, what it means)
 FLAGS: dict[int, tuple[str, str]] = {
     1: ("large_contact", "the contact radius exceeds 0.6 R, beyond Hertz's small-contact assumption"),
-    2: ("soft_face", "the face is more compliant than the ball, so the half-space idealisation of the face is strained"),
+    2: ("soft_face", "the face is more compliant than the ball, so the half-space idealisation of the face is "
+                     "strained"),
     4: ("tolerance_not_met", "the requested tolerance needs more resolution than the method allows; the result is "
                              "less accurate than asked"),
     8: ("unfinished", "the 3-D integration reached its step limit before the bodies separated; the impulses are "

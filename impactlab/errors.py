@@ -72,7 +72,7 @@ class FieldError(ImpactLabError, ValueError):
                 text += f" (did you mean {close!r}?)"
         return text
 
-    def at(self, prefix: str | None = None, file: str | None = None, line: int | None = None) -> "FieldError":
+    def at(self, prefix: str | None = None, file: str | None = None, line: int | None = None) -> FieldError:
         """Return a copy located under ``prefix`` and in ``file`` at ``line``."""
         path = self.path
         if prefix:

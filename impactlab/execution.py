@@ -201,7 +201,7 @@ class ProgressStore:
         self.output = output or self.folder.with_suffix("")
         self._lock = None
 
-    def __enter__(self) -> "ProgressStore":
+    def __enter__(self) -> ProgressStore:
         self._lock = _lock_folder(self.folder, self.output)
         manifest = self.folder / "manifest.json"
         try:

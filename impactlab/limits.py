@@ -171,7 +171,8 @@ def check(study) -> Estimate:
                  "lower them, or leave them out and set a tolerance" if found.kernel_memory > limit / 2
                  else "make the sweep coarser or ask for fewer outputs")
         raise ResourceLimitError(f"study {study.name!r} ({study.file or 'given in Python'}) needs about "
-                                 f"{format_size(found.memory)} of memory ({found.cases:,} case(s) x {len(study.models)} "
+                                 f"{format_size(found.memory)} of memory ({found.cases:,} case(s) x "
+                                 f"{len(study.models)} "
                                  f"model(s)), above the limit of {format_size(limit)}: {cause}; or raise the limit "
                                  f"with --max-memory (or IMPACTLAB_MAX_MEMORY)")
     return found

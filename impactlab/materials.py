@@ -116,7 +116,7 @@ class RestitutionLaw:
 
 @attrs.frozen
 class Ball:
-    """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) [1] and, for compliant models, its material."""
+    """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) and, for compliant models, its material."""
 
     radius: float = attrs.field(converter=to_float, validator=positive("a positive, finite radius in m"))
     mass: float = attrs.field(converter=to_float, validator=positive("a positive, finite mass in kg"))
@@ -188,7 +188,7 @@ _BALL_INERTIA = ("Inertia: a measured ball, I = 83.63 g cm^2 with m = 45.9 g (Pr
                  "measurement), K^2 = I/(m R^2) = 0.400 at R = 21.335 mm.")
 _SLED = ("Friction {mu}: Henrikson et al. (2020), section 2.2, a sled of three {cover}-covered balls pulled over a "
          "grooved, blasted iron-type plate (measurement, at loads far below an impact's).")
-#: the ball restitution fitted to TrackMan's tour averages with the club presets (impactlab fit trackman_tour; 
+#: the ball restitution fitted to TrackMan's tour averages with the club presets (impactlab fit trackman_tour;
 #: docs/validation.md): maw 0.788 +- 0.013, hertz_mindlin 0.787 +- 0.011 at a normal speed of 40 m/s
 FITTED_RESTITUTION = RestitutionLaw(
     "linear", 0.787, 40.0, slope=0.0,

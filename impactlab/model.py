@@ -173,7 +173,7 @@ class ImpactModel:
         """
         return self.compute_arrays(inputs, outputs).to_dataset()
 
-    def compute_arrays(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> "ModelResult":
+    def compute_arrays(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> ModelResult:
         """:meth:`compute` without the Dataset: the outputs as SI arrays in a light :class:`ModelResult`.
 
         For callers that evaluate a model many times (fits, executors): the same validation and derivation,

@@ -74,7 +74,7 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
 
 
 def audit(figure) -> list[str]:
-    """What is wrong with a drawn figure: visible panels with nothing finite drawn, legend entries with nothing drawn."""
+    """What is wrong with a drawn figure: panels with nothing finite drawn, legend entries with nothing drawn."""
     problems = []
     for index, axis in enumerate(figure.axes):
         if not axis.get_visible():
@@ -83,7 +83,7 @@ def audit(figure) -> list[str]:
         finite = [line for line in axis.get_lines()
                   if np.any(np.isfinite(np.asarray(line.get_ydata(), float)))
                   and np.any(np.isfinite(np.asarray(line.get_xdata(), float)))]
-        collections = [c for c in axis.collections if len(c.get_offsets()) or len(getattr(c, "get_paths")())]
+        collections = [c for c in axis.collections if len(c.get_offsets()) or len(c.get_paths())]
         if not finite and not collections:
             problems.append(f"panel {index + 1} ({axis.get_ylabel()!r}) has nothing drawn")
         for line in lines:

@@ -98,7 +98,7 @@ class ShotTable:
     def size(self) -> int:
         return len(self.labels)
 
-    def subset(self, rows) -> "ShotTable":
+    def subset(self, rows) -> ShotTable:
         rows = np.asarray(rows)
         index = np.arange(self.size)[rows]
         return attrs.evolve(self, labels=tuple(self.labels[i] for i in index),

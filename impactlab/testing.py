@@ -102,7 +102,8 @@ def _scalar_outputs(model, inputs) -> list[str]:
 
 
 def check_declarations(model) -> None:
-    """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
+    """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the
+    vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
     cls = type(model)
     assert isinstance(cls.name, str) and cls.name.isidentifier() and not keyword.iskeyword(cls.name), \
         f"name must be a Python identifier, got {cls.name!r}"
@@ -132,7 +133,8 @@ def check_declarations(model) -> None:
 
 
 def check_runs_finite(model) -> None:
-    """Every scalar output the model can give on the reference batch (fixed, point-mass and rigid faces, loft 0-75 deg) is finite."""
+    """Every scalar output the model can give on the reference batch (fixed, point-mass and rigid faces, loft
+    0-75 deg) is finite."""
     inputs = reference_inputs()
     names = _scalar_outputs(model, inputs)
     result = model.compute(inputs, names)
@@ -226,7 +228,8 @@ def check_3d_energy_never_increases(model) -> None:
     kinetic = 0.5 * inputs["ball_mass"] * inputs["speed"] ** 2
     loss = result["energy_loss"].values
     assert np.all(np.isfinite(loss)), "3-D energy loss is not finite"
-    assert np.all(loss >= -1e-6 * kinetic), f"3-D impact creates energy: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
+    assert np.all(loss >= -1e-6 * kinetic), \
+        f"3-D impact creates energy: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
 
 
 def check_3d_heel_toe_mirror(model) -> None:

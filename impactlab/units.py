@@ -105,7 +105,10 @@ def format_quantity(si_value: float, dimension: str) -> str:
     si_unit, plain_unit, _ = DIMENSIONS[dimension]
     if math.isinf(si_value):
         return "inf"
-    value = si_value if plain_unit == si_unit else float(registry().Quantity(si_value, si_unit).to(plain_unit).magnitude)
+    if plain_unit == si_unit:
+        value = si_value
+    else:
+        value = float(registry().Quantity(si_value, si_unit).to(plain_unit).magnitude)
     return f"{value:g} {plain_unit}" if plain_unit != "dimensionless" else f"{value:g}"
 
 

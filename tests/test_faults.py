@@ -433,7 +433,8 @@ def test_plot_refuses_names_the_file_does_not_hold(result_file, tmp_path, capsys
 
 
 def test_a_declared_plot_of_an_unknown_model_is_refused_before_the_run(tmp_path, capsys):
-    study = write_study(tmp_path, **{"outputs:": "plots: [{y: launch_ratio, x: angle, select: {model: maww}}]\noutputs:"})
+    plots = "plots: [{y: launch_ratio, x: angle, select: {model: maww}}]\noutputs:"
+    study = write_study(tmp_path, **{"outputs:": plots})
     code, err = cli(capsys, "run", study, "-o", tmp_path / "r.h5")
     assert code == 2 and "select.model: expected a model of the study, got maww" in err
     assert not (tmp_path / "r.h5").exists()

@@ -21,7 +21,7 @@ STUDIES = sorted((ROOT / "studies").glob("*.yaml")) + sorted((ROOT / "studies" /
 
 def thinned(path: Path) -> dict:
     text = yaml.safe_load(path.read_text())
-    for key, value in (text.get("sweep") or {}).items():
+    for _key, value in (text.get("sweep") or {}).items():
         if isinstance(value, dict) and "num" in value:
             value["num"] = min(int(value["num"]), 7)
     return text
@@ -43,7 +43,7 @@ def test_every_gallery_figure_shows_what_its_legend_and_axes_claim(path, tmp_pat
             assert panel["ylabel"].rstrip().endswith("]"), (name, panel["ylabel"])  # a unit on every axis
             assert panel["xlabel"].rstrip().endswith("]"), (name, panel["xlabel"])
             assert panel["lines"], name
-            for label, (xs, ys) in panel["lines"].items():
+            for label, (_xs, ys) in panel["lines"].items():
                 assert np.isfinite(ys).any(), (name, label)
 
 

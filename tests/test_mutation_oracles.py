@@ -367,7 +367,8 @@ def test_gspro_speed_is_in_miles_per_hour_by_hand():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason="known defect (issue 15): at chi 4.8 (K^2 0.08) and psi1 below 0.01 (loft "
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="known defect (issue 15): at chi 4.8 (K^2 0.08) and psi1 below 0.01 (loft "
                    "0.2-0.3 deg at mu 0.6) maw's resolution rule misses its bound at tol 1e-4 by 1.2-1.4x against "
                    "the independent MDR; the fix (the rule's error model) is left to the rule's owner. Strict: "
                    "this fails once the rule is fixed, so the marker cannot outlive the defect")

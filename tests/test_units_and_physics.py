@@ -15,7 +15,8 @@ from impactlab.units import to_si
 @pytest.mark.parametrize("value, dimension, expected", [
     ("80 mph", "speed", 35.7632), (35, "speed", 35.0), ("21.335 mm", "length", 0.021335),
     ("45.93 g", "mass", 0.04593), ("136 MPa", "pressure", 136e6), (15, "angle", math.radians(15)),
-    ("0.5 rad", "angle", 0.5), ("3000 rpm", "angular_speed", 100 * math.pi), (2500, "angular_speed", 2500 * math.pi / 30),
+    ("0.5 rad", "angle", 0.5), ("3000 rpm", "angular_speed", 100 * math.pi),
+    (2500, "angular_speed", 2500 * math.pi / 30),
     ("0.4", "dimensionless", 0.4),
 ])
 def test_quantities_convert_to_si(value, dimension, expected):

@@ -460,7 +460,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     L = max(1 + c H, 0) the Hunt-Crossley load factor (c = 0: elastic). ``relaxation`` (per case, scaled time)
     puts a dashpot beside every tangential spring (Kelvin-Voigt: force = k (u + relaxation u')) in series with the
     Coulomb slider: stuck, the pair extends with the slip; sliding, it carries the cap and its spring relaxes
-    towards it (for the MDR springs; the DEM springs keep their codes' reset to the cap less the dashpot's part). Velocity Verlet on a uniform grid;
+    towards it (for the MDR springs; the DEM springs keep their codes' reset to the cap less the dashpot's part).
+    Velocity Verlet on a uniform grid;
     the springs take the step's slip and return to their circle (a radial return map). Stops when the bodies
     separate. Impulses are the trapezoid sums of the forces, the ones velocity Verlet applies, so momentum is
     kept exactly; with mu = 0 the tangential problem is skipped (no force, no scale). ``out`` columns:

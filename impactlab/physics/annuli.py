@@ -164,7 +164,8 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
 
         for _ in range(max_iterations):
             matrix = np.where((mode == STICK)[:, :, None], displacement[None], load[None])
-            rhs = np.where(mode == STICK, position[:, None] - offset, np.where(mode == SLIP, 2.0 * direction * cap, 0.0))
+            rhs = np.where(mode == STICK, position[:, None] - offset,
+                           np.where(mode == SLIP, 2.0 * direction * cap, 0.0))
             strength = np.linalg.solve(matrix, rhs[:, :, None])[:, :, 0]
             q = 0.5 * strength @ load.T  # load on each annulus, against its Coulomb limit mu * cap
             u = strength @ displacement.T

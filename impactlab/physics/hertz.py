@@ -286,7 +286,7 @@ class CaseNormals:
         self.restitution = np.asarray(restitution, dtype=float)
         self.damping, self.tau_end = damping_for_restitutions(self.restitution)
 
-    def subset(self, rows) -> "CaseNormals":
+    def subset(self, rows) -> CaseNormals:
         part = object.__new__(CaseNormals)
         part.restitution, part.damping, part.tau_end = self.restitution[rows], self.damping[rows], self.tau_end[rows]
         return part

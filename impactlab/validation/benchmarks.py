@@ -424,8 +424,8 @@ _add(Benchmark(
     budgets=BUDGETS["co3_restitution"],
     expected=lambda: np.tile(RESTITUTIONS, 2), predict=_restitution_predicted))
 
-_T4 = (f"aluminium-oxide sphere (R = 2.5 mm, rho 4000, E 380 GPa, nu 0.23) at 3.9 m/s on a rigid plane, "
-       f"mu = 0.092, e = 0.98, incidence 2-85 deg")
+_T4 = ("aluminium-oxide sphere (R = 2.5 mm, rho 4000, E 380 GPa, nu 0.23) at 3.9 m/s on a rigid plane, "
+       "mu = 0.092, e = 0.98, incidence 2-85 deg")
 for _key, _file, _quantity, _units, _neg in (
         ("kharaz_tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
          "tangential restitution of the centre v_t'/v_t", "1", False),
