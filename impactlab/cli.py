@@ -297,6 +297,8 @@ def _cmd_validate(args) -> int:
         if table is not None:
             over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot)
             continue
+        import numpy as np
+
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
         print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
@@ -306,9 +308,18 @@ def _cmd_validate(args) -> int:
         print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
         for model, error in errors(data).items():
             budget = data.budgets.get(model)
-            verdict = "" if budget is None else ("ok" if error["rms"] <= budget else "OVER BUDGET")
-            if verdict == "OVER BUDGET":
+            # two different statements: the data's own uncertainty says whether the model agrees with the
+            # measurement; the budget only says the model has not got worse since it was set
+            if data.sigma is not None:
+                agreement = ("within the data's sigma" if error["rms"] <= float(np.sqrt(np.mean(np.square(
+                    data.sigma)))) else "outside the data's sigma")
+            else:
+                agreement = "no uncertainty stated"
+            if budget is not None and error["rms"] > budget:
                 over.append(f"{name}/{model}")
+                verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
+            else:
+                verdict = f"{agreement} (regression budget kept)" if budget is not None else agreement
             predicted = " ".join(f"{v:8.3f}" for v in error["predicted"])
             print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
                   f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")

@@ -152,3 +152,12 @@ def test_a_bad_measured_data_file_says_where_and_what(tmp_path, capsys, points, 
     assert main(["validate", "--dataset", str(path)]) == 2
     err = capsys.readouterr().err
     assert message in err and "session.yaml" in err and "Traceback" not in err
+
+
+def test_validate_says_agreement_with_the_data_apart_from_keeping_a_budget(capsys):
+    # dem_linear is 0.11 from Wood's ratios (SD 0.05-0.08): inside its regression budget, outside the data
+    assert main(["validate", "--dataset", "wood2018"]) == 0
+    lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines() if line.startswith("  ")}
+    assert "outside the data's sigma (regression budget kept)" in lines["dem_linear"]
+    assert "within the data's sigma" in lines["maw"]
+    assert not any(line.rstrip().endswith(" ok") for line in lines.values())
