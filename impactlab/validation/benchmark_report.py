@@ -95,12 +95,23 @@ def _model_curves(ax, x, compute, quantity, models, transform=None, at=None):
         ax.plot(x, y, color=colour, ls=style, lw=1.4, label=_label(model_id, y, drawn))
 
 
+def _curve_panels(axes, x, compute, panels, models) -> None:
+    """One panel per (quantity, reference file, y label, transform of the reference): model curves and data."""
+    for ax, (quantity, file, label, transform) in zip(axes, panels):
+        _model_curves(ax, x, compute, quantity, models)
+        _reference_points(ax, file, transform)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+
+
+def _save(figure, path: Path, written: list) -> None:
+    figure.savefig(path, dpi=110)
+    written.append(path)
+
+
 def plot_figures(outdir, models=None) -> list[Path]:
     """Write the benchmark figures (PNG) into ``outdir``; returns their paths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
 
     models = list(models or MODELS)
     outdir = Path(outdir)
@@ -110,7 +121,8 @@ def plot_figures(outdir, models=None) -> list[Path]:
     # tests 1 and 2: force against time, beside the published curves
     from .benchmarks import _normal_cases
 
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    fig = Figure(figsize=(12, 4.5), layout="tight")
+    axes = fig.subplots(1, 2)
     for ax, test, file in ((axes[0], 1, "chung_ooi_test1_force.csv"), (axes[1], 2, "chung_ooi_test2_force.csv")):
         sphere, inputs = _normal_cases(test)[0][:2]
         drawn = []
@@ -131,55 +143,43 @@ def plot_figures(outdir, models=None) -> list[Path]:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="lower center")
     fig.suptitle("Chung & Ooi tests 1-2: elastic normal impact (the rigid models have no force history)")
-    fig.tight_layout()
-    written.append(outdir / "benchmark_tests12_force.png")
-    fig.savefig(written[-1], dpi=110)
-    plt.close(fig)
+    _save(fig, outdir / "benchmark_tests12_force.png", written)
 
     # test 4: Kharaz
     angles = np.linspace(1.0, 88.0, 88)
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
+    fig = Figure(figsize=(16, 4.8), layout="tight")
+    axes = fig.subplots(1, 3)
     panels = (("tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
                "tangential restitution of the centre v_t'/v_t [1]", None),
               ("spin", "chung_ooi_test4_spin.csv", "spin after impact [rad/s] (friction's sense positive)",
                lambda y: -y),
               ("rebound_angle", "chung_ooi_test4_rebound_angle.csv", "contact-patch rebound angle [deg]", None))
-    for ax, (quantity, file, label, transform) in zip(axes, panels):
-        _model_curves(ax, angles, kharaz_quantities, quantity, models)
-        _reference_points(ax, file, transform)
+    _curve_panels(axes, angles, kharaz_quantities, panels, models)
+    for ax in axes:
         ax.set_xlabel("incident angle from the normal [deg]")
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7, loc="lower right")
     fig.suptitle("Chung & Ooi test 4 = Kharaz, Gorham & Salman (2001): Al2O3 sphere, R 2.5 mm, 3.9 m/s, "
                  "mu 0.092, e 0.98, rigid plane")
-    fig.tight_layout()
-    written.append(outdir / "benchmark_test4_kharaz.png")
-    fig.savefig(written[-1], dpi=110)
-    plt.close(fig)
+    _save(fig, outdir / "benchmark_test4_kharaz.png", written)
 
     # test 5: FEM curve
     incidence = np.linspace(0.02, 19.0, 160)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig = Figure(figsize=(12, 4.8), layout="tight")
+    axes = fig.subplots(1, 2)
     panels = (("rebound", "chung_ooi_test5_rebound.csv", "normalised rebound (v_t' - R w')/(mu v_n') [1]", None),
               ("spin", "chung_ooi_test5_spin.csv", "normalised spin R w'/(mu v_n) [1] (friction's sense positive)",
                lambda y: -y))
-    for ax, (quantity, file, label, transform) in zip(axes, panels):
-        _model_curves(ax, incidence, chung_ooi_5_quantities, quantity, models)
-        _reference_points(ax, file, transform)
+    _curve_panels(axes, incidence, chung_ooi_5_quantities, panels, models)
+    for ax in axes:
         ax.set_xlabel("normalised incidence v_t/(mu v_n) [1]")
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7, loc="upper left")
     fig.suptitle("Chung & Ooi test 5: steel sphere, v_n 5 m/s, mu 0.3, e 1, rigid plane "
                  "(reference curves are model outputs: FEM and a DEM code)")
-    fig.tight_layout()
-    written.append(outdir / "benchmark_test5_fem.png")
-    fig.savefig(written[-1], dpi=110)
-    plt.close(fig)
+    _save(fig, outdir / "benchmark_test5_fem.png", written)
 
     # test 6: spin only
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig = Figure(figsize=(12, 4.8), layout="tight")
+    axes = fig.subplots(1, 2)
     special = np.geomspace(0.15, 25.0, 120)
     _model_curves(axes[0], special, chung_ooi_6_quantities, "beta", models, at=chung_ooi_6_incidence)
     _reference_points(axes[0], "chung_ooi_test6_beta.csv")
@@ -196,8 +196,5 @@ def plot_figures(outdir, models=None) -> list[Path]:
     axes[0].legend(fontsize=7, loc="lower left")
     fig.suptitle("Chung & Ooi test 6: spinning Al-alloy sphere, R 0.1 m, v_n 0.2 m/s, mu 0.4, e 0.5, rigid plane "
                  "(reference: a DEM code's output)")
-    fig.tight_layout()
-    written.append(outdir / "benchmark_test6_spin.png")
-    fig.savefig(written[-1], dpi=110)
-    plt.close(fig)
+    _save(fig, outdir / "benchmark_test6_spin.png", written)
     return written
