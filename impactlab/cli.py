@@ -66,6 +66,10 @@ def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     from .vocabulary import HISTORY, OUTPUTS
 
     png = png or output.with_suffix(".png")
+    if dataset.attrs.get("study_type") == "sensitivity":
+        from .sensitivity import plot_sensitivity
+
+        return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
         return draw_declared(dataset, png.parent, png.stem)
     pictures = [plot_results(dataset, png)]

@@ -32,7 +32,7 @@ from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPU
 from .yaml_lines import line_of, load_yaml, parse_path
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
-                  "models", "outputs", "plots")
+                  "models", "outputs", "plots", "sensitivity")
 CLUB_KEYS = ("preset", "mass", "inertia", "center_of_mass", "loft", "lie", "bulge_radius", "roll_radius", "material",
              "rigid", "youngs_modulus", "poisson_ratio", "restitution_gain")
 INERTIA_KEYS = ("toe", "up", "target", "toe_up", "toe_target", "up_target", "principal", "axes")
@@ -133,6 +133,8 @@ class Study:
     source: str = attrs.field(repr=False)
     file: str | None = None
     plots: tuple[PlotSpec, ...] = ()
+    #: a sensitivity and model-form study (impactlab.sensitivity.SensitivitySpec), or None for a plain sweep
+    sensitivity: Any = None
 
     @property
     def all_outputs(self) -> tuple[str, ...]:
@@ -750,9 +752,16 @@ def _build_study(document, text: str, file: str | None) -> Study:
     scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
     sweep = _build_sweep(document)
     outputs = _build_outputs(document.get("outputs"))
+    models = _build_models(document["models"])
+    sensitivity = None
+    if "sensitivity" in document:
+        from .sensitivity import parse_sensitivity
+
+        sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
+                                        {field.input for axis in sweep for field in axis.fields})
     return Study(name=name, description=description, scene=scene, sweep=sweep,
-                 models=_build_models(document["models"]), outputs=outputs, source=text, file=file,
-                 plots=_build_plots(document.get("plots"), sweep, outputs))
+                 models=models, outputs=outputs, source=text, file=file,
+                 plots=_build_plots(document.get("plots"), sweep, outputs), sensitivity=sensitivity)
 
 
 def _build_plots(value, sweep, outputs) -> tuple[PlotSpec, ...]:
