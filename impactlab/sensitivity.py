@@ -228,7 +228,7 @@ def _sampled_inputs(study, spec: SensitivitySpec, base: dict[str, np.ndarray], u
                 case = int(np.argmax(bad))
                 shown = float(bound[case]) * spec_in.display_factor
                 raise FieldError(f"sensitivity.parameters.{parameter.path}.spread",
-                                 f"a spread that keeps the range inside {spec_in.range_text()}",
+                                 f"a spread that keeps each case's range valid ({spec_in.range_text()})",
                                  f"{label} end {shown:g} {spec_in.display_unit or spec_in.unit} in case {case}")
         inputs[parameter.input] = (np.repeat(low, n_samples)
                                    + np.tile(unit[:, column], n_cases) * np.repeat(high - low, n_samples))
