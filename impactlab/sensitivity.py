@@ -271,6 +271,12 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     entries = {entry.id: entry for entry in study.models}
     ids = list(entries)
     n_cases, n_out, n_par = study.n_cases, len(outputs), len(spec.parameters)
+    unit = unit_sample(spec)
+    n_samples = unit.shape[0]
+    try:  # the sampled ranges are checked before anything runs
+        inputs = _sampled_inputs(study, spec, base, unit)
+    except FieldError as exc:
+        raise exc.at(file=study.file) from None
     # model form and numerical error, at the nominal inputs, every model
     nominal = np.full((len(ids), n_cases, n_out), np.nan)
     numerical = np.zeros_like(nominal)
@@ -287,9 +293,6 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     form = np.stack([np.nanmax(nominal[[ids.index(i) for i in group]], axis=0)
                      - np.nanmin(nominal[[ids.index(i) for i in group]], axis=0) for _, group in choices])
     # parameter uncertainty, the models of the block
-    unit = unit_sample(spec)
-    n_samples = unit.shape[0]
-    inputs = _sampled_inputs(study, spec, base, unit)
     index_names = ("S1", "S1_conf", "ST", "ST_conf") if spec.method == "sobol" else ("mu_star", "mu_star_conf",
                                                                                          "sigma")
     found = {name: np.full((len(ids), n_cases, n_par, n_out), np.nan) for name in index_names}
