@@ -512,7 +512,8 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                     else "Morris mu* / largest mu* of the output")
     figure.suptitle(f"{dataset.attrs.get('study_name', '')}: "
                     + ("Sobol total indices (share of each output's variance involving each input)" if total == "ST"
-                       else "Morris mu* (output units; shading relative per output)"), fontsize=10)
+                       else "Morris mu* (output units; shading relative per output)")
+                    + "; n/a: the output does not move over the sample", fontsize=10)
     second = path.with_name(f"{path.stem}_indices.png")
     figure.savefig(second, dpi=110, bbox_inches="tight")
     plt.close(figure)
