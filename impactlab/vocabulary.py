@@ -104,7 +104,9 @@ INPUTS: dict[str, InputSpec] = {
     "angle": InputSpec("impact.angle", "rad", "angle", "face normal relative to path alpha",
                        _attr("impact", "angle"), "deg", RAD_TO_DEG, low=-math.pi / 2, high=math.pi / 2,
                        low_open=True, high_open=True),
-    "spin": InputSpec("impact.spin", "rad/s", "angular_speed", "incoming spin (backspin positive)",
+    "spin": InputSpec("impact.spin", "rad/s", "angular_speed",
+                      "incoming spin, counted like spin_rate (positive: the backspin a lofted face gives; topspin "
+                      "about the flight of a ball arriving at a plate)",
                       _attr("impact", "spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
     "club_spin": InputSpec("impact.club_spin", "rad/s", "angular_speed",
                            "incoming spin of the striking body about the ball's spin axis (a sphere striker)",
