@@ -21,6 +21,9 @@ FLAGS: dict[int, tuple[str, str]] = {
                              "less accurate than asked"),
     8: ("unfinished", "the 3-D integration reached its step limit before the bodies separated; the impulses are "
                       "those of an unfinished contact"),
+    16: ("dundurs_coupling", "the normal-tangential coupling the model neglects (ball and face differ in Dundurs' "
+                             "beta) is estimated to change the tangential impulse by more than the tolerance asked "
+                             "for (output coupling_estimate; docs/models.md)"),
 }
 #: a_max / R above which ``large_contact`` is raised. Hertz's theory replaces the sphere's gap R - sqrt(R^2 - r^2)
 #: by the paraboloid r^2 / (2 R) and the ball by a half-space; both need a << R (Johnson, Contact Mechanics, 1985,

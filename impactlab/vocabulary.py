@@ -241,6 +241,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "stick_radius": OutputSpec("m", "radius of the stuck central region of the contact (0 in gross slip)",
                                kind=HISTORY),
     "contact_radius_ratio": OutputSpec("1", "largest contact radius over ball radius, a_max/R"),
+    "coupling_estimate": OutputSpec("1", "estimated change of the tangential impulse from the neglected normal-"
+                                    "tangential coupling, over mu J_n: (1/2) ((4/(3 pi)) |beta_D| kappa / mu)^2"),
     # the stability report (added to every study result)
     "steps": OutputSpec("1", "time steps of the tangential solution (0: none needed or closed form)",
                         diagnostic=True),

@@ -106,9 +106,9 @@ def test_validity_flags_say_when_assumptions_break():
     assert soft["contact_radius_ratio"].item() > 0.6 and int(soft["validity"].item()) & 1
     # a golf impact is beyond Hertz's small contact by a few per cent of geometry, and says so (docs/accuracy.md)
     golf = maw.compute(case("head_on"), ["validity", "contact_radius_ratio"])
-    assert int(golf["validity"].item()) == 1 and 0.3 < golf["contact_radius_ratio"].item() < 0.6
+    assert int(golf["validity"].item()) & 1 and 0.3 < golf["contact_radius_ratio"].item() < 0.6
     creeping = maw.compute(case("creeping"), ["validity", "contact_radius_ratio"])
-    assert creeping["validity"].item() == 0 and creeping["contact_radius_ratio"].item() < 0.3
+    assert not int(creeping["validity"].item()) & 1 and creeping["contact_radius_ratio"].item() < 0.3
     soft_face = maw.compute({**case("head_on"), "face_youngs_modulus": np.array([50e6]),
                              "face_poisson_ratio": np.array([0.45])}, ["validity"])
     assert int(soft_face["validity"].item()) & 2
