@@ -106,7 +106,7 @@ def _cmd_show(args) -> int:
           f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
     for dim, size in dataset.sizes.items():
         coord = dataset[dim]
-        if dim == "model":
+        if dim == "model" or coord.dtype.kind not in "iuf":  # names (models, labels, outputs, parameters)
             print(f"  {dim:<10} {size:>5}  {', '.join(map(str, coord.values))}")
         else:
             print(f"  {dim:<10} {size:>5}  {float(coord.min()):g} .. {float(coord.max()):g} "
@@ -115,6 +115,9 @@ def _cmd_show(args) -> int:
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
         print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(variable.dims)}){missing}")
+    if dataset.attrs.get("study_type") == "sensitivity":
+        print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
+              f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
     print("models:")
     for model in json.loads(dataset.attrs.get("models", "[]")):
         print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")
@@ -389,12 +392,12 @@ def main(argv=None) -> int:
 
     args = build_parser().parse_args(argv)
 
-    def show_warning(message, category, *rest, **kwargs):
+    def show_warning(message, category, filename, lineno, file=None, line=None):
         # one line, in words, for validity; the usual format for anything else
         if issubclass(category, ValidityWarning):
             print(f"impactlab: warning: {message}", file=sys.stderr)
         else:
-            print(warnings.formatwarning(message, category, *rest), file=sys.stderr, end="")
+            print(warnings.formatwarning(message, category, filename, lineno, line), file=sys.stderr, end="")
 
     warnings.showwarning = show_warning
     try:

@@ -66,9 +66,10 @@ class Parameter:
     def describe(self) -> str:
         spec = INPUTS[self.input]
         factor, unit = spec.display_factor, spec.display_unit or spec.unit
+        unit = "" if unit == "1" else f" {unit}"
         if self.spread is not None:
-            return f"+-{self.spread * factor:g} {unit}"
-        return f"{self.low * factor:g} to {self.high * factor:g} {unit}"
+            return f"+-{self.spread * factor:g}{unit}"
+        return f"{self.low * factor:g} to {self.high * factor:g}{unit}"
 
 
 @attrs.frozen
@@ -292,6 +293,7 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     choices = list(spec.choices) + [("all models", tuple(ids))]
     form = np.stack([np.nanmax(nominal[[ids.index(i) for i in group]], axis=0)
                      - np.nanmin(nominal[[ids.index(i) for i in group]], axis=0) for _, group in choices])
+    form[form <= 1e-9] = 0.0  # models that agree to round-off (in the outputs' units)
     # parameter uncertainty, the models of the block
     index_names = ("S1", "S1_conf", "ST", "ST_conf") if spec.method == "sobol" else ("mu_star", "mu_star_conf",
                                                                                          "sigma")
@@ -434,7 +436,7 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
     outputs = list(dataset.output.values)
     cases = _case_labels(dataset)
     analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
-    figure, axes = plt.subplots(len(outputs), len(cases), figsize=(4.6 * len(cases), 2.9 * len(outputs)),
+    figure, axes = plt.subplots(len(outputs), len(cases), figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)),
                                 squeeze=False)
     colours = {"numerical": "tab:grey", "parameter": "tab:blue", "form": "tab:red"}
     for row, output in enumerate(outputs):
@@ -459,7 +461,8 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                 axis.barh(position, shown, color=colours[kind], alpha=1.0 if np.isfinite(value) and value > 0
                           else 0.25)
                 if not (np.isfinite(value) and value > 0):
-                    words = (" exact (closed form)" if kind == "numerical" else " 0 (does not move)") if value == 0 \
+                    words = {"numerical": " exact (closed form)", "parameter": " 0 (does not move)",
+                             "form": " 0 (the models agree)"}[kind] if value == 0 \
                         else " not measured (tolerance not met)"
                     axis.text(shown, position, words, va="center", fontsize=6)
             axis.set_yticks(range(len(bars)))
@@ -478,10 +481,10 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                            Patch(color=colours["parameter"], label="parameter uncertainty (5-95 % range over the "
                                                                     "sampled inputs)"),
                            Patch(color=colours["form"], label="model form (max - min over the choice's models)")],
-                  loc="lower center", ncol=3, fontsize=8, frameon=False)
+                  loc="lower center", ncol=3 if len(cases) > 2 else 1, fontsize=8, frameon=False)
     figure.suptitle(f"{dataset.attrs.get('study_name', '')}: numerical error, parameter uncertainty and model form "
                     "(log scale)", fontsize=10)
-    figure.tight_layout(rect=(0, 0.03, 1, 0.97))
+    figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
     figure.savefig(path, dpi=110)
     plt.close(figure)
     pictures = [path]
@@ -495,7 +498,9 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
         for column, (where, label) in enumerate(cases):
             axis = axes[row, column]
             values = dataset[total].isel(where).sel(model=model).transpose("parameter", "output").values
-            shown = values if total == "ST" else values / np.nanmax(np.abs(values), axis=0, keepdims=True)
+            with warnings.catch_warnings(), np.errstate(all="ignore"):  # an output that does not move: all NaN
+                warnings.simplefilter("ignore")
+                shown = values if total == "ST" else values / np.nanmax(np.abs(values), axis=0, keepdims=True)
             image = axis.imshow(np.nan_to_num(shown, nan=0.0), vmin=0, vmax=1, cmap="Blues", aspect="auto")
             for i in range(len(parameters)):
                 for j in range(len(outputs)):
@@ -504,10 +509,11 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                               else f"{value:.3g}", ha="center", va="center", fontsize=7,
                               color="white" if np.isfinite(shown[i, j]) and shown[i, j] > 0.6 else "black")
             axis.set_xticks(range(len(outputs)))
-            axis.set_xticklabels(outputs if row == len(analysed) - 1 else [], rotation=30, ha="right", fontsize=7)
+            labels = [f"{name} [{unit}]" for name, unit in zip(outputs, dataset.output_units.values)]
+            axis.set_xticklabels(labels if row == len(analysed) - 1 else [], rotation=30, ha="right", fontsize=7)
             axis.set_yticks(range(len(parameters)))
             axis.set_yticklabels(parameters if column == 0 else [], fontsize=7)
-            axis.set_title(f"{model}, {label}", fontsize=8)
+            axis.set_title(f"{model}, {label}" if label else str(model), fontsize=8)
     figure.colorbar(image, ax=axes, shrink=0.6, label="Sobol total index ST" if total == "ST"
                     else "Morris mu* / largest mu* of the output")
     figure.suptitle(f"{dataset.attrs.get('study_name', '')}: "

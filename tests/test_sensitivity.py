@@ -159,3 +159,15 @@ def test_shipped_study_parses_with_its_golf_deliveries():
     assert study.n_cases == 3 and spec.method == "sobol" and spec.samples <= 64
     assert {name for name, _ in spec.choices} == {"inelastic_law", "tangential_law"}
     assert len(spec.parameters) == 6
+
+
+def test_command_line_writes_shows_and_draws_a_sensitivity_study(tmp_path, capsys):
+    study = tmp_path / "rolling.yaml"
+    study.write_text(ROLLING.replace("METHOD", "morris").replace("samples: 64", "samples: 6"))
+    assert main(["run", str(study), "-o", str(tmp_path / "r.h5"), "--plot", "-q"]) == 0
+    assert sorted(path.name for path in tmp_path.glob("*.png")) == ["r.png", "r_indices.png"]
+    assert all(path.stat().st_size > 20_000 for path in tmp_path.glob("*.png"))
+    assert main(["show", str(tmp_path / "r.h5")]) == 0
+    shown = capsys.readouterr().out
+    assert "parameter      3  contact.friction, contact.restitution, impact.speed" in shown
+    assert "SALib.analyze.morris" in shown and "30 to 40 m/s" in shown
