@@ -281,9 +281,11 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     # model form and numerical error, at the nominal inputs, every model
     nominal = np.full((len(ids), n_cases, n_out), np.nan)
     numerical = np.zeros_like(nominal)
+    validity = np.zeros((len(ids), n_cases), dtype=np.int64)
     for m, entry_id in enumerate(ids):
         model = entries[entry_id].model
         nominal[m], flags = _run(model, base, outputs)
+        validity[m] = flags
         if "tolerance" in {field.name for field in attrs.fields(type(model.options))}:
             finer = type(model)(attrs.evolve(model.options, tolerance=model.options.tolerance / 10.0))
             fine, _ = _run(finer, base, outputs)
@@ -315,8 +317,15 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
                 for name, value in indices(spec, unit, column).items():
                     found[name][m, c, :, o] = value
         say(f"{entry_id}: {n_cases * n_samples} sampled impacts done")
-    return _dataset(study, spec, ids, outputs, choices, unit, nominal, numerical, form, found, sampled, spread,
-                    deviation)
+    dataset = _dataset(study, spec, ids, outputs, choices, unit, nominal, numerical, form, found, sampled, spread,
+                       deviation)
+    from .diagnostics import flag_attributes
+
+    dims = ("model",) + tuple(axis.dim for axis in study.sweep)
+    dataset["validity"] = (dims, validity.reshape((len(ids),) + tuple(study.shape)),
+                           {"units": "1", "long_name": "validity flags of the nominal runs (docs/accuracy.md)",
+                            **flag_attributes()})
+    return dataset
 
 
 _LONG_NAMES = {

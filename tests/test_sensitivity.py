@@ -171,3 +171,9 @@ def test_command_line_writes_shows_and_draws_a_sensitivity_study(tmp_path, capsy
     shown = capsys.readouterr().out
     assert "parameter      3  contact.friction, contact.restitution, impact.speed" in shown
     assert "SALib.analyze.morris" in shown and "30 to 40 m/s" in shown
+
+
+def test_nominal_validity_flags_are_kept():
+    """The rigid rolling ball leaves no assumption of its model: no flags, with their meanings kept in the file."""
+    ds = rolling()
+    assert np.all(ds.validity.values == 0) and "dundurs_coupling" in ds.validity.attrs["flag_meanings"]
