@@ -16,6 +16,8 @@ FIGURES = ROOT / "docs" / "figures"
 #: figures drawn by other commands than ``impactlab run --plot``
 OTHER = {"work_precision": ("Work-precision diagram: error against run time per impact, every model",
                             "impactlab convergence studies/work_precision.yaml --plot"),
+         "sensitivity_indices": ("Sobol total indices of every input for launch angle, spin, ball speed and beta, "
+                                 "per model and delivery", "impactlab run studies/sensitivity.yaml --plot"),
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),

@@ -101,6 +101,10 @@ def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     from .vocabulary import HISTORY, OUTPUTS
 
     png = png or output.with_suffix(".png")
+    if dataset.attrs.get("study_type") == "sensitivity":
+        from .sensitivity import plot_sensitivity
+
+        return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
         return draw_declared(dataset, png.parent, png.stem)
     pictures = [plot_results(dataset, png)]
@@ -137,7 +141,7 @@ def _cmd_show(args) -> int:
           f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
     for dim, size in dataset.sizes.items():
         coord = dataset[dim]
-        if dim == "model":
+        if dim == "model" or coord.dtype.kind not in "iuf":  # names (models, labels, outputs, parameters)
             print(f"  {dim:<10} {size:>5}  {', '.join(map(str, coord.values))}")
         else:
             print(f"  {dim:<10} {size:>5}  {float(coord.min()):g} .. {float(coord.max()):g} "
@@ -146,6 +150,9 @@ def _cmd_show(args) -> int:
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
         print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(variable.dims)}){missing}")
+    if dataset.attrs.get("study_type") == "sensitivity":
+        print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
+              f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
     print("models:")
     for model in json.loads(dataset.attrs.get("models", "[]")):
         print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")

@@ -84,7 +84,10 @@ def audit(figure) -> list[str]:
                   if np.any(np.isfinite(np.asarray(line.get_ydata(), float)))
                   and np.any(np.isfinite(np.asarray(line.get_xdata(), float)))]
         collections = [c for c in axis.collections if len(c.get_offsets()) or len(c.get_paths())]
-        if not finite and not collections:
+        # bars (patches with an extent) and images (an index map) are drawn data as well as lines are
+        bars = [patch for patch in axis.patches if patch.get_width() != 0 or patch.get_height() != 0] \
+            if hasattr(axis, "patches") else []
+        if not finite and not collections and not bars and not axis.images:
             problems.append(f"panel {index + 1} ({axis.get_ylabel()!r}) has nothing drawn")
         for line in lines:
             ys = np.asarray(line.get_ydata(), float)

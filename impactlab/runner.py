@@ -138,6 +138,13 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
 
     study = load_study(source)
     plan = plan_study(study)
+    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.sensitivity)
+        from .sensitivity import run_sensitivity
+
+        dataset = run_sensitivity(study, progress=progress)
+        if output is not None:
+            write_results(dataset, output)
+        return dataset
     inputs = case_inputs(study)
     outputs = study.all_outputs
     say = progress or (lambda text: None)

@@ -33,7 +33,7 @@ from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPU
 from .yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
 TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
-                  "models", "outputs", "plots")
+                  "models", "outputs", "plots", "sensitivity")
 SWEEP_RANGE_KEYS = ("start", "stop", "num")
 
 
@@ -127,6 +127,8 @@ class Study:
     source: str = attrs.field(repr=False)
     file: str | None = None
     plots: tuple[PlotSpec, ...] = ()
+    #: a sensitivity and model-form study (impactlab.sensitivity.SensitivitySpec), or None for a plain sweep
+    sensitivity: Any = None
 
     @property
     def all_outputs(self) -> tuple[str, ...]:
@@ -473,9 +475,16 @@ def _build_study(document, text: str, file: str | None) -> Study:
     check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
     models = _build_models(document["models"])
+    sensitivity = None
+    if "sensitivity" in document:
+        from .sensitivity import parse_sensitivity
+
+        sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
+                                        {field.input for axis in sweep for field in axis.fields})
     return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
                  source=text, file=file,
-                 plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]))
+                 plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]),
+                 sensitivity=sensitivity)
 
 
 def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:

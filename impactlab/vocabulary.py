@@ -104,7 +104,9 @@ INPUTS: dict[str, InputSpec] = {
     "angle": InputSpec("impact.angle", "rad", "angle", "face normal relative to path alpha",
                        _attr("impact", "angle"), "deg", RAD_TO_DEG, low=-math.pi / 2, high=math.pi / 2,
                        low_open=True, high_open=True),
-    "spin": InputSpec("impact.spin", "rad/s", "angular_speed", "incoming spin (backspin positive)",
+    "spin": InputSpec("impact.spin", "rad/s", "angular_speed",
+                      "incoming spin, counted like spin_rate (positive: the backspin a lofted face gives; topspin "
+                      "about the flight of a ball arriving at a plate)",
                       _attr("impact", "spin"), "rpm", RADS_TO_RPM, low_open=True, high_open=True),
     "club_spin": InputSpec("impact.club_spin", "rad/s", "angular_speed",
                            "incoming spin of the striking body about the ball's spin axis (a sphere striker)",
@@ -239,6 +241,8 @@ OUTPUTS: dict[str, OutputSpec] = {
     "stick_radius": OutputSpec("m", "radius of the stuck central region of the contact (0 in gross slip)",
                                kind=HISTORY),
     "contact_radius_ratio": OutputSpec("1", "largest contact radius over ball radius, a_max/R"),
+    "coupling_estimate": OutputSpec("1", "estimated change of the tangential impulse from the neglected normal-"
+                                    "tangential coupling, over mu J_n: (1/2) ((4/(3 pi)) |beta_D| kappa / mu)^2"),
     # the stability report (added to every study result)
     "steps": OutputSpec("1", "time steps of the tangential solution (0: none needed or closed form)",
                         diagnostic=True),

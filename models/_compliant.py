@@ -9,7 +9,7 @@ import numpy as np
 from impactlab.validators import check
 from impactlab.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.model import ImpactModel
-from impactlab.physics import compliant3d, hertz
+from impactlab.physics import compliant3d, coupling, hertz
 from impactlab.physics.contact import contact_state
 
 from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
@@ -46,7 +46,8 @@ class HertzTangentialModel(ImpactModel):
                                     "face_poisson_ratio"}
     optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
-                              "contact_radius_ratio", "steps", "energy_error", "validity", "face_rotation"}
+                              "contact_radius_ratio", "coupling_estimate", "steps", "energy_error", "validity",
+                              "face_rotation"}
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
     _3d_depends_on_kappa = False
 
@@ -129,9 +130,16 @@ class HertzTangentialModel(ImpactModel):
         contact_ratio = np.sqrt(approach_scale / radius)
         face_compliance = (1.0 - p["face_poisson_ratio"] ** 2) / p["face_youngs_modulus"]
         ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
+        # the neglected normal-tangential coupling (Dundurs' beta; impactlab.physics.coupling): its estimated
+        # change of J_t against what the tolerance allows, tol * min(mu J_n, m_t |V_x|)
+        beta_d = coupling.dundurs_beta(*moduli)
+        coupled = coupling.coupling_estimate(beta_d, kappa, friction)
+        coulomb = friction * (1.0 + restitution) * m_normal * normal_speed
+        allowed = getattr(self.options, "tolerance", 1e-4) * np.minimum(coulomb, m_tangential * np.abs(slip))
         validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0)
                     | np.where(face_compliance > ball_compliance, 2, 0)
-                    | np.where((sliding | three_d) & capped, 4, 0))
+                    | np.where((sliding | three_d) & capped, 4, 0)
+                    | np.where(sliding & (coupled * coulomb > allowed), 16, 0))
         result = {
             "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
@@ -140,6 +148,7 @@ class HertzTangentialModel(ImpactModel):
             "face_rotation": np.zeros_like(slip),
             "contact_time": duration,
             "contact_radius_ratio": contact_ratio,
+            "coupling_estimate": np.where(sliding, coupled, 0.0),
             "steps": steps,
             "energy_error": m_tangential * velocity_unit**2 * residual / initial_energy,
             "validity": validity.astype(float),

@@ -43,7 +43,8 @@ def drawn_figures(monkeypatch):
         panels = [{"xlabel": axis.get_xlabel(), "ylabel": axis.get_ylabel(),
                    "lines": {line.get_label(): (np.asarray(line.get_xdata(), float),
                                                 np.asarray(line.get_ydata(), float))
-                             for line in axis.get_lines() if not line.get_label().startswith("_")}}
+                             for line in axis.get_lines() if not line.get_label().startswith("_")},
+                   "marks": len(axis.patches) + len(axis.images) + len(axis.collections)}
                   for axis in self.axes if axis.get_visible()]
         title = self._suptitle.get_text() if self._suptitle is not None else ""
         entry = {"path": Path(fname), "problems": audit(self), "panels": panels,

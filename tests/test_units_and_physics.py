@@ -57,3 +57,39 @@ def test_contact_moduli_for_a_rigid_face_reduce_to_the_ball_terms():
     assert hertz.effective_modulus(e, nu, np.inf, 0.0) == pytest.approx(e / (1 - nu**2))
     kappa = hertz.tangential_modulus(e, nu, np.inf, 0.0) / hertz.effective_modulus(e, nu, np.inf, 0.0)
     assert kappa == pytest.approx(2 * (1 - nu) / (2 - nu))
+
+
+def test_incoming_spin_sign_in_the_users_frames():
+    """docs/conventions.md: impact.spin is positive for the backspin a lofted face gives (club frame) and for
+    topspin about the flight of a ball arriving at a plate; a ball landing with backspin about its flight is negative.
+
+    Face frame (x up the face along the incoming slip, z the face normal, y = z x x): a positive spin_rate is a
+    rotation about +y, whose contact point (at -R z) moves along -x. Rigid body, rolling regime, fixed face: the
+    tangential impulse is m_t times the contact-point slip, so it measures the slip directly.
+    """
+    from impactlab.registry import get_model
+
+    radius, mass, k2, speed, alpha, w = 0.021335, 0.04593, 0.4, 20.0, np.radians(30.0), 300.0
+    m_t = mass / (1.0 + 1.0 / k2)
+    inputs = dict(ball_radius=radius, ball_mass=mass, ball_inertia_factor=k2, friction=0.8, restitution=0.8,
+                  speed=speed, angle=alpha)
+    x, y, z = np.eye(3)
+
+    def slip(spin_vector):  # contact-point velocity of a ball arriving at the resting face, along x
+        velocity = speed * (np.sin(alpha) * x - np.cos(alpha) * z)
+        return float((velocity + np.cross(spin_vector, -radius * z)) @ x)
+
+    def impulse(spin):
+        return float(get_model("rigid_coulomb")().compute(dict(inputs, spin=spin), ["tangential_impulse"])
+                     ["tangential_impulse"][0])
+
+    # the ball's flight along the face is +x: backspin about it moves the bottom of the ball along +x
+    landing_backspin = -w * y   # bottom velocity w x (-R z) = +R w x: along the flight
+    assert np.cross(landing_backspin, -radius * z) @ x > 0
+    assert impulse(-w) == pytest.approx(m_t * slip(landing_backspin), rel=1e-12)
+    assert slip(landing_backspin) > speed * np.sin(alpha)          # backspin on landing: more slip
+    assert impulse(+w) == pytest.approx(m_t * slip(+w * y), rel=1e-12)
+    assert slip(+w * y) < speed * np.sin(alpha)                     # topspin about the flight: less slip
+    # club frame: a shot's own spin is positive, and a ball already spinning that way leaves with more of it
+    spin_out = get_model("rigid_coulomb")().compute(dict(inputs, spin=np.array([0.0, w])), ["spin_rate"])["spin_rate"]
+    assert spin_out.values[0] > 0 and spin_out.values[1] > spin_out.values[0]

@@ -42,7 +42,8 @@ def after_impact(normal_impulse, tangential_impulse, *, ball_mass, ball_radius, 
     ball_mass, ball_radius, ball_inertia_factor : array_like
         m [kg], R [m], K^2 [1].
     speed, angle, spin : array_like
-        V [m/s], alpha [rad], incoming spin omega0 [rad/s] (backspin positive).
+        V [m/s], alpha [rad], incoming spin omega0 [rad/s], counted like the output spin (positive: the
+        backspin a lofted face gives, topspin about the flight of a ball arriving at a plate; docs/conventions.md).
     club_mass : array_like
         M [kg]; inf for a fixed face.
 
