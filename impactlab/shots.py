@@ -335,8 +335,9 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
                             handedness=table.handedness[index])
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
-    keys = set.intersection(*(set(scene.inputs()) for scene in scenes))
-    inputs = {key: np.array([scene.inputs()[key] for scene in scenes]) for key in sorted(keys)}
+    per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
+    keys = set.intersection(*(set(values) for values in per_scene))
+    inputs = {key: np.array([values[key] for values in per_scene]) for key in sorted(keys)}
     if table.loft_at == "contact":
         inputs = centre_delivery(inputs, inputs)
     inputs = complete_inputs(inputs)

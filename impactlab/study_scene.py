@@ -78,14 +78,19 @@ def _material(block: dict, path: str, base: Material | None) -> Material | None:
     return attrs.evolve(material, name=base.name if base else "", source=base.source if base else "")
 
 
+def _preset(block: dict, path: str, lookup, default):
+    """The preset the block names (its errors at ``path.preset``), or ``default`` where it names none."""
+    if "preset" not in block:
+        return default
+    try:
+        return lookup(block["preset"])
+    except FieldError as exc:
+        raise exc.at(prefix=path) from None
+
+
 def build_ball(value, path: str = "ball") -> Ball:
     block = _require_mapping(value, path, BALL_KEYS, "the ball")
-    base = None
-    if "preset" in block:
-        try:
-            base = ball_preset(block["preset"])
-        except FieldError as exc:
-            raise exc.at(prefix=path) from None
+    base = _preset(block, path, ball_preset, None)
     fields = {}
     for key in ("radius", "mass"):
         fields[key] = _quantity(block, key, "length" if key == "radius" else "mass", path)
@@ -149,12 +154,7 @@ def _inverse_speed(value, path: str) -> float:
 
 def build_face(value, path: str = "face") -> Face:
     block = _require_mapping(value, path, FACE_KEYS, "the face")
-    base = Face()
-    if "preset" in block:
-        try:
-            base = face_preset(block["preset"])
-        except FieldError as exc:
-            raise exc.at(prefix=path) from None
+    base = _preset(block, path, face_preset, Face())
     rigid = block.get("rigid", base.rigid)
     if not isinstance(rigid, bool):
         raise FieldError(f"{path}.rigid", "true or false", rigid)
@@ -213,12 +213,7 @@ def _inertia(value, path: str, base) -> tuple | None:
 def build_club(value, path: str = "club") -> ClubHead:
     """A club head from a study block: a preset, its keys overridden, or every key given."""
     block = _require_mapping(value, path, CLUB_KEYS, "the club head")
-    base = None
-    if "preset" in block:
-        try:
-            base = club_preset(block["preset"])
-        except FieldError as exc:
-            raise exc.at(prefix=path) from None
+    base = _preset(block, path, club_preset, None)
     fields = {}
     for key, dimension in (("mass", "mass"), ("loft", "angle"), ("lie", "angle"), ("bulge_radius", "length"),
                            ("roll_radius", "length"), ("restitution_gain", "dimensionless")):
