@@ -31,7 +31,6 @@ from pathlib import Path
 
 import attrs
 import numpy as np
-import xarray as xr
 
 from .errors import EnvironmentFault, StudyError
 from .faults import check_interrupt
@@ -316,8 +315,8 @@ def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
 
 def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers: int | None = None,
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
-               show_progress: bool = False) -> list[xr.Dataset]:
-    """Compute every model entry on every case; one per-model dataset (dimension ``case``) per entry."""
+               show_progress: bool = False) -> list[dict]:
+    """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``)."""
     from .vocabulary import HISTORY
 
     n_cases = study.n_cases
@@ -365,11 +364,10 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
 
 
-def _join(parts: list[dict]) -> xr.Dataset:
+def _join(parts: list[dict]) -> dict:
+    """One model entry's chunks joined along the cases: arrays in the vocabulary's units, no Dataset yet."""
     first = parts[0]
-    coords = {}
-    if first["time"] is not None:
-        coords["time"] = ("time", first["time"], {"units": "s", "long_name": "time since first contact"})
-    data = {name: (first["dims"][name], np.concatenate([part["data"][name] for part in parts]),
-                   first["attrs"][name]) for name in first["data"]}
-    return xr.Dataset(data, coords=coords, attrs=first["global"])
+    return {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
+            "time": first["time"],
+            "missing": {name: attributes["missing_reason"] for name, attributes in first["attrs"].items()
+                        if "missing_reason" in attributes}}

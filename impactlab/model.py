@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from ._version import __version__
+from .case_inputs import CaseInputs
 from .errors import FieldError, ModelContractError, ModelInputError
 from .planning import OutputPlan, plan_outputs
 from .derive import NEEDS, derive
@@ -44,11 +45,16 @@ class ImpactModel:
     2. **One hook.** A model implements ``_compute(self, inputs, outputs)``
        and nothing else of the run; ``self.options`` holds its validated
        options.
-    3. **What the hook receives.** ``inputs`` maps each declared input that
-       was given (all of ``requires``, and those of ``optional_inputs``
-       present) to a read-only 1-D float array; all arrays have the same
-       length n, one entry per case, SI units (angles in rad, spin in rad/s).
-       ``outputs`` is a non-empty frozenset, a subset of ``provides``.
+    3. **What the hook receives.** ``inputs`` is a
+       :class:`~impactlab.case_inputs.CaseInputs`: a read-only mapping of
+       each declared input that was given (all of ``requires``, and only
+       those of ``optional_inputs`` present: an absent optional input is
+       absent, not defaulted) to a read-only 1-D float array; all arrays
+       have the same length n, one entry per case, SI units (angles in rad,
+       spin in rad/s). ``inputs.contact_state()`` gives the contact frame,
+       approach velocity and mobility of the batch, computed once and shared
+       with the framework's derivation. ``outputs`` is a non-empty
+       frozenset, a subset of ``provides``.
     4. **What the hook returns.** A dict with every key of ``outputs``
        (other keys from ``provides`` are allowed and dropped, so a cheap
        model may always return all it has): scalar outputs as float arrays
@@ -184,16 +190,16 @@ class ImpactModel:
             outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
         plan = self.plan(outputs, inputs)
         n_cases = self._check_inputs(inputs, plan)
+        batch = CaseInputs(inputs)  # the hook's view shares the batch's contact state with the derivation
         raw = {}
         if plan.from_model:
-            hook_inputs = {name: inputs[name] for name in (self.requires | self.optional_inputs) if name in inputs}
-            raw = self._compute(hook_inputs, plan.from_model)
+            raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
             if any(OUTPUTS[name].kind == HISTORY for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
-        raw.update(derive(plan.derived, raw, inputs))
+        raw.update(derive(plan.derived, raw, batch))
         time = np.asarray(raw.pop("time"), dtype=float) if "time" in raw else None
         values = {}
         for name in plan.requested:
@@ -205,7 +211,7 @@ class ImpactModel:
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
 
-    def _compute(self, inputs: Mapping[str, np.ndarray], outputs: frozenset[str]) -> dict[str, np.ndarray]:
+    def _compute(self, inputs: CaseInputs, outputs: frozenset[str]) -> dict[str, np.ndarray]:
         raise NotImplementedError(f"model {self.name!r} does not implement _compute")
 
     # -- bookkeeping --------------------------------------------------------------------------------------------
@@ -232,11 +238,8 @@ class ImpactModel:
             array = np.array(array, dtype=float)
             array.setflags(write=False)
             inputs[name] = array
-        # default the club mass for the derivation: a fixed face
-        if "club_mass" not in inputs:
-            inputs["club_mass"] = np.full(n_cases, math.inf)
-        if "spin" not in inputs:
-            inputs["spin"] = np.zeros(n_cases)
+        # no defaults are filled in: an absent spin or club mass is absent for the hook (rule 3), and the
+        # physics functions take a ball without spin and a fixed face where they are absent
         return n_cases
 
     def _check_returned(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> None:
