@@ -44,11 +44,13 @@ def best(function, repeats: int = 7) -> float:
 
 
 def hooks(study) -> None:
+    """The models' own work: each hook asked for what the study's plan asks of it (impulses and the stability
+    report the model computes itself), on a fresh batch (the contact state the hook builds is its work)."""
     inputs = case_inputs(study)
     for entry in study.models:
         model = entry.model
         given = CaseInputs({name: inputs[name] for name in model.requires | model.optional_inputs if name in inputs})
-        model._compute(given, frozenset(model.provides & {"normal_impulse", "tangential_impulse"}))
+        model._compute(given, model.plan(study.all_outputs, inputs).from_model)
 
 
 def main() -> None:
