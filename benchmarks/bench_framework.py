@@ -45,12 +45,14 @@ def best(function, repeats: int = 7) -> float:
 
 def hooks(study) -> None:
     """The models' own work: each hook asked for what the study's plan asks of it (impulses and the stability
-    report the model computes itself), on a fresh batch (the contact state the hook builds is its work)."""
+    report the model computes itself). The batch is fresh, so the contact state is built here, once, as in a
+    run (where the models share it): it is physics, counted on this side."""
     inputs = case_inputs(study)
+    batch = CaseInputs(inputs)
     for entry in study.models:
         model = entry.model
-        given = CaseInputs({name: inputs[name] for name in model.requires | model.optional_inputs if name in inputs})
-        model._compute(given, model.plan(study.all_outputs, inputs).from_model)
+        model._compute(batch.only(model.requires | model.optional_inputs),
+                       model.plan(study.all_outputs, inputs).from_model)
 
 
 def main() -> None:

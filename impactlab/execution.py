@@ -32,6 +32,7 @@ from pathlib import Path
 import attrs
 import numpy as np
 
+from .case_inputs import CaseInputs
 from .errors import EnvironmentFault, StudyError
 from .faults import check_interrupt
 from .safe_output import _temporaries, write_atomically
@@ -62,7 +63,10 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
 
 def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
     """Worker side: run ``model`` on the chunk's cases; plain arrays and attributes come back."""
-    part = {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
+    if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
+        part = inputs.slice(chunk.start, chunk.stop)
+    else:
+        part = {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
     result = model.compute_arrays(part, outputs)  # arrays inside: no Dataset built per chunk
     attributes = {}
     for name in result.values:
@@ -342,26 +346,35 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
     pool = _Pool(kind, workers, scheduler) if todo and kind in ("processes", "dask") else None
     finished = False
     try:
-        for entry_index, entry in enumerate(study.models):
-            mine = [chunk for chunk in todo if chunk.entry == entry_index]
-            if not mine:
-                continue
-            if pool is None:
-                stream = _serial((chunk, lambda chunk=chunk: compute_chunk(entry.model, inputs, outputs, chunk))
-                                 for chunk in mine)
-            else:
-                stream = pool.run(entry.model, inputs, outputs, mine)
-            for chunk, part in stream:
-                if store is not None:
-                    store.save(chunk, part)
-                parts[chunk] = part
-                progress.advance(chunk.stop - chunk.start)
-                check_interrupt()  # the safe point: this chunk is saved, the next has not started
+        for chunk, part in _stream(study, inputs, outputs, todo, pool):
+            if store is not None:
+                store.save(chunk, part)
+            parts[chunk] = part
+            progress.advance(chunk.stop - chunk.start)
+            check_interrupt()  # the safe point: this chunk is saved, the next has not started
         finished = True
     finally:
         if pool is not None:
             pool.close(abort=not finished)
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
+
+
+def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool) -> Iterator:
+    """Finished chunks as they come.
+
+    In this process the cases are checked once and the models run chunk by chunk, every model on a
+    chunk before the next, so they share the chunk's contact state and only one chunk's state is held;
+    a pool takes one model's chunks at a time.
+    """
+    if pool is None:
+        batch = CaseInputs(inputs)
+        for chunk in sorted(todo, key=lambda chunk: (chunk.start, chunk.entry)):
+            yield chunk, compute_chunk(study.models[chunk.entry].model, batch, outputs, chunk)
+        return
+    for entry_index, entry in enumerate(study.models):
+        mine = [chunk for chunk in todo if chunk.entry == entry_index]
+        if mine:
+            yield from pool.run(entry.model, inputs, outputs, mine)
 
 
 def _join(parts: list[dict]) -> dict:
