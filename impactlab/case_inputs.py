@@ -29,6 +29,10 @@ class CaseInputs(Mapping):
         Input name -> scalar or 1-D array (SI), or scenes (their common inputs). Names must come from
         :data:`impactlab.vocabulary.INPUTS`, arrays have one length (scalars are repeated), and every value
         must lie in its input's range; the arrays are copied and made read-only.
+    copy : bool
+        False: keep read-only views of float arrays of full length instead of copies (the runner's own
+        case arrays: a million-case study would otherwise hold its inputs twice). The caller must not
+        change them while the batch is in use.
 
     Raises
     ------
@@ -53,8 +57,8 @@ class CaseInputs(Mapping):
 
     __slots__ = ("_arrays", "_state", "n_cases", "_last_slice")
 
-    def __init__(self, values: Any):
-        self._arrays, self.n_cases = _checked_arrays(values)
+    def __init__(self, values: Any, *, copy: bool = True):
+        self._arrays, self.n_cases = _checked_arrays(values, copy)
         self._state = [None]  # a one-element cell, shared with the views (``only``) that see the same contact
         self._last_slice = None
 
@@ -117,7 +121,7 @@ class CaseInputs(Mapping):
         return view
 
 
-def _checked_arrays(values: Any) -> tuple[dict[str, np.ndarray], int]:
+def _checked_arrays(values: Any, copy: bool = True) -> tuple[dict[str, np.ndarray], int]:
     """Read-only float arrays of one length from a mapping or scenes, every value in its input's range."""
     from .scene import Scene
 
@@ -147,8 +151,11 @@ def _checked_arrays(values: Any) -> tuple[dict[str, np.ndarray], int]:
         bad = spec.out_of_range(array)
         if np.any(bad):
             raise FieldError(spec.path, spec.range_text(), float(array[np.argmax(bad)]))
-        array = np.array(np.broadcast_to(array, (n_cases,)), dtype=float)  # a copy the caller cannot change
-        array.setflags(write=False)
+        if copy or array.size != n_cases:
+            array = np.array(np.broadcast_to(array, (n_cases,)), dtype=float)  # a copy the caller cannot change
+        else:
+            array = array.view()
+        array.setflags(write=False)  # a view's flag leaves the caller's array as it was
         arrays[name] = array
     return arrays, n_cases
 

@@ -367,7 +367,7 @@ def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool) -> Iterator:
     a pool takes one model's chunks at a time.
     """
     if pool is None:
-        batch = CaseInputs(inputs)
+        batch = CaseInputs(inputs, copy=False)  # the runner's own arrays, not changed during the run
         for chunk in sorted(todo, key=lambda chunk: (chunk.start, chunk.entry)):
             yield chunk, compute_chunk(study.models[chunk.entry].model, batch, outputs, chunk)
         return
