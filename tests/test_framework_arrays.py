@@ -159,3 +159,16 @@ def test_a_worker_task_carries_its_own_cases_only(monkeypatch):
     assert sizes and all(size <= {4} | {1} for size in sizes) and len(sizes) == 3 * 3
     assert np.array_equal(result["launch_angle"].values,
                           impactlab.run_study(STUDY, executor="serial")["launch_angle"].values)
+
+
+def test_validity_is_warned_once_per_flag_for_all_models():
+    import warnings
+
+    from impactlab.diagnostics import ValidityWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        impactlab.run_study(dict(STUDY, models=["maw", "hertz_mindlin", "rigid_coulomb"]))
+    texts = [str(w.message) for w in caught if issubclass(w.category, ValidityWarning)]
+    assert len(texts) == 2  # large contact and Dundurs coupling; the rigid model raises neither
+    assert all(text.startswith("maw, hertz_mindlin: in 9 of 9 case(s) each ") for text in texts)
