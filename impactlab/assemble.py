@@ -11,7 +11,7 @@ import xarray as xr
 
 from ._version import __version__
 from .diagnostics import flag_attributes
-from .vocabulary import CASE_DIM, HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
+from .vocabulary import CASE_DIM, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
 
 def _unfold_cases(dataset: xr.Dataset, study) -> xr.Dataset:
@@ -36,7 +36,7 @@ def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
         reference = times[0]
         for index, ds in enumerate(per_model):
             for name in ds.data_vars:
-                if OUTPUTS[name].kind == HISTORY and TIME_DIM not in ds[name].dims:
+                if is_history(name) and TIME_DIM not in ds[name].dims:
                     # a model without histories: NaN over the time axis of those that have them
                     ds = ds.assign({name: ds[name].expand_dims({TIME_DIM: reference.values}, axis=-1).copy()})
             per_model[index] = ds

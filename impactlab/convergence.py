@@ -25,7 +25,7 @@ import xarray as xr
 from ._version import __version__
 from .runner import case_inputs
 from .study import Study
-from .vocabulary import HISTORY, OUTPUTS
+from .vocabulary import OUTPUTS, is_scalar
 
 LADDER = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6)
 
@@ -48,7 +48,7 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
     """Error and wall time per impact for every model entry of ``study`` along a ladder of tolerances."""
     inputs = case_inputs(study)
     n_cases = study.n_cases
-    outputs = [name for name in study.outputs if OUTPUTS[name].kind != HISTORY]
+    outputs = [name for name in study.outputs if is_scalar(name)]
     tolerances = np.asarray(sorted(tolerances, reverse=True), dtype=float)
     ids = [entry.id for entry in study.models]
     error = np.full((len(ids), tolerances.size, len(outputs)), np.nan)

@@ -318,10 +318,10 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
                show_progress: bool = False) -> list[xr.Dataset]:
     """Compute every model entry on every case; one per-model dataset (dimension ``case``) per entry."""
-    from .vocabulary import HISTORY
+    from .vocabulary import is_history
 
     n_cases = study.n_cases
-    has_histories = any(OUTPUTS[name].kind == HISTORY for name in outputs)
+    has_histories = any(is_history(name) for name in outputs)
     kind = choose_executor(executor, n_cases * len(study.models), has_histories)
     if kind not in EXECUTORS:
         raise StudyError(f"unknown executor {kind!r}; choices: {', '.join(EXECUTORS)}")

@@ -142,13 +142,13 @@ def kernel_grid(model) -> tuple[int, int] | None:
 
 def estimate(study) -> Estimate:
     """Peak memory of running ``study``, from its sizes alone (nothing is allocated)."""
-    from .vocabulary import HISTORY, INPUTS, OUTPUTS
+    from .vocabulary import INPUTS, is_history
 
     cases = study.n_cases
     models = len(study.models)
     points = max([getattr(getattr(entry.model, "options", None), "history_points", 256) for entry in study.models]
                  or [256])
-    histories = [name for name in study.all_outputs if OUTPUTS[name].kind == HISTORY]
+    histories = [name for name in study.all_outputs if is_history(name)]
     per_case = len(study.all_outputs) - len(histories) + len(histories) * points
     memory = 8 * cases * len(INPUTS) + RESULT_COPIES * 8 * cases * models * per_case
     kernel = 0

@@ -20,7 +20,7 @@ from ._version import __version__
 from .errors import FieldError, ModelContractError, ModelInputError
 from .planning import OutputPlan, plan_outputs
 from .derive import NEEDS, derive
-from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM
+from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM, is_history
 
 
 @attrs.frozen
@@ -247,7 +247,7 @@ class ImpactModel:
             raise ModelContractError(
                 f"model {self.name!r}: _compute returned {sorted(keys)}; expected {sorted(plan.from_model)} "
                 f"and nothing outside what it provides ({sorted(self.provides)})")
-        histories = [name for name in plan.from_model if OUTPUTS[name].kind == HISTORY]
+        histories = [name for name in plan.from_model if is_history(name)]
         n_time = None
         if histories:
             if "time" not in raw:
@@ -258,7 +258,7 @@ class ImpactModel:
             n_time = time.size
         for name in plan.from_model:
             value = np.asarray(raw[name])
-            shape = (n_cases, n_time) if OUTPUTS[name].kind == HISTORY else (n_cases,)
+            shape = (n_cases, n_time) if is_history(name) else (n_cases,)
             if value.shape != shape:
                 raise ModelContractError(
                     f"model {self.name!r}: output {name!r} has shape {value.shape}, expected {shape}")

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .vocabulary import HISTORY, MODEL_DIM, OUTPUTS, TIME_DIM
+from .vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -220,7 +220,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    names = [name for name in (outputs or dataset.data_vars) if name in OUTPUTS and OUTPUTS[name].kind != HISTORY
+    names = [name for name in (outputs or dataset.data_vars) if is_scalar(name)
              and not bool(np.all(np.isnan(dataset[name].values)))][:6]
     sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
     along_output = x is not None and x in dataset.data_vars

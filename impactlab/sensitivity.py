@@ -38,7 +38,7 @@ import xarray as xr
 from ._version import __version__
 from .errors import FieldError
 from .units import to_si
-from .vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, SCALAR
+from .vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, is_scalar
 
 SENSITIVITY_KEYS = ("method", "samples", "seed", "parameters", "choices", "models", "levels")
 METHODS = ("sobol", "morris")
@@ -266,7 +266,7 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     spec = study.sensitivity
     outputs = list(study.outputs)
     for name in outputs:
-        if OUTPUTS[name].kind != SCALAR or OUTPUTS[name].diagnostic:
+        if not is_scalar(name) or OUTPUTS[name].diagnostic:
             raise FieldError("outputs", "scalar outputs for a sensitivity study", name)
     base = case_inputs(study)
     entries = {entry.id: entry for entry in study.models}

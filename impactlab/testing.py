@@ -33,7 +33,7 @@ from .materials import BALL_PRESETS, FACE_PRESETS
 from .model import ImpactModel
 from .physics.mechanics import effective_mass
 from .scene import Contact, Impact, Scene
-from .vocabulary import HISTORY, INPUTS, OUTPUTS
+from .vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -96,7 +96,7 @@ def _with(inputs: dict, **changes) -> dict:
 
 
 def _scalar_outputs(model, inputs) -> list[str]:
-    wanted = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+    wanted = list(SCALAR_OUTPUTS)
     plan = model.plan(wanted, inputs)
     return [name for name in wanted if name not in plan.missing]
 
