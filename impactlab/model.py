@@ -23,6 +23,10 @@ from .derive import NEEDS, derive
 from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM, is_history
 
 
+#: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)
+HISTORY_LENGTH = 256
+
+
 @attrs.frozen
 class NoOptions:
     """Options of a model that has none."""
@@ -65,7 +69,21 @@ class ImpactModel:
        computes them itself only by also declaring them in ``provides``.
     7. **Conformance.** ``impactlab.testing.check_model`` must pass: declared
        names exist, energy never increases for a fixed face, frictionless and
-       head-on impacts give no tangential impulse, mirrored impacts mirror.
+       head-on impacts give no tangential impulse, mirrored impacts mirror,
+       declared capabilities hold.
+    8. **Capabilities are declared, never guessed.** The framework reads them
+       from the class, not from the options' fields:
+       ``has_tolerance`` (class attribute, default False): ``Options`` has a
+       field ``tolerance`` that sets the numerical error, so work-precision
+       studies sweep it (:mod:`impactlab.convergence`); such a model may
+       override :meth:`reference_options` and :meth:`can_reach`.
+       ``provides_histories`` (derived from ``provides`` when the class is
+       made): the hook returns ``"time"`` with its histories, and
+       :meth:`history_length` says how many samples they have.
+       :meth:`solves_3d` (this configuration solves 3-D contacts) and
+       :meth:`expert_resolution` (a resolution the options fix by hand, which
+       the memory estimate of :mod:`impactlab.limits` counts) are methods
+       with defaults for models that have neither.
 
     The public :meth:`compute` validates inputs, hands the hook only what it
     declared, checks what came back, derives the rest, converts to the
@@ -81,6 +99,15 @@ class ImpactModel:
     provides: ClassVar[frozenset[str]] = frozenset()
     not_provided: ClassVar[Mapping[str, str]] = {}
     Options: ClassVar[type] = NoOptions
+    #: rule 8: ``Options`` has a field ``tolerance`` that sets the numerical error (checked by the conformance suite)
+    has_tolerance: ClassVar[bool] = False
+    #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
+    provides_histories: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: Any):
+        super().__init_subclass__(**kwargs)
+        # derived once here so that no caller re-derives it from the vocabulary (and none can disagree)
+        cls.provides_histories = any(is_history(name) for name in cls.provides)
 
     def __init__(self, options: Any = None, **option_values: Any):
         if options is not None and option_values:
@@ -126,7 +153,13 @@ class ImpactModel:
         }
 
     def reference_options(self, tolerance: float):
-        """Options of the converged reference run for a work-precision study (see impactlab.convergence)."""
+        """Options of the converged reference run for a work-precision study (see impactlab.convergence).
+
+        Only for a model that declares ``has_tolerance`` (rule 8); the default sets the ``tolerance`` option.
+        """
+        if not self.has_tolerance:
+            raise ModelContractError(f"model {self.name!r} declares no tolerance (has_tolerance is False), so it has "
+                                     "no reference run")
         return attrs.evolve(self.options, tolerance=tolerance)
 
     def solves_3d(self) -> bool:
@@ -140,6 +173,20 @@ class ImpactModel:
     def can_reach(self, tolerance: float) -> bool:
         """Whether this configuration resolves ``tolerance`` without hitting a resolution cap."""
         return True
+
+    def history_length(self) -> int:
+        """Samples on the time axis of this configuration's histories (rule 8); a model without options for it
+        gives :data:`HISTORY_LENGTH`, which is also what the memory estimate assumes for a model without histories.
+        """
+        return HISTORY_LENGTH
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(springs, time steps) fixed by hand in the options, or None when a tolerance (or nothing) sets them.
+
+        Tolerance-driven resolutions are capped by each method; expert options are not, so they are what
+        :func:`impactlab.limits.estimate` counts against the memory limit.
+        """
+        return None
 
     def options_dict(self) -> dict[str, Any]:
         return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}

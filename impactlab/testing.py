@@ -13,8 +13,9 @@ or, one pytest test per model and check::
     def test_conformance(model, check):
         check(model)
 
-The checks are physics every impact model must respect whatever its
-approximations: energy of a fixed-face impact never increases, a frictionless
+Besides the declarations and capabilities (rules 1 and 8 of
+:class:`~impactlab.model.ImpactModel`), the checks are physics every impact
+model must respect whatever its approximations: energy of a fixed-face impact never increases, a frictionless
 or head-on impact gives no tangential impulse, mirrored impacts mirror, the
 normal impulse lies between 0 and that of an elastic impact, beta lies in
 [-1, 1], and a case's result does not depend on the batch around it.
@@ -130,6 +131,48 @@ def check_declarations(model) -> None:
             raise AssertionError("Options must be frozen (attrs.frozen)")
     json.dumps(model.options_dict())
     assert model.__doc__ and "References" in model.__doc__, "the model docstring must cite its references"
+
+
+def check_capabilities(model) -> None:
+    """Declared capabilities (rule 8) hold: ``has_tolerance`` exactly when Options has a ``tolerance`` field (and
+    then the reference options are Options at the asked tolerance); ``provides_histories`` exactly when
+    ``provides`` names a history, and then the histories come back on a ``time`` axis of ``history_length()``
+    samples; ``solves_3d`` only with ``lateral_impulse``; ``expert_resolution`` None or two positive integers."""
+    from .errors import ModelContractError
+    from .vocabulary import CASE_DIM, TIME_DIM, is_history
+
+    cls = type(model)
+    assert isinstance(cls.has_tolerance, bool), "has_tolerance must be True or False"
+    fields = {field.name for field in attrs.fields(cls.Options)}
+    if cls.has_tolerance:
+        assert "tolerance" in fields, "has_tolerance is declared but Options has no field 'tolerance'"
+        reference = model.reference_options(1e-6)
+        assert isinstance(reference, cls.Options) and reference.tolerance == 1e-6, \
+            "reference_options(tolerance) must give Options at that tolerance"
+        assert isinstance(model.can_reach(1e-3), bool), "can_reach must return True or False"
+    else:
+        assert "tolerance" not in fields, "Options has a field 'tolerance': declare has_tolerance = True"
+    histories = sorted(name for name in cls.provides if is_history(name))
+    assert cls.provides_histories == bool(histories), \
+        f"provides_histories is {cls.provides_histories} but provides names histories {histories}"
+    if histories:
+        inputs = {key: value[:4] for key, value in reference_inputs(n_angles=2).items()}
+        try:
+            result = model.compute(inputs, histories)
+        except ModelContractError as exc:
+            raise AssertionError(f"histories asked for: {exc}") from None
+        assert TIME_DIM in result.coords, "histories returned without a 'time' axis"
+        assert result.sizes[TIME_DIM] == model.history_length(), \
+            f"histories have {result.sizes[TIME_DIM]} samples, history_length() says {model.history_length()}"
+        for name in histories:
+            assert result[name].dims == (CASE_DIM, TIME_DIM), f"history {name} is not on (case, time)"
+    solves_3d = model.solves_3d()
+    assert isinstance(solves_3d, bool), "solves_3d() must return True or False"
+    assert not solves_3d or "lateral_impulse" in cls.provides, "a model that solves 3-D contacts provides " \
+        "lateral_impulse"
+    grid = model.expert_resolution()
+    assert grid is None or (len(grid) == 2 and all(isinstance(n, int) and n > 0 for n in grid)), \
+        f"expert_resolution() must be None or (springs, steps), got {grid!r}"
 
 
 def check_runs_finite(model) -> None:
@@ -273,6 +316,7 @@ def check_inputs_untouched(model) -> None:
 
 CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "declarations": check_declarations,
+    "capabilities": check_capabilities,
     "runs_finite": check_runs_finite,
     "energy_never_increases": check_energy_never_increases,
     "normal_impulse_bounds": check_normal_impulse_bounds,

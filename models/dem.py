@@ -5,10 +5,11 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
+from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check
 from impactlab.physics import compliant3d, dem
 
-from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
+from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
                   "Geotechnique 29 (1979) 47-65")
@@ -25,13 +26,13 @@ def _number_in(low: float, high: float, what: str, low_open: bool = False):
 
 
 @attrs.frozen
-class _SpringOptions:
+class _SpringOptions(CompliantOptions):
     """Options shared by the DEM laws (see the model docstrings)."""
 
     tolerance: float = attrs.field(default=1e-4, validator=_number_in(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
     steps: int | None = attrs.field(default=None, validator=optional_int(16))
     damping: float = attrs.field(default=0.0, validator=_number_in(0.0, 10.0, "a damping ratio between 0 and 10"))
-    history_points: int = attrs.field(default=256, validator=int_at_least(2))
+    history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
@@ -52,6 +53,10 @@ class _SpringOptions:
 
     def resolution_steps(self, count: int) -> int:
         return self.steps if self.steps is not None else dem.steps_for(self.tolerance)[0]
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(one spring, the steps) when the steps are set by hand; else None."""
+        return None if self.steps is None else (1, int(self.steps))
 
 
 @attrs.frozen

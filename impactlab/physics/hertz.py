@@ -13,6 +13,8 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press (1985), §4.2, §
 
 from __future__ import annotations
 
+from typing import Protocol, runtime_checkable
+
 import numpy as np
 from scipy import special
 
@@ -68,7 +70,42 @@ def time_to_reach(h):
     return TAU_MAX_COMPRESSION * special.betainc(_A, _B, np.clip(h, 0.0, 1.0) ** 2.5)
 
 
-class ElasticNormal:
+@runtime_checkable
+class NormalLaw(Protocol):
+    """A normal law in scaled time, one for a whole batch: what the tangential kernels and the histories use.
+
+    Time tau is scaled by T = delta_max / V_z and the approach h by delta_max of the elastic impact at the same
+    approach speed, so that one law serves every case. :class:`ElasticNormal` (:data:`ELASTIC`) and
+    :class:`DampedNormal` implement it; :class:`CaseNormals` (one damped law per case) carries only
+    ``restitution``, ``damping`` and ``tau_end`` as arrays, which is all the 3-D kernel reads.
+
+    Attributes
+    ----------
+    damping : float
+        Hunt-Crossley damping c (0: elastic).
+    restitution : float
+        Exit speed over approach speed.
+    tau_end : float
+        Scaled time at which contact ends.
+    """
+
+    __slots__ = ()
+
+    damping: float
+    restitution: float
+    tau_end: float
+
+    def approach(self, tau) -> np.ndarray:
+        """h(tau) = delta / delta_max, 0 outside the contact."""
+
+    def load_factor(self, tau) -> np.ndarray:
+        """Normal force over the elastic force k delta^(3/2) at the same approach (1 for the elastic law)."""
+
+    def crossing_times(self, level) -> tuple[np.ndarray, np.ndarray]:
+        """Scaled times at which h rises through and falls back through ``level`` (arrays)."""
+
+
+class ElasticNormal(NormalLaw):
     """The elastic Hertz impact in scaled time: h(tau), load factor 1, closed-form crossing times."""
 
     damping = 0.0
@@ -121,7 +158,7 @@ def cached_grid(normal, key: tuple, build):
     return arrays
 
 
-class DampedNormal:
+class DampedNormal(NormalLaw):
     """Hertz contact with Hunt-Crossley damping, F = k delta^(3/2) (1 + c d(delta)/dt / V_z), scaled.
 
     h'' = -(5/4) h^(3/2) (1 + c h') with h(0) = 0, h'(0) = 1 (scaled by the
