@@ -432,21 +432,18 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
 
     ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     from pathlib import Path
 
     import matplotlib.ticker
-
-    import matplotlib.pyplot as plt
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
 
     path = Path(path)
     outputs = list(dataset.output.values)
     cases = _case_labels(dataset)
     analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
-    figure, axes = plt.subplots(len(outputs), len(cases), figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)),
-                                squeeze=False)
+    figure = Figure(figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)))
+    axes = figure.subplots(len(outputs), len(cases), squeeze=False)
     colours = {"numerical": "tab:grey", "parameter": "tab:blue", "form": "tab:red"}
     for row, output in enumerate(outputs):
         unit = str(dataset.output_units.sel(output=output).values)
@@ -495,14 +492,12 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                     "(log scale)", fontsize=10)
     figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
     figure.savefig(path, dpi=110)
-    plt.close(figure)
     pictures = [path]
 
     total = "ST" if "ST" in dataset else "mu_star"
     parameters = list(dataset.parameter.values)
-    figure, axes = plt.subplots(len(analysed), len(cases), figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters)
-                                                                   * len(analysed) + 0.6 * len(analysed)),
-                                squeeze=False)
+    figure = Figure(figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters) * len(analysed) + 0.6 * len(analysed)))
+    axes = figure.subplots(len(analysed), len(cases), squeeze=False)
     for row, model in enumerate(analysed):
         for column, (where, label) in enumerate(cases):
             axis = axes[row, column]
@@ -531,6 +526,5 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                     + "; n/a: the output does not move over the sample", fontsize=10)
     second = path.with_name(f"{path.stem}_indices.png")
     figure.savefig(second, dpi=110, bbox_inches="tight")
-    plt.close(figure)
     pictures.append(second)
     return pictures
