@@ -475,8 +475,9 @@ def main(argv=None) -> int:
     from .faults import run_command
 
     args = build_parser().parse_args(argv)
-    limits.configure(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None))
-    return run_command(lambda: args.handler(args), debug=args.debug)
+    # the limits and the warning hook (run_command) are the command's own: both are put back on return
+    with limits.configured(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None)):
+        return run_command(lambda: args.handler(args), debug=args.debug)
 
 
 if __name__ == "__main__":

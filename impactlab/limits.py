@@ -20,6 +20,7 @@ Defaults are below; override them with the environment variables
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 
@@ -62,6 +63,21 @@ def configure(**values: int | None) -> None:
     for key, value in values.items():
         if value is not None:
             _overrides[key] = int(value)
+
+
+@contextlib.contextmanager
+def configured(**values: int | None):
+    """:func:`configure` for the length of a block; the overrides before it come back after it.
+
+    ``impactlab.cli.main`` runs each command inside one, so a caller of ``main`` keeps its own limits.
+    """
+    saved = dict(_overrides)
+    configure(**values)
+    try:
+        yield
+    finally:
+        _overrides.clear()
+        _overrides.update(saved)
 
 
 def _limit(key: str, default: int, parse=int) -> int:
