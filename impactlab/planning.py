@@ -14,7 +14,7 @@ import attrs
 
 from .derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from .derive import DERIVATION_OPTIONAL
-from .vocabulary import INPUTS, OUTPUTS
+from .vocabulary import INPUTS
 
 
 @attrs.frozen
@@ -81,7 +81,3 @@ def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
         inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
                       frozenset(inputs))
-
-
-def unknown_outputs(names) -> list[str]:
-    return [name for name in names if name not in OUTPUTS]

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .units import MPH
 from .vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
@@ -53,9 +54,9 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
         return float(item) if not isinstance(item, str) else float(item)
 
     if (speed := value("club_speed")) is not None:
-        words.append(f"club speed {speed / 0.44704:.0f} mph")
+        words.append(f"club speed {speed / MPH:.0f} mph")
     elif (speed := value("speed")) is not None:
-        words.append(f"{speed / 0.44704:.0f} mph")
+        words.append(f"{speed / MPH:.0f} mph")
     for key, text in (("friction", "friction {:g}"), ("restitution", "e {:g}"),
                       ("tangential_loss", "cover loss {:g}")):
         item = value(key)

@@ -212,3 +212,22 @@ def test_cli_main_puts_the_warning_hook_and_limits_back(capsys):
         finally:
             limits.configure()
     capsys.readouterr()
+
+
+def test_unit_constants_are_pints():
+    from impactlab import units
+
+    ureg = units.registry()
+    assert units.RAD_TO_DEG == ureg.Quantity(1.0, "rad").to("deg").magnitude
+    assert units.RADS_TO_RPM == ureg.Quantity(1.0, "rad/s").to("rpm").magnitude
+    assert units.MPH == ureg.Quantity(1.0, "mph").to("m/s").magnitude
+
+
+def test_table1_is_stored_once():
+    from impactlab.paper import table1
+    from impactlab.validation import DATASETS
+
+    published = table1()
+    assert list(published) == list(DATASETS["wood2018"].labels)
+    assert published["driver"] == {"trackman": 87.0, "wood": (83.0, 8.0)}
+    assert published["pitching wedge"] == {"trackman": 70.0, "wood": (72.0, 6.0)}
