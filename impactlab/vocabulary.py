@@ -19,6 +19,7 @@ from typing import Any
 import attrs
 
 from .units import RAD_TO_DEG, RADS_TO_RPM
+from .validators import inside
 
 SCALAR = "scalar"
 HISTORY = "history"
@@ -44,9 +45,7 @@ class InputSpec:
 
     def out_of_range(self, values):
         """Boolean mask of the values outside the allowed range (NaN counts as outside)."""
-        above = values > self.low if self.low_open else values >= self.low
-        below = values < self.high if self.high_open else values <= self.high
-        return ~(above & below)
+        return ~inside(values, self.low, self.high, self.low_open, self.high_open)
 
     def range_text(self) -> str:
         left = "(" if self.low_open else "["

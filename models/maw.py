@@ -6,7 +6,7 @@ import attrs
 import numpy as np
 
 from impactlab.model import HISTORY_LENGTH
-from impactlab.validators import check
+from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
@@ -62,9 +62,7 @@ class MawOptions(CompliantOptions):
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
                                                              f"one of {', '.join(METHODS)}"))
-    tolerance: float = attrs.field(validator=check(
-        lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and 1e-9 <= v <= 0.1,
-        "a tolerance between 1e-9 and 0.1"))
+    tolerance: float = attrs.field(validator=in_range(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
     springs: int | None = attrs.field(default=None, validator=optional_int(8))
     rings: int | None = attrs.field(default=None, validator=optional_int(4))
     steps: int | None = attrs.field(default=None, validator=optional_int(16))
