@@ -14,6 +14,7 @@ import attrs
 
 from .derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from .derive import DERIVATION_OPTIONAL
+from .errors import ModelInputError
 from .vocabulary import INPUTS
 
 
@@ -51,6 +52,18 @@ class OutputPlan:
         for name, reason in self.missing.items():
             parts.append(f"leaves {name} NaN ({reason})")
         return "; ".join(parts)
+
+
+def require_inputs(who: str, needed, given, source: str = "the scene") -> None:
+    """Raise ModelInputError naming, with their paths and meanings, the inputs of ``needed`` not in ``given``.
+
+    The one check and message of a missing input, before a study runs (:func:`impactlab.runner.plan_study`)
+    and when a model is computed.
+    """
+    absent = sorted(set(needed) - set(given))
+    if absent:
+        names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
+        raise ModelInputError(f"{who} needs {names}, which {source} does not give; add it or use another model")
 
 
 def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
