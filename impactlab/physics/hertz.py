@@ -13,6 +13,7 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press (1985), §4.2, §
 
 from __future__ import annotations
 
+import functools
 from typing import Protocol, runtime_checkable
 
 import numpy as np
@@ -230,20 +231,20 @@ def _argmax_time(sol, tau_end):
     return brentq(lambda t: sol(t)[1], 1e-9, tau_end, xtol=1e-14)
 
 
-_RESTITUTION_TABLE: tuple[np.ndarray, np.ndarray] | None = None
+@functools.cache
+def _restitution_table() -> tuple[np.ndarray, np.ndarray]:
+    """(damping, restitution) of exactly solved laws on a coarse grid: brackets for the root of one law."""
+    dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 60)])
+    return dampings, np.array([DampedNormal(c).restitution for c in dampings])
 
 
 def damping_for_restitution(restitution: float) -> float:
     """The Hunt-Crossley damping c (scaled) whose impact rebounds with ``restitution`` (0.05 <= e <= 1)."""
-    global _RESTITUTION_TABLE
     from scipy.optimize import brentq
 
     if restitution >= 1.0:
         return 0.0
-    if _RESTITUTION_TABLE is None:
-        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 60)])
-        _RESTITUTION_TABLE = (dampings, np.array([DampedNormal(c).restitution for c in dampings]))
-    dampings, restitutions = _RESTITUTION_TABLE
+    dampings, restitutions = _restitution_table()
     if restitution < restitutions[-1]:
         raise ValueError(f"restitution {restitution} is below what the damped Hertz law reaches "
                          f"({restitutions[-1]:.3f})")
@@ -282,21 +283,16 @@ def _damped_exit(damping: float, steps: int = 20000) -> tuple[float, float]:
     return float(-v), tau
 
 
-_FAST_TABLE: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-
-
+@functools.cache
 def damping_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(restitution, damping, scaled duration) on a dense grid of the Hunt-Crossley damping, built once (~1 s).
 
     A law per case (a speed-dependent restitution makes every case's e distinct) cannot afford the per-law
     solve of :class:`DampedNormal`; the table, inverted by monotone interpolation, gives c and the duration.
     """
-    global _FAST_TABLE
-    if _FAST_TABLE is None:
-        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 160)])
-        exits = np.array([_damped_exit(c, steps=4000) for c in dampings])
-        _FAST_TABLE = (exits[:, 0], dampings, exits[:, 1])
-    return _FAST_TABLE
+    dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 160)])
+    exits = np.array([_damped_exit(c, steps=4000) for c in dampings])
+    return exits[:, 0], dampings, exits[:, 1]
 
 
 def damping_for_restitutions(restitution) -> tuple[np.ndarray, np.ndarray]:
