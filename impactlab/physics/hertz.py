@@ -196,9 +196,6 @@ class DampedNormal(NormalLaw):
         h_end, v_end = solution.sol(self.tau_end)
         self.restitution = float(-v_end)
         self._peak_time = float(_argmax_time(solution.sol, self.tau_end))
-        grid = np.linspace(0.0, self.tau_end, 4001)
-        self._rise = (grid[grid <= self._peak_time], self.approach(grid[grid <= self._peak_time]))
-        self._fall = (grid[grid >= self._peak_time], self.approach(grid[grid >= self._peak_time]))
 
     def approach(self, tau):
         tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
