@@ -286,7 +286,7 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
         model = entries[entry_id].model
         nominal[m], flags = _run(model, base, outputs)
         validity[m] = flags
-        if "tolerance" in {field.name for field in attrs.fields(type(model.options))}:
+        if model.has_tolerance:  # declared (rule 8 of ImpactModel): its tolerance sets the numerical error
             finer = type(model)(attrs.evolve(model.options, tolerance=model.options.tolerance / 10.0))
             fine, _ = _run(finer, base, outputs)
             numerical[m] = np.abs(fine - nominal[m])
