@@ -71,9 +71,12 @@ def messages(dataset) -> list[str]:
         return []
     found = []
     flags = dataset["validity"]
-    for model in flags["model"].values if "model" in flags.dims else [None]:
-        values = np.nan_to_num(np.asarray(flags.sel(model=model).values if model is not None else flags.values))
-        values = values.astype(np.int64)
+    per_model = "model" in flags.dims
+    everything = np.nan_to_num(flags.transpose("model", ...).values if per_model else flags.values[None])
+    # one model's selection keeps its name as a scalar coordinate
+    names = flags["model"].values if per_model else [flags["model"].item() if "model" in flags.coords else "model"]
+    for index, model in enumerate(names):
+        values = everything[index].astype(np.int64)  # positional: no label lookup per model
         for bit, (_, meaning) in FLAGS.items():
             count = int(np.count_nonzero(values & bit))
             if count:
