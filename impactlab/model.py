@@ -18,10 +18,10 @@ import xarray as xr
 
 from ._version import __version__
 from .case_inputs import CaseInputs
-from .errors import FieldError, ModelContractError, ModelInputError
-from .planning import OutputPlan, plan_outputs
+from .errors import FieldError, ModelContractError
+from .planning import OutputPlan, plan_outputs, require_inputs
 from .derive import NEEDS, derive
-from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM, is_history
+from .vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, is_history
 
 
 #: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)
@@ -234,7 +234,7 @@ class ImpactModel:
         """
         batch = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)  # checked once per batch
         if outputs is None:
-            outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+            outputs = list(SCALAR_OUTPUTS)
         plan = self.plan(outputs, batch)
         self._check_needed(batch, plan)
         n_cases = batch.n_cases
@@ -243,7 +243,7 @@ class ImpactModel:
             raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
-            if any(OUTPUTS[name].kind == HISTORY for name in keep):
+            if any(is_history(name) for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
         raw.update(derive(plan.derived, raw, batch))
@@ -253,7 +253,7 @@ class ImpactModel:
             if name in raw:
                 values[name] = np.asarray(raw[name], dtype=float)
             else:
-                history = OUTPUTS[name].kind == HISTORY and time is not None
+                history = is_history(name) and time is not None
                 values[name] = np.full((n_cases, time.size) if history else (n_cases,), np.nan)
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
@@ -271,10 +271,7 @@ class ImpactModel:
         needed = set(self.requires)
         if plan.derived:
             needed |= NEEDS["impulses"]  # no spin given: the ball arrives without spin
-        absent = sorted(needed - set(batch))
-        if absent:
-            names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
-            raise ModelInputError(f"model {self.name!r} needs {names}, which the scene does not give")
+        require_inputs(f"model {self.name!r}", needed, batch)
 
     def _check_returned(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> None:
         if not isinstance(raw, Mapping):
