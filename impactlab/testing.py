@@ -258,13 +258,9 @@ def check_batch_independence(model) -> None:
                 f"{name} of case {case} depends on the batch around it"
 
 
-def _solves_3d(model) -> bool:
-    return model.solves_3d()
-
-
 def check_3d_energy_never_increases(model) -> None:
     """On free club heads struck off-centre, no model may create kinetic energy (ball plus head, rotation included)."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return  # a model on one line: its derived outputs on a free head are NaN with the reason (plan)
     inputs = _complete(reference_inputs_3d())
     result = model.compute(inputs, ["energy_loss", "lateral_impulse"])
@@ -277,7 +273,7 @@ def check_3d_energy_never_increases(model) -> None:
 
 def check_3d_heel_toe_mirror(model) -> None:
     """A head symmetric heel-to-toe, square face, path along the target: heel and toe strikes are mirror images."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return
     inputs = reference_inputs_3d()
     symmetric = (inputs["club_inertia_toe_up"] == 0.0) & (inputs["face_angle"] == 0.0)
@@ -293,7 +289,7 @@ def check_3d_heel_toe_mirror(model) -> None:
 
 def check_3d_batch_independence(model) -> None:
     """On free heads struck off-centre, a case computed alone equals the same case inside a batch."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return
     inputs = _complete(reference_inputs_3d())
     names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
