@@ -180,6 +180,7 @@ def run_command(call, *, debug: bool = False) -> int:
         print(f"impactlab: {text}", file=sys.stderr)
         return code
 
+    # catch_warnings puts the caller's showwarning and filters back when the command returns or raises
     with warnings.catch_warnings():
         warnings.showwarning = show_warning
         warnings.simplefilter("default")
