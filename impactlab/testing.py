@@ -18,7 +18,8 @@ Besides the declarations and capabilities (rules 1 and 8 of
 model must respect whatever its approximations: energy of a fixed-face impact never increases, a frictionless
 or head-on impact gives no tangential impulse, mirrored impacts mirror, the
 normal impulse lies between 0 and that of an elastic impact, beta lies in
-[-1, 1], and a case's result does not depend on the batch around it.
+[-1, 1], a case's result does not depend on the batch around it, and an
+optional input not given is absent (rule 3): no spin, a fixed face.
 """
 
 from __future__ import annotations
@@ -310,6 +311,34 @@ def check_inputs_untouched(model) -> None:
         assert np.array_equal(inputs[key], copies[key]), f"input {key} was changed"
 
 
+#: optional inputs whose absence has one meaning for every model: a ball without spin, a face that does not move
+NEUTRAL_WHEN_ABSENT = {"spin": 0.0, "club_mass": np.inf}
+
+
+def check_optional_inputs_absent(model) -> None:
+    """Rule 3: an optional input that was not given is absent, and the model runs without it.
+
+    Without ``spin`` and ``club_mass`` (where optional), results equal those with the ball given no spin and
+    the face an infinite mass; a model that reads ``inputs["spin"]`` unguarded fails here.
+    """
+    inputs = reference_inputs(n_angles=3)
+    dropped = [name for name in NEUTRAL_WHEN_ABSENT if name in model.optional_inputs and name not in model.requires]
+    if not dropped:
+        return
+    absent = {name: value for name, value in inputs.items() if name not in dropped}
+    neutral = dict(absent, **{name: np.full(inputs["speed"].shape, NEUTRAL_WHEN_ABSENT[name]) for name in dropped})
+    outputs = _scalar_outputs(model, neutral)
+    try:
+        without = model.compute(absent, outputs)
+    except KeyError as exc:
+        raise AssertionError(f"the hook read the optional input {exc} that was not given; "
+                             "read optional inputs with inputs.get(name, default)") from None
+    given = model.compute(neutral, outputs)
+    for name in outputs:
+        assert np.allclose(without[name].values, given[name].values, rtol=1e-12, atol=0, equal_nan=True), \
+            f"{name} without {', '.join(dropped)} differs from the same cases with no spin and a fixed face"
+
+
 CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "declarations": check_declarations,
     "capabilities": check_capabilities,
@@ -322,6 +351,7 @@ CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "mirror_symmetry": check_mirror_symmetry,
     "batch_independence": check_batch_independence,
     "inputs_untouched": check_inputs_untouched,
+    "optional_inputs_absent": check_optional_inputs_absent,
     "3d_energy_never_increases": check_3d_energy_never_increases,
     "3d_heel_toe_mirror": check_3d_heel_toe_mirror,
     "3d_batch_independence": check_3d_batch_independence,
