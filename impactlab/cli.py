@@ -130,6 +130,12 @@ def _cmd_models(args) -> int:
               "from the impulses)" if "normal_impulse" in info["provides"] else "")
         if info["options"]:
             print("  options:  " + ", ".join(f"{key}={value!r}" for key, value in info["options"].items()))
+        capabilities = info["capabilities"]
+        print("  capabilities: " + ", ".join(
+            text for key, text in (("has_tolerance", "a tolerance option (work-precision studies)"),
+                                   ("provides_histories", "force histories"),
+                                   ("solves_3d", "3-D contacts (free heads struck off-centre, curved faces)"))
+            if capabilities[key]) if any(capabilities.values()) else "  capabilities: none declared")
     return 0
 
 

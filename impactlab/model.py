@@ -156,6 +156,9 @@ class ImpactModel:
             # the defaults as an instance sees them (a default may depend on another option)
             "options": {key: _jsonable(value) for key, value in attrs.asdict(cls.Options()).items()},
             "references": list(cls.references),
+            # declared capabilities (rule 8); whether a configuration solves 3-D contacts is the instance's to say
+            "capabilities": {"has_tolerance": cls.has_tolerance, "provides_histories": cls.provides_histories,
+                             "solves_3d": cls().solves_3d()},
         }
 
     def reference_options(self, tolerance: float):
