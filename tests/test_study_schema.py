@@ -1,0 +1,124 @@
+"""Study blocks structured by cattrs: errors at the key's own line, with the study format's messages;
+models given as classes or instances in a Python study."""
+
+import re
+import textwrap
+from pathlib import Path
+
+import pytest
+
+import impactlab
+from impactlab.errors import FieldError
+from impactlab.study import build_scene
+from impactlab.study_schema import BallBlock, ClubBlock, DeliveryBlock, FaceBlock, StrikeBlock, keys_of, structure
+from impactlab_models.maw import MawModel
+from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+CLUB_STUDY = textwrap.dedent("""\
+    name: strike
+    ball: {preset: urethane_tour}
+    club:
+      preset: driver
+      inertia: {toe: 2500 g*cm**2, up: 4500 g*cm**2, target: 3000 g*cm**2}
+      center_of_mass: {toe: 2 mm, depth: 35 mm}
+    strike:
+      toe: 5 mm
+      high: -2 mm
+    delivery: {club_speed: 110 mph, path: 0 deg, face_angle: 0 deg, attack_angle: -1 deg, dynamic_loft: 13 deg}
+    models: [rigid_coulomb]
+    """)
+
+CLUB_BAD = [
+    # (change, line, message fragments)
+    (("target: 3000", "tagret: 3000"), 5,
+     ["club.inertia.tagret: expected a key of club.inertia, got tagret", "Choices: toe, up, target",
+      "did you mean 'target'"]),
+    (("toe: 5 mm", "toe: 5 deg"), 8, ["strike.toe: expected a length", "deg do not convert to m", "got 5 deg"]),
+    (("high: -2 mm", "hihg: -2 mm"), 9, ["strike.hihg", "Choices: toe, high", "did you mean 'high'"]),
+    (("depth: 35 mm", "depth: 35 kg"), 6, ["club.center_of_mass.depth: expected a length", "got 35 kg"]),
+    (("preset: driver", "preset: driver\n  rigid: 'no'"), 5, ["club.rigid: expected true or false, got no"]),
+    (("inertia: {toe: 2500 g*cm**2, up: 4500 g*cm**2, target: 3000 g*cm**2}",
+      "inertia: [[0.00025, 0, 0], [0, 0.00045, 0], [0, 0, 3 s]]"), 5,
+     ["club.inertia[2][2]: expected a moment of inertia", "got 3 s"]),
+    (("inertia: {toe: 2500 g*cm**2, up: 4500 g*cm**2, target: 3000 g*cm**2}",
+      "inertia: {principal: 0.0004, axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}"), 5,
+     ["club.inertia.principal: expected three principal moments, got 0.0004"]),
+    (("strike:\n  toe: 5 mm\n  high: -2 mm", "strike: 5 mm"), 7,
+     ["strike: expected a mapping (the impact point on the face) with keys from: toe, high, got 5 mm"]),
+]
+
+
+def test_the_club_study_loads():
+    study = impactlab.load_study(CLUB_STUDY)
+    assert study.scene.strike.toe == pytest.approx(0.005) and study.scene.strike.high == pytest.approx(-0.002)
+    high = impactlab.clubs.club_preset("driver").center_of_mass[1]  # a key left out keeps the preset's
+    assert study.scene.club.center_of_mass == pytest.approx((0.002, high, 0.035))
+    assert study.scene.club.inertia[0][0] == pytest.approx(2.5e-4)
+
+
+@pytest.mark.parametrize("change, line, fragments", CLUB_BAD, ids=[case[0][1][:30] for case in CLUB_BAD])
+def test_club_and_strike_errors_name_the_key_at_its_line(change, line, fragments):
+    text = CLUB_STUDY.replace(*change)
+    assert text != CLUB_STUDY
+    with pytest.raises(FieldError) as info:
+        impactlab.load_study(text, file="club.yaml")
+    message = str(info.value)
+    assert message.startswith(f"club.yaml:{line}: "), message
+    for fragment in fragments:
+        assert fragment in message, message
+
+
+def test_unknown_keys_are_reported_before_bad_values():
+    # a misspelt key leaves its field absent; the misspelling is the news, not what the absence causes
+    with pytest.raises(FieldError, match=r"^ball.raduis: expected a key of ball.*did you mean 'radius'"):
+        structure({"raduis": "21 mm", "mass": "4 kg*m"}, BallBlock, "ball")
+
+
+def test_a_sweep_range_and_a_figure_refuse_unknown_keys_at_their_line():
+    text = CLUB_STUDY + "sweep:\n  strike.toe: {start: -5 mm, stop: 5 mm, nmu: 3}\n"
+    with pytest.raises(FieldError, match=r"^club.yaml:13: sweep.strike.toe.nmu: .*did you mean 'num'"):
+        impactlab.load_study(text, file="club.yaml")
+    text = CLUB_STUDY + "plots:\n  - {name: a, y: launch_angle}\n  - {name: b, why: launch_angle}\n"
+    with pytest.raises(FieldError, match=r"^club.yaml:14: plots\[1\].why: expected a key of plots\[1\]"):
+        impactlab.load_study(text, file="club.yaml")
+
+
+def test_restitution_law_items_are_located():
+    with pytest.raises(FieldError, match=r"^ball.restitution.speeds\[1\]: expected a speed"):
+        build_scene({"ball": {"preset": "urethane_tour",
+                                        "restitution": {"law": "table", "speeds": [20, "3 kg"], "values": [0.8, 0.7]}},
+                               "impact": {"speed": 40, "angle": 10}})
+
+
+@pytest.mark.parametrize("block, heading", [(BallBlock, "ball"), (FaceBlock, "face"), (ClubBlock, "club"),
+                                            (StrikeBlock, "strike"), (DeliveryBlock, "delivery")])
+def test_every_key_a_block_accepts_is_documented(block, heading):
+    guide = (Path(__file__).parents[1] / "docs" / "user-guide.md").read_text()
+    for key in keys_of(block):
+        assert re.search(rf"`{key}`|\b{key}:", guide), f"{heading}.{key} is accepted but not in the user guide"
+
+
+MODELS_STUDY = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
+                "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": 20}}
+
+
+def test_a_python_study_may_name_models_by_class_or_instance():
+    models = [MawModel, RigidCoulombModel(), {"name": "maw", "id": "maw_tight", "tolerance": 1e-5},
+              {"name": MawModel, "id": "maw_coarse", "springs": 50}, {"name": MawModel(springs=100), "id": "maw_100"}]
+    study = impactlab.load_study({**MODELS_STUDY, "models": models})
+    assert [entry.id for entry in study.models] == ["maw", "rigid_coulomb", "maw_tight", "maw_coarse", "maw_100"]
+    assert study.models[1].model.options == models[1].options  # an instance is used as configured
+    assert study.models[3].model.options.springs == 50 and study.models[4].model.options.springs == 100
+    # the study text kept as provenance names each model with its options
+    assert "name: rigid_coulomb" in study.source and "springs: 100" in study.source
+    ds = impactlab.run_study(study)
+    assert list(ds.model.values) == ["maw", "rigid_coulomb", "maw_tight", "maw_coarse", "maw_100"]
+
+
+def test_model_classes_and_instances_are_checked_like_names():
+    with pytest.raises(FieldError, match=r"models\[0\].springs"):
+        impactlab.load_study({**MODELS_STUDY, "models": [{"name": MawModel, "springs": -1}]})
+    with pytest.raises(FieldError, match=r"models\[0\].springs: expected options of a model class or name"):
+        impactlab.load_study({**MODELS_STUDY, "models": [{"name": MawModel(), "springs": 50}]})
+    with pytest.raises(FieldError, match=r"models\[1\].name: .*give repeated models an id"):
+        impactlab.load_study({**MODELS_STUDY, "models": [MawModel(), MawModel]})
