@@ -457,7 +457,7 @@ def _build_outputs(value) -> tuple[str, ...]:
     if not isinstance(value, list) or not value:
         raise FieldError("outputs", "a non-empty list of output names", value, choices=OUTPUTS)
     for index, name in enumerate(value):
-        if name not in OUTPUTS:
+        if not isinstance(name, str) or name not in OUTPUTS:
             raise FieldError(f"outputs[{index}]", "an output name", str(name), choices=OUTPUTS)
     return tuple(dict.fromkeys(value))
 
@@ -537,10 +537,12 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
             raise FieldError(f"{where}.xlim", "[low, high] of the horizontal axis, low < high", xlim)
         measured = block.measured or []
         measured = [measured] if isinstance(measured, str) else measured
+        if not isinstance(measured, list):
+            raise FieldError(f"{where}.measured", "a shipped measured dataset or a list of them", measured)
         from .validation import DATASETS
 
         for position, data in enumerate(measured):
-            if data not in DATASETS or DATASETS[data].quantity not in wanted:
+            if not isinstance(data, str) or data not in DATASETS or DATASETS[data].quantity not in wanted:
                 raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",
                                  data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
         plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind,

@@ -166,7 +166,7 @@ def build_club(value, path: str = "club") -> ClubHead:
     fields["center_of_mass"] = _center_of_mass(block.center_of_mass, f"{path}.center_of_mass", base)
     material = base.material if base else None
     if block.material is not None:
-        if block.material not in MATERIAL_PRESETS:
+        if not isinstance(block.material, str) or block.material not in MATERIAL_PRESETS:
             raise FieldError(f"{path}.material", "a material preset", block.material, choices=MATERIAL_PRESETS)
         material = MATERIAL_PRESETS[block.material]
     material = None if block.rigid else _material(block, path, material)

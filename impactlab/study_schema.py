@@ -65,6 +65,8 @@ def _field(expected: str | None = None, default: Any = None):
 
 @attrs.frozen
 class BallBlock:
+    """The ``ball`` block: a preset and/or the ball's own keys (docs/user-guide.md, Fields)."""
+
     what = "the ball"
     preset: Name | None = None
     radius: Length | None = None
@@ -79,18 +81,22 @@ class BallBlock:
 
 @attrs.frozen
 class RestitutionBlock:
+    """A restitution law written as a mapping (``ball.restitution``); a bare number is a constant law."""
+
     what = "a restitution law"
     law: Name = "constant"
     value: Number | None = None
     reference_speed: Speed | None = None
     slope: InverseSpeed | None = None
     exponent: Number | None = None
-    speeds: list[Speed] | None = None
-    values: list[Number] | None = None
+    speeds: list[Speed] | None = _field("a list of speeds")
+    values: list[Number] | None = _field("a list of numbers")
 
 
 @attrs.frozen
 class FaceBlock:
+    """The ``face`` block: a preset, ``rigid``, a material and an optional head mass."""
+
     what = "the face"
     preset: Name | None = None
     rigid: Flag | None = None
@@ -101,6 +107,8 @@ class FaceBlock:
 
 @attrs.frozen
 class InertiaBlock:
+    """``club.inertia`` as a mapping: tensor components (toe, up, target axes) or principal moments + axes."""
+
     what = "the head's inertia about its centre of mass"
     toe: Inertia | None = None
     up: Inertia | None = None
@@ -114,6 +122,8 @@ class InertiaBlock:
 
 @attrs.frozen
 class CenterBlock:
+    """``club.center_of_mass``: from the face centre, towards the toe, up the face and behind it."""
+
     what = "the centre of mass"
     toe: Length | None = None
     high: Length | None = None
@@ -122,6 +132,8 @@ class CenterBlock:
 
 @attrs.frozen
 class ClubBlock:
+    """The ``club`` block: a preset and/or the head's own keys (docs/clubs.md)."""
+
     what = "the club head"
     preset: Name | None = None
     mass: Mass | None = None
@@ -140,6 +152,8 @@ class ClubBlock:
 
 @attrs.frozen
 class StrikeBlock:
+    """The ``strike`` block: the impact point from the face centre, towards the toe and up the face."""
+
     what = "the impact point on the face"
     toe: Length | None = None
     high: Length | None = None
@@ -147,6 +161,8 @@ class StrikeBlock:
 
 @attrs.frozen
 class ContactBlock:
+    """The ``contact`` block: the pair's friction and restitution."""
+
     what = "the contact"
     friction: Number | None = None
     restitution: Number | None = None
@@ -154,6 +170,8 @@ class ContactBlock:
 
 @attrs.frozen
 class ImpactBlock:
+    """The ``impact`` block: speed and angle of the face relative to the ball, and the incoming spin."""
+
     what = "the impact conditions"
     speed: Speed | None = None
     angle: Angle | None = None
@@ -162,6 +180,8 @@ class ImpactBlock:
 
 @attrs.frozen
 class DeliveryBlock:
+    """The ``delivery`` block: a golf delivery in the golfer's terms."""
+
     what = "the golf delivery"
     club_speed: Speed | None = None
     path: Angle | None = None
@@ -176,6 +196,7 @@ class RangeBlock:
     """A sweep range; ``start`` and ``stop`` are converted by the sweep, which knows the swept field's dimension."""
 
     what = "a sweep range"
+    key_of = "a sweep range"  # its path names the swept field, not the range
     start: Any = _field("start, stop and num of the range", attrs.NOTHING)
     stop: Any = _field("start, stop and num of the range", attrs.NOTHING)
     num: Count = _field("start, stop and num of the range", attrs.NOTHING)
@@ -383,12 +404,13 @@ def _field_error(exc, value, where: str, steps: tuple, cls, name: str | None) ->
     if isinstance(exc, ForbiddenExtraKeysError):
         node = lookup(value, steps)
         key = next(str(key) for key in node if key in exc.extra_fields)
-        return FieldError(f"{path}.{key}" if path else key, f"a key of {path or 'the study'}", key,
-                          choices=keys_of(exc.cl))
+        whose = getattr(exc.cl, "key_of", path or "the study")
+        return FieldError(f"{path}.{key}" if path else key, f"a key of {whose}", key, choices=keys_of(exc.cl))
     if isinstance(exc, FieldError):
         return FieldError(format_path(parts + parse_path(exc.path)), exc.expected, exc.given, exc.choices)
+    # a failure of cattrs itself (a list that is not one, a required key left out): worded by the field
     field = attrs.fields_dict(cls).get(name) if name else None
-    expected = (field.metadata.get("expected") if field is not None else None) or f"a {getattr(field, 'type', 'value')}"
+    expected = (field.metadata.get("expected") if field is not None else None) or f"a valid value ({exc})"
     return FieldError(path, expected, "nothing" if isinstance(exc, KeyError) else lookup(value, steps))
 
 

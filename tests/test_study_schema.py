@@ -122,3 +122,21 @@ def test_model_classes_and_instances_are_checked_like_names():
         impactlab.load_study({**MODELS_STUDY, "models": [{"name": MawModel(), "springs": 50}]})
     with pytest.raises(FieldError, match=r"models\[1\].name: .*give repeated models an id"):
         impactlab.load_study({**MODELS_STUDY, "models": [MawModel(), MawModel]})
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"outputs": [["launch_angle"]]}, r"outputs\[0\]: expected an output name"),
+    ({"models": [{"name": ["maw"]}]}, r"models\[0\].name: expected a registered model"),
+    ({"plots": [{"y": "launch_angle", "measured": 3}]}, r"plots\[0\].measured: expected a shipped measured dataset"),
+    ({"club": {"preset": "driver", "material": ["steel"]}, "face": None}, r"club.material: expected a material"),
+])
+def test_values_of_the_wrong_kind_are_field_errors_not_crashes(change, message):
+    study = {key: value for key, value in {**MODELS_STUDY, "models": ["maw"], **change}.items() if value is not None}
+    with pytest.raises(FieldError, match=message):
+        impactlab.load_study(study)
+
+
+def test_a_key_written_without_a_value_counts_as_left_out():
+    study = impactlab.load_study("ball: {preset: urethane_tour, friction: }\nface: {rigid: true, preset: }\n"
+                                 "impact: {speed: 40, angle: 10, spin: }\nmodels: [rigid_coulomb]\n")
+    assert study.scene.impact.spin == 0.0 and study.scene.face.rigid
