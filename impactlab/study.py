@@ -152,7 +152,9 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
     ----------
     source : str, os.PathLike or Mapping
         A path to a YAML file (``str`` ending in .yaml/.yml or a PathLike),
-        YAML text, or the mapping itself.
+        YAML text, or the mapping itself. In a mapping, a ``models`` entry may
+        also be a model class or a configured model instance (alone, or as the
+        ``name`` of an entry with an ``id``).
     file : str, optional
         Name used in error messages when ``source`` is text or a mapping.
 

@@ -1,15 +1,22 @@
 """The blocks of a study file as the user writes them, structured by cattrs.
 
 Each block of a study (``ball``, ``face``, ``club``, ``strike``...) has a frozen attrs class here whose fields
-are the keys a user may write, typed by what they hold: a :data:`Length`, an :data:`Angle`, a :data:`Flag`...
+are the keys a user may write, typed by what they hold: a ``Length``, an ``Angle``, a ``Flag``...
 A :class:`cattrs.Converter` turns a YAML mapping into such a block: every quantity through
 :func:`impactlab.units.to_si` with its field's dimension, unknown keys refused (``forbid_extra_keys``), every
 field checked (``detailed_validation``). A failure comes back as one :class:`~impactlab.errors.FieldError`
 at the dotted path of the offending key, with the messages the study format has always given, so that
 :func:`impactlab.load_study` maps it to its file and line.
 
-The blocks carry no physics: :mod:`impactlab.study_scene` resolves presets, overrides and mutual exclusions
-from them into :class:`~impactlab.Ball`, :class:`~impactlab.ClubHead`, :class:`~impactlab.Scene`...
+The blocks carry no physics: ``impactlab.study_scene`` resolves presets, overrides and mutual exclusions
+from them into ``Ball``, ``ClubHead``, ``Scene``...
+
+What it costs, measured against the hand-written parser it replaced (2 shared cores, best of many repeats):
+building a scene from its blocks takes about 30 us more (0.66 ms instead of 0.63 ms, unit parsing by pint
+being most of both), within the noise of a whole ``load_study`` (4-12 ms, half of it YAML parsing; 10^5
+swept values still load in about 40 ms). Once per process, importing cattrs and defining the blocks takes
+20-40 ms and generating their structuring functions about 14 ms, at the first study loaded. In exchange, a
+block's keys, kinds and units are declared once, in one place, and an unknown key is refused at any depth.
 """
 
 from __future__ import annotations
@@ -67,7 +74,7 @@ def _field(expected: str | None = None, default: Any = None):
 class BallBlock:
     """The ``ball`` block: a preset and/or the ball's own keys (docs/user-guide.md, Fields)."""
 
-    what = "the ball"
+    _what = "the ball"
     preset: Name | None = None
     radius: Length | None = None
     mass: Mass | None = None
@@ -83,7 +90,7 @@ class BallBlock:
 class RestitutionBlock:
     """A restitution law written as a mapping (``ball.restitution``); a bare number is a constant law."""
 
-    what = "a restitution law"
+    _what = "a restitution law"
     law: Name = "constant"
     value: Number | None = None
     reference_speed: Speed | None = None
@@ -97,7 +104,7 @@ class RestitutionBlock:
 class FaceBlock:
     """The ``face`` block: a preset, ``rigid``, a material and an optional head mass."""
 
-    what = "the face"
+    _what = "the face"
     preset: Name | None = None
     rigid: Flag | None = None
     youngs_modulus: Pressure | None = None
@@ -109,7 +116,7 @@ class FaceBlock:
 class InertiaBlock:
     """``club.inertia`` as a mapping: tensor components (toe, up, target axes) or principal moments + axes."""
 
-    what = "the head's inertia about its centre of mass"
+    _what = "the head's inertia about its centre of mass"
     toe: Inertia | None = None
     up: Inertia | None = None
     target: Inertia | None = None
@@ -124,7 +131,7 @@ class InertiaBlock:
 class CenterBlock:
     """``club.center_of_mass``: from the face centre, towards the toe, up the face and behind it."""
 
-    what = "the centre of mass"
+    _what = "the centre of mass"
     toe: Length | None = None
     high: Length | None = None
     depth: Length | None = None
@@ -134,7 +141,7 @@ class CenterBlock:
 class ClubBlock:
     """The ``club`` block: a preset and/or the head's own keys (docs/clubs.md)."""
 
-    what = "the club head"
+    _what = "the club head"
     preset: Name | None = None
     mass: Mass | None = None
     inertia: InertiaSpec | None = None
@@ -154,7 +161,7 @@ class ClubBlock:
 class StrikeBlock:
     """The ``strike`` block: the impact point from the face centre, towards the toe and up the face."""
 
-    what = "the impact point on the face"
+    _what = "the impact point on the face"
     toe: Length | None = None
     high: Length | None = None
 
@@ -163,7 +170,7 @@ class StrikeBlock:
 class ContactBlock:
     """The ``contact`` block: the pair's friction and restitution."""
 
-    what = "the contact"
+    _what = "the contact"
     friction: Number | None = None
     restitution: Number | None = None
 
@@ -172,7 +179,7 @@ class ContactBlock:
 class ImpactBlock:
     """The ``impact`` block: speed and angle of the face relative to the ball, and the incoming spin."""
 
-    what = "the impact conditions"
+    _what = "the impact conditions"
     speed: Speed | None = None
     angle: Angle | None = None
     spin: Spin | None = None
@@ -182,7 +189,7 @@ class ImpactBlock:
 class DeliveryBlock:
     """The ``delivery`` block: a golf delivery in the golfer's terms."""
 
-    what = "the golf delivery"
+    _what = "the golf delivery"
     club_speed: Speed | None = None
     path: Angle | None = None
     face_angle: Angle | None = None
@@ -195,8 +202,8 @@ class DeliveryBlock:
 class RangeBlock:
     """A sweep range; ``start`` and ``stop`` are converted by the sweep, which knows the swept field's dimension."""
 
-    what = "a sweep range"
-    key_of = "a sweep range"  # its path names the swept field, not the range
+    _what = "a sweep range"
+    _key_of = "a sweep range"  # its path names the swept field, not the range
     start: Any = _field("start, stop and num of the range", attrs.NOTHING)
     stop: Any = _field("start, stop and num of the range", attrs.NOTHING)
     num: Count = _field("start, stop and num of the range", attrs.NOTHING)
@@ -206,7 +213,7 @@ class RangeBlock:
 class StudyBlock:
     """The top-level keys of a study; each block is structured on its own, in the order its errors matter."""
 
-    what = "the study"
+    _what = "the study"
     name: Any = None
     description: Any = None
     ball: Any = None
@@ -227,7 +234,7 @@ class StudyBlock:
 class PlotBlock:
     """A figure; its names are checked against the study's outputs and dimensions by the study."""
 
-    what = "a figure"
+    _what = "a figure"
     name: Any = None
     y: Any = None
     x: Any = None
@@ -243,7 +250,17 @@ BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, Cent
 
 
 def keys_of(cls) -> tuple[str, ...]:
-    """The keys a block accepts, in the order the study format lists them."""
+    """The keys a block accepts, in the order the study format lists them.
+
+    Parameters
+    ----------
+    cls : type
+        A block class of this module.
+
+    Returns
+    -------
+    tuple of str
+    """
     return tuple(field.name for field in attrs.fields(cls))
 
 
@@ -317,7 +334,7 @@ def _inertia_spec(value, _):
 def _block_hook(cls, converter: Converter):
     generated = make_dict_structure_fn(cls, converter, _cattrs_forbid_extra_keys=True,
                                        _cattrs_detailed_validation=True)
-    expected = f"a mapping ({cls.what}) with keys from: {', '.join(keys_of(cls))}"
+    expected = f"a mapping ({cls._what}) with keys from: {', '.join(keys_of(cls))}"
 
     def structure(value, _):
         if not isinstance(value, Mapping):
@@ -366,7 +383,8 @@ def structure(value, cls, path: str):
 
     Returns
     -------
-    An instance of ``cls``: quantities in SI, every other key as written.
+    object
+        An instance of ``cls``: quantities in SI, every other key as written.
 
     Raises
     ------
@@ -404,7 +422,7 @@ def _field_error(exc, value, where: str, steps: tuple, cls, name: str | None) ->
     if isinstance(exc, ForbiddenExtraKeysError):
         node = lookup(value, steps)
         key = next(str(key) for key in node if key in exc.extra_fields)
-        whose = getattr(exc.cl, "key_of", path or "the study")
+        whose = getattr(exc.cl, "_key_of", path or "the study")
         return FieldError(f"{path}.{key}" if path else key, f"a key of {whose}", key, choices=keys_of(exc.cl))
     if isinstance(exc, FieldError):
         return FieldError(format_path(parts + parse_path(exc.path)), exc.expected, exc.given, exc.choices)
