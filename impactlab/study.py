@@ -167,7 +167,7 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
         return source
     lines: dict = {}
     if isinstance(source, Mapping):
-        document = copy.deepcopy(dict(source))
+        document = copy.deepcopy(dict(source), _models_as_given(source))
         text = yaml.safe_dump(_plain(document), sort_keys=False)
         file = file or "<mapping>"
     else:
@@ -192,6 +192,14 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
             # show what the user wrote, not the SI number it became
             exc = FieldError(exc.path, exc.expected, written, exc.choices)
         raise exc.at(file=file, line=line_of(lines, path)) from None
+
+
+def _models_as_given(source: Mapping) -> dict:
+    """A deepcopy memo that keeps the model instances of a Python study: configured objects, used as they are."""
+    entries = source.get("models")
+    given = [entry.get("name") if isinstance(entry, Mapping) else entry
+             for entry in (entries if isinstance(entries, list) else [])]
+    return {id(model): model for model in given if isinstance(model, ImpactModel)}
 
 
 def _names_a_file(text: str) -> bool:

@@ -101,7 +101,7 @@ def test_a_python_study_may_name_models_by_class_or_instance():
               {"name": MawModel, "id": "maw_coarse", "springs": 50}, {"name": MawModel(springs=100), "id": "maw_100"}]
     study = impactlab.load_study({**MODELS_STUDY, "models": models})
     assert [entry.id for entry in study.models] == ["maw", "rigid_coulomb", "maw_tight", "maw_coarse", "maw_100"]
-    assert study.models[1].model.options == models[1].options  # an instance is used as configured
+    assert study.models[1].model is models[1] and study.models[4].model is models[4]["name"]  # used as given
     assert study.models[3].model.options.springs == 50 and study.models[4].model.options.springs == 100
     # the study text kept as provenance names each model with its options
     assert "name: rigid_coulomb" in study.source and "springs: 100" in study.source
