@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import datetime as _dt
+import functools
 import json
 import platform
 
@@ -11,84 +12,86 @@ import xarray as xr
 
 from ._version import __version__
 from .diagnostics import flag_attributes
-from .vocabulary import CASE_DIM, HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
+from .vocabulary import HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
 
 
-def _unfold_cases(dataset: xr.Dataset, study) -> xr.Dataset:
-    """Replace the flat ``case`` dimension by the sweep dimensions."""
-    dataset = dataset.drop_attrs(deep=False)
-    if not study.sweep:
-        return dataset.isel({CASE_DIM: 0}, drop=True)
-    index = [axis.dim for axis in study.sweep]
-    unfolded = {}
-    for name, variable in dataset.data_vars.items():
-        extra = [dim for dim in variable.dims if dim != CASE_DIM]
-        values = variable.values.reshape(study.shape + tuple(variable.sizes[dim] for dim in extra))
-        unfolded[name] = (index + extra, values, variable.attrs)
-    return xr.Dataset(unfolded, coords={name: coord for name, coord in dataset.coords.items()})
+def assemble(study, plan, results: list[dict]) -> xr.Dataset:
+    """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance.
 
-
-def assemble(study, plan, results: list[xr.Dataset]) -> xr.Dataset:
-    """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance."""
-    per_model = [_unfold_cases(result, study) for result in results]
-    times = [ds[TIME_DIM] for ds in per_model if TIME_DIM in ds.coords]
-    if times:
-        reference = times[0]
-        for index, ds in enumerate(per_model):
-            for name in ds.data_vars:
-                if OUTPUTS[name].kind == HISTORY and TIME_DIM not in ds[name].dims:
-                    # a model without histories: NaN over the time axis of those that have them
-                    ds = ds.assign({name: ds[name].expand_dims({TIME_DIM: reference.values}, axis=-1).copy()})
-            per_model[index] = ds
-    missing = {name: [] for name in study.all_outputs}
-    for entry, result in zip(study.models, results):
-        for name in study.all_outputs:
-            reason = result[name].attrs.get("missing_reason")
-            if reason:
-                missing[name].append(f"{entry.id}: {reason}")
-    for ds in per_model:
-        for name in ds.data_vars:
-            ds[name].attrs = {}
-    combined = xr.concat(per_model, dim=MODEL_DIM, join="outer", coords="minimal", compat="override",
-                         combine_attrs="drop")
-    combined = combined.assign_coords({MODEL_DIM: [entry.id for entry in study.models]})
-    combined[MODEL_DIM].attrs = {"long_name": "model",
-                                 "model_names": json.dumps([entry.name for entry in study.models])}
+    ``results`` holds, per model entry, its outputs over the flat cases as arrays in the vocabulary's
+    units (:func:`impactlab.execution.run_chunks`). The dataset is built once, here, from stacked arrays:
+    xarray is the edge of the framework, not its inside.
+    """
+    shape = study.shape if study.sweep else ()
+    sweep_dims = [axis.dim for axis in study.sweep]
+    time = _common_time([result["time"] for result in results])
+    data_vars = {}
+    for name in study.all_outputs:
+        spec = OUTPUTS[name]
+        history = time is not None and OUTPUTS[name].kind == HISTORY
+        stacked = np.stack([_on_time(result, name, time, history) for result in results])
+        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history else ()))
+        attributes = {"units": spec.units, "long_name": spec.long_name}
+        reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
+                   if name in result["missing"]]
+        if reasons:
+            attributes["missing"] = "; ".join(reasons)
+        dims = [MODEL_DIM] + sweep_dims + ([TIME_DIM] if history else [])
+        variable = xr.Variable(dims, stacked, attributes)
+        if name == "validity":
+            variable = _integer_flags(variable)
+            variable.attrs.update(flag_attributes())
+        data_vars[name] = variable
+    coords = {MODEL_DIM: xr.Variable(MODEL_DIM, [entry.id for entry in study.models],
+                                     {"long_name": "model",
+                                      "model_names": json.dumps([entry.name for entry in study.models])})}
     for axis in study.sweep:
         if axis.grouped:
             labels = list(axis.labels) if axis.labels else list(range(axis.size))
-            combined = combined.assign_coords({axis.dim: labels})
-            combined[axis.dim].attrs = {"long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"}
+            coords[axis.dim] = xr.Variable(axis.dim, labels, {
+                "long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"})
         for field in axis.fields:
             spec = INPUTS[field.input]
             # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
             values = [float(f"{value * spec.display_factor:.12g}") for value in field.values]
-            combined = combined.assign_coords({field.coord: (axis.dim, values)})
-            combined[field.coord].attrs = {"units": spec.display_unit or spec.unit, "long_name": spec.description,
-                                           "study_path": field.path}
-    if TIME_DIM in combined.coords:
-        combined[TIME_DIM].attrs = {"units": "s", "long_name": "time since first contact"}
-    order = [MODEL_DIM] + [axis.dim for axis in study.sweep]
-    combined = combined.transpose(*order, ...)
-    for name in study.all_outputs:
-        spec = OUTPUTS[name]
-        attrs = {"units": spec.units, "long_name": spec.long_name}
-        if missing[name]:
-            attrs["missing"] = "; ".join(missing[name])
-        if name == "validity":
-            attrs.update(flag_attributes())
-            combined[name] = _integer_flags(combined[name])
-        combined[name].attrs = attrs
-    combined = combined[list(study.all_outputs)]
-    combined.attrs = provenance(study, plan)
-    return combined
+            coords[field.coord] = xr.Variable(axis.dim, values, {"units": spec.display_unit or spec.unit,
+                                                                 "long_name": spec.description,
+                                                                 "study_path": field.path})
+    if time is not None:
+        coords[TIME_DIM] = xr.Variable(TIME_DIM, time, {"units": "s", "long_name": "time since first contact"})
+    return xr.Dataset(data_vars, coords=coords, attrs=provenance(study, plan))
+
+
+def _common_time(times: list) -> np.ndarray | None:
+    """The time axis of the study's histories: the union of the models' own (an outer join; None without any)."""
+    present = [np.asarray(time, dtype=float) for time in times if time is not None]
+    if not present:
+        return None
+    if all(time.shape == present[0].shape and np.array_equal(time, present[0]) for time in present[1:]):
+        return present[0]
+    return functools.reduce(np.union1d, present)
+
+
+def _on_time(result: dict, name: str, time: np.ndarray | None, history: bool) -> np.ndarray:
+    """One model's values of ``name`` (cases first), placed on the common time axis with NaN where it has none."""
+    values = result["data"][name]
+    if not history:
+        return values
+    if values.ndim == 1:  # a model without histories: NaN over the time axis of those that have them
+        return np.full((values.shape[0], time.size), np.nan)
+    own = np.asarray(result["time"], dtype=float)
+    if own.shape == time.shape and np.array_equal(own, time):
+        return values
+    placed = np.full((values.shape[0], time.size), np.nan)
+    placed[:, np.searchsorted(time, own)] = values
+    return placed
 
 
 #: in the file, a case a model did not compute has this validity (CF _FillValue)
 VALIDITY_FILL = -1
 
 
-def _integer_flags(variable: xr.DataArray) -> xr.DataArray:
+def _integer_flags(variable: xr.Variable) -> xr.Variable:
     """Validity bits as the integers CF flag variables are (models compute them as floats, NaN where absent)."""
     values = variable.values
     if not np.isnan(values).any():
@@ -99,7 +102,16 @@ def _integer_flags(variable: xr.DataArray) -> xr.DataArray:
 
 
 def versions() -> dict[str, str]:
-    """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage."""
+    """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage.
+
+    Read once per process (reading package metadata costs ~10 ms, more than a small study's physics);
+    the packages a process has imported do not change under it.
+    """
+    return dict(_versions())
+
+
+@functools.cache
+def _versions() -> dict[str, str]:
     from importlib import metadata
 
     found = {"impactlab_version": __version__, "python_version": platform.python_version()}
@@ -111,8 +123,13 @@ def versions() -> dict[str, str]:
     return found
 
 
+@functools.cache
 def git_commit() -> str:
-    """The commit of the checkout impactlab runs from ('' if installed from a package), '-dirty' if edited."""
+    """The commit of the checkout impactlab runs from ('' if installed from a package), '-dirty' if edited.
+
+    Asked once per process (two git calls cost ~5 ms): the code a process runs is what it imported,
+    so the first answer is also the right one for a later edit of the checkout.
+    """
     import subprocess
     from pathlib import Path
 

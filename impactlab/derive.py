@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .case_inputs import CaseInputs
 from .physics import hertz
-from .physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, contact_state, ground_outputs, \
-    impulse_vector
+from .physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, ground_outputs, impulse_vector
 from .physics.delivery import DELIVERY_INPUTS
 from .physics.mechanics import AFTER_IMPACT_INPUTS
 
@@ -65,7 +65,8 @@ def derive(names, raw, inputs) -> dict:
     out = {}
     if not names:
         return out
-    state = contact_state(inputs)
+    inputs = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)
+    state = inputs.contact_state()  # the model's hook has usually computed it already
     impulse = impulse_vector(state, raw["normal_impulse"], raw["tangential_impulse"], raw.get("lateral_impulse"))
     basics = after_impact(state, impulse, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})

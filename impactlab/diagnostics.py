@@ -1,8 +1,8 @@
 """Validity flags and the warnings they raise: where a result leaves its model's assumptions.
 
 Each flag is a bit of the ``validity`` output (CF style: ``flag_masks`` and
-``flag_meanings`` attributes). A study run warns once per flag and model, in
-words, with the number of cases concerned.
+``flag_meanings`` attributes). A study run warns once per flag, in words, naming the
+models and the number of their cases concerned.
 """
 
 from __future__ import annotations
@@ -66,18 +66,33 @@ def flag_attributes() -> dict[str, object]:
 
 
 def messages(dataset) -> list[str]:
-    """One sentence per flag and model that some case raised."""
+    """One sentence per flag that some case raised, naming the models and how many of their cases.
+
+    One sentence per flag, not per flag and model: a golf study of five models would otherwise print the
+    same two sentences five times.
+    """
     if "validity" not in dataset:
         return []
-    found = []
     flags = dataset["validity"]
-    for model in flags["model"].values if "model" in flags.dims else [None]:
-        values = np.nan_to_num(np.asarray(flags.sel(model=model).values if model is not None else flags.values))
-        values = values.astype(np.int64)
-        for bit, (_, meaning) in FLAGS.items():
+    per_model = "model" in flags.dims
+    everything = np.nan_to_num(flags.transpose("model", ...).values if per_model else flags.values[None])
+    # one model's selection keeps its name as a scalar coordinate
+    names = flags["model"].values if per_model else [flags["model"].item() if "model" in flags.coords else "model"]
+    found = []
+    for bit, (_, meaning) in FLAGS.items():
+        raised = []  # (model, cases flagged, cases)
+        for index, model in enumerate(names):
+            values = everything[index].astype(np.int64)  # positional: no label lookup per model
             count = int(np.count_nonzero(values & bit))
             if count:
-                found.append(f"{model}: in {count} of {values.size} case(s) {meaning}")
+                raised.append((str(model), count, values.size))
+        if len({(count, size) for _, count, size in raised}) == 1:
+            _, count, size = raised[0]
+            models = ", ".join(model for model, _, _ in raised)
+            found.append(f"{models}: in {count} of {size} case(s){' each' if len(raised) > 1 else ''} {meaning}")
+        elif raised:
+            counts = ", ".join(f"{model} ({count} of {size} cases)" for model, count, size in raised)
+            found.append(f"{counts}: {meaning}")
     return found
 
 

@@ -31,8 +31,8 @@ from pathlib import Path
 
 import attrs
 import numpy as np
-import xarray as xr
 
+from .case_inputs import CaseInputs
 from .errors import EnvironmentFault, StudyError
 from .faults import check_interrupt
 from .safe_output import _temporaries, write_atomically
@@ -63,7 +63,10 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
 
 def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
     """Worker side: run ``model`` on the chunk's cases; plain arrays and attributes come back."""
-    part = {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
+    if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
+        part = inputs.slice(chunk.start, chunk.stop)
+    else:
+        part = _cases_of(inputs, chunk)
     result = model.compute_arrays(part, outputs)  # arrays inside: no Dataset built per chunk
     attributes = {}
     for name in result.values:
@@ -78,9 +81,9 @@ def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
             "global": result.provenance()}
 
 
-def _serial(tasks) -> Iterator:
-    for chunk, call in tasks:
-        yield chunk, call()
+def _cases_of(inputs: dict, chunk: Chunk) -> dict:
+    """The chunk's slice of every input array (views)."""
+    return {name: values[chunk.start:chunk.stop] for name, values in inputs.items()}
 
 
 #: seconds to reach a dask scheduler before giving up
@@ -134,7 +137,11 @@ class _Pool:
 
     def run(self, model, inputs, outputs, chunks) -> Iterator:
         if self.kind == "processes":
-            futures = {self.pool.submit(compute_chunk, model, inputs, outputs, chunk): chunk for chunk in chunks}
+            # each task carries its own cases only: the whole inputs with every chunk pickled 320 MB per task
+            # for 10^6 cases and made the pool 4x slower than one process
+            futures = {self.pool.submit(compute_chunk, model, _cases_of(inputs, chunk), outputs,
+                                        attrs.evolve(chunk, start=0, stop=chunk.stop - chunk.start)): chunk
+                       for chunk in chunks}
             pending = set(futures)
             while pending:
                 check_interrupt()  # waits are short, so that Ctrl-C stops the pool within a fraction of a second
@@ -316,8 +323,8 @@ def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
 
 def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers: int | None = None,
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
-               show_progress: bool = False) -> list[xr.Dataset]:
-    """Compute every model entry on every case; one per-model dataset (dimension ``case``) per entry."""
+               show_progress: bool = False) -> list[dict]:
+    """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``)."""
     from .vocabulary import HISTORY
 
     n_cases = study.n_cases
@@ -343,21 +350,12 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
     pool = _Pool(kind, workers, scheduler) if todo and kind in ("processes", "dask") else None
     finished = False
     try:
-        for entry_index, entry in enumerate(study.models):
-            mine = [chunk for chunk in todo if chunk.entry == entry_index]
-            if not mine:
-                continue
-            if pool is None:
-                stream = _serial((chunk, lambda chunk=chunk: compute_chunk(entry.model, inputs, outputs, chunk))
-                                 for chunk in mine)
-            else:
-                stream = pool.run(entry.model, inputs, outputs, mine)
-            for chunk, part in stream:
-                if store is not None:
-                    store.save(chunk, part)
-                parts[chunk] = part
-                progress.advance(chunk.stop - chunk.start)
-                check_interrupt()  # the safe point: this chunk is saved, the next has not started
+        for chunk, part in _stream(study, inputs, outputs, todo, pool):
+            if store is not None:
+                store.save(chunk, part)
+            parts[chunk] = part
+            progress.advance(chunk.stop - chunk.start)
+            check_interrupt()  # the safe point: this chunk is saved, the next has not started
         finished = True
     finally:
         if pool is not None:
@@ -365,11 +363,28 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
 
 
-def _join(parts: list[dict]) -> xr.Dataset:
+def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool) -> Iterator:
+    """Finished chunks as they come.
+
+    In this process the cases are checked once and the models run chunk by chunk, every model on a
+    chunk before the next, so they share the chunk's contact state and only one chunk's state is held;
+    a pool takes one model's chunks at a time.
+    """
+    if pool is None:
+        batch = CaseInputs(inputs, copy=False)  # the runner's own arrays, not changed during the run
+        for chunk in sorted(todo, key=lambda chunk: (chunk.start, chunk.entry)):
+            yield chunk, compute_chunk(study.models[chunk.entry].model, batch, outputs, chunk)
+        return
+    for entry_index, entry in enumerate(study.models):
+        mine = [chunk for chunk in todo if chunk.entry == entry_index]
+        if mine:
+            yield from pool.run(entry.model, inputs, outputs, mine)
+
+
+def _join(parts: list[dict]) -> dict:
+    """One model entry's chunks joined along the cases: arrays in the vocabulary's units, no Dataset yet."""
     first = parts[0]
-    coords = {}
-    if first["time"] is not None:
-        coords["time"] = ("time", first["time"], {"units": "s", "long_name": "time since first contact"})
-    data = {name: (first["dims"][name], np.concatenate([part["data"][name] for part in parts]),
-                   first["attrs"][name]) for name in first["data"]}
-    return xr.Dataset(data, coords=coords, attrs=first["global"])
+    return {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
+            "time": first["time"],
+            "missing": {name: attributes["missing_reason"] for name, attributes in first["attrs"].items()
+                        if "missing_reason" in attributes}}

@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from ._version import __version__
+from .case_inputs import CaseInputs
 from .errors import FieldError, ModelContractError, ModelInputError
 from .planning import OutputPlan, plan_outputs
 from .derive import NEEDS, derive
@@ -44,11 +45,16 @@ class ImpactModel:
     2. **One hook.** A model implements ``_compute(self, inputs, outputs)``
        and nothing else of the run; ``self.options`` holds its validated
        options.
-    3. **What the hook receives.** ``inputs`` maps each declared input that
-       was given (all of ``requires``, and those of ``optional_inputs``
-       present) to a read-only 1-D float array; all arrays have the same
-       length n, one entry per case, SI units (angles in rad, spin in rad/s).
-       ``outputs`` is a non-empty frozenset, a subset of ``provides``.
+    3. **What the hook receives.** ``inputs`` is a
+       :class:`~impactlab.case_inputs.CaseInputs`: a read-only mapping of
+       each declared input that was given (all of ``requires``, and only
+       those of ``optional_inputs`` present: an absent optional input is
+       absent, not defaulted) to a read-only 1-D float array; all arrays
+       have the same length n, one entry per case, SI units (angles in rad,
+       spin in rad/s). ``inputs.contact_state()`` gives the contact frame,
+       approach velocity and mobility of the batch, computed once and shared
+       with the framework's derivation. ``outputs`` is a non-empty
+       frozenset, a subset of ``provides``.
     4. **What the hook returns.** A dict with every key of ``outputs``
        (other keys from ``provides`` are allowed and dropped, so a cheap
        model may always return all it has): scalar outputs as float arrays
@@ -179,21 +185,21 @@ class ImpactModel:
         For callers that evaluate a model many times (fits, executors): the same validation and derivation,
         and no xarray object until one is asked for (:meth:`ModelResult.to_dataset`).
         """
-        inputs = _as_input_arrays(inputs)
+        batch = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)  # checked once per batch
         if outputs is None:
             outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
-        plan = self.plan(outputs, inputs)
-        n_cases = self._check_inputs(inputs, plan)
+        plan = self.plan(outputs, batch)
+        self._check_needed(batch, plan)
+        n_cases = batch.n_cases
         raw = {}
         if plan.from_model:
-            hook_inputs = {name: inputs[name] for name in (self.requires | self.optional_inputs) if name in inputs}
-            raw = self._compute(hook_inputs, plan.from_model)
+            raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
             if any(OUTPUTS[name].kind == HISTORY for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
-        raw.update(derive(plan.derived, raw, inputs))
+        raw.update(derive(plan.derived, raw, batch))
         time = np.asarray(raw.pop("time"), dtype=float) if "time" in raw else None
         values = {}
         for name in plan.requested:
@@ -205,39 +211,23 @@ class ImpactModel:
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
 
-    def _compute(self, inputs: Mapping[str, np.ndarray], outputs: frozenset[str]) -> dict[str, np.ndarray]:
+    def _compute(self, inputs: CaseInputs, outputs: frozenset[str]) -> dict[str, np.ndarray]:
         raise NotImplementedError(f"model {self.name!r} does not implement _compute")
 
     # -- bookkeeping --------------------------------------------------------------------------------------------
-    def _check_inputs(self, inputs: dict[str, np.ndarray], plan: OutputPlan) -> int:
+    def _check_needed(self, batch: CaseInputs, plan: OutputPlan) -> None:
+        """Every input the model requires, and those the derivation of ``plan`` needs, must be given.
+
+        No defaults are filled in: an absent spin or club mass is absent for the hook (rule 3); the physics
+        functions take a ball without spin and a fixed face where they are absent.
+        """
         needed = set(self.requires)
         if plan.derived:
             needed |= NEEDS["impulses"]  # no spin given: the ball arrives without spin
-        absent = sorted(needed - set(inputs))
+        absent = sorted(needed - set(batch))
         if absent:
             names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
             raise ModelInputError(f"model {self.name!r} needs {names}, which the scene does not give")
-        sizes = {array.size for array in inputs.values() if array.size != 1}
-        if len(sizes) > 1:
-            raise ModelInputError(f"inputs to {self.name!r} have different lengths {sorted(sizes)}; "
-                                  "give scalars or arrays of one length")
-        n_cases = sizes.pop() if sizes else 1
-        for name, array in list(inputs.items()):
-            spec = INPUTS[name]
-            bad = spec.out_of_range(array)
-            if np.any(bad):
-                raise FieldError(spec.path, spec.range_text(), float(array[np.argmax(bad)]))
-            if array.size != n_cases:
-                array = np.broadcast_to(array, (n_cases,))
-            array = np.array(array, dtype=float)
-            array.setflags(write=False)
-            inputs[name] = array
-        # default the club mass for the derivation: a fixed face
-        if "club_mass" not in inputs:
-            inputs["club_mass"] = np.full(n_cases, math.inf)
-        if "spin" not in inputs:
-            inputs["spin"] = np.zeros(n_cases)
-        return n_cases
 
     def _check_returned(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> None:
         if not isinstance(raw, Mapping):
@@ -324,26 +314,3 @@ def _jsonable(value: Any) -> Any:
     if isinstance(value, (str, int, float, bool)) or value is None:
         return value
     return str(value)
-
-
-def _as_input_arrays(inputs: Any) -> dict[str, np.ndarray]:
-    from .scene import Scene
-
-    if isinstance(inputs, Scene):
-        inputs = [inputs]
-    if not isinstance(inputs, Mapping):
-        scenes = list(inputs)
-        if not scenes or not all(isinstance(scene, Scene) for scene in scenes):
-            raise TypeError("inputs must be a mapping of input arrays, a Scene or a sequence of Scenes")
-        per_scene = [scene.inputs() for scene in scenes]
-        common = set.intersection(*(set(values) for values in per_scene))
-        inputs = {name: np.array([values[name] for values in per_scene], dtype=float) for name in common}
-    arrays = {}
-    for name, value in inputs.items():
-        if name not in INPUTS:
-            raise FieldError(str(name), "an input name", name, choices=INPUTS)
-        array = np.atleast_1d(np.asarray(value, dtype=float))
-        if array.ndim != 1:
-            raise ModelInputError(f"input {name!r} must be a scalar or 1-D array, got shape {array.shape}")
-        arrays[name] = array
-    return arrays

@@ -10,7 +10,6 @@ from impactlab.validators import check
 from impactlab.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz
-from impactlab.physics.contact import contact_state
 
 from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
 
@@ -57,7 +56,7 @@ class HertzTangentialModel(ImpactModel):
         moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"], p["face_poisson_ratio"])
         modulus = hertz.effective_modulus(*moduli)
         kappa = hertz.tangential_modulus(*moduli) / modulus
-        state = contact_state(p)
+        state = p.contact_state()
         mobility = state["mobility"]
         # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
         m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
@@ -123,7 +122,7 @@ class HertzTangentialModel(ImpactModel):
         velocity_unit = friction * scale_speed / kappa
         slip_change *= velocity_unit
         initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
-            p["ball_radius"] * p["spin"]) ** 2
+            p["ball_radius"] * p.get("spin", 0.0)) ** 2
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed \
             if not isinstance(laws[0], hertz.CaseNormals) else laws[0].tau_end * approach_scale / scale_speed

@@ -8,7 +8,6 @@ from impactlab.validators import in_range, to_float
 import numpy as np
 
 from impactlab.model import ImpactModel
-from impactlab.physics.contact import contact_state
 from impactlab.physics.rigid import restitution_impulses
 
 from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
@@ -67,7 +66,7 @@ class RestitutionModel(ImpactModel):
     Options = RestitutionOptions
 
     def _compute(self, inputs, outputs):
-        state = contact_state(inputs)
+        state = inputs.contact_state()
         impulse, _ = restitution_impulses(state["initial_velocity"], state["mobility"], inputs["restitution"],
                                           self.options.tangential_restitution, inputs.get("friction", np.inf))
         return {**impulse_outputs(impulse), **closed_form_diagnostics(impulse.shape[0])}

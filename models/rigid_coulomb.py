@@ -7,7 +7,6 @@ import attrs
 import numpy as np
 
 from impactlab.model import ImpactModel
-from impactlab.physics.contact import contact_state
 from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_impulses
 
 from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
@@ -61,7 +60,7 @@ class RigidCoulombModel(ImpactModel):
     Options = RigidCoulombOptions
 
     def _compute(self, inputs, outputs):
-        state = contact_state(inputs)
+        state = inputs.contact_state()
         n = state["normal_speed"].size
         friction = np.broadcast_to(inputs["friction"], (n,))
         restitution = np.broadcast_to(inputs["restitution"], (n,))

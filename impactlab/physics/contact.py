@@ -46,6 +46,10 @@ FACE_SHAPE_INPUTS = ("club_loft", "face_bulge_radius", "face_roll_radius")
 STRIKE_INPUTS = ("strike_toe", "strike_high")
 #: every input of the 3-D geometry beyond the ball, speed, angle and spin (and the striking body's spin)
 GEOMETRY_INPUTS = INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS + ("club_spin",)
+#: every input :func:`contact_state` reads (a batch without one of them takes its default)
+CONTACT_STATE_INPUTS = frozenset({"speed", "angle", "spin", "ball_mass", "ball_radius", "ball_inertia_factor",
+                                  "club_mass", "dynamic_loft", "face_angle", "path", "attack_angle"}
+                                 | set(GEOMETRY_INPUTS))
 #: relative tolerance under which off-diagonal mobilities count as zero (the 1-D path applies)
 DIAGONAL_TOLERANCE = 1e-12
 
