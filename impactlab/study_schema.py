@@ -22,8 +22,9 @@ block's keys, kinds and units are declared once, in one place, and an unknown ke
 from __future__ import annotations
 
 import functools
+import types
 from collections.abc import Mapping
-from typing import Any, NewType
+from typing import Any, NewType, Union, get_args, get_origin
 
 import attrs
 from cattrs import Converter
@@ -331,6 +332,17 @@ def _inertia_spec(value, _):
                           row, i) for i, row in enumerate(value))
 
 
+def _is_optional(type_) -> bool:
+    return get_origin(type_) in (Union, types.UnionType) and len(get_args(type_)) == 2 and type(None) in get_args(type_)
+
+
+def _optional_hook(type_, converter: Converter):
+    """``X | None`` with X's hook bound once (cattrs looks it up again at every value: a tenth of a load)."""
+    inner_type = next(arg for arg in get_args(type_) if arg is not type(None))
+    inner = converter.get_structure_hook(inner_type)
+    return lambda value, _: None if value is None else inner(value, inner_type)
+
+
 def _block_hook(cls, converter: Converter):
     generated = make_dict_structure_fn(cls, converter, _cattrs_forbid_extra_keys=True,
                                        _cattrs_detailed_validation=True)
@@ -355,7 +367,14 @@ def _converter() -> Converter:
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
                                               lambda t: _list_hook(t, converter))
     converter.register_structure_hook_factory(lambda t: t in BLOCKS, lambda t: _block_hook(t, converter))
+    converter.register_structure_hook_factory(_is_optional, lambda t: _optional_hook(t, converter))
     return converter
+
+
+@functools.cache
+def _hook(cls):
+    """The structuring function of a block (generated on first use)."""
+    return _converter().get_structure_hook(cls)
 
 
 def lookup(document, path: tuple):
@@ -394,7 +413,7 @@ def structure(value, cls, path: str):
     if value is None:
         value = {}
     try:
-        return _converter().structure(value, cls)
+        return _hook(cls)(value, cls)
     except (BaseValidationError, FieldError, ForbiddenExtraKeysError) as exc:
         raise _field_error(exc, value, path, (), cls, None) from None
 
