@@ -29,6 +29,17 @@ CLUB_STUDY = textwrap.dedent("""\
     models: [rigid_coulomb]
     """)
 
+#: the rest of what a club study may hold, for the wrong-kind sweep below
+CLUB_EXTRAS = textwrap.dedent("""\
+    contact: {friction: 0.4}
+    impact: {spin: 0}
+    outputs: [ball_speed, spin_rate]
+    sweep:
+      strike.toe: {start: -5 mm, stop: 5 mm, num: 2}
+    plots:
+      - {name: a, y: ball_speed, x: toe, kind: lines, xlim: [-4, 4], title: t, select: {model: rigid_coulomb}}
+    """)
+
 CLUB_BAD = [
     # (change, line, message fragments)
     (("target: 3000", "tagret: 3000"), 5,
@@ -134,3 +145,47 @@ def test_a_key_written_without_a_value_counts_as_left_out():
     study = impactlab.load_study("ball: {preset: urethane_tour, friction: }\nface: {rigid: true, preset: }\n"
                                  "impact: {speed: 40, angle: 10, spin: }\nmodels: [rigid_coulomb]\n")
     assert study.scene.impact.spin == 0.0 and study.scene.face.rigid
+
+
+def _leaves(node, path=()):
+    """Every value's path in a document, and every key's (marked True)."""
+    if isinstance(node, dict):
+        for key, value in node.items():
+            yield path + (key,), True
+            yield from _leaves(value, path + (key,))
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            yield from _leaves(value, path + (index,))
+    else:
+        yield path, False
+
+
+@pytest.mark.parametrize("name", ["club", "paper/inelastic.yaml", "approaches_golf.yaml"])
+def test_any_value_of_the_wrong_kind_is_an_error_with_a_path_never_a_crash(name):
+    # the check that found four TypeErrors the hand-written parser let through (a list as an output name...)
+    import copy
+
+    import yaml
+
+    from impactlab.errors import ImpactLabError
+
+    law = "{preset: urethane_tour, restitution: {law: linear, value: 0.8, reference_speed: 40, slope: -0.002}}"
+    text = (CLUB_STUDY.replace("{preset: urethane_tour}", law) + CLUB_EXTRAS if name == "club"
+            else (Path(__file__).parents[1] / "studies" / name).read_text())
+    document = yaml.safe_load(text)
+    for path, is_key in _leaves(document):
+        if path[0] in ("name", "description", "sensitivity"):
+            continue
+        for bad in (["x"], {"a": 1}, "x", True) + (("rename",) if is_key else ()):
+            changed = copy.deepcopy(document)
+            node = changed
+            for part in path[:-1]:
+                node = node[part]
+            if bad == "rename":
+                node[f"{path[-1]}x"] = node.pop(path[-1])
+            else:
+                node[path[-1]] = bad
+            try:
+                impactlab.load_study(changed)
+            except ImpactLabError:
+                pass
