@@ -34,7 +34,7 @@ from cattrs.errors import AttributeValidationNote, BaseValidationError, Forbidde
 from cattrs.gen import make_dict_structure_fn
 
 from .errors import FieldError
-from .units import to_si
+from .units import registry, to_si
 from .yaml_lines import format_path, parse_path
 
 # Field types: a user quantity converted to an SI float with the dimension the name says
@@ -278,8 +278,6 @@ def _inverse_speed(value, _) -> float:
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         return float(value)
     try:
-        from .units import registry
-
         return float(registry().Quantity(str(value)).to("s/m").magnitude)
     except Exception:  # noqa: BLE001 - pint raises many kinds; the message says what was expected
         raise FieldError("", "a slope de/dv in s/m (a number, or e.g. '-0.002 s/m')", value) from None
@@ -318,14 +316,16 @@ def _list_hook(type_, converter: Converter):
 
 
 def _restitution(value, _):
+    """A ball's restitution: a law written as a mapping, or a number (a constant law, as most studies write it)."""
     if isinstance(value, Mapping):
-        return _converter().structure(value, RestitutionBlock)
+        return _hook(RestitutionBlock)(value, RestitutionBlock)
     return to_si(value, "dimensionless")
 
 
 def _inertia_spec(value, _):
+    """A head's inertia: the tensor as a 3x3 list (each entry located as ``[i][j]``), or an InertiaBlock."""
     if not isinstance(value, list):
-        return _converter().structure(value, InertiaBlock)
+        return _hook(InertiaBlock)(value, InertiaBlock)
     if not all(isinstance(row, list) for row in value):
         raise FieldError("", "a 3x3 list of lists (the tensor in toe, up, target axes)", value)
     moment = _quantity_hook("inertia")
@@ -338,7 +338,7 @@ def _is_optional(type_) -> bool:
 
 
 def _optional_hook(type_, converter: Converter):
-    """``X | None`` with X's hook bound once (cattrs looks it up again at every value: a tenth of a load)."""
+    """``X | None`` with X's hook bound once (cattrs looks it up again at every value: 15 % of a block's time)."""
     inner_type = next(arg for arg in get_args(type_) if arg is not type(None))
     inner = converter.get_structure_hook(inner_type)
     return lambda value, _: None if value is None else inner(value, inner_type)
