@@ -12,7 +12,7 @@ import xarray as xr
 
 from ._version import __version__
 from .diagnostics import flag_attributes
-from .vocabulary import HISTORY, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
+from .vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
 
 def assemble(study, plan, results: list[dict]) -> xr.Dataset:
@@ -28,7 +28,7 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
     data_vars = {}
     for name in study.all_outputs:
         spec = OUTPUTS[name]
-        history = time is not None and OUTPUTS[name].kind == HISTORY
+        history = time is not None and is_history(name)
         stacked = np.stack([_on_time(result, name, time, history) for result in results])
         stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history else ()))
         attributes = {"units": spec.units, "long_name": spec.long_name}

@@ -98,7 +98,7 @@ def _check_scheduler(address: str) -> None:
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     """The standard pictures of a result: scalar outputs, and each history if there is one."""
     from .plotting import draw_declared, plot_histories, plot_results
-    from .vocabulary import HISTORY, OUTPUTS
+    from .vocabulary import is_history
 
     png = png or output.with_suffix(".png")
     if dataset.attrs.get("study_type") == "sensitivity":
@@ -109,7 +109,7 @@ def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
         return draw_declared(dataset, png.parent, png.stem)
     pictures = [plot_results(dataset, png)]
     for name in dataset.data_vars:
-        if OUTPUTS[name].kind == HISTORY:
+        if is_history(name):
             pictures.append(plot_histories(dataset, png.with_name(f"{png.stem}_{name}.png"), name))
     return pictures
 
@@ -130,6 +130,12 @@ def _cmd_models(args) -> int:
               "from the impulses)" if "normal_impulse" in info["provides"] else "")
         if info["options"]:
             print("  options:  " + ", ".join(f"{key}={value!r}" for key, value in info["options"].items()))
+        capabilities = info["capabilities"]
+        print("  capabilities: " + ", ".join(
+            text for key, text in (("has_tolerance", "a tolerance option (work-precision studies)"),
+                                   ("provides_histories", "force histories"),
+                                   ("solves_3d", "3-D contacts (free heads struck off-centre, curved faces)"))
+            if capabilities[key]) if any(capabilities.values()) else "  capabilities: none declared")
     return 0
 
 
@@ -164,13 +170,13 @@ def _cmd_plot(args) -> int:
     from .plotting import plot_histories, plot_results
     from .results_io import open_results
     from .safe_output import check_output
-    from .vocabulary import HISTORY, MODEL_DIM
+    from .vocabulary import MODEL_DIM, is_scalar
 
     dataset = open_results(args.file)
     histories = [name for name in dataset.data_vars if "time" in dataset[name].dims]
     if args.history and args.history not in histories:
         raise FieldError("--history", "a history held by the file", args.history, choices=histories)
-    scalars = [name for name in dataset.data_vars if name in OUTPUTS and OUTPUTS[name].kind != HISTORY]
+    scalars = [name for name in dataset.data_vars if is_scalar(name)]
     for name in args.variables or []:  # an unknown name would draw an empty picture and say "wrote"
         if name not in scalars:
             raise FieldError("-v", "a scalar output held by the file", name, choices=scalars)
@@ -475,8 +481,9 @@ def main(argv=None) -> int:
     from .faults import run_command
 
     args = build_parser().parse_args(argv)
-    limits.configure(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None))
-    return run_command(lambda: args.handler(args), debug=args.debug)
+    # the limits and the warning hook (run_command) are the command's own: both are put back on return
+    with limits.configured(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None)):
+        return run_command(lambda: args.handler(args), debug=args.debug)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,8 @@
 """Error against run time: a work-precision study of every model in a study.
 
-For each model entry that takes a ``tolerance`` option, the study's cases
+For each model entry that declares ``has_tolerance`` (rule 8 of
+:class:`~impactlab.model.ImpactModel`: its ``tolerance`` option sets the
+numerical error), the study's cases
 are run along a ladder of tolerances. Each output's error is measured against
 a converged reference: the same physics at a tolerance far below the ladder,
 run twice (reference tolerance and a quarter of it, i.e. twice the
@@ -9,7 +11,7 @@ tolerance (Richardson). Models declare how their reference is computed
 (:meth:`ImpactModel.reference_options`); ``maw`` uses its MDR engine for
 both methods, since both solve the same problem. Wall time per impact is the
 median of repeated runs after a warm-up run (caches and imports excluded).
-Closed-form models (no ``tolerance``) are timed once and have no error to
+Closed-form models (no declared tolerance) are timed once and have no error to
 report beyond round-off.
 """
 
@@ -25,13 +27,9 @@ import xarray as xr
 from ._version import __version__
 from .runner import case_inputs
 from .study import Study
-from .vocabulary import HISTORY, OUTPUTS
+from .vocabulary import OUTPUTS, is_scalar
 
 LADDER = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6)
-
-
-def _has_tolerance(model) -> bool:
-    return "tolerance" in {field.name for field in attrs.fields(type(model.options))}
 
 
 def _timed(model, inputs, outputs, repeats: int) -> tuple[xr.Dataset, float]:
@@ -48,7 +46,7 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
     """Error and wall time per impact for every model entry of ``study`` along a ladder of tolerances."""
     inputs = case_inputs(study)
     n_cases = study.n_cases
-    outputs = [name for name in study.outputs if OUTPUTS[name].kind != HISTORY]
+    outputs = [name for name in study.outputs if is_scalar(name)]
     tolerances = np.asarray(sorted(tolerances, reverse=True), dtype=float)
     ids = [entry.id for entry in study.models]
     error = np.full((len(ids), tolerances.size, len(outputs)), np.nan)
@@ -59,7 +57,7 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
     for m, entry in enumerate(study.models):
         model = entry.model
         say = progress or (lambda text: None)
-        if not _has_tolerance(model):
+        if not model.has_tolerance:
             _, seconds = _timed(model, inputs, outputs, repeats)
             wall[m, :] = seconds / n_cases
             error[m, :, :] = 0.0
@@ -114,17 +112,16 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
 
 def plot_work_precision(dataset: xr.Dataset, path) -> None:
     """Error against wall time per impact, log-log, one panel per output and one line per model entry."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
 
     from .plotting import _axis_label
 
     outputs = list(dataset.output.values)
     columns = min(2, len(outputs))
     rows = -(-len(outputs) // columns)
-    figure, axes = plt.subplots(rows, columns, figsize=(6.0 * columns, 4.2 * rows), squeeze=False)
+    figure = Figure(figsize=(6.0 * columns, 4.2 * rows))
+    axes = figure.subplots(rows, columns, squeeze=False)
     for axis, output in zip(axes.flat, outputs):
         closed = 0
         for model in dataset.model.values:
@@ -159,4 +156,3 @@ def plot_work_precision(dataset: xr.Dataset, path) -> None:
     from .plotting import _save
 
     _save(figure, path)
-    plt.close(figure)

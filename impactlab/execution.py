@@ -18,6 +18,7 @@ from __future__ import annotations
 import ctypes
 import fcntl
 import hashlib
+import io
 import json
 import os
 import shutil
@@ -35,7 +36,7 @@ import numpy as np
 from .case_inputs import CaseInputs
 from .errors import EnvironmentFault, StudyError
 from .faults import check_interrupt
-from .safe_output import _temporaries, write_atomically
+from .safe_output import TEMPORARY_SUFFIX, write_atomically
 from .vocabulary import CASE_DIM, OUTPUTS, TIME_DIM
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
@@ -220,7 +221,7 @@ class ProgressStore:
             self.say(f"{self.folder}: progress of a different study or version; starting over")
         for path in entries:
             # a different study's chunks, or the temporary file of a run killed while saving a chunk
-            if not same or path.name.endswith(".tmp.npz"):
+            if not same or path.name.endswith(TEMPORARY_SUFFIX):
                 shutil.rmtree(path) if path.is_dir() else path.unlink(missing_ok=True)
         if not same:
             write_atomically(manifest, json.dumps({"fingerprint": self.fingerprint}).encode())
@@ -257,21 +258,11 @@ class ProgressStore:
         arrays = dict(part["data"])
         if part["time"] is not None:
             arrays["__time__"] = part["time"]
-        temporary = self.folder / f".{chunk.key}.tmp.npz"
-        _temporaries.add(str(temporary))
-        try:
-            with open(temporary, "wb") as stream:
-                np.savez(stream, __meta__=np.array(json.dumps(meta)), **arrays)
-                stream.flush()
-                os.fsync(stream.fileno())  # a full disk shows here, before the rename
-            os.replace(temporary, self.folder / f"{chunk.key}.npz")
-        except BaseException as exc:
-            temporary.unlink(missing_ok=True)
-            if isinstance(exc, OSError) and exc.filename is None:  # zipfile's errors do not say where
-                raise OSError(exc.errno, exc.strerror, str(temporary)) from None
-            raise
-        finally:
-            _temporaries.discard(str(temporary))
+        # built in memory and written by the one atomic writer, as result files are: a full disk or a kill
+        # leaves at most its hidden temporary, which the next run removes
+        buffer = io.BytesIO()
+        np.savez(buffer, __meta__=np.array(json.dumps(meta)), **arrays)
+        write_atomically(self.folder / f"{chunk.key}.npz", buffer.getbuffer())
 
     def clear(self) -> None:
         shutil.rmtree(self.folder, ignore_errors=True)
@@ -325,10 +316,10 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
                show_progress: bool = False) -> list[dict]:
     """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``)."""
-    from .vocabulary import HISTORY
+    from .vocabulary import is_history
 
     n_cases = study.n_cases
-    has_histories = any(OUTPUTS[name].kind == HISTORY for name in outputs)
+    has_histories = any(is_history(name) for name in outputs)
     kind = choose_executor(executor, n_cases * len(study.models), has_histories)
     if kind not in EXECUTORS:
         raise StudyError(f"unknown executor {kind!r}; choices: {', '.join(EXECUTORS)}")

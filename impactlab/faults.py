@@ -30,6 +30,8 @@ EXIT_INTERNAL = 1
 EXIT_BAD_INPUT = 2
 EXIT_ENVIRONMENT = 3
 EXIT_INTERRUPTED = 130
+#: the reader of the output closed the pipe (128 + SIGPIPE, as a shell reports a tool killed by it)
+EXIT_BROKEN_PIPE = 141
 
 #: what to tell the user after an interrupt; a command that keeps partial work says how to resume it
 _interrupt_hint = ["no result file was written or changed"]
@@ -180,6 +182,7 @@ def run_command(call, *, debug: bool = False) -> int:
         print(f"impactlab: {text}", file=sys.stderr)
         return code
 
+    # catch_warnings puts the caller's showwarning and filters back when the command returns or raises
     with warnings.catch_warnings():
         warnings.showwarning = show_warning
         warnings.simplefilter("default")
@@ -190,6 +193,12 @@ def run_command(call, *, debug: bool = False) -> int:
             return fail(f"error: {exc}", exc.exit_code)
         except KeyboardInterrupt:
             return fail(f"interrupted; {_interrupt_hint[0]}", EXIT_INTERRUPTED)
+        except BrokenPipeError:
+            # the reader of our output went away (``impactlab models | head``): stop quietly, as the standard
+            # tools do; stdout goes to /dev/null so the interpreter's last flush does not complain either
+            with contextlib.suppress(OSError, ValueError, AttributeError):  # a stdout without a descriptor
+                os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            return EXIT_BROKEN_PIPE
         except OSError as exc:
             return fail(f"error: {describe_os_error(exc)}", EXIT_ENVIRONMENT)
         except MemoryError:

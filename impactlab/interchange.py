@@ -31,9 +31,9 @@ import xarray as xr
 
 from .errors import FieldError, StudyError
 from .safe_output import write_atomically
+from .units import MPH
 from .vocabulary import MODEL_DIM
 
-MPH = 0.44704
 #: outputs a GSPro shot needs
 GSPRO_OUTPUTS = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "spin_rate", "spin_axis")
 

@@ -20,6 +20,7 @@ Defaults are below; override them with the environment variables
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 
@@ -62,6 +63,21 @@ def configure(**values: int | None) -> None:
     for key, value in values.items():
         if value is not None:
             _overrides[key] = int(value)
+
+
+@contextlib.contextmanager
+def configured(**values: int | None):
+    """:func:`configure` for the length of a block; the overrides before it come back after it.
+
+    ``impactlab.cli.main`` runs each command inside one, so a caller of ``main`` keeps its own limits.
+    """
+    saved = dict(_overrides)
+    configure(**values)
+    try:
+        yield
+    finally:
+        _overrides.clear()
+        _overrides.update(saved)
 
 
 def _limit(key: str, default: int, parse=int) -> int:
@@ -119,41 +135,20 @@ RESULT_COPIES = 5
 GRID_ARRAYS = 4
 
 
-def kernel_grid(model) -> tuple[int, int] | None:
-    """(springs, steps) of a model's expert resolution options, or None when its tolerance sets them.
-
-    Tolerance-driven resolutions are capped by each method; expert options are not, so they are the ones
-    that can run away.
-    """
-    options = getattr(model, "options", None)
-    if options is None:
-        return None
-    annuli = getattr(options, "method", "") == "annuli"
-    count = getattr(options, "rings" if annuli else "springs", None)
-    steps = getattr(options, "steps", None)
-    if count is None and steps is None:
-        return None
-    if count is None:
-        count = options.resolution_3d()[0] if hasattr(options, "resolution_3d") else 1
-    if steps is None:
-        steps = options.resolution_steps(count) if hasattr(options, "resolution_steps") else 0
-    return int(count), int(steps)
-
-
 def estimate(study) -> Estimate:
     """Peak memory of running ``study``, from its sizes alone (nothing is allocated)."""
-    from .vocabulary import HISTORY, INPUTS, OUTPUTS
+    from .model import HISTORY_LENGTH
+    from .vocabulary import INPUTS, is_history
 
     cases = study.n_cases
     models = len(study.models)
-    points = max([getattr(getattr(entry.model, "options", None), "history_points", 256) for entry in study.models]
-                 or [256])
-    histories = [name for name in study.all_outputs if OUTPUTS[name].kind == HISTORY]
+    points = max([entry.model.history_length() for entry in study.models] or [HISTORY_LENGTH])
+    histories = [name for name in study.all_outputs if is_history(name)]
     per_case = len(study.all_outputs) - len(histories) + len(histories) * points
     memory = 8 * cases * len(INPUTS) + RESULT_COPIES * 8 * cases * models * per_case
     kernel = 0
     for entry in study.models:
-        grid = kernel_grid(entry.model)
+        grid = entry.model.expert_resolution()
         if grid is not None:
             springs, steps = grid
             kernel = max(kernel, 8 * GRID_ARRAYS * (steps + 1) * springs

@@ -18,10 +18,14 @@ import xarray as xr
 
 from ._version import __version__
 from .case_inputs import CaseInputs
-from .errors import FieldError, ModelContractError, ModelInputError
-from .planning import OutputPlan, plan_outputs
+from .errors import FieldError, ModelContractError
+from .planning import OutputPlan, plan_outputs, require_inputs
 from .derive import NEEDS, derive
-from .vocabulary import CASE_DIM, HISTORY, INPUTS, OUTPUTS, TIME_DIM
+from .vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, is_history
+
+
+#: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)
+HISTORY_LENGTH = 256
 
 
 @attrs.frozen
@@ -71,7 +75,21 @@ class ImpactModel:
        computes them itself only by also declaring them in ``provides``.
     7. **Conformance.** ``impactlab.testing.check_model`` must pass: declared
        names exist, energy never increases for a fixed face, frictionless and
-       head-on impacts give no tangential impulse, mirrored impacts mirror.
+       head-on impacts give no tangential impulse, mirrored impacts mirror,
+       declared capabilities hold.
+    8. **Capabilities are declared, never guessed.** The framework reads them
+       from the class, not from the options' fields:
+       ``has_tolerance`` (class attribute, default False): ``Options`` has a
+       field ``tolerance`` that sets the numerical error, so work-precision
+       studies sweep it (:mod:`impactlab.convergence`); such a model may
+       override :meth:`reference_options` and :meth:`can_reach`.
+       ``provides_histories`` (derived from ``provides`` when the class is
+       made): the hook returns ``"time"`` with its histories, and
+       :meth:`history_length` says how many samples they have.
+       :meth:`solves_3d` (this configuration solves 3-D contacts) and
+       :meth:`expert_resolution` (a resolution the options fix by hand, which
+       the memory estimate of :mod:`impactlab.limits` counts) are methods
+       with defaults for models that have neither.
 
     The public :meth:`compute` validates inputs, hands the hook only what it
     declared, checks what came back, derives the rest, converts to the
@@ -87,6 +105,15 @@ class ImpactModel:
     provides: ClassVar[frozenset[str]] = frozenset()
     not_provided: ClassVar[Mapping[str, str]] = {}
     Options: ClassVar[type] = NoOptions
+    #: rule 8: ``Options`` has a field ``tolerance`` that sets the numerical error (checked by the conformance suite)
+    has_tolerance: ClassVar[bool] = False
+    #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
+    provides_histories: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: Any):
+        super().__init_subclass__(**kwargs)
+        # derived once here so that no caller re-derives it from the vocabulary (and none can disagree)
+        cls.provides_histories = any(is_history(name) for name in cls.provides)
 
     def __init__(self, options: Any = None, **option_values: Any):
         if options is not None and option_values:
@@ -129,10 +156,19 @@ class ImpactModel:
             # the defaults as an instance sees them (a default may depend on another option)
             "options": {key: _jsonable(value) for key, value in attrs.asdict(cls.Options()).items()},
             "references": list(cls.references),
+            # declared capabilities (rule 8); whether a configuration solves 3-D contacts is the instance's to say
+            "capabilities": {"has_tolerance": cls.has_tolerance, "provides_histories": cls.provides_histories,
+                             "solves_3d": cls().solves_3d()},
         }
 
     def reference_options(self, tolerance: float):
-        """Options of the converged reference run for a work-precision study (see impactlab.convergence)."""
+        """Options of the converged reference run for a work-precision study (see impactlab.convergence).
+
+        Only for a model that declares ``has_tolerance`` (rule 8); the default sets the ``tolerance`` option.
+        """
+        if not self.has_tolerance:
+            raise ModelContractError(f"model {self.name!r} declares no tolerance (has_tolerance is False), so it has "
+                                     "no reference run")
         return attrs.evolve(self.options, tolerance=tolerance)
 
     def solves_3d(self) -> bool:
@@ -146,6 +182,20 @@ class ImpactModel:
     def can_reach(self, tolerance: float) -> bool:
         """Whether this configuration resolves ``tolerance`` without hitting a resolution cap."""
         return True
+
+    def history_length(self) -> int:
+        """Samples on the time axis of this configuration's histories (rule 8); a model without options for it
+        gives :data:`HISTORY_LENGTH`, which is also what the memory estimate assumes for a model without histories.
+        """
+        return HISTORY_LENGTH
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(springs, time steps) fixed by hand in the options, or None when a tolerance (or nothing) sets them.
+
+        Tolerance-driven resolutions are capped by each method; expert options are not, so they are what
+        :func:`impactlab.limits.estimate` counts against the memory limit.
+        """
+        return None
 
     def options_dict(self) -> dict[str, Any]:
         return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
@@ -187,7 +237,7 @@ class ImpactModel:
         """
         batch = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)  # checked once per batch
         if outputs is None:
-            outputs = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+            outputs = list(SCALAR_OUTPUTS)
         plan = self.plan(outputs, batch)
         self._check_needed(batch, plan)
         n_cases = batch.n_cases
@@ -196,7 +246,7 @@ class ImpactModel:
             raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
-            if any(OUTPUTS[name].kind == HISTORY for name in keep):
+            if any(is_history(name) for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
         raw.update(derive(plan.derived, raw, batch))
@@ -206,7 +256,7 @@ class ImpactModel:
             if name in raw:
                 values[name] = np.asarray(raw[name], dtype=float)
             else:
-                history = OUTPUTS[name].kind == HISTORY and time is not None
+                history = is_history(name) and time is not None
                 values[name] = np.full((n_cases, time.size) if history else (n_cases,), np.nan)
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
@@ -224,10 +274,7 @@ class ImpactModel:
         needed = set(self.requires)
         if plan.derived:
             needed |= NEEDS["impulses"]  # no spin given: the ball arrives without spin
-        absent = sorted(needed - set(batch))
-        if absent:
-            names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
-            raise ModelInputError(f"model {self.name!r} needs {names}, which the scene does not give")
+        require_inputs(f"model {self.name!r}", needed, batch)
 
     def _check_returned(self, raw: Mapping[str, np.ndarray], plan: OutputPlan, n_cases: int) -> None:
         if not isinstance(raw, Mapping):
@@ -237,7 +284,7 @@ class ImpactModel:
             raise ModelContractError(
                 f"model {self.name!r}: _compute returned {sorted(keys)}; expected {sorted(plan.from_model)} "
                 f"and nothing outside what it provides ({sorted(self.provides)})")
-        histories = [name for name in plan.from_model if OUTPUTS[name].kind == HISTORY]
+        histories = [name for name in plan.from_model if is_history(name)]
         n_time = None
         if histories:
             if "time" not in raw:
@@ -248,7 +295,7 @@ class ImpactModel:
             n_time = time.size
         for name in plan.from_model:
             value = np.asarray(raw[name])
-            shape = (n_cases, n_time) if OUTPUTS[name].kind == HISTORY else (n_cases,)
+            shape = (n_cases, n_time) if is_history(name) else (n_cases,)
             if value.shape != shape:
                 raise ModelContractError(
                     f"model {self.name!r}: output {name!r} has shape {value.shape}, expected {shape}")

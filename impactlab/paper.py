@@ -1,9 +1,10 @@
 """Henrikson et al. (2020), reproduced: the paper's claims checked on result files, and the report.
 
 The claims are functions of result datasets, so the tests and the report use
-the same code on the same studies (``studies/paper/``). The published numbers
-are restated here with their source: Table 1 of E. Henrikson, P. Wood,
-C. Broadie, T. Nuttall, Proceedings 49 (2020) 27 (CC BY 4.0).
+the same code on the same studies (``studies/paper/``). The published numbers,
+Table 1 of E. Henrikson, P. Wood, C. Broadie, T. Nuttall, Proceedings 49
+(2020) 27 (CC BY 4.0), are stored once, as the ``wood2018`` and ``trackman``
+datasets of :mod:`impactlab.validation`, and read from there.
 """
 
 from __future__ import annotations
@@ -15,12 +16,19 @@ import attrs
 import numpy as np
 import xarray as xr
 
-#: Table 1 of the paper: vertical launch ratio [%] per club (TrackMan via Dewhurst 2015; Wood et al. 2018, mean, SD)
-TABLE1 = {
-    "driver": {"trackman": 87.0, "wood": (83.0, 8.0)},
-    "7-iron": {"trackman": 75.0, "wood": (81.0, 5.0)},
-    "pitching wedge": {"trackman": 70.0, "wood": (72.0, 6.0)},
-}
+
+def table1() -> dict[str, dict]:
+    """Table 1 of the paper, vertical launch ratio [%] per club: ``trackman`` and ``wood`` (mean, SD).
+
+    Read from the one stored copy, the ``trackman`` and ``wood2018`` datasets of :mod:`impactlab.validation`
+    (fractions there, percent here).
+    """
+    from .validation import DATASETS
+
+    wood, trackman = DATASETS["wood2018"], DATASETS["trackman"]
+    return {label: {"trackman": 100.0 * trackman.values[trackman.labels.index(label)],
+                    "wood": (100.0 * wood.values[index], 100.0 * wood.sigma[index])}
+            for index, label in enumerate(wood.labels)}
 
 
 @attrs.frozen
@@ -88,11 +96,11 @@ def fig7_claims(ds: xr.Dataset, model: str = "maw") -> list[Claim]:
 
 def table1_rows(ds: xr.Dataset, friction: float = 0.4) -> list[dict]:
     """Vertical launch ratio per club and model at one friction, beside the paper's values [%]."""
-    rows = []
+    rows, published = [], table1()
     for club in ds.club.values:
         row = {"club": str(club), **{f"model:{m}": 100 * float(ds.vertical_launch_ratio.sel(
             model=m, club=club, friction=friction)) for m in ds.model.values}}
-        row.update({"trackman": TABLE1[str(club)]["trackman"], "wood": TABLE1[str(club)]["wood"]})
+        row.update(published[str(club)])
         rows.append(row)
     return rows
 

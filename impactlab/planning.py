@@ -14,7 +14,8 @@ import attrs
 
 from .derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from .derive import DERIVATION_OPTIONAL
-from .vocabulary import INPUTS, OUTPUTS
+from .errors import ModelInputError
+from .vocabulary import INPUTS
 
 
 @attrs.frozen
@@ -53,6 +54,18 @@ class OutputPlan:
         return "; ".join(parts)
 
 
+def require_inputs(who: str, needed, given, source: str = "the scene") -> None:
+    """Raise ModelInputError naming, with their paths and meanings, the inputs of ``needed`` not in ``given``.
+
+    The one check and message of a missing input, before a study runs (:func:`impactlab.runner.plan_study`)
+    and when a model is computed.
+    """
+    absent = sorted(set(needed) - set(given))
+    if absent:
+        names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
+        raise ModelInputError(f"{who} needs {names}, which {source} does not give; add it or use another model")
+
+
 def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
     """Plan the outputs ``requested`` from a model class (set logic on declarations only).
 
@@ -81,7 +94,3 @@ def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
         inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
                       frozenset(inputs))
-
-
-def unknown_outputs(names) -> list[str]:
-    return [name for name in names if name not in OUTPUTS]

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .vocabulary import HISTORY, MODEL_DIM, OUTPUTS, TIME_DIM
+from .units import MPH
+from .vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -53,9 +54,9 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
         return float(item) if not isinstance(item, str) else float(item)
 
     if (speed := value("club_speed")) is not None:
-        words.append(f"club speed {speed / 0.44704:.0f} mph")
+        words.append(f"club speed {speed / MPH:.0f} mph")
     elif (speed := value("speed")) is not None:
-        words.append(f"{speed / 0.44704:.0f} mph")
+        words.append(f"{speed / MPH:.0f} mph")
     for key, text in (("friction", "friction {:g}"), ("restitution", "e {:g}"),
                       ("tangential_loss", "cover loss {:g}")):
         item = value(key)
@@ -215,12 +216,11 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         Shipped measured datasets (:data:`impactlab.validation.DATASETS`) of a drawn output: their
         values, with error bars where the source states them, beside the curves at the right.
     """
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
     import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = [name for name in (outputs or dataset.data_vars) if name in OUTPUTS and OUTPUTS[name].kind != HISTORY
+    names = [name for name in (outputs or dataset.data_vars) if is_scalar(name)
              and not bool(np.all(np.isnan(dataset[name].values)))][:6]
     sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
     along_output = x is not None and x in dataset.data_vars
@@ -232,8 +232,9 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     columns = min(len(names), 3) or 1
     rows = max(1, -(-len(names) // columns))
     size = (8.0, 5.2) if len(names) == 1 else (5.2 * columns, 3.8 * rows + 0.6)
-    figure, axes = plt.subplots(rows, columns, figsize=size, squeeze=False)
-    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    figure = Figure(figsize=size)
+    axes = figure.subplots(rows, columns, squeeze=False)
+    colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
     single_model = dataset.sizes[MODEL_DIM] == 1
     # lines that lie on an earlier line, per label: the panels where they do (named in the legend)
     coincide: dict[str, dict[str, list[str]]] = {}
@@ -322,22 +323,20 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
         figure.legend(handles, labels, loc="lower center", ncol=columns_of_legend, fontsize=8, frameon=False)
         figure.tight_layout(rect=(0, (legend_height + 0.1) / (size[1] + legend_height), 1, 0.95))
     path = _save(figure, path)
-    plt.close(figure)
     return path
 
 
 def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "tangential_force",
                    select: dict | None = None, title: str = "") -> Path:
     """Draw a force history against time for every model that has it and every remaining sweep value."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
 
     variable = dataset[output].sel(select or {}, method="nearest")
     others = [dim for dim in variable.dims if dim not in (MODEL_DIM, TIME_DIM)]
     units, scale = _display(OUTPUTS[output].units)
-    figure, axis = plt.subplots(figsize=(7, 4.5))
+    figure = Figure(figsize=(7, 4.5))
+    axis = figure.subplots()
     line_index = 0
     for model in variable[MODEL_DIM].values:
         per_model = variable.sel({MODEL_DIM: model})
@@ -362,5 +361,4 @@ def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "
     axis.grid(True, alpha=0.3)
     figure.tight_layout()
     path = _save(figure, path)
-    plt.close(figure)
     return path

@@ -15,11 +15,10 @@ import xarray as xr
 
 from .assemble import assemble
 from .diagnostics import warn as warn_validity
-from .errors import FieldError, ModelInputError
-from .planning import OutputPlan
+from .errors import FieldError
+from .planning import OutputPlan, require_inputs
 from .scene import ball_restitution, complete_inputs
 from .study import Study, load_study
-from .vocabulary import INPUTS
 
 
 @attrs.frozen
@@ -75,11 +74,7 @@ def plan_study(study: Study) -> StudyPlan:
     plans = []
     for entry in study.models:
         plan = entry.model.plan(study.all_outputs, given)
-        absent = sorted(set(entry.model.requires) - given)
-        if absent:
-            fields = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
-            raise ModelInputError(f"{study.file or study.name}: model {entry.id!r} needs {fields}, which the study "
-                                  f"does not give; add it or remove the model")
+        require_inputs(f"{study.file or study.name}: model {entry.id!r}", entry.model.requires, given, "the study")
         plans.append((entry.id, plan))
     return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
 

@@ -18,6 +18,8 @@ from pathlib import Path
 from .errors import EnvironmentFault, StudyError
 
 
+#: how the temporary file of a write ends (a folder cleaned up after a killed run looks for it)
+TEMPORARY_SUFFIX = ".part"
 #: temporary files being written now: removed if the process must end at once (impactlab.faults)
 _temporaries: set[str] = set()
 
@@ -99,7 +101,7 @@ def write_atomically(path: str | os.PathLike, payload: bytes | memoryview) -> Pa
     """Write ``payload`` to ``path`` through a temporary file and a rename; nothing is left behind on failure."""
     path = check_output(path, what="")
     folder = path.parent if str(path.parent) else Path(".")
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=folder)
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=TEMPORARY_SUFFIX, dir=folder)
     _temporaries.add(temporary)
     try:
         with os.fdopen(handle, "wb") as stream:

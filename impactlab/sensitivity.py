@@ -38,7 +38,7 @@ import xarray as xr
 from ._version import __version__
 from .errors import FieldError
 from .units import to_si
-from .vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, SCALAR
+from .vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, is_scalar
 
 SENSITIVITY_KEYS = ("method", "samples", "seed", "parameters", "choices", "models", "levels")
 METHODS = ("sobol", "morris")
@@ -266,7 +266,7 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     spec = study.sensitivity
     outputs = list(study.outputs)
     for name in outputs:
-        if OUTPUTS[name].kind != SCALAR or OUTPUTS[name].diagnostic:
+        if not is_scalar(name) or OUTPUTS[name].diagnostic:
             raise FieldError("outputs", "scalar outputs for a sensitivity study", name)
     base = case_inputs(study)
     entries = {entry.id: entry for entry in study.models}
@@ -286,7 +286,7 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
         model = entries[entry_id].model
         nominal[m], flags = _run(model, base, outputs)
         validity[m] = flags
-        if "tolerance" in {field.name for field in attrs.fields(type(model.options))}:
+        if model.has_tolerance:  # declared (rule 8 of ImpactModel): its tolerance sets the numerical error
             finer = type(model)(attrs.evolve(model.options, tolerance=model.options.tolerance / 10.0))
             fine, _ = _run(finer, base, outputs)
             numerical[m] = np.abs(fine - nominal[m])
@@ -432,21 +432,18 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
 
     ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     from pathlib import Path
 
     import matplotlib.ticker
-
-    import matplotlib.pyplot as plt
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
 
     path = Path(path)
     outputs = list(dataset.output.values)
     cases = _case_labels(dataset)
     analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
-    figure, axes = plt.subplots(len(outputs), len(cases), figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)),
-                                squeeze=False)
+    figure = Figure(figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)))
+    axes = figure.subplots(len(outputs), len(cases), squeeze=False)
     colours = {"numerical": "tab:grey", "parameter": "tab:blue", "form": "tab:red"}
     for row, output in enumerate(outputs):
         unit = str(dataset.output_units.sel(output=output).values)
@@ -495,14 +492,12 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                     "(log scale)", fontsize=10)
     figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
     figure.savefig(path, dpi=110)
-    plt.close(figure)
     pictures = [path]
 
     total = "ST" if "ST" in dataset else "mu_star"
     parameters = list(dataset.parameter.values)
-    figure, axes = plt.subplots(len(analysed), len(cases), figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters)
-                                                                   * len(analysed) + 0.6 * len(analysed)),
-                                squeeze=False)
+    figure = Figure(figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters) * len(analysed) + 0.6 * len(analysed)))
+    axes = figure.subplots(len(analysed), len(cases), squeeze=False)
     for row, model in enumerate(analysed):
         for column, (where, label) in enumerate(cases):
             axis = axes[row, column]
@@ -531,6 +526,5 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
                     + "; n/a: the output does not move over the sample", fontsize=10)
     second = path.with_name(f"{path.stem}_indices.png")
     figure.savefig(second, dpi=110, bbox_inches="tight")
-    plt.close(figure)
     pictures.append(second)
     return pictures

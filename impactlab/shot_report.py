@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from .shots import ERROR_KEYS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs
 
 #: shot tables shipped with impactlab (impactlab/validation/NAME.yaml)
@@ -63,9 +64,8 @@ def data_uncertainty(table: ShotTable) -> dict:
 
 
 #: display units of the measured quantities on the validation figure: (label, factor from SI)
-_PANELS = (("ball_speed", "ball speed [mph]", 1.0 / 0.44704), ("vertical_launch_angle", "launch angle [deg]",
-                                                                   180.0 / math.pi),
-           ("spin_rate", "spin rate [rpm]", 60.0 / (2.0 * math.pi)))
+_PANELS = (("ball_speed", "ball speed [mph]", 1.0 / MPH), ("vertical_launch_angle", "launch angle [deg]", RAD_TO_DEG),
+           ("spin_rate", "spin rate [rpm]", RADS_TO_RPM))
 
 
 def plot_shots(table: ShotTable, predictions: dict, path) -> Path:

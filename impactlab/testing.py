@@ -13,11 +13,13 @@ or, one pytest test per model and check::
     def test_conformance(model, check):
         check(model)
 
-The checks are physics every impact model must respect whatever its
-approximations: energy of a fixed-face impact never increases, a frictionless
+Besides the declarations and capabilities (rules 1 and 8 of
+:class:`~impactlab.model.ImpactModel`), the checks are physics every impact
+model must respect whatever its approximations: energy of a fixed-face impact never increases, a frictionless
 or head-on impact gives no tangential impulse, mirrored impacts mirror, the
 normal impulse lies between 0 and that of an elastic impact, beta lies in
-[-1, 1], and a case's result does not depend on the batch around it.
+[-1, 1], a case's result does not depend on the batch around it, and an
+optional input not given is absent (rule 3): no spin, a fixed face.
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from .materials import BALL_PRESETS, FACE_PRESETS
 from .model import ImpactModel
 from .physics.mechanics import effective_mass
 from .scene import Contact, Impact, Scene
-from .vocabulary import HISTORY, INPUTS, OUTPUTS
+from .vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -96,7 +98,7 @@ def _with(inputs: dict, **changes) -> dict:
 
 
 def _scalar_outputs(model, inputs) -> list[str]:
-    wanted = [name for name in OUTPUTS if OUTPUTS[name].kind != HISTORY]
+    wanted = list(SCALAR_OUTPUTS)
     plan = model.plan(wanted, inputs)
     return [name for name in wanted if name not in plan.missing]
 
@@ -130,6 +132,48 @@ def check_declarations(model) -> None:
             raise AssertionError("Options must be frozen (attrs.frozen)")
     json.dumps(model.options_dict())
     assert model.__doc__ and "References" in model.__doc__, "the model docstring must cite its references"
+
+
+def check_capabilities(model) -> None:
+    """Declared capabilities (rule 8) hold: ``has_tolerance`` exactly when Options has a ``tolerance`` field (and
+    then the reference options are Options at the asked tolerance); ``provides_histories`` exactly when
+    ``provides`` names a history, and then the histories come back on a ``time`` axis of ``history_length()``
+    samples; ``solves_3d`` only with ``lateral_impulse``; ``expert_resolution`` None or two positive integers."""
+    from .errors import ModelContractError
+    from .vocabulary import CASE_DIM, TIME_DIM, is_history
+
+    cls = type(model)
+    assert isinstance(cls.has_tolerance, bool), "has_tolerance must be True or False"
+    fields = {field.name for field in attrs.fields(cls.Options)}
+    if cls.has_tolerance:
+        assert "tolerance" in fields, "has_tolerance is declared but Options has no field 'tolerance'"
+        reference = model.reference_options(1e-6)
+        assert isinstance(reference, cls.Options) and reference.tolerance == 1e-6, \
+            "reference_options(tolerance) must give Options at that tolerance"
+        assert isinstance(model.can_reach(1e-3), bool), "can_reach must return True or False"
+    else:
+        assert "tolerance" not in fields, "Options has a field 'tolerance': declare has_tolerance = True"
+    histories = sorted(name for name in cls.provides if is_history(name))
+    assert cls.provides_histories == bool(histories), \
+        f"provides_histories is {cls.provides_histories} but provides names histories {histories}"
+    if histories:
+        inputs = {key: value[:4] for key, value in reference_inputs(n_angles=2).items()}
+        try:
+            result = model.compute(inputs, histories)
+        except ModelContractError as exc:
+            raise AssertionError(f"histories asked for: {exc}") from None
+        assert TIME_DIM in result.coords, "histories returned without a 'time' axis"
+        assert result.sizes[TIME_DIM] == model.history_length(), \
+            f"histories have {result.sizes[TIME_DIM]} samples, history_length() says {model.history_length()}"
+        for name in histories:
+            assert result[name].dims == (CASE_DIM, TIME_DIM), f"history {name} is not on (case, time)"
+    solves_3d = model.solves_3d()
+    assert isinstance(solves_3d, bool), "solves_3d() must return True or False"
+    assert not solves_3d or "lateral_impulse" in cls.provides, "a model that solves 3-D contacts provides " \
+        "lateral_impulse"
+    grid = model.expert_resolution()
+    assert grid is None or (len(grid) == 2 and all(isinstance(n, int) and n > 0 for n in grid)), \
+        f"expert_resolution() must be None or (springs, steps), got {grid!r}"
 
 
 def check_runs_finite(model) -> None:
@@ -215,13 +259,9 @@ def check_batch_independence(model) -> None:
                 f"{name} of case {case} depends on the batch around it"
 
 
-def _solves_3d(model) -> bool:
-    return model.solves_3d()
-
-
 def check_3d_energy_never_increases(model) -> None:
     """On free club heads struck off-centre, no model may create kinetic energy (ball plus head, rotation included)."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return  # a model on one line: its derived outputs on a free head are NaN with the reason (plan)
     inputs = _complete(reference_inputs_3d())
     result = model.compute(inputs, ["energy_loss", "lateral_impulse"])
@@ -234,7 +274,7 @@ def check_3d_energy_never_increases(model) -> None:
 
 def check_3d_heel_toe_mirror(model) -> None:
     """A head symmetric heel-to-toe, square face, path along the target: heel and toe strikes are mirror images."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return
     inputs = reference_inputs_3d()
     symmetric = (inputs["club_inertia_toe_up"] == 0.0) & (inputs["face_angle"] == 0.0)
@@ -250,7 +290,7 @@ def check_3d_heel_toe_mirror(model) -> None:
 
 def check_3d_batch_independence(model) -> None:
     """On free heads struck off-centre, a case computed alone equals the same case inside a batch."""
-    if not _solves_3d(model):
+    if not model.solves_3d():
         return
     inputs = _complete(reference_inputs_3d())
     names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
@@ -271,8 +311,37 @@ def check_inputs_untouched(model) -> None:
         assert np.array_equal(inputs[key], copies[key]), f"input {key} was changed"
 
 
+#: optional inputs whose absence has one meaning for every model: a ball without spin, a face that does not move
+NEUTRAL_WHEN_ABSENT = {"spin": 0.0, "club_mass": np.inf}
+
+
+def check_optional_inputs_absent(model) -> None:
+    """Rule 3: an optional input that was not given is absent, and the model runs without it.
+
+    Without ``spin`` and ``club_mass`` (where optional), results equal those with the ball given no spin and
+    the face an infinite mass; a model that reads ``inputs["spin"]`` unguarded fails here.
+    """
+    inputs = reference_inputs(n_angles=3)
+    dropped = [name for name in NEUTRAL_WHEN_ABSENT if name in model.optional_inputs and name not in model.requires]
+    if not dropped:
+        return
+    absent = {name: value for name, value in inputs.items() if name not in dropped}
+    neutral = dict(absent, **{name: np.full(inputs["speed"].shape, NEUTRAL_WHEN_ABSENT[name]) for name in dropped})
+    outputs = _scalar_outputs(model, neutral)
+    try:
+        without = model.compute(absent, outputs)
+    except KeyError as exc:
+        raise AssertionError(f"the hook read the optional input {exc} that was not given; "
+                             "read optional inputs with inputs.get(name, default)") from None
+    given = model.compute(neutral, outputs)
+    for name in outputs:
+        assert np.allclose(without[name].values, given[name].values, rtol=1e-12, atol=0, equal_nan=True), \
+            f"{name} without {', '.join(dropped)} differs from the same cases with no spin and a fixed face"
+
+
 CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "declarations": check_declarations,
+    "capabilities": check_capabilities,
     "runs_finite": check_runs_finite,
     "energy_never_increases": check_energy_never_increases,
     "normal_impulse_bounds": check_normal_impulse_bounds,
@@ -282,6 +351,7 @@ CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "mirror_symmetry": check_mirror_symmetry,
     "batch_independence": check_batch_independence,
     "inputs_untouched": check_inputs_untouched,
+    "optional_inputs_absent": check_optional_inputs_absent,
     "3d_energy_never_increases": check_3d_energy_never_increases,
     "3d_heel_toe_mirror": check_3d_heel_toe_mirror,
     "3d_batch_independence": check_3d_batch_independence,

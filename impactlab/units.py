@@ -114,18 +114,10 @@ def _has_angle(quantity) -> bool:
     return "radian" in str(quantity.to_root_units().units)
 
 
-def format_quantity(si_value: float, dimension: str) -> str:
-    """Human text of an SI value in the plain unit of its dimension."""
-    si_unit, plain_unit, _ = DIMENSIONS[dimension]
-    if math.isinf(si_value):
-        return "inf"
-    if plain_unit == si_unit:
-        value = si_value
-    else:
-        value = float(registry().Quantity(si_value, si_unit).to(plain_unit).magnitude)
-    return f"{value:g} {plain_unit}" if plain_unit != "dimensionless" else f"{value:g}"
-
-
-#: Conversion factors from SI to the units results are stored in.
+#: Conversion factors from SI to the units results are stored in. The one place they are written: not asked
+#: of pint at import, whose registry takes seconds to build and which every ``import impactlab`` would pay;
+#: tests/test_contract.py checks each against pint's definitions.
 RAD_TO_DEG = 180.0 / math.pi
 RADS_TO_RPM = 60.0 / (2.0 * math.pi)
+#: metres per second in a mile per hour (exact: the international mile)
+MPH = 0.44704

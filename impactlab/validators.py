@@ -54,6 +54,17 @@ def positive_or_inf(expected: str = "a positive number (or inf)", optional: bool
     return check(lambda v: _is_number(v) and v > 0, expected, optional)
 
 
+def inside(values, low: float, high: float, low_open: bool = False, high_open: bool = False):
+    """Whether ``values`` (a number or an array, elementwise) lie in [low, high], ends excluded when open.
+
+    The one range test: option validators (:func:`in_range`) and the input arrays handed to a model
+    (:meth:`impactlab.vocabulary.InputSpec.out_of_range`) both use it. NaN is never inside.
+    """
+    above = values > low if low_open else values >= low
+    below = values < high if high_open else values <= high
+    return above & below
+
+
 def in_range(low: float, high: float, expected: str, low_open=False, high_open=False, optional=False):
     """An attrs validator: a number in [low, high], either end excluded when ``low_open``/``high_open``.
 
@@ -61,11 +72,7 @@ def in_range(low: float, high: float, expected: str, low_open=False, high_open=F
     """
 
     def predicate(v):
-        if not _is_number(v):
-            return False
-        above = v > low if low_open else v >= low
-        below = v < high if high_open else v <= high
-        return above and below
+        return _is_number(v) and bool(inside(v, low, high, low_open, high_open))
 
     return check(predicate, expected, optional)
 

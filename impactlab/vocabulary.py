@@ -19,6 +19,7 @@ from typing import Any
 import attrs
 
 from .units import RAD_TO_DEG, RADS_TO_RPM
+from .validators import inside
 
 SCALAR = "scalar"
 HISTORY = "history"
@@ -44,9 +45,7 @@ class InputSpec:
 
     def out_of_range(self, values):
         """Boolean mask of the values outside the allowed range (NaN counts as outside)."""
-        above = values > self.low if self.low_open else values >= self.low
-        below = values < self.high if self.high_open else values <= self.high
-        return ~(above & below)
+        return ~inside(values, self.low, self.high, self.low_open, self.high_open)
 
     def range_text(self) -> str:
         left = "(" if self.low_open else "["
@@ -268,9 +267,28 @@ OUTPUTS: dict[str, OutputSpec] = {
     "face_rotation": OutputSpec("deg", "rotation of the club head during contact", factor=RAD_TO_DEG),
 }
 
+#: outputs with one value per case, in vocabulary order (diagnostics included)
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
 DIAGNOSTIC_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.diagnostic)
+#: outputs with values over the shared ``time`` axis, in vocabulary order
 HISTORY_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == HISTORY)
+_SCALARS, _HISTORIES = frozenset(SCALAR_OUTPUTS), frozenset(HISTORY_OUTPUTS)
+
+
+def is_scalar(name: str) -> bool:
+    """Whether ``name`` is a scalar output (one value per case); False for names outside the vocabulary."""
+    return name in _SCALARS
+
+
+def is_history(name: str) -> bool:
+    """Whether ``name`` is a history output (values over the ``time`` axis); False for names outside the vocabulary.
+
+    The one place the scalar/history split is decided: callers filter names with it (or take
+    :data:`SCALAR_OUTPUTS`, :data:`HISTORY_OUTPUTS`) instead of comparing ``OUTPUTS[name].kind``.
+    """
+    return name in _HISTORIES
+
+
 #: the default outputs of a study that names none
 DEFAULT_OUTPUTS = ("launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate",
                    "tangential_restitution", "normal_impulse", "tangential_impulse", "contact_time", "energy_loss")

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import functools
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from impactlab.validators import check
 from impactlab.diagnostics import LARGE_CONTACT_RATIO
+from impactlab.errors import ModelContractError
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz
 
@@ -28,6 +30,42 @@ def optional_int(low: int):
                  f"an integer >= {low} (or leave it out and set tolerance)")
 
 
+@runtime_checkable
+class CompliantOptions(Protocol):
+    """What the options of a :class:`HertzTangentialModel` provide: how finely to solve, and how.
+
+    ``maw``'s and the DEM models' Options subclass it; a new compliant model's Options must provide the same
+    (checked when the model is made).
+
+    Attributes
+    ----------
+    tolerance : float
+        Target error of the tangential impulse (the model declares ``has_tolerance``).
+    history_points : int
+        Samples of the force histories on the shared time axis.
+    inelastic : str
+        How a restitution e < 1 enters, one of :data:`INELASTIC`.
+    """
+
+    __slots__ = ()
+
+    tolerance: float
+    history_points: int
+    inelastic: str
+
+    def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(springs or rings, tolerance not met) of the 1-D solver for each case with this chi and these psi1."""
+
+    def resolution_steps(self, count: int) -> int:
+        """Uniform time steps of the 1-D solver that go with ``count`` springs or rings."""
+
+    def resolution_3d(self) -> tuple[int, int, bool]:
+        """(springs, steps, tolerance not met) of the 3-D kernel."""
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(springs, steps) set by hand (overriding the tolerance), or None (:meth:`ImpactModel.expert_resolution`)."""
+
+
 class HertzTangentialModel(ImpactModel):
     """Base of the compliant models: Hertz normal contact, a tangential law solved in scaled variables.
 
@@ -36,9 +74,7 @@ class HertzTangentialModel(ImpactModel):
     tangential problem is posed in the variables of Maw, Barber & Fawcett,
     chi = (kappa/2) m*/m_t and psi1 = kappa V_x/(mu V_z), and solved by the
     subclass's :meth:`_solve`, which returns a :class:`~impactlab.physics.mdr.TangentialSolution`.
-    Its options must provide ``resolution(chi, psi1)`` (resolution and "tolerance not met" per
-    case), ``resolution_steps(count)``, ``resolution_3d()`` (springs, steps and "tolerance not met" of the
-    3-D kernel), ``history_points`` and ``inelastic``.
+    Its options are :class:`CompliantOptions`.
     """
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
@@ -49,6 +85,19 @@ class HertzTangentialModel(ImpactModel):
                               "face_rotation"}
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
     _3d_depends_on_kappa = False
+    has_tolerance = True
+
+    def __init__(self, options=None, **option_values):
+        super().__init__(options, **option_values)
+        if not isinstance(self.options, CompliantOptions):
+            raise ModelContractError(f"options of {self.name!r} ({type(self.options).__name__}) must provide what "
+                                     "CompliantOptions declares (models/_compliant.py)")
+
+    def history_length(self) -> int:
+        return self.options.history_points
+
+    def expert_resolution(self):
+        return self.options.expert_resolution()
 
     def _compute(self, inputs, outputs):
         p = inputs
@@ -134,7 +183,7 @@ class HertzTangentialModel(ImpactModel):
         beta_d = coupling.dundurs_beta(*moduli)
         coupled = coupling.coupling_estimate(beta_d, kappa, friction)
         coulomb = friction * (1.0 + restitution) * m_normal * normal_speed
-        allowed = getattr(self.options, "tolerance", 1e-4) * np.minimum(coulomb, m_tangential * np.abs(slip))
+        allowed = self.options.tolerance * np.minimum(coulomb, m_tangential * np.abs(slip))
         validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0)
                     | np.where(face_compliance > ball_compliance, 2, 0)
                     | np.where((sliding | three_d) & capped, 4, 0)

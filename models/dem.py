@@ -5,10 +5,11 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from impactlab.validators import check
+from impactlab.model import HISTORY_LENGTH
+from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
+from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
                   "Geotechnique 29 (1979) 47-65")
@@ -17,21 +18,14 @@ THORNTON = ("C. Thornton, S. J. Cummins, P. W. Cleary, An investigation of the c
 MINDLIN = "R. D. Mindlin, Compliance of elastic bodies in contact, J. Appl. Mech. 16 (1949) 259-268"
 
 
-def _number_in(low: float, high: float, what: str, low_open: bool = False):
-    def ok(v):
-        return isinstance(v, (int, float)) and not isinstance(v, bool) and (v > low if low_open else v >= low) \
-            and v <= high
-    return check(ok, what)
-
-
 @attrs.frozen
-class _SpringOptions:
+class _SpringOptions(CompliantOptions):
     """Options shared by the DEM laws (see the model docstrings)."""
 
-    tolerance: float = attrs.field(default=1e-4, validator=_number_in(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
+    tolerance: float = attrs.field(default=1e-4, validator=in_range(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
     steps: int | None = attrs.field(default=None, validator=optional_int(16))
-    damping: float = attrs.field(default=0.0, validator=_number_in(0.0, 10.0, "a damping ratio between 0 and 10"))
-    history_points: int = attrs.field(default=256, validator=int_at_least(2))
+    damping: float = attrs.field(default=0.0, validator=in_range(0.0, 10.0, "a damping ratio between 0 and 10"))
+    history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
@@ -52,6 +46,10 @@ class _SpringOptions:
 
     def resolution_steps(self, count: int) -> int:
         return self.steps if self.steps is not None else dem.steps_for(self.tolerance)[0]
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(one spring, the steps) when the steps are set by hand; else None."""
+        return None if self.steps is None else (1, int(self.steps))
 
 
 @attrs.frozen
@@ -78,7 +76,7 @@ class DemLinearOptions(_SpringOptions):
         ``adjusted_speed`` or ``hysteretic``, as for ``maw``.
     """
 
-    stiffness_ratio: float = attrs.field(default=2.0 / 7.0, validator=_number_in(
+    stiffness_ratio: float = attrs.field(default=2.0 / 7.0, validator=in_range(
         0.0, 100.0, "a stiffness ratio k_t/k_n > 0", low_open=True))
 
 
@@ -108,9 +106,8 @@ class HertzMindlinOptions(_SpringOptions):
     history: str = attrs.field(default="force", validator=check(
         lambda v: v in dem.HISTORIES, f"one of {', '.join(dem.HISTORIES)}"))
     rescale: bool = attrs.field(default=True, validator=check(lambda v: isinstance(v, bool), "true or false"))
-    stiffness_ratio: float | None = attrs.field(default=None, validator=check(
-        lambda v: v is None or (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v <= 100),
-        "a stiffness ratio k_t/k_n > 0 (or leave it out for Mindlin's)"))
+    stiffness_ratio: float | None = attrs.field(default=None, validator=in_range(
+        0.0, 100.0, "a stiffness ratio k_t/k_n > 0 (or leave it out for Mindlin's)", low_open=True, optional=True))
 
 
 class _SpringModel(HertzTangentialModel):

@@ -5,11 +5,12 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from impactlab.validators import check
+from impactlab.model import HISTORY_LENGTH
+from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._compliant import INELASTIC, HertzTangentialModel, int_at_least, optional_int
+from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
 #: cases solved together; bounds the memory of the spring arrays
@@ -23,7 +24,7 @@ RESOLVE_TOLERANCE = 3e-4
 
 
 @attrs.frozen
-class MawOptions:
+class MawOptions(CompliantOptions):
     """Options of ``maw``.
 
     Parameters
@@ -61,13 +62,11 @@ class MawOptions:
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
                                                              f"one of {', '.join(METHODS)}"))
-    tolerance: float = attrs.field(validator=check(
-        lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and 1e-9 <= v <= 0.1,
-        "a tolerance between 1e-9 and 0.1"))
+    tolerance: float = attrs.field(validator=in_range(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
     springs: int | None = attrs.field(default=None, validator=optional_int(8))
     rings: int | None = attrs.field(default=None, validator=optional_int(4))
     steps: int | None = attrs.field(default=None, validator=optional_int(16))
-    history_points: int = attrs.field(default=256, validator=int_at_least(2))
+    history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
 
@@ -99,6 +98,15 @@ class MawOptions:
         if self.method == "annuli":
             return max(annuli.ANNULI_MIN_STEPS, annuli.STEPS_PER_ANNULUS * count)
         return mdr.STEPS_PER_SPRING * count
+
+    def expert_resolution(self) -> tuple[int, int] | None:
+        """(springs or rings, steps) when either is set by hand, the other following it; else None."""
+        count = self.rings if self.method == "annuli" else self.springs
+        if count is None and self.steps is None:
+            return None
+        if count is None:
+            count = self.resolution_3d()[0]
+        return int(count), int(self.resolution_steps(count))
 
 
 class MawModel(HertzTangentialModel):

@@ -49,3 +49,39 @@ def test_conformance_catches_a_model_that_ignores_mirror_symmetry():
 
     with pytest.raises(AssertionError, match="mirror_symmetry"):
         check_model(OneSided)
+
+
+def test_conformance_catches_a_model_that_reads_an_absent_optional_input():
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    class Unguarded(RigidCoulombModel):
+        """Reads the spin as if it were always given (rule 3 says it is absent when not). References: none."""
+
+        name = "unguarded"
+
+        def _compute(self, inputs, outputs):
+            assert inputs["spin"].shape == inputs["speed"].shape
+            return super()._compute(inputs, outputs)
+
+    with pytest.raises(AssertionError, match="optional_inputs_absent: the hook read the optional input 'spin'"):
+        check_model(Unguarded)
+
+
+def test_conformance_catches_a_model_whose_absent_club_is_not_a_fixed_face():
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    class PointMassByDefault(RigidCoulombModel):
+        """Takes a 0.2 kg head where none is given. References: none."""
+
+        name = "point_mass_by_default"
+
+        def _compute(self, inputs, outputs):
+            if "club_mass" not in inputs:
+                inputs = dict(inputs, club_mass=inputs["speed"] * 0 + 0.2)
+                from impactlab.case_inputs import CaseInputs
+
+                inputs = CaseInputs(inputs)
+            return super()._compute(inputs, outputs)
+
+    with pytest.raises(AssertionError, match="optional_inputs_absent: .* differs"):
+        check_model(PointMassByDefault)

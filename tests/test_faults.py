@@ -549,3 +549,20 @@ def test_results_record_dependency_versions_commit_and_integer_flags(result_file
         assert list(validity.attrs["flag_values"]) == sorted(FLAGS) and all(  # one bit each, as CF flag masks
             bit & (bit - 1) == 0 for bit in FLAGS)
         assert validity.attrs["flag_meanings"].split()[0] == "large_contact"
+
+
+def test_a_reader_that_goes_away_ends_the_command_quietly(monkeypatch, capsys):
+    """``impactlab models | head``: the pipe closes under the writer; no traceback, no error line, status 141."""
+    from impactlab.cli import main
+
+    class ClosedPipe:
+        def write(self, text):
+            raise BrokenPipeError(errno.EPIPE, "Broken pipe")
+
+        def flush(self):
+            raise BrokenPipeError(errno.EPIPE, "Broken pipe")
+
+    monkeypatch.setattr(sys, "stdout", ClosedPipe())
+    code = main(["models", "--json"])
+    monkeypatch.undo()
+    assert code == 141 and capsys.readouterr().err == ""

@@ -40,7 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .hertz import ELASTIC, cached_grid
+from .hertz import ELASTIC, NormalLaw, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution, event_grid
 
 OUT, STICK, SLIP = 0, 1, 2
@@ -98,7 +98,8 @@ def _ring_grid(normal, rings: int, steps: int):
 
 
 def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool = False,
-                 max_iterations: int | None = None, normal=None, dense: bool = False) -> TangentialSolution:
+                 max_iterations: int | None = None, normal: NormalLaw | None = None,
+                 dense: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact by the annular-strip method, vectorised over cases.
 
     Parameters and result as :func:`impactlab.physics.mdr.solve_scaled`, with

@@ -126,7 +126,7 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         The contact point's slip along s [m/s] (the lateral slip is 0 by the frame's choice).
     friction, kappa, modulus, radius : ndarray (n,)
         mu, kappa = G*/E*, E* [Pa] and the Hertz radius [m].
-    normal : ElasticNormal, DampedNormal or CaseNormals
+    normal : NormalLaw or CaseNormals
         The normal law (its damping, and its duration for the step size): one for all cases, or one per case.
     springs, steps : int
         MDR springs on the half-contact (1 for a DEM law) and uniform steps over the uncoupled contact.

@@ -45,7 +45,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .hertz import ELASTIC, cached_grid
+from .hertz import ELASTIC, NormalLaw, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution
 
 #: psi' = -SLIP_GAIN * chi * f
@@ -63,7 +63,7 @@ def stiffness_shape(law: str, h: np.ndarray, stiffness_factor: float) -> np.ndar
 
 def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1.0, history: str = "force",
                  rescale: bool = True, damping: float = 0.0, steps: int = 2000, record: bool = False,
-                 normal=None, _force_numpy: bool = False) -> TangentialSolution:
+                 normal: NormalLaw | None = None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact under a DEM spring law for each (chi, psi1) pair.
 
     Parameters

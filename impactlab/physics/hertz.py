@@ -13,6 +13,9 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press (1985), §4.2, §
 
 from __future__ import annotations
 
+import functools
+from typing import Protocol, runtime_checkable
+
 import numpy as np
 from scipy import special
 
@@ -68,7 +71,42 @@ def time_to_reach(h):
     return TAU_MAX_COMPRESSION * special.betainc(_A, _B, np.clip(h, 0.0, 1.0) ** 2.5)
 
 
-class ElasticNormal:
+@runtime_checkable
+class NormalLaw(Protocol):
+    """A normal law in scaled time, one for a whole batch: what the tangential kernels and the histories use.
+
+    Time tau is scaled by T = delta_max / V_z and the approach h by delta_max of the elastic impact at the same
+    approach speed, so that one law serves every case. :class:`ElasticNormal` (:data:`ELASTIC`) and
+    :class:`DampedNormal` implement it; :class:`CaseNormals` (one damped law per case) carries only
+    ``restitution``, ``damping`` and ``tau_end`` as arrays, which is all the 3-D kernel reads.
+
+    Attributes
+    ----------
+    damping : float
+        Hunt-Crossley damping c (0: elastic).
+    restitution : float
+        Exit speed over approach speed.
+    tau_end : float
+        Scaled time at which contact ends.
+    """
+
+    __slots__ = ()
+
+    damping: float
+    restitution: float
+    tau_end: float
+
+    def approach(self, tau) -> np.ndarray:
+        """h(tau) = delta / delta_max, 0 outside the contact."""
+
+    def load_factor(self, tau) -> np.ndarray:
+        """Normal force over the elastic force k delta^(3/2) at the same approach (1 for the elastic law)."""
+
+    def crossing_times(self, level) -> tuple[np.ndarray, np.ndarray]:
+        """Scaled times at which h rises through and falls back through ``level`` (arrays)."""
+
+
+class ElasticNormal(NormalLaw):
     """The elastic Hertz impact in scaled time: h(tau), load factor 1, closed-form crossing times."""
 
     damping = 0.0
@@ -121,7 +159,7 @@ def cached_grid(normal, key: tuple, build):
     return arrays
 
 
-class DampedNormal:
+class DampedNormal(NormalLaw):
     """Hertz contact with Hunt-Crossley damping, F = k delta^(3/2) (1 + c d(delta)/dt / V_z), scaled.
 
     h'' = -(5/4) h^(3/2) (1 + c h') with h(0) = 0, h'(0) = 1 (scaled by the
@@ -158,9 +196,6 @@ class DampedNormal:
         h_end, v_end = solution.sol(self.tau_end)
         self.restitution = float(-v_end)
         self._peak_time = float(_argmax_time(solution.sol, self.tau_end))
-        grid = np.linspace(0.0, self.tau_end, 4001)
-        self._rise = (grid[grid <= self._peak_time], self.approach(grid[grid <= self._peak_time]))
-        self._fall = (grid[grid >= self._peak_time], self.approach(grid[grid >= self._peak_time]))
 
     def approach(self, tau):
         tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
@@ -193,20 +228,20 @@ def _argmax_time(sol, tau_end):
     return brentq(lambda t: sol(t)[1], 1e-9, tau_end, xtol=1e-14)
 
 
-_RESTITUTION_TABLE: tuple[np.ndarray, np.ndarray] | None = None
+@functools.cache
+def _restitution_table() -> tuple[np.ndarray, np.ndarray]:
+    """(damping, restitution) of exactly solved laws on a coarse grid: brackets for the root of one law."""
+    dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 60)])
+    return dampings, np.array([DampedNormal(c).restitution for c in dampings])
 
 
 def damping_for_restitution(restitution: float) -> float:
     """The Hunt-Crossley damping c (scaled) whose impact rebounds with ``restitution`` (0.05 <= e <= 1)."""
-    global _RESTITUTION_TABLE
     from scipy.optimize import brentq
 
     if restitution >= 1.0:
         return 0.0
-    if _RESTITUTION_TABLE is None:
-        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 60)])
-        _RESTITUTION_TABLE = (dampings, np.array([DampedNormal(c).restitution for c in dampings]))
-    dampings, restitutions = _RESTITUTION_TABLE
+    dampings, restitutions = _restitution_table()
     if restitution < restitutions[-1]:
         raise ValueError(f"restitution {restitution} is below what the damped Hertz law reaches "
                          f"({restitutions[-1]:.3f})")
@@ -245,21 +280,16 @@ def _damped_exit(damping: float, steps: int = 20000) -> tuple[float, float]:
     return float(-v), tau
 
 
-_FAST_TABLE: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-
-
+@functools.cache
 def damping_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(restitution, damping, scaled duration) on a dense grid of the Hunt-Crossley damping, built once (~1 s).
 
     A law per case (a speed-dependent restitution makes every case's e distinct) cannot afford the per-law
     solve of :class:`DampedNormal`; the table, inverted by monotone interpolation, gives c and the duration.
     """
-    global _FAST_TABLE
-    if _FAST_TABLE is None:
-        dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 160)])
-        exits = np.array([_damped_exit(c, steps=4000) for c in dampings])
-        _FAST_TABLE = (exits[:, 0], dampings, exits[:, 1])
-    return _FAST_TABLE
+    dampings = np.concatenate([[0.0], np.geomspace(1e-3, 200.0, 160)])
+    exits = np.array([_damped_exit(c, steps=4000) for c in dampings])
+    return exits[:, 0], dampings, exits[:, 1]
 
 
 def damping_for_restitutions(restitution) -> tuple[np.ndarray, np.ndarray]:

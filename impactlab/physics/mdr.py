@@ -42,7 +42,7 @@ import attrs
 import numpy as np
 
 from . import _kernels
-from .hertz import ELASTIC, cached_grid
+from .hertz import ELASTIC, NormalLaw, cached_grid
 
 #: dX''/dtau = -TANGENTIAL_GAIN * chi * integral u dxi
 TANGENTIAL_GAIN = 15.0 / 4.0
@@ -110,7 +110,7 @@ def _spring_grid(normal, springs: int, steps: int):
 
 
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
-                 normal=None, observe=None, _force_numpy: bool = False) -> TangentialSolution:
+                 normal: NormalLaw | None = None, observe=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
 
     Parameters
@@ -125,7 +125,7 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
         Uniform steps over the contact (spring entry and exit instants are added).
     record : bool
         Keep the scaled force and stick-radius histories.
-    normal : ElasticNormal or DampedNormal, optional
+    normal : NormalLaw, optional
         The scaled normal history h(tau) and its load factor (default: elastic Hertz).
     observe : callable, optional
         Called after every step as ``observe(tau, u, cap)`` with the springs' scaled forces u (cases,

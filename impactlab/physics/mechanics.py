@@ -95,4 +95,3 @@ def after_impact(normal_impulse, tangential_impulse, *, ball_mass, ball_radius, 
 
 #: what after_impact needs besides the impulses (model input names)
 AFTER_IMPACT_INPUTS = ("ball_mass", "ball_radius", "ball_inertia_factor", "speed", "angle", "spin")
-AFTER_IMPACT_OPTIONAL = ("club_mass",)

@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import FieldError
 from ..runner import case_inputs
 from ..study import Study, load_study
-from ..vocabulary import OUTPUTS, SCALAR
+from ..vocabulary import SCALAR_OUTPUTS
 from ..yaml_lines import line_of, load_yaml, parse_path
 
 
@@ -155,7 +155,7 @@ def load_measured(path) -> MeasuredData:
         if key not in document:
             fail(key, "a value (required)", None)
     quantity = document["quantity"]
-    scalars = [name for name, spec in OUTPUTS.items() if spec.kind == SCALAR]
+    scalars = list(SCALAR_OUTPUTS)
     if quantity not in scalars:
         fail("quantity", "a scalar output of impactlab", quantity, scalars)
     points = document["points"]
