@@ -161,7 +161,7 @@ MUTANTS = [
      '"stiffness_factor": self.options.stiffness_ratio / float(kappa)}', '"stiffness_factor": float(kappa) / self.options.stiffness_ratio}',
      T_DEM, "dem_linear stiffness factor r/kappa inverted"),
     # --- glue outside physics/models that the issue names
-    ("study-poisson-override", "impactlab/study.py",
+    ("study-poisson-override", "impactlab/study_scene.py",
      "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",
      ["tests/test_study.py", "tests/test_mutation_oracles.py"], "a preset's Poisson ratio override ignored"),
     ("gspro-knots", "impactlab/interchange.py", "MPH = 0.44704", "MPH = 0.514444",

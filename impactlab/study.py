@@ -26,15 +26,15 @@ from .model import ImpactModel
 from .registry import available, get_model
 from .scene import Scene
 # the scene blocks live in study_scene; their builders stay importable from here
-from .study_scene import (_SI, _require_mapping, build_ball, build_club, build_contact, build_delivery,  # noqa: F401
-                          build_face, build_impact, build_scene, build_strike)
+from .study_scene import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
+                          build_impact, build_scene, build_strike)
+from .study_schema import SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, structure
 from .units import to_si
-from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR
+from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS
 from .yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
-TOP_LEVEL_KEYS = ("name", "description", "ball", "face", "club", "strike", "contact", "impact", "delivery", "sweep",
-                  "models", "outputs", "plots", "sensitivity")
-SWEEP_RANGE_KEYS = ("start", "stop", "num")
+TOP_LEVEL_KEYS = keys_of(StudyBlock)
+SWEEP_RANGE_KEYS = keys_of(RangeBlock)
 
 
 @attrs.frozen
@@ -76,7 +76,7 @@ class ModelEntry:
         return self.model.name
 
 
-PLOT_KEYS = ("name", "y", "x", "select", "title", "kind", "xlim", "measured")
+PLOT_KEYS = keys_of(PlotBlock)
 PLOT_KINDS = ("lines", "history")
 
 
@@ -152,7 +152,9 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
     ----------
     source : str, os.PathLike or Mapping
         A path to a YAML file (``str`` ending in .yaml/.yml or a PathLike),
-        YAML text, or the mapping itself.
+        YAML text, or the mapping itself. In a mapping, a ``models`` entry may
+        also be a model class or a configured model instance (alone, or as the
+        ``name`` of an entry with an ``id``).
     file : str, optional
         Name used in error messages when ``source`` is text or a mapping.
 
@@ -165,7 +167,7 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
         return source
     lines: dict = {}
     if isinstance(source, Mapping):
-        document = copy.deepcopy(dict(source))
+        document = copy.deepcopy(dict(source), _models_as_given(source))
         text = yaml.safe_dump(_plain(document), sort_keys=False)
         file = file or "<mapping>"
     else:
@@ -183,13 +185,21 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
         return _build_study(document, text, file)
     except FieldError as exc:
         path = _document_path(exc.path)
-        written = _lookup(document, path)
+        written = lookup(document, path)
         about_a_key = bool(path) and exc.given == path[-1]
         if (not about_a_key and isinstance(written, (str, int, float)) and not isinstance(written, bool)
                 and written != exc.given):
             # show what the user wrote, not the SI number it became
             exc = FieldError(exc.path, exc.expected, written, exc.choices)
         raise exc.at(file=file, line=line_of(lines, path)) from None
+
+
+def _models_as_given(source: Mapping) -> dict:
+    """A deepcopy memo that keeps the model instances of a Python study: configured objects, used as they are."""
+    entries = source.get("models")
+    given = [entry.get("name") if isinstance(entry, Mapping) else entry
+             for entry in (entries if isinstance(entries, list) else [])]
+    return {id(model): model for model in given if isinstance(model, ImpactModel)}
 
 
 def _names_a_file(text: str) -> bool:
@@ -212,18 +222,15 @@ def _document_path(text: str) -> tuple:
     return path
 
 
-def _lookup(document, path: tuple):
-    node = document
-    for part in path:
-        try:
-            node = node[part]
-        except (KeyError, IndexError, TypeError):
-            return None
-    return node
-
-
 def _plain(value):
+    """A Python study as plain data for its YAML text (the provenance a result file keeps)."""
+    if isinstance(value, ImpactModel):  # a configured model: its name and every option
+        return {"name": value.name, **value.options_dict()}
+    if isinstance(value, type) and issubclass(value, ImpactModel):
+        return value.name
     if isinstance(value, Mapping):
+        if isinstance(value.get("name"), ImpactModel):  # {name: MawModel(...), id: ...}
+            return {**_plain(value["name"]), **{str(key): _plain(item) for key, item in value.items() if key != "name"}}
         return {str(key): _plain(item) for key, item in value.items()}
     if isinstance(value, (list, tuple)):
         return [_plain(item) for item in value]
@@ -235,18 +242,11 @@ def _plain(value):
 def _sweep_values(path: str, spec, dimension: str) -> list[float]:
     where = f"sweep.{path}"
     if isinstance(spec, Mapping):
-        for key in spec:
-            if key not in SWEEP_RANGE_KEYS:
-                raise FieldError(f"{where}.{key}", "a key of a sweep range", str(key), choices=SWEEP_RANGE_KEYS)
-        missing = [key for key in SWEEP_RANGE_KEYS if key not in spec]
-        if missing:
-            raise FieldError(f"{where}.{missing[0]}", "start, stop and num of the range", "nothing")
-        num = spec["num"]
-        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
-            raise FieldError(f"{where}.num", "a whole number of values >= 1", num)
+        block = structure(spec, RangeBlock, where)
+        num = block.num
         check_cases(num, f"{where}.num")  # before the values are generated
-        start = to_si(spec["start"], dimension, f"{where}.start")
-        stop = to_si(spec["stop"], dimension, f"{where}.stop")
+        start = to_si(block.start, dimension, f"{where}.start")
+        stop = to_si(block.stop, dimension, f"{where}.stop")
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
@@ -302,7 +302,7 @@ def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]],
     trial = dict(document)
     for path, values in fields:
         section, key = path.split(".")
-        trial[section] = dict(trial.get(section) or {}, **{key: _SI(values[index])})
+        trial[section] = dict(trial.get(section) or {}, **{key: SI(values[index])})
     build_scene(trial)
 
 
@@ -419,20 +419,13 @@ def _build_models(value) -> tuple[ModelEntry, ...]:
     entries, seen = [], {}
     for index, item in enumerate(value):
         where = f"models[{index}]"
-        if isinstance(item, str):
+        if isinstance(item, str) or _is_model(item):
             item = {"name": item}
         if not isinstance(item, Mapping) or "name" not in item:
             raise FieldError(where, "{name: MODEL, option: value, ...}", item, choices=available())
         options = {key: val for key, val in item.items() if key not in ("name", "id")}
-        name = item["name"]
-        models = available()
-        if name not in models:
-            raise FieldError(f"{where}.name", "a registered model", str(name), choices=models)
-        try:
-            model = get_model(name)(**options)
-        except FieldError as exc:
-            raise exc.at(prefix=where) from None
-        entry_id = item.get("id", name)
+        model = _configured_model(item["name"], options, where)
+        entry_id = item.get("id", model.name)
         if not isinstance(entry_id, str) or not entry_id:
             raise FieldError(f"{where}.id", "a non-empty name for this entry in the results", entry_id)
         if entry_id in seen:
@@ -443,6 +436,29 @@ def _build_models(value) -> tuple[ModelEntry, ...]:
     return tuple(entries)
 
 
+def _is_model(value) -> bool:
+    """Whether ``value`` is a model class or a configured model (a Python study may name a model by either)."""
+    return isinstance(value, ImpactModel) or (isinstance(value, type) and issubclass(value, ImpactModel))
+
+
+def _configured_model(name, options: Mapping, where: str) -> ImpactModel:
+    """The model an entry names, configured with its options: a registered name, a model class or an instance."""
+    if isinstance(name, ImpactModel):  # configured already, as a backend instance is
+        if options:
+            key = str(next(iter(options)))
+            raise FieldError(f"{where}.{key}", "options of a model class or name (an instance has its own)", key)
+        return name
+    if not _is_model(name):
+        models = available()
+        if not isinstance(name, str) or name not in models:
+            raise FieldError(f"{where}.name", "a registered model", str(name), choices=models)
+        name = get_model(name)
+    try:
+        return name(**options)
+    except FieldError as exc:
+        raise exc.at(prefix=where) from None
+
+
 def _build_outputs(value) -> tuple[str, ...]:
     if value is None:
         return DEFAULT_OUTPUTS
@@ -451,7 +467,7 @@ def _build_outputs(value) -> tuple[str, ...]:
     if not isinstance(value, list) or not value:
         raise FieldError("outputs", "a non-empty list of output names", value, choices=OUTPUTS)
     for index, name in enumerate(value):
-        if name not in OUTPUTS:
+        if not isinstance(name, str) or name not in OUTPUTS:
             raise FieldError(f"outputs[{index}]", "an output name", str(name), choices=OUTPUTS)
     return tuple(dict.fromkeys(value))
 
@@ -460,7 +476,7 @@ def _build_study(document, text: str, file: str | None) -> Study:
     if not isinstance(document, Mapping):
         raise FieldError("", "a study mapping with keys name, ball, face, contact, impact, sweep, models, outputs",
                          type(document).__name__)
-    _require_mapping(document, "", TOP_LEVEL_KEYS, "the study")
+    structure(document, StudyBlock, "")
     default_name = Path(file).stem if file and not file.startswith("<") else "study"
     name = document.get("name", default_name)
     if not isinstance(name, str) or not name:
@@ -496,26 +512,26 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
     plots = []
     for index, item in enumerate(value):
         where = f"plots[{index}]"
-        block = _require_mapping(item, where, PLOT_KEYS, "a figure")
-        name = block.get("name", f"plot{index}")
+        block = structure(item, PlotBlock, where)
+        name = f"plot{index}" if block.name is None else block.name
         if not isinstance(name, str) or not name.replace("-", "_").isidentifier():
             raise FieldError(f"{where}.name", "a short file-name-safe name", name)
-        wanted = block.get("y")
+        wanted = block.y
         wanted = [wanted] if isinstance(wanted, str) else wanted
         if not isinstance(wanted, list) or not wanted:
             raise FieldError(f"{where}.y", "an output name or a list of them", wanted, choices=outputs)
         for position, output in enumerate(wanted):
             if output not in outputs:
                 raise FieldError(f"{where}.y[{position}]", "an output the study computes", output, choices=outputs)
-        kind = block.get("kind", "lines")
+        kind = block.kind or "lines"
         if kind not in PLOT_KINDS:
             raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)
-        x = block.get("x")
-        scalar_outputs = [name for name in outputs if OUTPUTS[name].kind == SCALAR]
+        x = block.x
+        scalar_outputs = [name for name in outputs if name in SCALAR_OUTPUTS]
         if x is not None and x not in dims + scalar_outputs:
             raise FieldError(f"{where}.x", "a sweep dimension or a scalar output of the study", x,
                              choices=dims + scalar_outputs)
-        select = block.get("select") or {}
+        select = block.select or {}
         if not isinstance(select, Mapping):
             raise FieldError(f"{where}.select", "a mapping from dimension to value", select)
         for key in select:
@@ -524,17 +540,19 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
                                  choices=dims + [MODEL_DIM])
             if key == MODEL_DIM and model_ids and select[key] not in model_ids:  # else it fails after the run
                 raise FieldError(f"{where}.select.{key}", "a model of the study", str(select[key]), choices=model_ids)
-        title = block.get("title", "")
-        xlim = block.get("xlim")
+        title = block.title or ""
+        xlim = block.xlim
         if xlim is not None and not (isinstance(xlim, list) and len(xlim) == 2 and all(
                 isinstance(v, (int, float)) and not isinstance(v, bool) for v in xlim) and xlim[0] < xlim[1]):
             raise FieldError(f"{where}.xlim", "[low, high] of the horizontal axis, low < high", xlim)
-        measured = block.get("measured") or []
+        measured = block.measured or []
         measured = [measured] if isinstance(measured, str) else measured
+        if not isinstance(measured, list):
+            raise FieldError(f"{where}.measured", "a shipped measured dataset or a list of them", measured)
         from .validation import DATASETS
 
         for position, data in enumerate(measured):
-            if data not in DATASETS or DATASETS[data].quantity not in wanted:
+            if not isinstance(data, str) or data not in DATASETS or DATASETS[data].quantity not in wanted:
                 raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",
                                  data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
         plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind,

@@ -141,16 +141,21 @@ BAD = [
 ]
 
 
-@pytest.mark.parametrize("change, line, fragments", BAD, ids=[case[0][1][:30] for case in BAD])
-def test_bad_study_gives_one_clear_message(change, line, fragments):
-    text = ISSUE_EXAMPLE.replace(*change)
-    assert text != ISSUE_EXAMPLE
+def assert_one_clear_message(study: str, change: tuple[str, str], line: int, fragments: list[str]) -> None:
+    """``study`` with ``change`` made is refused with one message at ``line`` holding every fragment."""
+    text = study.replace(*change)
+    assert text != study
     with pytest.raises(FieldError) as info:
         impactlab.load_study(text, file="study.yaml")
     message = str(info.value)
     assert message.startswith(f"study.yaml:{line}: "), message
     for fragment in fragments:
         assert fragment in message, message
+
+
+@pytest.mark.parametrize("change, line, fragments", BAD, ids=[case[0][1][:30] for case in BAD])
+def test_bad_study_gives_one_clear_message(change, line, fragments):
+    assert_one_clear_message(ISSUE_EXAMPLE, change, line, fragments)
 
 
 def test_yaml_syntax_and_duplicate_keys_are_reported_with_line():
