@@ -21,7 +21,7 @@ from .case_inputs import CaseInputs
 from .errors import FieldError, ModelContractError
 from .planning import OutputPlan, plan_outputs, require_inputs
 from .derive import NEEDS, derive
-from .vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, is_history
+from .vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, check_output_names, is_history
 
 
 #: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)
@@ -203,10 +203,7 @@ class ImpactModel:
     # -- the public entry point ---------------------------------------------------------------------------------
     def plan(self, outputs: Iterable[str], given_inputs: Iterable[str] | None = None) -> OutputPlan:
         """What a run with these outputs (and, if known, these inputs) computes, derives and leaves NaN."""
-        outputs = list(outputs)
-        unknown = [name for name in outputs if name not in OUTPUTS]
-        if unknown:
-            raise FieldError("outputs", "names from the output vocabulary", unknown[0], choices=OUTPUTS)
+        outputs = list(check_output_names(outputs))
         return plan_outputs(type(self), outputs, None if given_inputs is None else set(given_inputs))
 
     def compute(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> xr.Dataset:

@@ -30,7 +30,8 @@ from .study_scene import (build_ball, build_club, build_contact, build_delivery,
                           build_impact, build_scene, build_strike)
 from .study_schema import SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, structure
 from .units import to_si
-from .vocabulary import DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS
+from .vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
+                         check_output_names)
 from .yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
 TOP_LEVEL_KEYS = keys_of(StudyBlock)
@@ -466,10 +467,7 @@ def _build_outputs(value) -> tuple[str, ...]:
         value = [value]
     if not isinstance(value, list) or not value:
         raise FieldError("outputs", "a non-empty list of output names", value, choices=OUTPUTS)
-    for index, name in enumerate(value):
-        if not isinstance(name, str) or name not in OUTPUTS:
-            raise FieldError(f"outputs[{index}]", "an output name", str(name), choices=OUTPUTS)
-    return tuple(dict.fromkeys(value))
+    return tuple(dict.fromkeys(check_output_names(value)))
 
 
 def _build_study(document, text: str, file: str | None) -> Study:

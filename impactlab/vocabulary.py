@@ -289,6 +289,23 @@ def is_history(name: str) -> bool:
     return name in _HISTORIES
 
 
+def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
+    """``names`` as a tuple, each checked against the vocabulary (the one check of output names).
+
+    Raises
+    ------
+    FieldError
+        At ``path[i]`` for the first entry that is not an output name, with the vocabulary as choices.
+    """
+    from .errors import FieldError
+
+    names = tuple(names)
+    for index, name in enumerate(names):
+        if not isinstance(name, str) or name not in OUTPUTS:
+            raise FieldError(f"{path}[{index}]", "an output name", str(name), choices=OUTPUTS)
+    return names
+
+
 #: the default outputs of a study that names none
 DEFAULT_OUTPUTS = ("launch_angle", "launch_ratio", "rebound_angle", "ball_speed", "spin_rate",
                    "tangential_restitution", "normal_impulse", "tangential_impulse", "contact_time", "energy_loss")
