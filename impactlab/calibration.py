@@ -70,9 +70,11 @@ class Calibration:
     errors_after: dict = attrs.field(eq=False)
 
     def as_dict(self) -> dict:
+        """The calibration as plain data (JSON-ready; ``impactlab fit --json``)."""
         return attrs.asdict(self)
 
     def describe(self) -> str:
+        """One line: each parameter with its one-sigma uncertainty, or 'not identified by these data'."""
         lines = []
         for name, value, sigma, ok in zip(self.parameters, self.values, self.uncertainties, self.identified):
             state = f"{value:.4g} +- {sigma:.2g}" if ok else f"{value:.4g} (not identified by these data)"

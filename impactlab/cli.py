@@ -381,6 +381,7 @@ def _cmd_fit(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
     from ._version import __version__
 
     parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")

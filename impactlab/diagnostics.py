@@ -59,6 +59,7 @@ class ValidityWarning(UserWarning):
 
 
 def flag_attributes() -> dict[str, object]:
+    """CF attributes of the ``validity`` flag variable: ``flag_masks``, ``flag_values`` and ``flag_meanings``."""
     # bit flags in CF: with flag_masks and flag_values both given, flag i is set when value & mask_i == value_i
     bits = np.array(sorted(FLAGS), dtype=np.int16)
     return {"flag_masks": bits, "flag_values": bits.copy(),
@@ -97,5 +98,6 @@ def messages(dataset) -> list[str]:
 
 
 def warn(dataset) -> None:
+    """Issue one :class:`ValidityWarning` per sentence of :func:`messages`."""
     for text in messages(dataset):
         warnings.warn(text, ValidityWarning, stacklevel=3)

@@ -54,10 +54,12 @@ class Chunk:
 
     @property
     def key(self) -> str:
+        """The chunk's file name stem in a progress folder: model entry and case range."""
         return f"m{self.entry}-c{self.start}-{self.stop}"
 
 
 def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
+    """Every (model entry, slice of at most ``chunk_size`` cases) of a run, model by model."""
     return [Chunk(entry, start, min(start + chunk_size, n_cases))
             for entry in range(n_models) for start in range(0, n_cases, chunk_size)]
 
@@ -182,6 +184,7 @@ class Progress:
         self.last_tenth = -1
 
     def advance(self, count: int) -> None:
+        """Count ``count`` more cases done; redraw the bar (a line every tenth where stderr is not a terminal)."""
         self.done += count
         if not self.enabled:
             return
@@ -237,6 +240,7 @@ class ProgressStore:
                 self._lock = None
 
     def load(self, chunk: Chunk) -> dict | None:
+        """The saved chunk, or None if it was not saved (or was damaged: then it is reported and deleted)."""
         path = self.folder / f"{chunk.key}.npz"
         if not path.exists():
             return None
@@ -253,6 +257,7 @@ class ProgressStore:
                 "time": time_axis, "global": meta["global"]}
 
     def save(self, chunk: Chunk, part: dict) -> None:
+        """Save a finished chunk atomically (a full disk shows here, and no half-written chunk remains)."""
         meta = {"names": list(part["data"]), "attrs": _jsonable(part["attrs"]), "dims": part["dims"],
                 "global": part["global"]}
         arrays = dict(part["data"])
@@ -265,6 +270,7 @@ class ProgressStore:
         write_atomically(self.folder / f"{chunk.key}.npz", buffer.getbuffer())
 
     def clear(self) -> None:
+        """Remove the folder: the result file is written, the progress is no longer needed."""
         shutil.rmtree(self.folder, ignore_errors=True)
 
 
@@ -297,6 +303,7 @@ def _jsonable(attrs_by_name: dict) -> dict:
 
 
 def fingerprint(study, outputs, extra: str = "") -> str:
+    """SHA-256 of what decides a run's chunks: study text, outputs, models with options, version."""
     from ._version import __version__
 
     text = json.dumps({"source": study.source, "outputs": list(outputs), "version": __version__,
@@ -306,6 +313,7 @@ def fingerprint(study, outputs, extra: str = "") -> str:
 
 
 def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
+    """The executor ``auto`` stands for: processes for large runs without histories on several cores, else serial."""
     if kind != "auto":
         return kind
     return "processes" if n_work >= AUTO_PARALLEL_WORK and not has_histories and (os.cpu_count() or 1) > 1 \

@@ -38,6 +38,7 @@ _interrupt_hint = ["no result file was written or changed"]
 
 
 def set_interrupt_hint(text: str) -> None:
+    """What the message after Ctrl-C says about the result files (set by each command before it runs)."""
     _interrupt_hint[0] = text
 
 

@@ -31,6 +31,11 @@ DEFAULT_PARAMETERS = {"restitution": ("friction", "tangential_restitution")}
 
 @attrs.frozen
 class FitResult:
+    """A least-squares fit of one model's parameters to a measured dataset.
+
+    Uncertainties are one standard deviation (inf where the data do not identify the parameter);
+    ``residuals`` are predicted minus measured at the optimum, ``rms`` their root mean square and
+    ``start_rms`` the same before fitting."""
     model: str
     dataset: str
     parameters: tuple[str, ...]
@@ -43,6 +48,7 @@ class FitResult:
     start_rms: float
 
     def as_dict(self) -> dict:
+        """The fit as plain data (JSON-ready)."""
         return attrs.asdict(self)
 
 

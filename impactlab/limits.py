@@ -50,6 +50,7 @@ def parse_size(text: str | int) -> int:
 
 
 def format_size(count: float) -> str:
+    """A byte count in words: '1.5 GiB', '12 KiB', '300 B'."""
     for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
         if count >= size:
             return f"{count / size:.1f} {unit}"
@@ -93,14 +94,17 @@ def _limit(key: str, default: int, parse=int) -> int:
 
 
 def max_cases() -> int:
+    """Largest number of cases a study may have (``--max-cases``, IMPACTLAB_MAX_CASES, or the default)."""
     return _limit("max_cases", DEFAULT_MAX_CASES)
 
 
 def max_memory() -> int:
+    """Largest memory estimate in bytes a run may have (``--max-memory``, IMPACTLAB_MAX_MEMORY, or the default)."""
     return _limit("max_memory", DEFAULT_MAX_MEMORY, parse_size)
 
 
 def max_yaml_nodes() -> int:
+    """Most nodes a study's YAML may expand to through aliases (IMPACTLAB_MAX_YAML_NODES, or the default)."""
     return _limit("max_yaml_nodes", DEFAULT_MAX_YAML_NODES)
 
 
@@ -123,6 +127,7 @@ class Estimate:
     kernel_memory: int = 0
 
     def describe(self) -> str:
+        """The estimate and the limits it is held against, in one line (``impactlab run --plan``)."""
         return (f"estimate: {self.cases:,} case(s), {self.evaluations:,} evaluation(s), about "
                 f"{format_size(self.memory)} of memory (limits: {max_cases():,} cases, {format_size(max_memory())}; "
                 "raise with --max-cases/--max-memory)")

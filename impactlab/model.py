@@ -142,6 +142,7 @@ class ImpactModel:
 
     @classmethod
     def why_not_provided(cls, output: str) -> str:
+        """The reason, stored with the NaN results, that this model cannot give ``output``."""
         return cls.not_provided.get(output, f"model {cls.name!r} does not provide {output}")
 
     @classmethod
@@ -198,6 +199,7 @@ class ImpactModel:
         return None
 
     def options_dict(self) -> dict[str, Any]:
+        """The resolved options as plain data (JSON-ready; infinities as strings), for provenance."""
         return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
 
     # -- the public entry point ---------------------------------------------------------------------------------

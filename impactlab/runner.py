@@ -34,6 +34,7 @@ class StudyPlan:
     resources: str = ""
 
     def describe(self) -> str:
+        """The plan in words: cases x models, the resource estimate, per model what is computed, derived and missing."""
         lines = [f"study {self.study!r}: {self.n_cases} case(s) x {len(self.models)} model(s)"]
         if self.resources:
             lines.append(f"  {self.resources}")

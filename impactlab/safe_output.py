@@ -25,6 +25,7 @@ _temporaries: set[str] = set()
 
 
 def remove_temporaries() -> None:
+    """Delete every temporary file a write in progress left (called on interrupt and at exit)."""
     for name in list(_temporaries):
         try:
             os.unlink(name)

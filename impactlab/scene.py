@@ -111,6 +111,7 @@ class Delivery:
 
     @property
     def sign(self) -> float:
+        """+1 for a right-handed golfer, -1 for a left-handed one (lateral quantities are mirrored)."""
         return 1.0 if self.handedness == "right" else -1.0
 
     @property

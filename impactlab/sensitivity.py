@@ -64,6 +64,7 @@ class Parameter:
         return np.full(nominal.shape, self.low), np.full(nominal.shape, self.high)
 
     def describe(self) -> str:
+        """The parameter and its range in display units, in words."""
         spec = INPUTS[self.input]
         factor, unit = spec.display_factor, spec.display_unit or spec.unit
         unit = "" if unit == "1" else f" {unit}"
@@ -85,6 +86,7 @@ class SensitivitySpec:
     levels: int = 4
 
     def as_dict(self) -> dict:
+        """The specification as plain data (stored with the results as provenance)."""
         return {"method": self.method, "samples": self.samples, "seed": self.seed, "levels": self.levels,
                 "parameters": {p.path: p.describe() for p in self.parameters},
                 "choices": {name: list(ids) for name, ids in self.choices}, "models": list(self.models)}

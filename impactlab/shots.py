@@ -96,9 +96,11 @@ class ShotTable:
 
     @property
     def size(self) -> int:
+        """Number of shots (rows)."""
         return len(self.labels)
 
     def subset(self, rows) -> ShotTable:
+        """The table of rows ``rows`` (an index or mask): a fold of a cross-validation."""
         rows = np.asarray(rows)
         index = np.arange(self.size)[rows]
         return attrs.evolve(self, labels=tuple(self.labels[i] for i in index),

@@ -58,10 +58,12 @@ class SweepAxis:
 
     @property
     def size(self) -> int:
+        """Number of values along this dimension."""
         return len(self.fields[0].values)
 
     @property
     def grouped(self) -> bool:
+        """Whether several fields change together (or labels name the values): a dimension of its own name."""
         return len(self.fields) > 1 or self.labels is not None
 
 
@@ -74,6 +76,7 @@ class ModelEntry:
 
     @property
     def name(self) -> str:
+        """The registry name of the entry's model (its ``id`` may differ)."""
         return self.model.name
 
 
@@ -97,6 +100,7 @@ class PlotSpec:
     measured: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
+        """The figure's specification as plain data (stored with the results, read back by ``impactlab plot``)."""
         return {"name": self.name, "y": list(self.y), "x": self.x, "select": dict(self.select), "title": self.title,
                 "kind": self.kind, "xlim": list(self.xlim) if self.xlim else None, "measured": list(self.measured)}
 
@@ -138,10 +142,12 @@ class Study:
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """Sizes of the sweep dimensions, in order."""
         return tuple(axis.size for axis in self.sweep)
 
     @property
     def n_cases(self) -> int:
+        """Number of cases: the product of the sweep sizes (1 without a sweep)."""
         return int(np.prod(self.shape, dtype=np.int64)) if self.sweep else 1
 
 

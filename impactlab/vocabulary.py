@@ -48,6 +48,7 @@ class InputSpec:
         return ~inside(values, self.low, self.high, self.low_open, self.high_open)
 
     def range_text(self) -> str:
+        """The admissible range in words, for error messages: 'a value in (0, inf) m/s'."""
         left = "(" if self.low_open else "["
         right = ")" if self.high_open else "]"
         return f"a value in {left}{self.low:g}, {self.high:g}{right} {self.unit}"

@@ -91,6 +91,7 @@ class LammpsImpact:
 
 
 def available() -> bool:
+    """Whether the LAMMPS executable ``lmp`` is on the PATH (the peer-code tests skip without it)."""
     return shutil.which("lmp") is not None
 
 

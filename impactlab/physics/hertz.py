@@ -317,6 +317,7 @@ class CaseNormals:
         self.damping, self.tau_end = damping_for_restitutions(self.restitution)
 
     def subset(self, rows) -> CaseNormals:
+        """The laws of the cases ``rows`` (an index or mask), for a batch split by solver path."""
         part = object.__new__(CaseNormals)
         part.restitution, part.damping, part.tau_end = self.restitution[rows], self.damping[rows], self.tau_end[rows]
         return part

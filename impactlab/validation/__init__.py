@@ -68,6 +68,7 @@ class MeasuredData:
     folder: str | None = None  # where ``study`` lives; None: shipped with impactlab
 
     def load_study(self) -> Study:
+        """The study that computes this dataset's quantity under its conditions."""
         if self.folder is not None:
             return load_study(Path(self.folder) / self.study)
         text = resources.files(__package__).joinpath(self.study).read_text()
@@ -75,6 +76,7 @@ class MeasuredData:
 
     @property
     def measured(self) -> np.ndarray:
+        """The measured values as an array, in the dataset's units."""
         return np.asarray(self.values, dtype=float)
 
 
