@@ -68,7 +68,10 @@ def derive(names, raw, inputs) -> dict:
     inputs = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)
     state = inputs.contact_state()  # the model's hook has usually computed it already
     impulse = impulse_vector(state, raw["normal_impulse"], raw["tangential_impulse"], raw.get("lateral_impulse"))
-    basics = after_impact(state, impulse, **inputs)
+    needed = set(names & FROM_IMPULSES)
+    if names & FROM_MATERIALS:
+        needed |= {"tangential_restitution", "normal_velocity"}  # what normalised_slip reads
+    basics = after_impact(state, impulse, names=needed, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})
     if names & FROM_DELIVERY:
         golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})

@@ -221,77 +221,93 @@ def impulse_vector(state, normal_impulse, tangential_impulse, lateral_impulse=No
     return np.stack([-np.asarray(tangential_impulse, float), lateral, jn], -1)
 
 
-def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf, **_):
+#: what :func:`after_impact` can give; the groups below are computed only when one of their names is asked for
+AFTER_IMPACT_OUTPUTS = frozenset({
+    "ball_velocity", "ball_spin_vector", "club_velocity", "club_spin", "normal_velocity", "tangential_velocity",
+    "spin_rate", "tangential_restitution", "launch_angle", "launch_ratio", "rebound_angle", "total_angle",
+    "ball_speed", "energy_loss", "smash_factor", "club_speed_after", "club_angular_velocity"})
+_NEEDS_HEAD = frozenset({"club_velocity", "club_spin", "normal_velocity", "tangential_velocity", "rebound_angle",
+                         "total_angle", "club_speed_after", "club_angular_velocity"})
+_NEEDS_PLANE = frozenset({"launch_angle", "launch_ratio", "total_angle"})
+
+
+def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf,
+                 names=None, **_):
     """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
 
     Returns the ground-frame vectors (right-handed golfer) and the 1-D face-frame quantities; see
     :func:`impactlab.physics.mechanics.after_impact` for the latter's definitions, of which these are the
-    generalisation to a contact normal, a free head and a slip that may turn.
+    generalisation to a contact normal, a free head and a slip that may turn. ``names`` (default: all of
+    :data:`AFTER_IMPACT_OUTPUTS`) limits the work to what is asked: the head's motion, the launch plane and
+    the contact's relative velocity are computed only where an asked-for quantity needs them (the dict may
+    hold more than asked, never less).
     """
+    names = AFTER_IMPACT_OUTPUTS if names is None else frozenset(names)
     n = impulse.shape[0]
     frame = state["frame"]
     impulse_ground = np.einsum("nij,nj->ni", frame, impulse)
     m = np.broadcast_to(np.asarray(ball_mass, float), (n,))
     radius = np.broadcast_to(np.asarray(ball_radius, float), (n,))
     inertia = np.broadcast_to(np.asarray(ball_inertia_factor, float), (n,)) * m * radius**2
-    club = np.broadcast_to(np.asarray(club_mass, float), (n,))
     speed = np.broadcast_to(np.asarray(speed, float), (n,))
 
     ball_velocity = impulse_ground / m[:, None]
     # dw = I^-1 (-R n) x J = (R/I) J x n; in the contact frame J x n = (J_l, -J_s, 0) (exactly 0 for a normal J)
     torque_arm = impulse[:, 1:2] * state["slip_direction"] - impulse[:, 0:1] * state["lateral_direction"]
     ball_spin = state["ball_spin"] + (radius / inertia)[:, None] * torque_arm
-    club_velocity = speed[:, None] * state["club_direction"] - np.where(
-        np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
-    if state["head_inverse_inertia"] is not None:
-        club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
-                                                   _cross(state["lever"], impulse_ground))
-    else:
-        club_spin = np.zeros((n, 3))
-    relative_after = state["initial_velocity"] + np.einsum("nij,nj->ni", state["mobility"], impulse)
-    # the ball centre relative to the head's material point at the contact
-    head_point = club_velocity + _cross(club_spin, state["lever"])
-    centre_relative = ball_velocity - head_point
-    normal_velocity = np.sum(centre_relative * state["normal"], -1)
-    tangential_velocity = np.sum(centre_relative * state["slip_direction"], -1)
-
-    slip = state["slip_speed"]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        beta = np.where(slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
-    # angles in the plane of the path and the contact normal, counted positive from the path towards a normal
-    # tilted up the face (the 1-D models' sign: a face tilted down has a negative angle)
-    direction = state["club_direction"]
-    towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
-    orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
-    across_unit = orientation[:, None] * _unit(towards_normal)
-    launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
-    angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        launch_ratio = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
-    rebound_angle = np.arctan2(tangential_velocity, normal_velocity)
-    spin_sense = np.sign(np.sum(ball_spin * state["lateral_direction"], -1))
-    spin_sense = np.where(spin_sense == 0.0, 1.0, spin_sense)
-    # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
-    energy_loss = -np.sum(impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])),
-                          -1)
-    return {
-        "ball_velocity": ball_velocity, "ball_spin_vector": ball_spin, "club_velocity": club_velocity,
-        "club_spin": club_spin,
-        "normal_velocity": normal_velocity,
-        "tangential_velocity": tangential_velocity,
-        "spin_rate": spin_sense * np.linalg.norm(ball_spin, axis=-1),
-        "tangential_restitution": beta,
-        "launch_angle": launch_angle,
-        "launch_ratio": launch_ratio,
-        "rebound_angle": rebound_angle,
-        "total_angle": angle + rebound_angle,
-        "ball_speed": np.linalg.norm(impulse, axis=-1) / m,
-        "energy_loss": energy_loss,
-        "smash_factor": np.linalg.norm(impulse, axis=-1) / m / speed,
-        "club_speed_after": np.linalg.norm(club_velocity, axis=-1) if np.all(np.isfinite(club)) else np.where(
-            np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
-        "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
-    }
+    out = {"ball_velocity": ball_velocity, "ball_spin_vector": ball_spin}
+    if "spin_rate" in names:
+        spin_sense = np.sign(np.sum(ball_spin * state["lateral_direction"], -1))
+        out["spin_rate"] = np.where(spin_sense == 0.0, 1.0, spin_sense) * np.linalg.norm(ball_spin, axis=-1)
+    if names & {"ball_speed", "smash_factor"}:
+        out["ball_speed"] = np.linalg.norm(impulse, axis=-1) / m
+        out["smash_factor"] = out["ball_speed"] / speed
+    if names & {"tangential_restitution", "energy_loss"}:
+        relative_after = state["initial_velocity"] + np.einsum("nij,nj->ni", state["mobility"], impulse)
+        slip = state["slip_speed"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["tangential_restitution"] = np.where(
+                slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
+        # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
+        out["energy_loss"] = -np.sum(
+            impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
+    if names & _NEEDS_HEAD:
+        club = np.broadcast_to(np.asarray(club_mass, float), (n,))
+        club_velocity = speed[:, None] * state["club_direction"] - np.where(
+            np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
+        if state["head_inverse_inertia"] is not None:
+            club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
+                                                       _cross(state["lever"], impulse_ground))
+        else:
+            club_spin = np.zeros((n, 3))
+        # the ball centre relative to the head's material point at the contact
+        head_point = club_velocity + _cross(club_spin, state["lever"])
+        centre_relative = ball_velocity - head_point
+        normal_velocity = np.sum(centre_relative * state["normal"], -1)
+        tangential_velocity = np.sum(centre_relative * state["slip_direction"], -1)
+        out.update({
+            "club_velocity": club_velocity, "club_spin": club_spin,
+            "normal_velocity": normal_velocity, "tangential_velocity": tangential_velocity,
+            "rebound_angle": np.arctan2(tangential_velocity, normal_velocity),
+            "club_speed_after": np.linalg.norm(club_velocity, axis=-1) if np.all(np.isfinite(club)) else np.where(
+                np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
+            "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
+        })
+    if names & _NEEDS_PLANE:
+        # angles in the plane of the path and the contact normal, counted positive from the path towards a
+        # normal tilted up the face (the 1-D models' sign: a face tilted down has a negative angle)
+        direction = state["club_direction"]
+        towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
+        orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
+        across_unit = orientation[:, None] * _unit(towards_normal)
+        launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
+        angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
+        out["launch_angle"] = launch_angle
+        if "rebound_angle" in out:
+            out["total_angle"] = angle + out["rebound_angle"]
+    return out
 
 
 def ground_outputs(state, after, *, dynamic_loft=None, attack_angle=None, path=None, face_angle=None,
