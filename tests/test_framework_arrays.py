@@ -172,3 +172,17 @@ def test_validity_is_warned_once_per_flag_for_all_models():
     texts = [str(w.message) for w in caught if issubclass(w.category, ValidityWarning)]
     assert len(texts) == 2  # large contact and Dundurs coupling; the rigid model raises neither
     assert all(text.startswith("maw, hertz_mindlin: in 9 of 9 case(s) each ") for text in texts)
+
+
+def test_after_impact_asked_for_one_quantity_gives_what_the_full_computation_gives():
+    from impactlab.physics.contact import AFTER_IMPACT_OUTPUTS, after_impact, impulse_vector
+    from impactlab.testing import reference_inputs_3d
+
+    batch = CaseInputs(reference_inputs_3d())
+    state = batch.contact_state()
+    raw = get_model("maw")()._compute(batch, frozenset({"normal_impulse", "tangential_impulse", "lateral_impulse"}))
+    impulse = impulse_vector(state, raw["normal_impulse"], raw["tangential_impulse"], raw["lateral_impulse"])
+    full = after_impact(state, impulse, **batch)
+    assert set(full) == AFTER_IMPACT_OUTPUTS
+    for name in AFTER_IMPACT_OUTPUTS:
+        np.testing.assert_array_equal(after_impact(state, impulse, names={name}, **batch)[name], full[name])
