@@ -76,17 +76,16 @@ def messages(dataset) -> list[str]:
         return []
     flags = dataset["validity"]
     per_model = "model" in flags.dims
-    everything = np.nan_to_num(flags.transpose("model", ...).values if per_model else flags.values[None])
+    values = flags.values
+    # models first, every case of a model on one row (plain arrays: this runs after every study)
+    values = np.moveaxis(values, flags.get_axis_num("model"), 0) if per_model else values[None]
+    values = np.nan_to_num(values.reshape(values.shape[0], -1)).astype(np.int64)
     # one model's selection keeps its name as a scalar coordinate
     names = flags["model"].values if per_model else [flags["model"].item() if "model" in flags.coords else "model"]
     found = []
     for bit, (_, meaning) in FLAGS.items():
-        raised = []  # (model, cases flagged, cases)
-        for index, model in enumerate(names):
-            values = everything[index].astype(np.int64)  # positional: no label lookup per model
-            count = int(np.count_nonzero(values & bit))
-            if count:
-                raised.append((str(model), count, values.size))
+        counts = np.count_nonzero(values & bit, axis=1)
+        raised = [(str(model), int(count), values.shape[1]) for model, count in zip(names, counts) if count]
         if len({(count, size) for _, count, size in raised}) == 1:
             _, count, size = raised[0]
             models = ", ".join(model for model, _, _ in raised)
