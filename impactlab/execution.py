@@ -37,7 +37,6 @@ from .case_inputs import CaseInputs
 from .errors import EnvironmentFault, StudyError
 from .faults import check_interrupt
 from .safe_output import TEMPORARY_SUFFIX, write_atomically
-from .vocabulary import CASE_DIM, OUTPUTS, TIME_DIM
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
 #: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
@@ -65,23 +64,15 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
 
 
 def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
-    """Worker side: run ``model`` on the chunk's cases; plain arrays and attributes come back."""
+    """Worker side: run ``model`` on the chunk's cases; plain arrays and the missing outputs' reasons come back."""
     if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
         part = inputs.slice(chunk.start, chunk.stop)
     else:
         part = _cases_of(inputs, chunk)
     result = model.compute_arrays(part, outputs)  # arrays inside: no Dataset built per chunk
-    attributes = {}
-    for name in result.values:
-        attributes[name] = {"units": OUTPUTS[name].units, "long_name": OUTPUTS[name].long_name}
-        if name in result.missing:
-            attributes[name]["missing_reason"] = result.missing[name]
-    return {"data": {name: result.in_units(name) for name in result.values},
-            "attrs": attributes,
-            "dims": {name: (CASE_DIM, TIME_DIM) if values.ndim == 2 else (CASE_DIM,)
-                     for name, values in result.values.items()},
-            "time": result.time,
-            "global": result.provenance()}
+    # what assembly needs and nothing else: the values in the vocabulary's units, the time axis, the reasons
+    return {"data": {name: result.in_units(name) for name in result.values}, "time": result.time,
+            "missing": dict(result.missing)}
 
 
 def _cases_of(inputs: dict, chunk: Chunk) -> dict:
@@ -253,13 +244,11 @@ class ProgressStore:
             self.say(f"{path}: damaged ({type(exc).__name__}: {exc}); computing this chunk again")
             path.unlink(missing_ok=True)
             return None
-        return {"data": data, "attrs": meta["attrs"], "dims": {k: tuple(v) for k, v in meta["dims"].items()},
-                "time": time_axis, "global": meta["global"]}
+        return {"data": data, "time": time_axis, "missing": meta["missing"]}
 
     def save(self, chunk: Chunk, part: dict) -> None:
         """Save a finished chunk atomically (a full disk shows here, and no half-written chunk remains)."""
-        meta = {"names": list(part["data"]), "attrs": _jsonable(part["attrs"]), "dims": part["dims"],
-                "global": part["global"]}
+        meta = {"names": list(part["data"]), "missing": part["missing"]}
         arrays = dict(part["data"])
         if part["time"] is not None:
             arrays["__time__"] = part["time"]
@@ -292,14 +281,6 @@ def _lock_folder(folder: Path, output) -> int:
             pass
         os.close(handle)
     raise EnvironmentFault(f"{folder}: keeps disappearing while being locked; is another run clearing it?")
-
-
-def _jsonable(attrs_by_name: dict) -> dict:
-    out = {}
-    for name, attributes in attrs_by_name.items():
-        out[name] = {key: (value.tolist() if isinstance(value, np.ndarray) else value)
-                     for key, value in attributes.items()}
-    return out
 
 
 def fingerprint(study, outputs, extra: str = "") -> str:
@@ -385,5 +366,4 @@ def _join(parts: list[dict]) -> dict:
     first = parts[0]
     return {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
             "time": first["time"],
-            "missing": {name: attributes["missing_reason"] for name, attributes in first["attrs"].items()
-                        if "missing_reason" in attributes}}
+            "missing": first["missing"]}
