@@ -12,7 +12,8 @@ ratio |d psi2| / (tol * min(4 chi, psi1)) of the springs it chooses (STEPS_PER_S
   leaves a different margin at each);
 
 for the rule and for the previous one (until 2026-11), and the cost of each, springs x steps summed over
-the grid and over a golf batch (benchmarks/bench_maw.py's: chi 1.24, loft 2-60 deg, mu 0.1-0.5).
+the grid and over a golf batch (benchmarks/bench_maw.py's: chi 1.24, loft 2-60 deg, mu 0.1-0.5), and maw's
+time per impact under each on that batch and on a grazing one (loft 0.1-2 deg).
 
 Reference: the same solver at 24 steps per spring, Richardson-extrapolated from 4000 and 8000 springs; its
 uncertainty (the change from the 2000/4000 extrapolation) is printed, and a few points are checked against
@@ -123,6 +124,39 @@ def cross_check():
     return float(np.max(np.abs(independent - ours) / np.minimum(psi1, 4 * chi)))
 
 
+def timing(tolerance=1e-4, n=2000, repeats=3):
+    """Time per impact of maw at a tolerance under either rule: bench_maw.py's golf batch and a grazing one."""
+    sys.path.insert(0, str(HERE))
+    from bench_maw import OUTPUTS, golf_batch
+
+    from impactlab.registry import get_model
+
+    grazing = golf_batch(n, seed=1)
+    grazing["angle"] = np.radians(np.random.default_rng(2).uniform(0.1, 2.0, n))
+    grazing["friction"] = np.full(n, 0.6)
+    current = mdr.resolution
+
+    def seconds(inputs, rule):
+        mdr.resolution = rule  # maw asks mdr.resolution for its springs
+        try:
+            model = get_model("maw")(tolerance=tolerance)
+            start = time.perf_counter()
+            model.compute(inputs, OUTPUTS)
+            return time.perf_counter() - start
+        finally:
+            mdr.resolution = current
+
+    for name, inputs in (("golf batch (loft 2-60 deg, mu 0.1-0.5)", golf_batch(n)),
+                         ("grazing batch (loft 0.1-2 deg, mu 0.6)", grazing)):
+        seconds(inputs, previous_rule), seconds(inputs, current)  # warm: compilation, grids
+        times = {"previous": [], "current": []}
+        for _ in range(repeats):  # in turn, so that a shared machine's load meets both alike
+            times["previous"].append(seconds(inputs, previous_rule))
+            times["current"].append(seconds(inputs, current))
+        print(f"   {name}, tol {tolerance:g}: " + ", ".join(
+            f"{key} {1e6 * np.median(value) / n:.1f} us" for key, value in times.items()) + " per impact")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true", help="chi 1.24, 4.79 and 15 only")
@@ -159,6 +193,8 @@ def main():
             new, old = (rule(1e-4, chi, np.array([psi1]))[0][0] for rule in (mdr.resolution, previous_rule))
             line.append(f"psi1 {psi1:g}: {old} -> {new} springs ({(new / old) ** 2:.2f}x)")
         print(f"   chi {chi:.3g}, tol 1e-4: " + "; ".join(line))
+    print("\ntime per impact, maw, one core, 2000 cases (median of 3 warm runs)")
+    timing()
 
 
 if __name__ == "__main__":
