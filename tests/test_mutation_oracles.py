@@ -234,7 +234,7 @@ def test_maws_resolution_rule_meets_its_tolerance_against_an_independent_mdr():
     (physics/mdr.py).
 
     The rule promises |d psi2| <= tol min(4 chi, psi1). The points are where the rule is tightest away from
-    grazing incidence (a scan over chi 0.5-15 and psi1 0.01-6 chi at tol 1e-3: 0.79, 0.58 and 0.65 of the
+    grazing incidence (a scan over chi 0.5-15 and psi1 0.01-6 chi at tol 1e-3: 0.79, 0.58 and 0.46 of the
     bound); the reference is the independent MDR above, extrapolated, good to about 1 % of the bound here.
     """
     from impactlab_models.maw import MawOptions
