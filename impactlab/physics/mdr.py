@@ -219,8 +219,8 @@ def resolution(tolerance: float, chi, psi1) -> tuple[np.ndarray, np.ndarray]:
     annuli of a mostly stuck contact are thin, hence its growth at small psi1. The second is the time
     steps' error (it falls as steps^-2 at fixed springs), which does not shrink with the slip and so
     dominates below psi1 of about 0.02 for a light-core ball (chi near 5). The springs are at least those
-    of the previous rule, 1.2 g^1.15 / sqrt(s) alone (PREVIOUS_CONSTANT), which sets them above psi1 of
-    about 0.2. Springs are rounded up on a ladder of quarter-octaves so that cases with nearby (chi, psi1)
+    of the previous rule, 1.2 g^1.15 / sqrt(s) alone (PREVIOUS_CONSTANT), which sets them above s of
+    about 0.56 g^-1.3. Springs are rounded up on a ladder of quarter-octaves so that cases with nearby (chi, psi1)
     share one batched solve.
     """
     chi = np.asarray(chi, dtype=float)
