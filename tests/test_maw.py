@@ -302,3 +302,27 @@ def test_tolerance_bounds_the_impulse_against_both_of_its_scales(chi):
                                             steps=mdr.STEPS_PER_SPRING * int(count)).slip_change
         assert np.all(np.abs(result - reference) <= tolerance * np.minimum(4 * chi, psi1))
         assert springs[0] > springs[-1]  # the thin slip annuli of low loft are what costs
+
+
+def test_resolution_rule_keeps_its_bound_at_the_corners_of_its_range():
+    # the corners of the range the rule was measured on (benchmarks/resolution_rule.py): the smallest psi1 it
+    # refines for, the heaviest chi, a light-core ball (K^2 0.08: chi 4.79) at 0.2 deg of loft, gross slip, and
+    # tolerances from 1e-3 to 1e-5. At low psi1 the time steps' error dominates (the rule's second term); the
+    # previous rule missed its bound here by up to 3.3x. Reference: the same solver at 24 steps per spring,
+    # Richardson from 1600 and 3200 springs (within 1e-6 of the bound's scale)
+    from impactlab.physics import mdr
+
+    kappa = 2 * (1 - 0.45) / (2 - 0.45)
+    light_core = kappa / 2 * (1 + 1 / 0.08)
+    chi = np.array([light_core, light_core, 5.56, 10.0, 15.0, 15.0, 0.3, 1.24])
+    psi1 = np.array([1e-3, kappa * np.tan(np.radians(0.2)) / 0.6, 1e-3, 1e-3, 1e-3, 90.0, 1e-3, 1e-3])
+    tolerance = np.array([1e-4, 1e-4, 1e-5, 1.78e-5, 1e-5, 1e-3, 1e-3, 3e-5])
+    coarse, fine = (mdr.solve_scaled(chi, psi1, springs=n, steps=24 * n).slip_change for n in (1600, 3200))
+    reference = (4 * fine - coarse) / 3
+    for case in range(chi.size):
+        springs, capped = mdr.resolution(tolerance[case], chi[case], psi1[case:case + 1])
+        assert not capped.any()
+        solved = mdr.solve_scaled(chi[case:case + 1], psi1[case:case + 1], springs=int(springs[0]),
+                                  steps=mdr.STEPS_PER_SPRING * int(springs[0])).slip_change[0]
+        ratio = abs(solved - reference[case]) / (tolerance[case] * min(4 * chi[case], psi1[case]))
+        assert ratio <= 1.0, (case, ratio)
