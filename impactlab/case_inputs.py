@@ -10,6 +10,7 @@ model, which on a small sweep is a sizeable part of what the framework costs aro
 
 from __future__ import annotations
 
+import types
 from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
@@ -82,18 +83,19 @@ class CaseInputs(Mapping):
     def __repr__(self) -> str:
         return f"CaseInputs({self.n_cases} case(s): {', '.join(sorted(self._arrays))})"
 
-    def contact_state(self) -> dict:
+    def contact_state(self) -> Mapping:
         """:func:`impactlab.physics.contact.contact_state` of these inputs, computed at most once per batch.
 
-        The arrays of the returned dict are read-only: the state is shared between models' hooks and the
-        framework's derivation, so a change by one would be a wrong answer in another.
+        The mapping and its arrays are read-only: the state is shared between models' hooks and the
+        framework's derivation, so a change by one would be a wrong answer in another (and a different one
+        with each executor, which gives each worker its own).
         """
         if self._state[0] is None:
             state = contact_state(self._arrays)
             for value in state.values():
                 if isinstance(value, np.ndarray):
                     value.setflags(write=False)
-            self._state[0] = state
+            self._state[0] = types.MappingProxyType(state)
         return self._state[0]
 
     def only(self, names: Iterable[str]) -> CaseInputs:

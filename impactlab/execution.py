@@ -57,6 +57,10 @@ class Chunk:
         return f"m{self.entry}-c{self.start}-{self.stop}"
 
 
+#: layout of a saved chunk; a progress folder of another layout is started over, not misread
+CHUNK_FORMAT = 2
+
+
 def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
     """Every (model entry, slice of at most ``chunk_size`` cases) of a run, model by model."""
     return [Chunk(entry, start, min(start + chunk_size, n_cases))
@@ -240,11 +244,12 @@ class ProgressStore:
                 meta = json.loads(str(archive["__meta__"]))
                 data = {name: archive[name] for name in meta["names"]}
                 time_axis = archive["__time__"] if "__time__" in archive else None
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+                missing = dict(meta["missing"])
+        except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile) as exc:
             self.say(f"{path}: damaged ({type(exc).__name__}: {exc}); computing this chunk again")
             path.unlink(missing_ok=True)
             return None
-        return {"data": data, "time": time_axis, "missing": meta["missing"]}
+        return {"data": data, "time": time_axis, "missing": missing}
 
     def save(self, chunk: Chunk, part: dict) -> None:
         """Save a finished chunk atomically (a full disk shows here, and no half-written chunk remains)."""
@@ -288,6 +293,7 @@ def fingerprint(study, outputs, extra: str = "") -> str:
     from ._version import __version__
 
     text = json.dumps({"source": study.source, "outputs": list(outputs), "version": __version__,
+                       "chunk_format": CHUNK_FORMAT,
                        "models": [[entry.id, entry.model.options_dict()] for entry in study.models],
                        "extra": extra}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()

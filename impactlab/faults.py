@@ -173,6 +173,25 @@ def deferred_interrupts(grace: float = INTERRUPT_GRACE):
         _stop.clear()
 
 
+def _stdout_closed() -> bool:
+    """Whether standard output is a pipe whose reader has gone (poll reports an error on it)."""
+    try:
+        descriptor = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # not a file (a test's stand-in): ask it by flushing
+        try:
+            sys.stdout.flush()
+        except BrokenPipeError:
+            return True
+        except (OSError, ValueError):
+            return False
+        return False
+    import select
+
+    poller = select.poll()
+    poller.register(descriptor, select.POLLOUT)
+    return any(events & select.POLLERR for _, events in poller.poll(0))
+
+
 def run_command(call, *, debug: bool = False) -> int:
     """Run ``call()`` (a command returning its exit status) and turn every failure into message and status."""
     _interrupt_hint[0] = "no result file was written or changed"
@@ -194,7 +213,9 @@ def run_command(call, *, debug: bool = False) -> int:
             return fail(f"error: {exc}", exc.exit_code)
         except KeyboardInterrupt:
             return fail(f"interrupted; {_interrupt_hint[0]}", EXIT_INTERRUPTED)
-        except BrokenPipeError:
+        except BrokenPipeError as exc:
+            if not _stdout_closed():  # another pipe broke (a peer process, a socket): an error like any other
+                return fail(f"error: {describe_os_error(exc)}", EXIT_ENVIRONMENT)
             # the reader of our output went away (``impactlab models | head``): stop quietly, as the standard
             # tools do; stdout goes to /dev/null so the interpreter's last flush does not complain either
             with contextlib.suppress(OSError, ValueError, AttributeError):  # a stdout without a descriptor

@@ -567,3 +567,41 @@ def test_a_reader_that_goes_away_ends_the_command_quietly(monkeypatch, capsys):
     code = main(["models", "--json"])
     monkeypatch.undo()
     assert code == 141 and capsys.readouterr().err == ""
+
+
+def test_a_broken_pipe_that_is_not_stdout_is_an_error(monkeypatch, capsys):
+    """Only a closed stdout ends quietly: a peer's pipe breaking is said, with exit 3."""
+    from impactlab import cli as cli_module
+
+    def peer_gone(args):
+        raise BrokenPipeError(errno.EPIPE, "Broken pipe", "a worker's pipe")
+
+    monkeypatch.setattr(cli_module, "_cmd_models", peer_gone)
+    code = cli_module.main(["models"])
+    err = capsys.readouterr().err
+    assert code == 3 and "error:" in err and "Traceback" not in err
+
+
+def test_progress_saved_in_another_chunk_layout_is_computed_again(tmp_path, monkeypatch):
+    """A progress folder from a version whose chunks lack a field is recomputed, never a crash."""
+    import json
+
+    from impactlab import execution
+
+    study = write_study(tmp_path)
+    folder = tmp_path / "progress"
+    first = impactlab.run_study(str(study), executor="serial", progress_folder=folder)
+    for path in folder.glob("*.npz"):  # the layout before CHUNK_FORMAT 2: no "missing" in the metadata
+        with np.load(path) as archive:
+            arrays = {name: archive[name] for name in archive.files}
+        meta = json.loads(str(arrays.pop("__meta__")))
+        del meta["missing"]
+        np.savez(path, __meta__=np.array(json.dumps(meta)), **arrays)
+    messages = []
+    again = impactlab.run_study(str(study), executor="serial", progress_folder=folder, progress=messages.append)
+    assert sum("damaged" in text for text in messages) == 3
+    same_results(first, again)
+    # and a new layout changes the fingerprint, so an older folder is started over as a whole
+    before = execution.fingerprint(impactlab.load_study(str(study)), ["launch_angle"])
+    monkeypatch.setattr(execution, "CHUNK_FORMAT", execution.CHUNK_FORMAT + 1)
+    assert execution.fingerprint(impactlab.load_study(str(study)), ["launch_angle"]) != before

@@ -186,3 +186,12 @@ def test_after_impact_asked_for_one_quantity_gives_what_the_full_computation_giv
     assert set(full) == AFTER_IMPACT_OUTPUTS
     for name in AFTER_IMPACT_OUTPUTS:
         np.testing.assert_array_equal(after_impact(state, impulse, names={name}, **batch)[name], full[name])
+
+
+def test_the_shared_state_mapping_cannot_be_rebound_by_a_model():
+    """A model replacing an entry (not writing in place) would change the next model's results in a serial run
+    only: the mapping is read-only too."""
+    batch = CaseInputs(_scene().inputs())
+    state = batch.contact_state()
+    with pytest.raises(TypeError):
+        state["normal_speed"] = 0.5 * state["normal_speed"]
