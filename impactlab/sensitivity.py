@@ -40,9 +40,7 @@ from .errors import FieldError
 from .units import to_si
 from .vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, is_scalar
 
-SENSITIVITY_KEYS = ("method", "samples", "seed", "parameters", "choices", "models", "levels")
 METHODS = ("sobol", "morris")
-RANGE_KEYS = ("low", "high", "spread")
 #: the percentiles whose distance is the parameter spread
 SPREAD_PERCENTILES = (5.0, 95.0)
 
@@ -101,22 +99,22 @@ def _whole(value, path: str, low: int) -> int:
 def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, float], swept: set[str],
                       where: str = "sensitivity") -> SensitivitySpec:
     """Validate a study's ``sensitivity:`` block; every error names the field, what it takes and what it got."""
+    from .study_schema import ParameterRangeBlock, SensitivityBlock, keys_of, structure
+
     if not isinstance(block, Mapping):
-        raise FieldError(where, f"a mapping with keys from: {', '.join(SENSITIVITY_KEYS)}", block)
-    for key in block:
-        if key not in SENSITIVITY_KEYS:
-            raise FieldError(f"{where}.{key}", "a key of the sensitivity block", str(key), choices=SENSITIVITY_KEYS)
-    method = block.get("method", "sobol")
+        raise FieldError(where, f"a mapping with keys from: {', '.join(keys_of(SensitivityBlock))}", block)
+    given = structure(block, SensitivityBlock, where)  # unknown keys refused, as in every block
+    method = "sobol" if given.method is None else given.method
     if method not in METHODS:
         raise FieldError(f"{where}.method", "a sensitivity method", method, choices=METHODS)
-    samples = _whole(block.get("samples", 64), f"{where}.samples", 2)
+    samples = _whole(64 if given.samples is None else given.samples, f"{where}.samples", 2)
     if method == "sobol" and samples & (samples - 1):
         raise FieldError(f"{where}.samples", "a power of 2 (Sobol sequences lose their balance otherwise)", samples)
-    seed = _whole(block.get("seed", 1), f"{where}.seed", 0)
-    levels = _whole(block.get("levels", 4), f"{where}.levels", 2)
+    seed = _whole(1 if given.seed is None else given.seed, f"{where}.seed", 0)
+    levels = _whole(4 if given.levels is None else given.levels, f"{where}.levels", 2)
     if levels % 2:
         raise FieldError(f"{where}.levels", "an even number of Morris grid levels", levels)
-    raw = block.get("parameters")
+    raw = given.parameters
     if not isinstance(raw, Mapping) or not raw:
         raise FieldError(f"{where}.parameters", "a mapping from study paths to {low, high} or {spread}", raw,
                          choices=INPUT_BY_PATH)
@@ -128,8 +126,10 @@ def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, fl
         name = INPUT_BY_PATH[path]
         if name not in scene_inputs:
             raise FieldError(at, "a field the study's scene gives (add it to the scene first)", str(path))
-        if not isinstance(spec, Mapping) or any(key not in RANGE_KEYS for key in spec):
+        if not isinstance(spec, Mapping):
             raise FieldError(at, "{low: VALUE, high: VALUE} or {spread: VALUE} (+- around each case)", spec)
+        structure(spec, ParameterRangeBlock, at)  # its keys; the values take the parameter's dimension below
+        spec = {key: value for key, value in spec.items() if value is not None}  # a key without a value: left out
         if name in swept and "spread" not in spec:
             raise FieldError(at, "a spread around each case's value (the sweep sets this field; an absolute range "
                                  "would override the sweep)", dict(spec))
@@ -155,7 +155,10 @@ def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, fl
     if len({p.input for p in parameters}) != len(parameters):
         raise FieldError(f"{where}.parameters", "each input once", [p.path for p in parameters])
     choices = []
-    for name, ids in (block.get("choices") or {}).items():
+    if given.choices is not None and not isinstance(given.choices, Mapping):
+        raise FieldError(f"{where}.choices", "a mapping from a choice's name to model ids of the study",
+                         given.choices, choices=model_ids)
+    for name, ids in (given.choices or {}).items():
         at = f"{where}.choices.{name}"
         if not isinstance(ids, list) or len(ids) < 2 or len(set(ids)) != len(ids):
             raise FieldError(at, "a list of at least two distinct model ids of the study", ids, choices=model_ids)
@@ -163,7 +166,7 @@ def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, fl
             if entry not in model_ids:
                 raise FieldError(f"{at}[{index}]", "a model id of the study", entry, choices=model_ids)
         choices.append((str(name), tuple(ids)))
-    models = block.get("models", model_ids)
+    models = model_ids if given.models is None else given.models
     if not isinstance(models, list) or not models:
         raise FieldError(f"{where}.models", "a list of model ids of the study", models, choices=model_ids)
     for index, entry in enumerate(models):

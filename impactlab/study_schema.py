@@ -247,8 +247,36 @@ class PlotBlock:
     measured: Any = None
 
 
+@attrs.frozen
+class SensitivityBlock:
+    """The ``sensitivity`` block; its values are checked by :func:`impactlab.sensitivity.parse_sensitivity`,
+    which knows the study's models and scene."""
+
+    _what = "the sensitivity block"
+    _key_of = "the sensitivity block"
+    method: Any = None
+    samples: Any = None
+    seed: Any = None
+    parameters: Any = None
+    choices: Any = None
+    models: Any = None
+    levels: Any = None
+
+
+@attrs.frozen
+class ParameterRangeBlock:
+    """One parameter of a sensitivity study: ``{low, high}`` or ``{spread}`` (+- around each case's value),
+    converted by the sensitivity parser with the parameter's dimension."""
+
+    _what = "a parameter range: {low, high} or {spread} (+- around each case's value)"
+    _key_of = "a parameter range"
+    low: Any = None
+    high: Any = None
+    spread: Any = None
+
+
 BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, CenterBlock, ClubBlock, StrikeBlock,
-          ContactBlock, ImpactBlock, DeliveryBlock, RangeBlock, PlotBlock)
+          ContactBlock, ImpactBlock, DeliveryBlock, RangeBlock, PlotBlock, SensitivityBlock, ParameterRangeBlock)
 
 
 def keys_of(cls) -> tuple[str, ...]:
@@ -454,5 +482,6 @@ def _field_error(exc, value, where: str, steps: tuple, cls, name: str | None) ->
 
 __all__ = ["structure", "keys_of", "lookup", "SI", "BallBlock", "RestitutionBlock", "FaceBlock", "InertiaBlock",
            "CenterBlock", "ClubBlock", "StrikeBlock", "ContactBlock", "ImpactBlock", "DeliveryBlock", "RangeBlock",
-           "StudyBlock", "PlotBlock", "Length", "Mass", "Pressure", "Speed", "Angle", "Spin", "Inertia", "Number",
+           "StudyBlock", "PlotBlock", "SensitivityBlock", "ParameterRangeBlock",
+           "Length", "Mass", "Pressure", "Speed", "Angle", "Spin", "Inertia", "Number",
            "InverseSpeed", "Flag", "Count", "Name"]

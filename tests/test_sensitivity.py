@@ -126,6 +126,13 @@ sensitivity:
     ("{choices: {law: [maw, mwa]}, parameters: {contact.friction: {low: 0.3, high: 0.5}}}",
      "sensitivity.choices.law[1]", "maw"),
     ("parameters: {impact.speed: {low: 30, high: 40}}", "sensitivity.parameters.impact.speed", "spread"),
+    # structured by cattrs: unknown keys refused at each level, with the keys the block takes
+    ("{sampels: 64, parameters: {contact.friction: {low: 0.3, high: 0.5}}}", "sensitivity.sampels",
+     "a key of the sensitivity block"),
+    ("parameters: {contact.friction: {low: 0.3, hihg: 0.5}}", "sensitivity.parameters.contact.friction.hihg",
+     "low, high, spread"),
+    ("{choices: [maw], parameters: {contact.friction: {low: 0.3, high: 0.5}}}", "sensitivity.choices",
+     "a mapping from a choice's name"),
 ])
 def test_bad_sensitivity_block_gives_one_message(block, path, words):
     text = f"""
