@@ -59,22 +59,26 @@ def best_pair(first, second, repeats: int = 25) -> tuple[float, float]:
     return min(times[0]), min(times[1])
 
 
-def hooks(study, with_derivation: bool = False) -> None:
+def hooks(study, with_derivation: bool = False, chunk: int | None = None) -> None:
     """The models' own work: each hook asked for what the study's plan asks of it (impulses and the stability
-    report the model computes itself). The batch is fresh, so the contact state is built here, once, as in a
-    run (where the models share it): it is physics, counted on this side.
+    report the model computes itself). The batch is fresh, so the contact state is built here, once per chunk,
+    as in a serial run (where the models share it): it is physics, counted on this side.
 
     ``with_derivation``: also the physics of rule 6, the launch conditions from each model's impulses
-    (:func:`impactlab.derive.derive`, plain array functions of impactlab.physics.contact).
+    (:func:`impactlab.derive.derive`, plain array functions of impactlab.physics.contact). ``chunk``: cases
+    per batch, as the serial executor splits a large study (default: all at once).
     """
     inputs = case_inputs(study)
-    batch = CaseInputs(inputs)
-    for entry in study.models:
-        model = entry.model
-        plan = model.plan(study.all_outputs, inputs)
-        raw = model._compute(batch.only(model.requires | model.optional_inputs), plan.from_model)
-        if with_derivation:
-            derive(plan.derived, raw, batch)
+    batch = CaseInputs(inputs, copy=False)  # the study's own arrays, as the serial executor takes them
+    plans = [entry.model.plan(study.all_outputs, inputs) for entry in study.models]
+    size = chunk or study.n_cases
+    for first in range(0, study.n_cases, size):
+        part = batch.slice(first, min(first + size, study.n_cases))
+        for entry, plan in zip(study.models, plans):
+            model = entry.model
+            raw = model._compute(part.only(model.requires | model.optional_inputs), plan.from_model)
+            if with_derivation:
+                derive(plan.derived, raw, part)
 
 
 def main() -> None:
@@ -124,15 +128,7 @@ def large(chunk: int = 8192) -> None:
     the machine is shared), then run_study on every core once."""
     study = load_study(LARGE)
 
-    def kernel():
-        inputs = case_inputs(study)
-        batch = CaseInputs(inputs, copy=False)
-        for first in range(0, study.n_cases, chunk):
-            part = batch.slice(first, min(first + chunk, study.n_cases))
-            for entry in study.models:
-                model = entry.model
-                model._compute(part.only(model.requires | model.optional_inputs),
-                               model.plan(study.all_outputs, inputs).from_model)
+    kernel = lambda: hooks(study, chunk=chunk)
 
     def timed(function):
         start = time.perf_counter()
