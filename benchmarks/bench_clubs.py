@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 
 import impactlab
-from impactlab.case_inputs import CaseInputs
-from impactlab.clubs import CLUB_PRESETS
-from impactlab.registry import get_model
+from impactlab.model.case_inputs import CaseInputs
+from impactlab.scene.clubs import CLUB_PRESETS
+from impactlab.model.registry import get_model
 
 OUTPUTS = ["tangential_restitution", "spin_rate", "vertical_launch_angle", "horizontal_launch_angle", "spin_axis"]
 
@@ -55,7 +55,7 @@ def driver_batch(n, seed=0, centred=False):
     if not centred:
         inputs["strike_toe"] = rng.uniform(-0.02, 0.02, n)
         inputs["strike_high"] = rng.uniform(-0.01, 0.01, n)
-    return impactlab.scene.complete_inputs(inputs)
+    return impactlab.scene.core.complete_inputs(inputs)
 
 
 def timed(function, repeats=3):
@@ -96,7 +96,7 @@ def frame_following_estimate(strikes=(-0.02, -0.01, 0.01, 0.02)):
                            face_angle=0.0, friction=0.4, restitution=0.8, strike_high=0.0).items():
         base[key] = np.full(len(strikes), value)
     base["strike_toe"] = np.asarray(strikes, dtype=float)
-    base = impactlab.scene.complete_inputs(base)
+    base = impactlab.scene.core.complete_inputs(base)
     state = contact_state(base)
     moduli = [base[k] for k in ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                 "face_poisson_ratio")]
@@ -113,7 +113,7 @@ def frame_following_estimate(strikes=(-0.02, -0.01, 0.01, 0.02)):
     # ground frame X target, Y left, Z up: a turn about +Z closes the face, about +Y delofts it
     turned["face_angle"] = base["face_angle"] - 0.5 * turn[:, 2]
     turned["dynamic_loft"] = base["dynamic_loft"] - 0.5 * turn[:, 1]
-    turned = impactlab.scene.complete_inputs(turned)
+    turned = impactlab.scene.core.complete_inputs(turned)
     fixed, following = maw.compute(base, names), maw.compute(turned, names)
     for index, toe in enumerate(strikes):
         changes = ", ".join(f"{name} {float(following[name][index] - fixed[name][index]):+.3g}" for name in names)

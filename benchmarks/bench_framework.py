@@ -20,10 +20,10 @@ import time
 import numpy as np
 
 import impactlab
-from impactlab.case_inputs import CaseInputs
-from impactlab.derive import derive
-from impactlab.runner import case_inputs
-from impactlab.study import load_study
+from impactlab.model.case_inputs import CaseInputs
+from impactlab.model.derive import derive
+from impactlab.run.runner import case_inputs
+from impactlab.study.core import load_study
 
 STUDY = """
 name: bench-540
@@ -65,7 +65,7 @@ def hooks(study, with_derivation: bool = False, chunk: int | None = None) -> Non
     as in a serial run (where the models share it): it is physics, counted on this side.
 
     ``with_derivation``: also the physics of rule 6, the launch conditions from each model's impulses
-    (:func:`impactlab.derive.derive`, plain array functions of impactlab.physics.contact). ``chunk``: cases
+    (:func:`impactlab.model.derive.derive`, plain array functions of impactlab.physics.contact). ``chunk``: cases
     per batch, as the serial executor splits a large study (default: all at once).
     """
     inputs = case_inputs(study)
@@ -84,7 +84,7 @@ def hooks(study, with_derivation: bool = False, chunk: int | None = None) -> Non
 def main() -> None:
     import warnings
 
-    from impactlab.diagnostics import ValidityWarning
+    from impactlab.model.diagnostics import ValidityWarning
 
     warnings.simplefilter("ignore", ValidityWarning)  # the golf cases' large-contact flags, once per repeat
     study = load_study(STUDY)

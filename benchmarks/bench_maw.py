@@ -24,7 +24,7 @@ sys.path.insert(0, str(HERE))
 import impactlab  # noqa: E402
 from baseline import first_order_mdr  # noqa: E402
 from impactlab.physics import annuli, mdr  # noqa: E402
-from impactlab.registry import get_model  # noqa: E402
+from impactlab.model.registry import get_model  # noqa: E402
 
 TARGET = 1e-4
 OUTPUTS = ["launch_ratio", "spin_rate", "tangential_restitution"]
@@ -65,7 +65,7 @@ def timed(function, repeats=3):
 
 def baseline_as_result(inputs, springs, steps):
     """The baseline's psi2 turned into the same outputs as impactlab's, via the framework's bookkeeping."""
-    from impactlab.derive import derive
+    from impactlab.model.derive import derive
     from impactlab.physics import hertz
     from impactlab.physics.mechanics import approach_velocities, effective_mass, tangential_mass
 

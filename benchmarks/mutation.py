@@ -166,10 +166,10 @@ MUTANTS = [
      '"stiffness_factor": self.options.stiffness_ratio / float(kappa)}', '"stiffness_factor": float(kappa) / self.options.stiffness_ratio}',
      T_DEM, "dem_linear stiffness factor r/kappa inverted"),
     # --- glue outside physics/models that the issue names
-    ("study-poisson-override", "impactlab/study_scene.py",
+    ("study-poisson-override", "impactlab/study/scene_blocks.py",
      "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",
      ["tests/test_study.py", "tests/test_mutation_oracles.py"], "a preset's Poisson ratio override ignored"),
-    ("gspro-knots", "impactlab/interchange.py", "MPH = 0.44704", "MPH = 0.514444",
+    ("gspro-knots", "impactlab/io/interchange.py", "MPH = 0.44704", "MPH = 0.514444",
      ["tests/test_interchange.py", "tests/test_mutation_oracles.py"], "mph taken as knots in the GSPro export"),
 ]
 

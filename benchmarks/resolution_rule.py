@@ -129,7 +129,7 @@ def timing(tolerance=1e-4, n=2000, repeats=3):
     sys.path.insert(0, str(HERE))
     from bench_maw import OUTPUTS, golf_batch
 
-    from impactlab.registry import get_model
+    from impactlab.model.registry import get_model
 
     grazing = golf_batch(n, seed=1)
     grazing["angle"] = np.radians(np.random.default_rng(2).uniform(0.1, 2.0, n))

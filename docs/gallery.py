@@ -21,7 +21,7 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),
-         **{stem: (title, "impactlab.validation.benchmark_report.plot_figures (docs/benchmarks.md)")
+         **{stem: (title, "impactlab.data.validation.benchmark_report.plot_figures (docs/benchmarks.md)")
             for stem, title in (
              ("benchmark_tests12_force", "Chung & Ooi tests 1-2: normal force history of elastic impacts against "
                                          "Hertz, every compliant model"),

@@ -1,10 +1,10 @@
 """impactlab: models of a ball leaving a striking face, side by side."""
 
-from ._version import __version__
-from .errors import FieldError, ImpactLabError, ModelInputError, ModelNotFoundError, StudyError
-from .materials import BALL_PRESETS, FACE_PRESETS, MATERIAL_PRESETS, Ball, Face, Material
-from .model import ImpactModel
-from .scene import Contact, Impact, Scene
+from impactlab._version import __version__
+from impactlab.errors import FieldError, ImpactLabError, ModelInputError, ModelNotFoundError, StudyError
+from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS, MATERIAL_PRESETS, Ball, Face, Material
+from impactlab.model.base import ImpactModel
+from impactlab.scene.core import Contact, Impact, Scene
 
 __all__ = [
     "__version__", "Ball", "Face", "Material", "Contact", "Impact", "Scene", "ImpactModel",
@@ -15,39 +15,39 @@ __all__ = [
 
 
 def load_study(source, *, file=None):
-    """Read and validate a study from a YAML path, YAML text or mapping (see :mod:`impactlab.study`)."""
-    from .study import load_study as _load
+    """Read and validate a study from a YAML path, YAML text or mapping (see :mod:`impactlab.study.core`)."""
+    from impactlab.study.core import load_study as _load
 
     return _load(source, file=file)
 
 
 def run_study(study, **options):
-    """Run a study (path, mapping or :class:`~impactlab.study.Study`) and return one xarray Dataset.
+    """Run a study (path, mapping or :class:`~impactlab.study.core.Study`) and return one xarray Dataset.
 
     Keyword options (executor, workers, scheduler, chunk_size, progress_folder, show_progress, progress)
-    are those of :func:`impactlab.runner.run_study`.
+    are those of :func:`impactlab.run.runner.run_study`.
     """
-    from .runner import run_study as _run
+    from impactlab.run.runner import run_study as _run
 
     return _run(study, **options)
 
 
 def open_results(path):
     """Open a result file written by ``impactlab run`` as an xarray Dataset (loaded into memory)."""
-    from .results_io import open_results as _open
+    from impactlab.io.results import open_results as _open
 
     return _open(path)
 
 
 def get_model(name):
     """The registered model class called ``name``."""
-    from .registry import get_model as _get
+    from impactlab.model.registry import get_model as _get
 
     return _get(name)
 
 
 def available_models():
     """Registered model classes by name."""
-    from .registry import available
+    from impactlab.model.registry import available
 
     return available()

@@ -12,9 +12,9 @@ import re
 import sys
 from pathlib import Path
 
-from .safe_output import write_atomically
-from .faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
-from .vocabulary import OUTPUTS  # noqa: E402  (light: names and units only)
+from impactlab.io.safe_output import write_atomically
+from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
+from impactlab.vocabulary import OUTPUTS  # noqa: E402  (light: names and units only)
 
 
 def _count(text: str) -> int:
@@ -29,7 +29,7 @@ def _count(text: str) -> int:
 
 
 def _size(text: str) -> int:
-    from .limits import parse_size
+    from impactlab.study.limits import parse_size
 
     try:
         return parse_size(text)
@@ -38,12 +38,12 @@ def _size(text: str) -> int:
 
 
 def _cmd_run(args) -> int:
-    from .errors import StudyError
-    from .faults import set_interrupt_hint
-    from .limits import check as check_limits
-    from .runner import plan_study, run_study
-    from .safe_output import check_outdir, check_output, name_in, refuse_clashes
-    from .study import load_study
+    from impactlab.errors import StudyError
+    from impactlab.run.faults import set_interrupt_hint
+    from impactlab.study.limits import check as check_limits
+    from impactlab.run.runner import plan_study, run_study
+    from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
+    from impactlab.study.core import load_study
 
     if args.scheduler:
         _check_scheduler(args.scheduler)
@@ -89,7 +89,7 @@ _SCHEDULER = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(?::\d+)?|[A
 
 
 def _check_scheduler(address: str) -> None:
-    from .errors import FieldError
+    from impactlab.errors import FieldError
 
     if not _SCHEDULER.match(address):
         raise FieldError("--scheduler", "a dask scheduler address such as tcp://HOST:8786 or HOST:8786", address)
@@ -97,12 +97,12 @@ def _check_scheduler(address: str) -> None:
 
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     """The standard pictures of a result: scalar outputs, and each history if there is one."""
-    from .plotting import draw_declared, plot_histories, plot_results
-    from .vocabulary import is_history
+    from impactlab.plot.figures import draw_declared, plot_histories, plot_results
+    from impactlab.vocabulary import is_history
 
     png = png or output.with_suffix(".png")
     if dataset.attrs.get("study_type") == "sensitivity":
-        from .sensitivity import plot_sensitivity
+        from impactlab.data.sensitivity import plot_sensitivity
 
         return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
@@ -115,7 +115,7 @@ def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
 
 
 def _cmd_models(args) -> int:
-    from .registry import available
+    from impactlab.model.registry import available
 
     descriptions = [model.describe() for model in available().values()]
     if args.json:
@@ -140,7 +140,7 @@ def _cmd_models(args) -> int:
 
 
 def _cmd_show(args) -> int:
-    from .results_io import open_results
+    from impactlab.io.results import open_results
 
     dataset = open_results(args.file)
     print(f"{args.file}: study {dataset.attrs.get('study_name', '?')!r}, "
@@ -166,11 +166,11 @@ def _cmd_show(args) -> int:
 
 
 def _cmd_plot(args) -> int:
-    from .errors import FieldError
-    from .plotting import plot_histories, plot_results
-    from .results_io import open_results
-    from .safe_output import check_output
-    from .vocabulary import MODEL_DIM, is_scalar
+    from impactlab.errors import FieldError
+    from impactlab.plot.figures import plot_histories, plot_results
+    from impactlab.io.results import open_results
+    from impactlab.io.safe_output import check_output
+    from impactlab.vocabulary import MODEL_DIM, is_scalar
 
     dataset = open_results(args.file)
     histories = [name for name in dataset.data_vars if "time" in dataset[name].dims]
@@ -203,13 +203,13 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_convergence(args) -> int:
-    from .convergence import LADDER, plot_work_precision, work_precision
-    from .results_io import write_results
-    from .study import load_study
+    from impactlab.data.convergence import LADDER, plot_work_precision, work_precision
+    from impactlab.io.results import write_results
+    from impactlab.study.core import load_study
 
-    from .safe_output import check_output, name_in
+    from impactlab.io.safe_output import check_output, name_in
 
-    from .limits import check as check_limits
+    from impactlab.study.limits import check as check_limits
 
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
@@ -252,10 +252,10 @@ def work_precision_table(dataset) -> str:
 
 
 def _cmd_paper(args) -> int:
-    from .errors import StudyError
-    from .paper import report
+    from impactlab.errors import StudyError
+    from impactlab.plot.paper import report
 
-    from .safe_output import check_output
+    from impactlab.io.safe_output import check_output
 
     results = Path(args.results)
     if not results.is_dir():
@@ -267,9 +267,9 @@ def _cmd_paper(args) -> int:
 
 
 def _cmd_export(args) -> int:
-    from .interchange import write_gspro
-    from .results_io import open_results
-    from .safe_output import check_output
+    from impactlab.io.interchange import write_gspro
+    from impactlab.io.results import open_results
+    from impactlab.io.safe_output import check_output
 
     check_output(args.output, what="shot file", suffix=".json")
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
@@ -279,9 +279,9 @@ def _cmd_export(args) -> int:
 
 def _print_benchmarks(keys) -> list[str]:
     """Run the Chung & Ooi / Kharaz benchmarks for every model, print the table; return what is over budget."""
-    from .errors import FieldError
-    from .validation.benchmark_report import describe, format_table, over_budget
-    from .validation.benchmarks import BENCHMARKS, benchmark_errors
+    from impactlab.errors import FieldError
+    from impactlab.data.validation.benchmark_report import describe, format_table, over_budget
+    from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 
     keys = None if not keys or "all" in keys else keys
     for key in keys or ():
@@ -296,12 +296,12 @@ def _print_benchmarks(keys) -> list[str]:
 
 
 def _cmd_validate(args) -> int:
-    from .shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
-    from .validation import DATASETS, errors, get_dataset
+    from impactlab.data.shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
+    from impactlab.data.validation import DATASETS, errors, get_dataset
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
     if args.plot:  # refused before the models run, not after
-        from .safe_output import check_output
+        from impactlab.io.safe_output import check_output
 
         check_output(args.plot, what="--plot file", suffix=".png")
     over = []
@@ -346,11 +346,11 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_fit(args) -> int:
-    from .fitting import describe, fit
-    from .validation import get_dataset
+    from impactlab.data.fitting import describe, fit
+    from impactlab.data.validation import get_dataset
 
-    from .safe_output import check_output
-    from .shot_report import fit_shots, shot_table
+    from impactlab.io.safe_output import check_output
+    from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after
         check_output(args.json, what="--json file", suffix=".json")
@@ -362,7 +362,7 @@ def _cmd_fit(args) -> int:
     models = args.model or known
     for model in models:
         if model not in known:
-            from .errors import FieldError
+            from impactlab.errors import FieldError
 
             raise FieldError("--model", "a model of the dataset's study", model, choices=known)
     results = []
@@ -382,7 +382,7 @@ def _cmd_fit(args) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
-    from ._version import __version__
+    from impactlab._version import __version__
 
     parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
@@ -477,9 +477,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run one command; every failure ends as one message and an exit status (impactlab.faults)."""
-    from . import limits
-    from .faults import run_command
+    """Run one command; every failure ends as one message and an exit status (impactlab.run.faults)."""
+    from impactlab.study import limits
+    from impactlab.run.faults import run_command
 
     args = build_parser().parse_args(argv)
     # the limits and the warning hook (run_command) are the command's own: both are put back on return

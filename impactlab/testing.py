@@ -14,7 +14,7 @@ or, one pytest test per model and check::
         check(model)
 
 Besides the declarations and capabilities (rules 1 and 8 of
-:class:`~impactlab.model.ImpactModel`), the checks are physics every impact
+:class:`~impactlab.model.base.ImpactModel`), the checks are physics every impact
 model must respect whatever its approximations: energy of a fixed-face impact never increases, a frictionless
 or head-on impact gives no tangential impulse, mirrored impacts mirror, the
 normal impulse lies between 0 and that of an elastic impact, beta lies in
@@ -31,11 +31,11 @@ from collections.abc import Callable, Iterator
 import attrs
 import numpy as np
 
-from .materials import BALL_PRESETS, FACE_PRESETS
-from .model import ImpactModel
-from .physics.mechanics import effective_mass
-from .scene import Contact, Impact, Scene
-from .vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
+from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
+from impactlab.model.base import ImpactModel
+from impactlab.physics.mechanics import effective_mass
+from impactlab.scene.core import Contact, Impact, Scene
+from impactlab.vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -60,8 +60,8 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
     Strikes from heel to toe and sole to crown, square and open faces, frictions 0.1-0.6, e 0.8 and 1: the
     cases where the mobility couples the normal and tangential directions and the slip turns.
     """
-    from .clubs import CLUB_PRESETS, ClubHead, Strike
-    from .scene import Delivery
+    from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+    from impactlab.scene.core import Delivery
 
     symmetric = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, -0.003, 0.035),
                          loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material)
@@ -81,7 +81,7 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
 
 
 def _complete(inputs: dict) -> dict:
-    from .scene import complete_inputs
+    from impactlab.scene.core import complete_inputs
 
     return complete_inputs(dict(inputs))
 
@@ -139,8 +139,8 @@ def check_capabilities(model) -> None:
     then the reference options are Options at the asked tolerance); ``provides_histories`` exactly when
     ``provides`` names a history, and then the histories come back on a ``time`` axis of ``history_length()``
     samples; ``solves_3d`` only with ``lateral_impulse``; ``expert_resolution`` None or two positive integers."""
-    from .errors import ModelContractError
-    from .vocabulary import CASE_DIM, TIME_DIM, is_history
+    from impactlab.errors import ModelContractError
+    from impactlab.vocabulary import CASE_DIM, TIME_DIM, is_history
 
     cls = type(model)
     assert isinstance(cls.has_tolerance, bool), "has_tolerance must be True or False"

@@ -13,7 +13,7 @@ import functools
 import math
 from numbers import Real
 
-from .errors import FieldError
+from impactlab.errors import FieldError
 
 #: Physical dimension name -> (SI unit as pint understands it, plain unit of
 #: bare numbers, words for messages).

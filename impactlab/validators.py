@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-from .errors import FieldError
+from impactlab.errors import FieldError
 
 
 def check(predicate: Callable[[float], bool], expected: str, optional: bool = False):

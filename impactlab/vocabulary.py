@@ -18,8 +18,8 @@ from typing import Any
 
 import attrs
 
-from .units import RAD_TO_DEG, RADS_TO_RPM
-from .validators import inside
+from impactlab.units import RAD_TO_DEG, RADS_TO_RPM
+from impactlab.validators import inside
 
 SCALAR = "scalar"
 HISTORY = "history"
@@ -298,7 +298,7 @@ def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
     FieldError
         At ``path[i]`` for the first entry that is not an output name, with the vocabulary as choices.
     """
-    from .errors import FieldError
+    from impactlab.errors import FieldError
 
     names = tuple(names)
     for index, name in enumerate(names):

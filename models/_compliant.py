@@ -8,7 +8,7 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from impactlab.validators import check
-from impactlab.diagnostics import LARGE_CONTACT_RATIO
+from impactlab.model.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.errors import ModelContractError
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from impactlab.materials import BALL_PRESETS
+from impactlab.scene.materials import BALL_PRESETS
 
 
 @pytest.fixture
@@ -34,7 +34,7 @@ def drawn_figures(monkeypatch):
     from matplotlib.figure import Figure
     from matplotlib.image import imread
 
-    from impactlab.plotting import audit
+    from impactlab.plot.figures import audit
 
     record = []
     original = Figure.savefig

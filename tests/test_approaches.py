@@ -7,14 +7,14 @@ import pytest
 
 import impactlab
 from impactlab.errors import FieldError
-from impactlab.registry import available, get_model
+from impactlab.model.registry import available, get_model
 
 STUDIES = Path(__file__).resolve().parent.parent / "studies"
 NORMALISED = ["normalised_incidence", "normalised_rebound", "tangential_restitution"]
 
 
 def chi_of(nu=None, k2=0.4):
-    from impactlab.materials import BALL_PRESETS
+    from impactlab.scene.materials import BALL_PRESETS
 
     nu = BALL_PRESETS["urethane_tour"].material.poisson_ratio if nu is None else nu
     return (1 - nu) / (2 - nu) * (1 + 1 / k2), 2 * (1 - nu) / (2 - nu)
@@ -63,7 +63,7 @@ def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_pa
     result = impactlab.run_study(study, executor="serial")
     models = {entry.name for entry in study.models}
     assert set(available()) <= models  # every registered approach takes part
-    from impactlab.plotting import draw_declared
+    from impactlab.plot.figures import draw_declared
 
     pictures = draw_declared(result, tmp_path, "approaches")
     assert {path.name for path in pictures} == {"approaches_psi2_vs_psi1.png", "approaches_psi2_vs_psi1_zoom.png",

@@ -5,9 +5,9 @@ import pytest
 
 import impactlab
 from impactlab.errors import FieldError
-from impactlab.materials import RestitutionLaw
+from impactlab.scene.materials import RestitutionLaw
 from impactlab.physics import hertz
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 from impactlab.testing import reference_inputs
 
 COMPLIANT = ["maw", "hertz_mindlin", "dem_linear"]
@@ -67,8 +67,8 @@ delivery: {club_speed: 45 m/s, attack_angle: 0 deg, dynamic_loft: 15 deg}
 models: [rigid_coulomb]
 outputs: [normal_velocity, ball_speed]
 """
-    from impactlab.materials import ball_preset
-    from impactlab.runner import case_inputs
+    from impactlab.scene.materials import ball_preset
+    from impactlab.run.runner import case_inputs
     ball = ball_preset("tour_urethane")
     assert ball.friction == 0.40  # the sled measurement (Henrikson et al. 2020)
     for preset, gain in (("driver", 0.083), ("6_iron", 0.0)):

@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.validation.benchmarks import BENCHMARKS, MODELS, SPHERES, benchmark_errors, kharaz_quantities, \
+from impactlab.data.validation.benchmarks import BENCHMARKS, MODELS, SPHERES, benchmark_errors, kharaz_quantities, \
     make_model, plate_inputs, read_reference, chung_ooi_5_quantities, chung_ooi_6_quantities, two_sphere_inputs
-from impactlab.validation.benchmark_report import format_table, over_budget
+from impactlab.data.validation.benchmark_report import format_table, over_budget
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
-REFERENCE_DIR = Path(__file__).parents[1] / "impactlab" / "validation" / "reference"
+REFERENCE_DIR = Path(__file__).parents[1] / "impactlab" / "data" / "validation" / "reference"
 REFERENCES = sorted(p.name for p in REFERENCE_DIR.glob("*.csv"))
 
 

@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 import impactlab
-from impactlab.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
 from impactlab.errors import FieldError, ModelInputError
-from impactlab.materials import BALL_PRESETS
+from impactlab.scene.materials import BALL_PRESETS
 from impactlab.physics.contact import after_impact, contact_state, impulse_vector
 from impactlab.physics.rigid import coulomb_impulses_1d, stronge_impulses
-from impactlab.registry import get_model
-from impactlab.scene import Contact, Delivery, Scene, complete_inputs
+from impactlab.model.registry import get_model
+from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs
 
 MODELS = ["maw", "rigid_coulomb", "restitution", "hertz_mindlin", "dem_linear"]
 IMPULSES = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
@@ -222,7 +222,7 @@ def test_annuli_refuses_a_3d_scene_naming_mdr():
 
 
 def test_a_one_line_model_gives_nan_with_the_reason_on_a_free_head():
-    from impactlab.model import ImpactModel
+    from impactlab.model.base import ImpactModel
 
     class OneLine(ImpactModel):
         name = "one_line"

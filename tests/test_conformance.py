@@ -2,7 +2,7 @@
 
 import pytest
 
-from impactlab.registry import available
+from impactlab.model.registry import available
 from impactlab.testing import check_model, parametrize_with_checks
 
 MODELS = sorted(available())
@@ -78,7 +78,7 @@ def test_conformance_catches_a_model_whose_absent_club_is_not_a_fixed_face():
         def _compute(self, inputs, outputs):
             if "club_mass" not in inputs:
                 inputs = dict(inputs, club_mass=inputs["speed"] * 0 + 0.2)
-                from impactlab.case_inputs import CaseInputs
+                from impactlab.model.case_inputs import CaseInputs
 
                 inputs = CaseInputs(inputs)
             return super()._compute(inputs, outputs)

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 import impactlab
-from impactlab.convergence import work_precision
+from impactlab.data.convergence import work_precision
 from impactlab.errors import ModelContractError
-from impactlab.limits import estimate
+from impactlab.study.limits import estimate
 from impactlab.physics import hertz
-from impactlab.registry import available
+from impactlab.model.registry import available
 from impactlab.testing import check_capabilities, check_model
 from impactlab.vocabulary import HISTORY_OUTPUTS, OUTPUTS, SCALAR_OUTPUTS, is_history, is_scalar
 from impactlab_models._compliant import CompliantOptions
@@ -162,8 +162,8 @@ def test_library_plots_leave_the_callers_backend_alone(tmp_path):
         import matplotlib
         matplotlib.use("svg")
         import impactlab
-        from impactlab.plotting import plot_histories, plot_results
-        from impactlab.convergence import plot_work_precision, work_precision
+        from impactlab.plot.figures import plot_histories, plot_results
+        from impactlab.data.convergence import plot_work_precision, work_precision
         study = {{"name": "p", "ball": {{"preset": "urethane_tour"}}, "face": {{"rigid": True}},
                  "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": 40, "angle": 20}},
                  "sweep": {{"impact.angle": [10, 30]}}, "models": ["maw", "rigid_coulomb"],
@@ -192,7 +192,7 @@ def test_no_library_module_selects_a_backend_or_uses_pyplot():
 
 
 def test_cli_main_puts_the_warning_hook_and_limits_back(capsys):
-    from impactlab import limits
+    from impactlab.study import limits
     from impactlab.cli import main
 
     def mine(*args, **kwargs):
@@ -224,8 +224,8 @@ def test_unit_constants_are_pints():
 
 
 def test_table1_is_stored_once():
-    from impactlab.paper import table1
-    from impactlab.validation import DATASETS
+    from impactlab.plot.paper import table1
+    from impactlab.data.validation import DATASETS
 
     published = table1()
     assert list(published) == list(DATASETS["wood2018"].labels)

@@ -4,7 +4,7 @@ import numpy as np
 
 import impactlab
 from impactlab.cli import main
-from impactlab.convergence import work_precision
+from impactlab.data.convergence import work_precision
 
 STUDY = {"name": "wp", "ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
          "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": 40, "angle": 20},

@@ -7,7 +7,7 @@ import pytest
 
 from impactlab.physics import hertz
 from impactlab.physics.coupling import coupling_estimate, coupling_ratio, dundurs_beta
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 URETHANE = (136e6, 0.45)
 STEEL = (196e9, 0.272)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from impactlab.physics import _kernels, dem, mdr
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 from impactlab.testing import check_model
 
 VARIANTS = [

@@ -50,7 +50,7 @@ def test_saved_chunks_are_reused(tmp_path, serial, monkeypatch):
     impactlab.run_study(STUDY, executor="serial", chunk_size=20, progress_folder=folder)
     saved = sorted(p.name for p in folder.glob("*.npz"))
     assert len(saved) == 3 * 9  # 3 models x 180 cases / 20
-    from impactlab import execution
+    from impactlab.run import execution
 
     def refuse(*args, **kwargs):
         raise AssertionError("a saved chunk was computed again")

@@ -19,7 +19,7 @@ import pytest
 import xarray as xr
 
 import impactlab
-import impactlab.execution
+import impactlab.run.execution
 from impactlab.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -168,7 +168,7 @@ def test_plan_shows_the_estimate_and_runaway_resolution_options_are_refused(tmp_
 def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch):
     folder = tmp_path / "adir"
     folder.mkdir()
-    monkeypatch.setattr("impactlab.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.run.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", folder)
     assert code == 2 and "is a folder; give a file name inside it" in err
     assert list(tmp_path.glob("adir.progress")) == [] and list(folder.iterdir()) == []
@@ -181,7 +181,7 @@ def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch
     (["-o", "/dev/full"], "is not a regular file"),
 ])
 def test_bad_output_paths_are_refused_before_running(tmp_path, capsys, old_result, monkeypatch, args, fragment):
-    monkeypatch.setattr("impactlab.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.run.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
     args = [arg.format(tmp=tmp_path, old=old_result) for arg in args]
     code, err = cli(capsys, "run", write_study(tmp_path), *args)
     assert code == 2 and fragment.format(tmp=tmp_path) in err
@@ -190,7 +190,7 @@ def test_bad_output_paths_are_refused_before_running(tmp_path, capsys, old_resul
 
 
 def test_export_and_fit_outputs_are_checked_first(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("impactlab.fitting.fit", lambda *a, **k: pytest.fail("fitted before refusing"))
+    monkeypatch.setattr("impactlab.data.fitting.fit", lambda *a, **k: pytest.fail("fitted before refusing"))
     code, err = cli(capsys, "fit", "wood2018", "--json", tmp_path)
     assert code == 2 and "is a folder; give a file name inside it, e.g." in err and ".json" in err
     code, err = cli(capsys, "export", tmp_path / "absent.h5", "-o", tmp_path / "nodir" / "x.json")
@@ -198,7 +198,7 @@ def test_export_and_fit_outputs_are_checked_first(tmp_path, capsys, monkeypatch)
 
 
 def test_study_names_cannot_leave_outdir_or_collide(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("impactlab.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.run.runner.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
     outdir = tmp_path / "deep" / "results"
     escaping = write_study(tmp_path, "escape.yaml", **{"name: compare-models": "name: ../../x"})
     code, err = cli(capsys, "run", escaping, "--outdir", outdir)
@@ -266,9 +266,9 @@ def test_disk_full_while_saving_leaves_no_temporary_and_the_old_file(tmp_path, c
         def savez(stream, **arrays):
             stream.write(b"PK partial")
             _full_disk()
-        monkeypatch.setattr("impactlab.execution.np.savez", savez)
+        monkeypatch.setattr("impactlab.run.execution.np.savez", savez)
     else:
-        monkeypatch.setattr("impactlab.safe_output.os.fsync", _full_disk)
+        monkeypatch.setattr("impactlab.io.safe_output.os.fsync", _full_disk)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "-q")
     assert code == 3 and "the disk is full: free some space" in err
     assert old_result.read_bytes() == OLD
@@ -278,7 +278,7 @@ def test_disk_full_while_saving_leaves_no_temporary_and_the_old_file(tmp_path, c
 
 # -- progress folder: lock and damaged chunks -----------------------------------------------------------------
 def test_a_second_writer_is_refused_while_the_first_holds_the_folder(tmp_path, capsys, old_result):
-    from impactlab.execution import ProgressStore
+    from impactlab.run.execution import ProgressStore
 
     with ProgressStore(tmp_path / "old.h5.progress", "someone else's", print, output=old_result):
         code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "-q")
@@ -392,16 +392,16 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkey
     kept = len([path for path in tmp_path.glob("r.h5.progress/*.npz") if not path.name.startswith(".")])
     assert not (tmp_path / "r.h5").exists() and kept >= 2
     computed = []
-    real = impactlab.execution.compute_chunk
+    real = impactlab.run.execution.compute_chunk
 
     def counting(model, inputs, outputs, chunk):
         computed.append(chunk)
         return real(model, inputs, outputs, chunk)
 
-    monkeypatch.setattr("impactlab.execution.compute_chunk", counting)
+    monkeypatch.setattr("impactlab.run.execution.compute_chunk", counting)
     code, _ = cli(capsys, "run", study, "-o", tmp_path / "r.h5", "--executor", "serial", "--chunk-size", "30")
     assert code == 0 and len(computed) == 3 * 600 // 30 - kept  # only the missing chunks
-    monkeypatch.setattr("impactlab.execution.compute_chunk", real)
+    monkeypatch.setattr("impactlab.run.execution.compute_chunk", real)
     same_results(impactlab.open_results(tmp_path / "r.h5"), impactlab.run_study(study, chunk_size=600))
 
 
@@ -463,7 +463,7 @@ def test_schedulers_bad_or_unreachable_are_said_quickly(tmp_path, capsys, monkey
     start = time.perf_counter()
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "--scheduler", "notaurl")
     assert code == 2 and "--scheduler: expected a dask scheduler address" in err
-    monkeypatch.setattr("impactlab.execution.SCHEDULER_TIMEOUT", 1)
+    monkeypatch.setattr("impactlab.run.execution.SCHEDULER_TIMEOUT", 1)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "--scheduler", "tcp://127.0.0.1:9")
     assert code == 3 and "no dask scheduler answered within 1 s" in err
     assert time.perf_counter() - start < 20 and old_result.read_bytes() == OLD
@@ -474,7 +474,7 @@ def test_debug_shows_the_traceback_and_internal_errors_say_so(tmp_path, capsys, 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("a bug")
 
-    monkeypatch.setattr("impactlab.runner.run_study", broken)
+    monkeypatch.setattr("impactlab.run.runner.run_study", broken)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", tmp_path / "r.h5")
     assert code == 1 and "internal error: ZeroDivisionError: a bug (run again with --debug" in err
     code = main(["--debug", "run", str(write_study(tmp_path)), "-o", str(tmp_path / "r.h5")])
@@ -545,7 +545,7 @@ def test_results_record_dependency_versions_commit_and_integer_flags(result_file
     with h5py.File(result_file) as handle:
         validity = handle["validity"]
         assert validity.dtype.kind == "i"
-        from impactlab.diagnostics import FLAGS
+        from impactlab.model.diagnostics import FLAGS
 
         assert list(validity.attrs["flag_values"]) == sorted(FLAGS) and all(  # one bit each, as CF flag masks
             bit & (bit - 1) == 0 for bit in FLAGS)
@@ -586,7 +586,7 @@ def test_progress_saved_in_another_chunk_layout_is_computed_again(tmp_path, monk
     """A progress folder from a version whose chunks lack a field is recomputed, never a crash."""
     import json
 
-    from impactlab import execution
+    from impactlab.run import execution
 
     study = write_study(tmp_path)
     folder = tmp_path / "progress"

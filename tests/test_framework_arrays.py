@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 import impactlab
-from impactlab import case_inputs as case_inputs_module
-from impactlab.assemble import _common_time, _on_time
-from impactlab.case_inputs import CaseInputs
+from impactlab.model import case_inputs as case_inputs_module
+from impactlab.run.assemble import _common_time, _on_time
+from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import FieldError, ModelInputError
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 STUDY = {
     "name": "three-models",
@@ -56,7 +56,7 @@ def test_sharing_the_state_changes_no_result():
     shared = impactlab.run_study(STUDY, executor="serial", chunk_size=4)
     for entry_id in ("maw", "rigid_coulomb", "restitution"):
         model = get_model(entry_id)()
-        alone = model.compute(impactlab.runner.case_inputs(impactlab.load_study(STUDY)), ["launch_angle",
+        alone = model.compute(impactlab.run.runner.case_inputs(impactlab.load_study(STUDY)), ["launch_angle",
                                                                                            "spin_rate"])
         assert np.array_equal(shared["launch_angle"].sel(model=entry_id).values, alone["launch_angle"].values)
         assert np.array_equal(shared["spin_rate"].sel(model=entry_id).values, alone["spin_rate"].values)
@@ -164,7 +164,7 @@ def test_a_worker_task_carries_its_own_cases_only(monkeypatch):
 def test_validity_is_warned_once_per_flag_for_all_models():
     import warnings
 
-    from impactlab.diagnostics import ValidityWarning
+    from impactlab.model.diagnostics import ValidityWarning
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

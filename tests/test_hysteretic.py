@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 from impactlab.physics import annuli, hertz, mdr
-from impactlab.registry import get_model
-from impactlab.validation.benchmarks import Sphere, plate_inputs
+from impactlab.model.registry import get_model
+from impactlab.data.validation.benchmarks import Sphere, plate_inputs
 
 CHI = 1.24  # urethane ball (nu 0.45) on a rigid face
 

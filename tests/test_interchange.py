@@ -7,7 +7,7 @@ import pytest
 
 import impactlab
 from impactlab.cli import main
-from impactlab.interchange import MPH, gspro_shots
+from impactlab.io.interchange import MPH, gspro_shots
 
 STUDY = {
     "name": "gspro",
@@ -57,7 +57,7 @@ def test_an_open_face_starts_right_and_curves_right_a_closed_face_the_mirror(res
 
 
 def test_cli_writes_json_and_names_what_a_plain_study_lacks(result, tmp_path, capsys):
-    from impactlab.results_io import write_results
+    from impactlab.io.results import write_results
 
     path = tmp_path / "gspro.h5"
     write_results(result, path)

@@ -10,7 +10,7 @@ import pytest
 
 from impactlab.peers import lammps
 from impactlab.physics import hertz
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 pytestmark = pytest.mark.skipif(not lammps.available(),
                                 reason="LAMMPS is not installed (lmp not on PATH; Debian: apt-get install lammps)")

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 MAW = get_model("maw")()
 RPM = 2 * np.pi / 60

@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 
 from impactlab.physics import annuli, mdr
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 MPH_BY_HAND = 1609.344 / 3600.0  # the international mile (1609.344 m) per hour, in m/s
 
@@ -338,7 +338,7 @@ def test_more_than_one_block_of_cases_gives_each_case_its_own_answer(golf_inputs
 def test_a_poisson_ratio_given_beside_a_preset_is_the_one_used():
     """Kills: a preset's Poisson ratio override ignored (study.py)."""
     import impactlab
-    from impactlab.materials import BALL_PRESETS
+    from impactlab.scene.materials import BALL_PRESETS
 
     study = {"name": "nu", "ball": {"preset": "urethane_tour", "poisson_ratio": 0.3}, "face": {"rigid": True},
              "contact": {"friction": 0.4, "restitution": 1.0}, "impact": {"speed": "80 mph", "angle": "20 deg"},
@@ -355,7 +355,7 @@ def test_a_poisson_ratio_given_beside_a_preset_is_the_one_used():
 
 def test_gspro_speed_is_in_miles_per_hour_by_hand():
     """Kills: mph taken as knots in the GSPro export (interchange.py); the expected value is a hand conversion."""
-    from impactlab.interchange import gspro_shots
+    from impactlab.io.interchange import gspro_shots
 
     speed = 60.0  # m/s
     data = xr.Dataset({name: (("model",), [value]) for name, value in (

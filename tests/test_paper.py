@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 import impactlab
-from impactlab.paper import fig6_claims, fig7_claims, table1_claims
+from impactlab.plot.paper import fig6_claims, fig7_claims, table1_claims
 
 PAPER = Path(__file__).resolve().parents[1] / "studies" / "paper"
 
@@ -53,7 +53,7 @@ def test_claims_can_fail(fig6):
 
 def test_report_is_written_from_result_files(tmp_path, fig6, fig7, table1):
     from impactlab.cli import main
-    from impactlab.results_io import write_results
+    from impactlab.io.results import write_results
 
     results = tmp_path / "results"
     results.mkdir()

@@ -17,8 +17,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from impactlab.materials import BALL_PRESETS
-from impactlab.registry import get_model
+from impactlab.scene.materials import BALL_PRESETS
+from impactlab.model.registry import get_model
 
 settings.register_profile("ci", max_examples=12, deadline=None, derandomize=True,
                           suppress_health_check=[HealthCheck.too_slow])

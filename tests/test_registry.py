@@ -4,7 +4,7 @@ from importlib import metadata
 
 import pytest
 
-from impactlab import registry
+from impactlab.model import registry
 from impactlab.errors import ModelNotFoundError, PluginWarning
 
 

@@ -8,7 +8,7 @@ import xarray as xr
 
 import impactlab
 from impactlab.errors import StudyError
-from impactlab.results_io import write_results
+from impactlab.io.results import write_results
 
 STUDY = {"name": "io", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel", "mass": "200 g"},
          "contact": {"friction": 0.35, "restitution": 0.8}, "impact": {"speed": "100 mph", "angle": "12 deg"},
@@ -38,7 +38,7 @@ def test_failed_write_leaves_the_existing_file_intact(dataset, tmp_path, monkeyp
     def explode(descriptor):  # the HDF5 image is written, then the disk turns out full
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr("impactlab.safe_output.os.fsync", explode)
+    monkeypatch.setattr("impactlab.io.safe_output.os.fsync", explode)
     with pytest.raises(OSError):
         write_results(dataset.isel(angle=0), path)
     assert path.read_bytes() == before

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 RIGID = get_model("rigid_coulomb")()
 

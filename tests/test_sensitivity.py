@@ -1,4 +1,4 @@
-"""Sensitivity and model-form studies (impactlab.sensitivity): indices of analytic cases, ranges, bad input."""
+"""Sensitivity and model-form studies (impactlab.data.sensitivity): indices of analytic cases, ranges, bad input."""
 
 from pathlib import Path
 
@@ -8,7 +8,7 @@ import pytest
 import impactlab
 from impactlab.cli import main
 from impactlab.errors import FieldError
-from impactlab.results_io import open_results, write_results
+from impactlab.io.results import open_results, write_results
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -7,13 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from impactlab.calibration import apply, calibrate, cross_validate
+from impactlab.data.calibration import apply, calibrate, cross_validate
 from impactlab.cli import main
 from impactlab.errors import StudyError
 from impactlab.physics.contact import contact_state
-from impactlab.registry import get_model
-from impactlab.shot_report import shot_table
-from impactlab.shots import ERROR_KEYS, predict, read_csv, read_yaml, shot_errors, summary, table_inputs
+from impactlab.model.registry import get_model
+from impactlab.data.shot_report import shot_table
+from impactlab.data.shots import ERROR_KEYS, predict, read_csv, read_yaml, shot_errors, summary, table_inputs
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
 MPH = 0.44704  # m/s, by definition (1 mile = 1609.344 m, 1 h = 3600 s)
@@ -95,7 +95,7 @@ def test_the_face_gain_raises_the_balls_restitution_law_on_woods_only():
     assert np.allclose(inputs["restitution"][~wood], ball_e, atol=1e-12)
     changed = apply(inputs, ["face_restitution_gain"], [0.02], loft_at=table.loft_at)
     assert np.allclose(changed["restitution"], inputs["restitution"])  # no ball given: e stays as the inputs had it
-    from impactlab.materials import ball_preset
+    from impactlab.scene.materials import ball_preset
     changed = apply(inputs, ["face_restitution_gain"], [0.02], ball_preset("tour_urethane"), table.loft_at)
     assert np.allclose(changed["restitution"], np.where(wood, ball_e + 0.02, ball_e), atol=1e-12)
 
@@ -125,7 +125,7 @@ def synthetic_table(model, truth):
             "vertical_launch_angle: rad, spin_rate: rad/s}\nsigma: {ball_speed: 1 mph, vertical_launch_angle: "
             "0.5 deg, spin_rate: 150 rpm}\nrows:\n" + rows + "\n")
     table = read_yaml(text, "synthetic.yaml")
-    from impactlab.materials import ball_preset
+    from impactlab.scene.materials import ball_preset
     predicted = predict(model, apply(table_inputs(table), list(truth), list(truth.values()),
                                      ball_preset("tour_urethane"), table.loft_at))
     for key in ("ball_speed", "vertical_launch_angle", "spin_rate"):
@@ -195,7 +195,7 @@ def test_a_bad_csv_ends_in_one_message_and_exit_2(tmp_path, capsys):
 
 
 def test_the_validation_figure_draws_the_measured_values_and_every_model():
-    from impactlab.shot_report import shots_figure
+    from impactlab.data.shot_report import shots_figure
 
     table = shot_table("trackman_tour")
     predictions = {"a": {key: value * 1.1 for key, value in table.measured.items()},

@@ -11,11 +11,11 @@ import math
 import numpy as np
 import pytest
 
-from impactlab.clubs import ClubHead
+from impactlab.scene.clubs import ClubHead
 from impactlab.errors import FieldError
 from impactlab.physics.contact import contact_state
-from impactlab.registry import get_model
-from impactlab.validation.benchmarks import SPHERES, plate_inputs, two_sphere_inputs
+from impactlab.model.registry import get_model
+from impactlab.data.validation.benchmarks import SPHERES, plate_inputs, two_sphere_inputs
 
 GLASS = SPHERES["glass"]
 MODELS = ("maw", "hertz_mindlin", "dem_linear", "rigid_coulomb")
@@ -82,8 +82,8 @@ def test_oblique_equal_spheres_match_rigid_body_impulses_in_gross_slip_and_rigid
 
 @pytest.mark.parametrize("model", MODELS)
 def test_a_large_heavy_rigid_sphere_is_a_fixed_rigid_plane(model):
-    from impactlab.materials import Ball, Material
-    from impactlab.scene import Contact, Impact, Scene
+    from impactlab.scene.materials import Ball, Material
+    from impactlab.scene.core import Contact, Impact, Scene
 
     s = SPHERES["aluminium_oxide"]
     ball = Ball(s.radius, s.mass, 0.4, Material(s.youngs_modulus, s.poisson_ratio))

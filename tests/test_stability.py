@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from impactlab.materials import MATERIAL_PRESETS
-from impactlab.registry import available, get_model
+from impactlab.scene.materials import MATERIAL_PRESETS
+from impactlab.model.registry import available, get_model
 
 MODELS = sorted(available())
 STEEL = MATERIAL_PRESETS["steel"]
@@ -117,7 +117,7 @@ def test_validity_flags_say_when_assumptions_break():
 
 
 def test_large_contact_threshold_is_where_the_paraboloid_misses_the_sphere_by_2_percent():
-    from impactlab.diagnostics import LARGE_CONTACT_RATIO, paraboloid_error
+    from impactlab.model.diagnostics import LARGE_CONTACT_RATIO, paraboloid_error
 
     # exact gap of a sphere of radius 1 against Hertz's paraboloid, at the contact edge
     rho = np.array([0.1, LARGE_CONTACT_RATIO, 0.56])

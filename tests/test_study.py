@@ -77,7 +77,7 @@ def test_missing_outputs_are_nan_and_say_why():
 
 
 def test_histories_share_a_time_axis_padded_with_nan():
-    from impactlab.diagnostics import ValidityWarning
+    from impactlab.model.diagnostics import ValidityWarning
 
     with pytest.warns(ValidityWarning, match="maw: in 2 of 2 case.s. the contact radius exceeds 0.3 R"):
         ds = impactlab.run_study({**MINIMAL, "sweep": {"impact.speed": ["20 m/s", "60 m/s"]},
@@ -196,7 +196,7 @@ def test_fields_swept_together_share_one_labelled_dimension(tmp_path):
     assert ds.club_speed.attrs["units"] == "m/s"
     # each label's fields really went together: spin loft = dynamic loft - attack angle
     np.testing.assert_allclose(ds.spin_loft.sel(model="maw", friction=0.3), ds.dynamic_loft + 4.0, rtol=1e-12)
-    from impactlab.results_io import write_results
+    from impactlab.io.results import write_results
 
     back = impactlab.open_results(write_results(ds, tmp_path / "grouped.h5"))
     import xarray as xr
@@ -219,7 +219,7 @@ def test_grouped_sweep_errors_name_the_field():
 
 def test_a_large_sweep_is_validated_with_a_bounded_number_of_scenes(monkeypatch):
     # each field's validity is an interval: its ends and the first value decide, not one scene per value
-    import impactlab.study as study_module
+    import impactlab.study.core as study_module
 
     built = []
     real = study_module.build_scene

@@ -67,7 +67,7 @@ def test_incoming_spin_sign_in_the_users_frames():
     rotation about +y, whose contact point (at -R z) moves along -x. Rigid body, rolling regime, fixed face: the
     tangential impulse is m_t times the contact-point slip, so it measures the slip directly.
     """
-    from impactlab.registry import get_model
+    from impactlab.model.registry import get_model
 
     radius, mass, k2, speed, alpha, w = 0.021335, 0.04593, 0.4, 20.0, np.radians(30.0), 300.0
     m_t = mass / (1.0 + 1.0 / k2)

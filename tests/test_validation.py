@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.fitting import fit
-from impactlab.validation import DATASETS, errors, predictions
+from impactlab.data.fitting import fit
+from impactlab.data.validation import DATASETS, errors, predictions
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
 
@@ -59,7 +59,7 @@ def test_fit_recovers_a_known_friction_from_synthetic_data():
     template = DATASETS["wood2018"]
     study_truth = attrs.evolve(template, name="synthetic")
     # predictions of maw at mu = 0.25 play the measurements
-    from impactlab.runner import case_inputs
+    from impactlab.run.runner import case_inputs
 
     study = template.load_study()
     inputs = case_inputs(study)
@@ -107,7 +107,7 @@ def test_predictions_follow_the_dataset_points_not_the_study_order():
 def write_session(folder, points, extra=""):
     from importlib import resources
 
-    study = resources.files("impactlab.validation").joinpath("table1_clubs.yaml").read_text()
+    study = resources.files("impactlab.data.validation").joinpath("table1_clubs.yaml").read_text()
     (folder / "clubs.yaml").write_text(study)
     path = folder / "session.yaml"
     path.write_text(f"""name: session
@@ -121,8 +121,8 @@ points:
 
 
 def test_your_own_measured_data_file_can_be_validated_and_fitted(tmp_path, capsys):
-    from impactlab.runner import case_inputs
-    from impactlab.validation import get_dataset
+    from impactlab.run.runner import case_inputs
+    from impactlab.data.validation import get_dataset
 
     study = DATASETS["wood2018"].load_study()
     inputs = case_inputs(study)

@@ -5,7 +5,7 @@ import pytest
 
 import impactlab
 from impactlab.physics import mdr
-from impactlab.registry import get_model
+from impactlab.model.registry import get_model
 
 
 @pytest.fixture
@@ -72,7 +72,7 @@ def test_the_plan_says_what_runs_and_is_stored_with_the_result():
     study = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True}, "contact": {"friction": 0.3,
              "restitution": 0.8}, "impact": {"speed": 40, "angle": 20}, "models": ["maw", "rigid_coulomb"],
              "outputs": ["launch_ratio", "contact_time", "spin_axis"]}
-    from impactlab.runner import plan_study
+    from impactlab.run.runner import plan_study
 
     text = plan_study(impactlab.load_study(study)).describe()
     assert "[maw] maw: computes" in text and "contact_time" in text

@@ -1,0 +1,1 @@
+"""Measured data: shot tables, calibration and fitting, validation datasets, sensitivity, convergence."""

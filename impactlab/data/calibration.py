@@ -1,0 +1,232 @@
+"""Calibrate a model's ball and contact parameters to launch-monitor shots, and cross-validate the calibration.
+
+Weighted least squares (``scipy.optimize.least_squares``, bounded trust region)
+of the model's predicted ball speed, launch angle, launch direction, spin rate
+and spin axis against every measured value of a
+:class:`~impactlab.data.shots.ShotTable`, each residual divided by its measurement
+uncertainty. Several parameters at once (:data:`PARAMETERS`): friction, the
+cover's tangential loss, a linear restitution law of the normal speed (e at
+40 m/s and its slope), the restitution gain of a thin wood face, and a mean
+strike offset up the face. The covariance is (J^T J)^-1 at the optimum (the
+residuals are in units of their sigma, so it is not rescaled), with its
+correlation matrix; a parameter whose column of J vanishes, or whose one-sigma
+uncertainty exceeds half its allowed range, is reported as not identified by
+the data.
+
+Cross-validation: fit on all rows but some, predict those; by default one row
+is left out at a time. The errors on the rows not fitted are the honest
+measure of what a calibration buys.
+"""
+
+from __future__ import annotations
+
+import math
+
+import attrs
+import numpy as np
+from scipy.optimize import least_squares
+
+from impactlab.errors import FieldError
+from impactlab.scene.materials import RestitutionLaw
+from impactlab.data.shots import (
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, table_inputs,
+)
+
+#: parameter -> (bounds, start, what it is). A ball's restitution is bounded not to rise with the impact speed (its
+#: viscoelastic losses grow with the strain rate). The face gain's bound is wide on purpose: a fit that puts a
+#: driver's e above the USGA's COR limit of 0.830 is reported as such (docs/validation.md), not clipped out of sight.
+PARAMETERS = {
+    "friction": ((0.05, 1.0), 0.4, "Coulomb friction of ball and face"),
+    "tangential_loss": ((0.0, 1.5), 0.2, "loss factor of the cover in shear (compliant models)"),
+    "restitution": ((0.5, 0.95), 0.78, "normal restitution of the ball on a rigid steel face at 40 m/s"),
+    "restitution_slope": ((-0.01, 0.0), -0.001, "de/dv of the ball's restitution law [s/m]"),
+    "face_restitution_gain": ((0.0, 0.15), 0.03, "rise of e on a thin wood face (rows whose club face is bulged)"),
+    "strike_high": ((-0.015, 0.015), 0.0, "mean strike offset up the face [m]"),
+}
+#: normal speed at which the fitted restitution law's ``restitution`` applies [m/s]
+REFERENCE_SPEED = 40.0
+DEFAULT_PARAMETERS = ("friction", "tangential_loss", "restitution", "face_restitution_gain")
+
+
+@attrs.frozen
+class Calibration:
+    """Fitted parameters of one model on one shot table, with their uncertainty and the errors before and after.
+
+    ``values`` and ``uncertainties`` are SI (one sigma; ``inf`` where not identified); ``rms_before`` and
+    ``rms_after`` are the RMS of the sigma-weighted residuals; ``errors_before`` and ``errors_after`` the RMS
+    errors per measured quantity (:func:`impactlab.data.shots.summary`).
+    """
+
+    model: str
+    table: str
+    parameters: tuple[str, ...]
+    values: tuple[float, ...]
+    uncertainties: tuple[float, ...]
+    correlation: tuple[tuple[float, ...], ...]
+    identified: tuple[bool, ...]
+    singular_values: tuple[float, ...]
+    rms_before: float
+    rms_after: float
+    errors_before: dict = attrs.field(eq=False)
+    errors_after: dict = attrs.field(eq=False)
+
+    def as_dict(self) -> dict:
+        """The calibration as plain data (JSON-ready; ``impactlab fit --json``)."""
+        return attrs.asdict(self)
+
+    def describe(self) -> str:
+        """One line: each parameter with its one-sigma uncertainty, or 'not identified by these data'."""
+        lines = []
+        for name, value, sigma, ok in zip(self.parameters, self.values, self.uncertainties, self.identified):
+            state = f"{value:.4g} +- {sigma:.2g}" if ok else f"{value:.4g} (not identified by these data)"
+            lines.append(f"{name} = {state}")
+        return "; ".join(lines)
+
+
+def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> dict:
+    """The model inputs with the calibration parameters ``names`` set to ``values`` (SI arrays).
+
+    ``ball`` (a :class:`~impactlab.scene.materials.Ball`) supplies the restitution law where the parameters do not
+    replace it. With ``loft_at="contact"`` a strike offset keeps the loft measured at the contact point (the face
+    centre's loft moves instead, :func:`impactlab.data.shots.centre_delivery`).
+    """
+    from impactlab.physics.contact import contact_state
+    from impactlab.scene.core import complete_inputs
+
+    out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
+    given = dict(zip(names, values))
+    n = out["speed"].size
+    for name in ("friction", "tangential_loss"):
+        if name in given:
+            out[name] = np.full(n, given[name])
+    if "strike_high" in given:
+        measured = {"dynamic_loft": out["dynamic_loft"] + np.arctan(out["strike_high"] / out["face_roll_radius"]),
+                    "face_angle": out["face_angle"] + np.arctan(out["strike_toe"] / out["face_bulge_radius"])}
+        out["strike_high"] = out["strike_high"] + given["strike_high"]
+        if loft_at == "contact":
+            out = complete_inputs(centre_delivery(out, measured))
+    if "face_restitution_gain" in given:
+        wood = np.isfinite(out["face_bulge_radius"])
+        out["club_restitution_gain"] = np.where(wood, given["face_restitution_gain"], 0.0)
+    law = None
+    if "restitution" in given or "restitution_slope" in given:
+        law = RestitutionLaw("linear", given.get("restitution", PARAMETERS["restitution"][1]), REFERENCE_SPEED,
+                             slope=given.get("restitution_slope", 0.0))
+    elif ball is not None and ball.restitution is not None and {"strike_high", "face_restitution_gain"} & set(given):
+        law = ball.restitution
+    if law is not None:
+        gain = out.get("club_restitution_gain", 0.0)
+        out["restitution"] = np.clip(law(contact_state(out)["normal_speed"]) + gain, 0.0, 1.0)
+    return out
+
+
+def _residuals(predicted: dict, table: ShotTable) -> np.ndarray:
+    parts = []
+    for key in MEASURED_FIELDS:
+        measured = table.measured[key]
+        keep = np.isfinite(measured)
+        difference = predicted[key][keep] - measured[keep]
+        if key in ("horizontal_launch_angle", "spin_axis"):
+            difference = (difference + math.pi) % (2 * math.pi) - math.pi
+        parts.append(difference / table.sigma[key][keep])
+    return np.concatenate(parts)
+
+
+def _table_ball(table: ShotTable, ball_block: dict | None):
+    from impactlab.study.core import build_ball
+
+    return build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
+
+
+def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
+              start: dict | None = None) -> Calibration:
+    """Fit ``parameters`` of ``model`` (an ImpactModel instance) to every measured value of ``table``.
+
+    Parameters
+    ----------
+    model : ImpactModel
+    table : ShotTable
+    parameters : sequence of str
+        Names from :data:`PARAMETERS`.
+    ball : dict, optional
+        A study ``ball:`` block (default: the table's, else the ``tour_urethane`` preset).
+    start : dict, optional
+        Start values by parameter name (default: :data:`PARAMETERS`).
+    """
+    names = tuple(parameters)
+    for name in names:
+        if name not in PARAMETERS:
+            raise FieldError("--parameter", "a parameter the calibration can fit", name, choices=PARAMETERS)
+    if len(set(names)) != len(names):
+        raise FieldError("--parameter", "distinct parameters", list(names))
+    if "tangential_loss" in names and "tangential_loss" not in model.optional_inputs | model.requires:
+        raise FieldError("--parameter", f"a parameter model {model.name!r} uses (it has no tangential loss)",
+                         "tangential_loss", choices=[n for n in PARAMETERS if n != "tangential_loss"])
+    measured_values = sum(int(np.isfinite(table.measured[key]).sum()) for key in MEASURED_FIELDS)
+    if measured_values < len(names):
+        raise FieldError("--parameter", f"at most as many parameters as measured values ({measured_values})",
+                         list(names))
+    ball_object = _table_ball(table, ball)
+    inputs = table_inputs(table, ball)
+    low = np.array([PARAMETERS[name][0][0] for name in names])
+    high = np.array([PARAMETERS[name][0][1] for name in names])
+    x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
+
+    def predicted(x):
+        return predict(model, apply(inputs, names, x, ball_object, table.loft_at))
+
+    before = predicted(x0)
+    # finite-difference steps of 1 % of each range: well above the models' discretisation error (1e-4)
+    solution = least_squares(lambda x: _residuals(predicted(x), table), x0, bounds=(low, high),
+                             x_scale=high - low, diff_step=0.01 * (high - low) / np.maximum(np.abs(x0), 1e-3),
+                             method="trf")
+    jacobian = solution.jac
+    singular = np.linalg.svd(jacobian * (high - low), compute_uv=False)
+    covariance = np.linalg.pinv(jacobian.T @ jacobian)
+    sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
+    column = np.linalg.norm(jacobian, axis=0)
+    identified = (column > 1e-9 * max(column.max(), 1e-300)) & (sigma < 0.5 * (high - low))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        correlation = covariance / np.outer(sigma, sigma)
+    return Calibration(
+        model=model.name, table=table.name, parameters=names, values=tuple(float(v) for v in solution.x),
+        uncertainties=tuple(float(s) if ok else math.inf for s, ok in zip(sigma, identified)),
+        correlation=tuple(tuple(float(c) for c in row) for row in correlation),
+        identified=tuple(bool(v) for v in identified), singular_values=tuple(float(s) for s in singular),
+        rms_before=float(np.sqrt(np.mean(_residuals(before, table) ** 2))),
+        rms_after=float(np.sqrt(np.mean(solution.fun**2))),
+        errors_before=summary(shot_errors(before, table)),
+        errors_after=summary(shot_errors(predicted(solution.x), table)))
+
+
+def predict_with(model, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
+    """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
+    inputs = table_inputs(table, ball)
+    return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball),
+                                table.loft_at))
+
+
+def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
+                   folds=None) -> dict:
+    """Fit on all rows but some, predict those; by default leave one row out at a time.
+
+    Returns
+    -------
+    dict
+        ``errors``: per-row errors on the rows left out (keys of :data:`ERROR_KEYS`, NaN where not measured);
+        ``summary``: their RMS; ``fits``: the fitted values of each fold; ``labels``: the rows.
+    """
+    folds = folds or [[i] for i in range(table.size)]
+    held = {key: np.full(table.size, np.nan) for key in ERROR_KEYS}
+    fits = []
+    for rows in folds:
+        rows = np.asarray(rows)
+        train = np.setdiff1d(np.arange(table.size), rows)
+        if train.size == 0:
+            raise FieldError("folds", "folds that leave rows to fit on", rows.tolist())
+        result = calibrate(model, table.subset(train), parameters, ball)
+        fits.append(dict(zip(result.parameters, result.values)))
+        test = table.subset(rows)
+        for key, values in shot_errors(predict_with(model, test, result, ball), test).items():
+            held[key][rows] = values
+    return {"errors": held, "summary": summary(held), "fits": fits, "labels": table.labels}

@@ -1,0 +1,158 @@
+"""Error against run time: a work-precision study of every model in a study.
+
+For each model entry that declares ``has_tolerance`` (rule 8 of
+:class:`~impactlab.model.base.ImpactModel`: its ``tolerance`` option sets the
+numerical error), the study's cases
+are run along a ladder of tolerances. Each output's error is measured against
+a converged reference: the same physics at a tolerance far below the ladder,
+run twice (reference tolerance and a quarter of it, i.e. twice the
+resolution) and extrapolated assuming the error falls in proportion to the
+tolerance (Richardson). Models declare how their reference is computed
+(:meth:`ImpactModel.reference_options`); ``maw`` uses its MDR engine for
+both methods, since both solve the same problem. Wall time per impact is the
+median of repeated runs after a warm-up run (caches and imports excluded).
+Closed-form models (no declared tolerance) are timed once and have no error to
+report beyond round-off.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+import attrs
+import numpy as np
+import xarray as xr
+
+from impactlab._version import __version__
+from impactlab.run.runner import case_inputs
+from impactlab.study.core import Study
+from impactlab.vocabulary import OUTPUTS, is_scalar
+
+LADDER = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6)
+
+
+def _timed(model, inputs, outputs, repeats: int) -> tuple[xr.Dataset, float]:
+    result = model.compute(inputs, outputs)  # warm-up: imports, caches, calibrations
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        model.compute(inputs, outputs)
+        times.append(time.perf_counter() - start)
+    return result, float(np.median(times))
+
+
+def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=None) -> xr.Dataset:
+    """Error and wall time per impact for every model entry of ``study`` along a ladder of tolerances."""
+    inputs = case_inputs(study)
+    n_cases = study.n_cases
+    outputs = [name for name in study.outputs if is_scalar(name)]
+    tolerances = np.asarray(sorted(tolerances, reverse=True), dtype=float)
+    ids = [entry.id for entry in study.models]
+    error = np.full((len(ids), tolerances.size, len(outputs)), np.nan)
+    abs_error = np.full_like(error, np.nan)
+    wall = np.full((len(ids), tolerances.size), np.nan)
+    resolution = np.full((len(ids), tolerances.size), np.nan)
+    notes = {}
+    for m, entry in enumerate(study.models):
+        model = entry.model
+        say = progress or (lambda text: None)
+        if not model.has_tolerance:
+            _, seconds = _timed(model, inputs, outputs, repeats)
+            wall[m, :] = seconds / n_cases
+            error[m, :, :] = 0.0
+            abs_error[m, :, :] = 0.0
+            notes[entry.id] = "closed form: exact to round-off at any tolerance"
+            say(f"{entry.id}: closed form, {1e6 * seconds / n_cases:.2f} us per impact")
+            continue
+        finest = float(tolerances.min()) / 30.0
+        reference_model = type(model)(model.reference_options(finest))
+        fine = reference_model.compute(inputs, outputs)
+        finer = type(model)(model.reference_options(finest / 4.0)).compute(inputs, outputs)
+        reference = {name: finer[name].values + (finer[name].values - fine[name].values) / 3.0 for name in outputs}
+        notes[entry.id] = (f"reference: {type(model).__name__} options "
+                           f"{json.dumps(attrs.asdict(model.reference_options(finest / 4.0)))} extrapolated")
+        for t, tolerance in enumerate(tolerances):
+            configured = type(model)(attrs.evolve(model.options, tolerance=float(tolerance)))
+            if not configured.can_reach(float(tolerance)):
+                continue
+            result, seconds = _timed(configured, inputs, outputs, repeats)
+            wall[m, t] = seconds / n_cases
+            if "steps" in configured.provides:
+                resolution[m, t] = float(np.max(configured.compute(inputs, ["steps"])["steps"].values))
+            for o, name in enumerate(outputs):
+                difference = np.abs(result[name].values - reference[name])
+                scale = max(float(np.nanmax(np.abs(reference[name]))), 1e-300)
+                abs_error[m, t, o] = float(np.nanmax(difference))
+                error[m, t, o] = abs_error[m, t, o] / scale
+            say(f"{entry.id}: tolerance {tolerance:g}: error {np.nanmax(error[m, t]):.2e}, "
+                f"{1e6 * wall[m, t]:.1f} us per impact")
+    return xr.Dataset(
+        {
+            "error": (("model", "tolerance", "output"), error,
+                      {"units": "1", "long_name": "largest error over the cases, relative to the output's largest "
+                                                  "magnitude"}),
+            "abs_error": (("model", "tolerance", "output"), abs_error,
+                          {"long_name": "largest absolute error over the cases, in the output's units"}),
+            "wall_time": (("model", "tolerance"), wall, {"units": "s", "long_name": "wall time per impact "
+                                                         "(median of repeats, warm)"}),
+            "steps": (("model", "tolerance"), resolution, {"units": "1", "long_name": "largest number of time "
+                                                           "steps of a case"}),
+        },
+        coords={"model": ids, "tolerance": ("tolerance", tolerances, {"units": "1", "long_name": "requested "
+                                                                      "tolerance"}),
+                "output": outputs,
+                "output_units": ("output", [OUTPUTS[name].units for name in outputs])},
+        attrs={"title": f"work-precision of study {study.name}", "study_name": study.name,
+               "study_source": study.source, "cases": n_cases, "repeats": repeats,
+               "reference": json.dumps(notes), "impactlab_version": __version__,
+               "method": __doc__.strip().split("\n\n")[1].replace("\n", " ")},
+    )
+
+
+def plot_work_precision(dataset: xr.Dataset, path) -> None:
+    """Error against wall time per impact, log-log, one panel per output and one line per model entry."""
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
+
+    from impactlab.plot.figures import _axis_label
+
+    outputs = list(dataset.output.values)
+    columns = min(2, len(outputs))
+    rows = -(-len(outputs) // columns)
+    figure = Figure(figsize=(6.0 * columns, 4.2 * rows))
+    axes = figure.subplots(rows, columns, squeeze=False)
+    for axis, output in zip(axes.flat, outputs):
+        closed = 0
+        for model in dataset.model.values:
+            times = dataset.wall_time.sel(model=model).values * 1e6
+            errors = dataset.error.sel(model=model, output=output).values
+            keep = np.isfinite(times) & np.isfinite(errors)
+            if keep.any() and np.all(errors[keep] == 0):
+                # exact: no error to draw, only its cost (a vertical rule, named in the legend)
+                axis.axvline(np.nanmedian(times), linestyle=(0, (1, 2 + closed)), color=("0.2", "0.55")[closed % 2],
+                             label=f"{model} (closed form, exact)")
+                closed += 1
+                continue
+            line, = axis.plot(times[keep], errors[keep], "o-", label=str(model), markersize=3)
+            # tolerances label their points on alternate sides: the fast end of a rule bunches up in time
+            for index, (t, e, tol) in enumerate(zip(times[keep], errors[keep], dataset.tolerance.values[keep])):
+                right = index % 2 == 0
+                axis.annotate(f"{tol:g}", (t, e), fontsize=6, xytext=(4 if right else -4, 0),
+                              textcoords="offset points", ha="left" if right else "right", va="center",
+                              color=line.get_color())
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        axis.set_xlabel("wall time per impact [us] (one core, warm)")
+        axis.set_ylabel(_axis_label(f"error of {OUTPUTS[output].long_name} / its largest |value|", "1", 48),
+                        fontsize=8)
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend(fontsize=7)
+    for axis in list(axes.flat)[len(outputs):]:
+        axis.set_visible(False)
+    figure.suptitle(dataset.attrs.get("title", "") + f" ({int(dataset.attrs.get('cases', 0))} impacts; "
+                    "point labels: requested tolerance)", fontsize=10)
+    figure.tight_layout()
+    from impactlab.plot.figures import _save
+
+    _save(figure, path)

@@ -1,0 +1,179 @@
+"""What ``impactlab validate`` and ``impactlab fit`` print for launch-monitor shot tables.
+
+Kept apart from the command line's argument handling: these functions take
+plain values and print the tables, so that Python users can call them too.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import sys
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
+from impactlab.data.shots import (
+    ERROR_KEYS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
+)
+
+#: shot tables shipped with impactlab (impactlab/data/validation/NAME.yaml)
+SHOT_TABLES = ("trackman_tour",)
+#: the models compared against shot tables by default
+SHOT_MODELS = ("maw", "hertz_mindlin", "dem_linear", "rigid_coulomb", "restitution")
+#: the models fitted by default (the others: rigid_coulomb's spin is fixed by rolling, restitution's by beta)
+FIT_MODELS = ("maw", "hertz_mindlin", "rigid_coulomb")
+
+
+def _is_shot_yaml(path: Path) -> bool:
+    """Whether a YAML file is a shot table (top-level ``rows:``) rather than a measured-data file (``points:``)."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return True  # the shot reader says what is wrong with it
+    return re.search(r"^rows\s*:", text, flags=re.MULTILINE) is not None
+
+
+def shot_table(name: str) -> ShotTable | None:
+    """A shot table: a .csv file, a .yaml file with ``rows:``, or a shipped table by name; None otherwise."""
+    path = Path(name)
+    suffix = path.suffix.lower()
+    if suffix == ".csv" or (suffix in (".yaml", ".yml") and _is_shot_yaml(path)):
+        return read_shots(path)
+    if name in SHOT_TABLES:
+        text = resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text()
+        return read_yaml(text, f"impactlab/data/validation/{name}.yaml")
+    return None
+
+
+def data_uncertainty(table: ShotTable) -> dict:
+    """The table's one-sigma uncertainty in the units of :data:`ERROR_KEYS` (RMS over the rows measuring each)."""
+    m, s = table.measured, table.sigma
+    with np.errstate(invalid="ignore", divide="ignore"):
+        values = {
+            "ball_speed [%]": 100.0 * s["ball_speed"] / m["ball_speed"],
+            "launch angle [deg]": np.degrees(np.where(np.isfinite(m["vertical_launch_angle"]),
+                                                      s["vertical_launch_angle"], np.nan)),
+            "launch direction [deg]": np.degrees(np.where(np.isfinite(m["horizontal_launch_angle"]),
+                                                          s["horizontal_launch_angle"], np.nan)),
+            "spin [%]": 100.0 * s["spin_rate"] / m["spin_rate"],
+            "spin axis [deg]": np.degrees(np.where(np.isfinite(m["spin_axis"]), s["spin_axis"], np.nan)),
+        }
+    return summary(values)
+
+
+#: display units of the measured quantities on the validation figure: (label, factor from SI)
+_PANELS = (("ball_speed", "ball speed [mph]", 1.0 / MPH), ("vertical_launch_angle", "launch angle [deg]", RAD_TO_DEG),
+           ("spin_rate", "spin rate [rpm]", RADS_TO_RPM))
+
+
+def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
+    """Draw :func:`shots_figure` to the PNG ``path``."""
+    import io
+
+    from impactlab.io.safe_output import write_atomically
+
+    buffer = io.BytesIO()
+    shots_figure(table, predictions).savefig(buffer, format="png", dpi=110)
+    return write_atomically(path, buffer.getvalue())
+
+
+def shots_figure(table: ShotTable, predictions: dict):
+    """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
+
+    ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Returns a matplotlib
+    ``Figure`` (no pyplot state is touched).
+    """
+    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
+
+    panels = [entry for entry in _PANELS if np.isfinite(table.measured[entry[0]]).any()]
+    figure = Figure(figsize=(4.2 * len(panels), 4.2), layout="constrained")
+    axes = figure.subplots(1, len(panels), squeeze=False)[0]
+    rows = np.arange(table.size)
+    markers = ("o", "s", "^", "D", "v", "P", "X")
+    width = 0.6 / max(len(predictions), 1)
+    for axis, (key, label, factor) in zip(axes, panels):
+        axis.errorbar(rows, table.measured[key] * factor, yerr=table.sigma[key] * factor, fmt="k_", ms=22, mew=2,
+                      capsize=4, label="measured (+- 1 sigma)", zorder=3)
+        for index, (name, predicted) in enumerate(predictions.items()):
+            offset = (index - (len(predictions) - 1) / 2) * width
+            axis.plot(rows + offset, predicted[key] * factor, markers[index % len(markers)], ls="none", label=name)
+        axis.set_xticks(rows, table.labels, rotation=20)
+        axis.set_ylabel(label)
+        axis.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    figure.suptitle(f"{table.name}: measured launch beside each model (ball and club presets, square centred "
+                    f"strikes unless the table says otherwise)", fontsize=10)
+    return figure
+
+
+def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list[str]:
+    """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget."""
+    from impactlab.model.registry import get_model
+
+    print(f"{table.name}: {table.size} row(s) ({', '.join(table.labels)})")
+    print(f"  source: {table.source}")
+    keys = [key for key, value in data_uncertainty(table).items() if math.isfinite(value)]
+    print(f"  {'RMS error':<16}" + "".join(f"{key:>22}" for key in keys))
+    sigma = data_uncertainty(table)
+    print(f"  {'data 1-sigma':<16}" + "".join(f"{sigma[key]:22.2f}" for key in keys))
+    inputs = table_inputs(table)
+    over, predictions = [], {}
+    for name in models:
+        predictions[name] = predict(get_model(name)(), inputs)
+        rms = summary(shot_errors(predictions[name], table))
+        budget = table.budgets.get(name, {})
+        cells = []
+        for key in keys:
+            mark = "" if rms[key] <= sigma[key] else ("" if rms[key] <= budget.get(key, math.inf) else " OVER")
+            if key in budget and rms[key] > budget[key]:
+                over.append(f"{table.name}/{name}")
+            cells.append(f"{rms[key]:.2f}{'*' if rms[key] <= sigma[key] else ''}{mark}".rjust(22))
+        print(f"  {name:<16}" + "".join(cells))
+    print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
+          "getting worse)\n")
+    if plot:
+        print(f"wrote {plot_shots(table, predictions, plot)}", file=sys.stderr)
+    return sorted(set(over))
+
+
+def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bool = False,
+              json_path: str | None = None) -> int:
+    """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
+    from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+    from impactlab.data.calibration import cross_validate as leave_one_out
+    from impactlab.model.registry import get_model
+
+    results = []
+    for name in models or FIT_MODELS:
+        model = get_model(name)()
+        names = parameters or [p for p in DEFAULT_PARAMETERS
+                               if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
+        result = calibrate(model, table, names)
+        print(f"{name} on {table.name} ({table.size} rows): {result.describe()}")
+        keys = [key for key in ERROR_KEYS if math.isfinite(result.errors_after[key])]
+        print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
+        print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))
+        print("  correlation: " + "; ".join(f"{a}-{b} {result.correlation[i][j]:+.2f}"
+                                           for i, a in enumerate(result.parameters)
+                                           for j, b in enumerate(result.parameters) if j > i))
+        entry = result.as_dict()
+        if cross_validate and table.size > 1:
+            held = leave_one_out(model, table, names)
+            print("  leave-one-out (errors on the row not fitted): "
+                  + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
+            for index, label in enumerate(held["labels"]):
+                print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
+                                                     for k in keys))
+            entry["cross_validation"] = {"summary": held["summary"], "fits": held["fits"],
+                                         "errors": {k: v.tolist() for k, v in held["errors"].items()}}
+        results.append(entry)
+    if json_path:
+        from impactlab.io.safe_output import write_atomically
+
+        write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
+        print(f"wrote {json_path}", file=sys.stderr)
+    return 0

@@ -1,0 +1,1 @@
+"""Files: result files, atomic writes, simulator interchange."""

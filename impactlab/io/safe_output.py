@@ -1,0 +1,121 @@
+"""Where impactlab may write, checked before any work, and how it writes.
+
+Rules: only regular files are created or replaced (never a device such as
+/dev/full, never a folder); a name taken from a study cannot leave its output
+folder; every file is written to a temporary file beside its target and
+renamed over it only when complete, with the permissions the umask gives (not
+the 0600 of a temporary file); on any failure (a full disk included) the
+temporary file is removed and the old target is untouched.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+import tempfile
+from pathlib import Path
+
+from impactlab.errors import EnvironmentFault, StudyError
+
+
+#: how the temporary file of a write ends (a folder cleaned up after a killed run looks for it)
+TEMPORARY_SUFFIX = ".part"
+#: temporary files being written now: removed if the process must end at once (impactlab.run.faults)
+_temporaries: set[str] = set()
+
+
+def remove_temporaries() -> None:
+    """Delete every temporary file a write in progress left (called on interrupt and at exit)."""
+    for name in list(_temporaries):
+        try:
+            os.unlink(name)
+        except OSError:
+            pass
+
+
+def _umask() -> int:
+    # os.umask can only be read by setting it; put it straight back
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def check_output(path: str | os.PathLike, what: str = "result file", suffix: str = ".h5") -> Path:
+    """Refuse, before any work, an output path impactlab could not or must not write.
+
+    Bad paths (a folder, a device, a missing folder) are input errors (exit
+    2); a folder that refuses writes is an environment fault (exit 3).
+    """
+    path = Path(path)
+    flag = f" ({what})" if what else ""
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        info = None
+    except OSError as exc:
+        raise EnvironmentFault(f"{path}{flag}: cannot be examined: {exc.strerror}") from None
+    if info is not None and stat.S_ISDIR(info.st_mode):
+        raise StudyError(f"{path}{flag}: is a folder; give a file name inside it, e.g. {path / ('result' + suffix)}")
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        raise StudyError(f"{path}{flag}: is not a regular file (a device, pipe or socket); impactlab only writes "
+                         "regular files: give a file name")
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise StudyError(f"{path}{flag}: cannot write: folder {folder} does not exist (create it first)")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise EnvironmentFault(f"{path}{flag}: cannot write: folder {folder} is not writable (permissions or a "
+                               "read-only file system); choose another folder")
+    return path
+
+
+def check_outdir(folder: str | os.PathLike) -> Path:
+    """An output folder: it may not exist yet (it is created), but must not be a file."""
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise StudyError(f"--outdir {folder}: is a file, not a folder; give a folder name")
+    parent = next((p for p in [folder, *folder.parents] if p.exists()), Path("."))
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise EnvironmentFault(f"--outdir {folder}: cannot write in {parent} (permissions or a read-only file "
+                               "system); choose another folder")
+    return folder
+
+
+def name_in(folder: Path, name: str, suffix: str) -> Path:
+    """FOLDER/NAME+SUFFIX for a name taken from a study, refused if it would leave FOLDER or hide itself."""
+    if not name or name in (".", "..") or name.startswith(".") or "/" in name or "\\" in name or "\0" in name:
+        raise StudyError(f"study name {name!r} cannot name a file in {folder} (it has a slash, starts with a dot "
+                         "or is empty); rename the study, or give -o")
+    return folder / f"{name}{suffix}"
+
+
+def refuse_clashes(outputs: list[tuple[str, Path]]) -> None:
+    """Two studies of one run writing the same file would overwrite each other: refuse before running either."""
+    seen: dict[str, str] = {}
+    for label, path in outputs:
+        key = os.path.normcase(os.path.abspath(path))
+        if key in seen:
+            raise StudyError(f"{label} and {seen[key]} would both write {path}; give the studies distinct names")
+        seen[key] = label
+
+
+def write_atomically(path: str | os.PathLike, payload: bytes | memoryview) -> Path:
+    """Write ``payload`` to ``path`` through a temporary file and a rename; nothing is left behind on failure."""
+    path = check_output(path, what="")
+    folder = path.parent if str(path.parent) else Path(".")
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=TEMPORARY_SUFFIX, dir=folder)
+    _temporaries.add(temporary)
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(payload)
+            stream.flush()
+            os.fsync(stream.fileno())  # a full disk shows here, not later after the rename
+        os.chmod(temporary, 0o666 & ~_umask())  # mkstemp makes 0600; the result honours the umask
+        os.replace(temporary, path)
+    except BaseException as exc:
+        Path(temporary).unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename is None:  # writes through a stream do not say where
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
+        raise
+    finally:
+        _temporaries.discard(temporary)
+    return path

@@ -1,0 +1,98 @@
+"""Outputs the framework derives from a model's impulses (rule 6 of the model contract).
+
+The impulse on the ball, in the contact frame of :mod:`impactlab.physics.contact`,
+fixes everything after impact: ball velocity and spin, the head's velocity and
+angular velocity, the contact point's restitution and the energy lost
+(:func:`impactlab.physics.contact.after_impact`); with a golf delivery, also the
+launch in golf terms (:func:`impactlab.physics.contact.ground_outputs`). One
+code path serves a fixed face, a point-mass club and a free 3-D head.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from impactlab.model.case_inputs import CaseInputs
+from impactlab.physics import hertz
+from impactlab.physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, ground_outputs, impulse_vector
+from impactlab.physics.delivery import DELIVERY_INPUTS
+from impactlab.physics.mechanics import AFTER_IMPACT_INPUTS
+
+IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
+FROM_IMPULSES = frozenset({
+    "launch_angle", "launch_ratio", "rebound_angle", "total_angle", "ball_speed", "spin_rate", "normal_velocity",
+    "tangential_velocity", "tangential_restitution", "energy_loss", "smash_factor", "club_speed_after",
+    "club_angular_velocity",
+})
+FROM_DELIVERY = frozenset({
+    "spin_loft", "vertical_launch_angle", "horizontal_launch_angle", "vertical_launch_ratio",
+    "horizontal_launch_ratio", "spin_axis", "back_spin", "side_spin",
+})
+#: Maw-Barber-Fawcett's normalised incidence and rebound, from the materials and friction of the scene
+FROM_MATERIALS = frozenset({"normalised_incidence", "normalised_rebound"})
+MATERIAL_INPUTS = ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus", "face_poisson_ratio",
+                   "friction")
+#: inputs each family needs (the optional ones default: no spin, a fixed face, a centred strike)
+NEEDS = {
+    "impulses": frozenset(AFTER_IMPACT_INPUTS) - {"spin"},
+    "delivery": frozenset(DELIVERY_INPUTS),
+    "materials": frozenset(MATERIAL_INPUTS),
+}
+#: inputs the derivation uses when given
+DERIVATION_OPTIONAL = frozenset({"spin", "club_mass"} | set(GEOMETRY_INPUTS) | set(DELIVERY_INPUTS))
+NO_DELIVERY = "needs a golf delivery (a delivery block: path, face angle, attack angle, dynamic loft)"
+NO_MATERIALS = "needs the ball's and face's elastic constants and the friction (kappa = G*/E*, mu)"
+NO_LATERAL = ("the model gives impulses on one line (no lateral_impulse), and the scene has a free club head "
+              "whose impact may turn the slip")
+
+
+def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]:
+    """Whether ``name`` can be derived for a model that provides ``provides``; if not, why (None: not derivable)."""
+    if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS:
+        return False, None
+    if given_inputs is not None and "lateral_impulse" not in provides and set(INERTIA_INPUTS) <= set(given_inputs):
+        return False, NO_LATERAL
+    if name in FROM_DELIVERY and given_inputs is not None and not NEEDS["delivery"] <= set(given_inputs):
+        return False, NO_DELIVERY
+    if name in FROM_MATERIALS and given_inputs is not None and not NEEDS["materials"] <= set(given_inputs):
+        return False, NO_MATERIALS
+    return True, None
+
+
+def derive(names, raw, inputs) -> dict:
+    """Compute the derived outputs ``names`` from the impulses in ``raw`` and the case ``inputs`` (SI)."""
+    names = set(names)
+    out = {}
+    if not names:
+        return out
+    inputs = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)
+    state = inputs.contact_state()  # the model's hook has usually computed it already
+    impulse = impulse_vector(state, raw["normal_impulse"], raw["tangential_impulse"], raw.get("lateral_impulse"))
+    needed = set(names & FROM_IMPULSES)
+    if names & FROM_MATERIALS:
+        needed |= {"tangential_restitution", "normal_velocity"}  # what normalised_slip reads
+    basics = after_impact(state, impulse, names=needed, **inputs)
+    out.update({name: basics[name] for name in names & FROM_IMPULSES})
+    if names & FROM_DELIVERY:
+        golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})
+        out.update({name: golf[name] for name in names & FROM_DELIVERY})
+    if names & FROM_MATERIALS:
+        out.update({name: value for name, value in normalised_slip(state, basics, inputs).items() if name in names})
+    return out
+
+
+def normalised_slip(state: dict, basics: dict, inputs: dict) -> dict:
+    """psi1 = kappa V_x/(mu V_z) and psi2 = kappa V_x'/(mu V_z') of Maw, Barber & Fawcett (NaN without friction).
+
+    V_x, V_x' are the contact point's slip velocities before and after (V_x' = -beta V_x), V_z, V_z' the
+    normal approach and rebound speeds, kappa = G*/E* of the ball-face pair. Every Coulomb model gives
+    psi2 = psi1 - 4 chi in gross slip; the rigid ones give psi2 = 0 below it.
+    """
+    moduli = [inputs[name] for name in MATERIAL_INPUTS[:4]]
+    kappa = hertz.tangential_modulus(*moduli) / hertz.effective_modulus(*moduli)
+    normal_speed, slip = state["normal_speed"], state["slip_speed"]
+    friction = np.where(inputs["friction"] > 0.0, inputs["friction"], np.nan)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        incidence = kappa * np.abs(slip) / (friction * normal_speed)
+        rebound = -basics["tangential_restitution"] * incidence * normal_speed / basics["normal_velocity"]
+    return {"normalised_incidence": incidence, "normalised_rebound": rebound}

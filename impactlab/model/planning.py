@@ -1,0 +1,96 @@
+"""Plan the work before running it: which outputs a model computes, which the framework derives, which are missing.
+
+A model declares the outputs it *provides*. Most result variables follow
+from the two impulses by rigid-body bookkeeping
+(:func:`impactlab.physics.mechanics.after_impact`), so the framework derives
+them for any model that provides ``normal_impulse`` and
+``tangential_impulse``. The plan is computed from declarations alone, so it
+can be shown (and stored) before anything runs.
+"""
+
+from __future__ import annotations
+
+import attrs
+
+from impactlab.model.derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
+from impactlab.model.derive import DERIVATION_OPTIONAL
+from impactlab.errors import ModelInputError
+from impactlab.vocabulary import INPUTS
+
+
+@attrs.frozen
+class OutputPlan:
+    """What one model run will compute.
+
+    Attributes
+    ----------
+    model : str
+    requested : tuple of str
+        The outputs asked for, in order.
+    from_model : frozenset of str
+        Outputs the model's hook is asked for.
+    derived : frozenset of str
+        Outputs the framework derives from the impulses.
+    missing : dict
+        Output -> reason, for outputs that will be NaN.
+    inputs : frozenset of str
+        Inputs the run needs (hook's declared inputs plus those of the derivation).
+    """
+
+    model: str
+    requested: tuple[str, ...]
+    from_model: frozenset[str]
+    derived: frozenset[str]
+    missing: dict[str, str]
+    inputs: frozenset[str]
+
+    def describe(self) -> str:
+        """One paragraph in words."""
+        parts = [f"{self.model}: computes {', '.join(sorted(self.from_model)) or 'nothing'}"]
+        if self.derived:
+            parts.append(f"derives {', '.join(sorted(self.derived))} from the impulses")
+        for name, reason in self.missing.items():
+            parts.append(f"leaves {name} NaN ({reason})")
+        return "; ".join(parts)
+
+
+def require_inputs(who: str, needed, given, source: str = "the scene") -> None:
+    """Raise ModelInputError naming, with their paths and meanings, the inputs of ``needed`` not in ``given``.
+
+    The one check and message of a missing input, before a study runs (:func:`impactlab.run.runner.plan_study`)
+    and when a model is computed.
+    """
+    absent = sorted(set(needed) - set(given))
+    if absent:
+        names = ", ".join(f"{INPUTS[name].path} ({INPUTS[name].description})" for name in absent)
+        raise ModelInputError(f"{who} needs {names}, which {source} does not give; add it or use another model")
+
+
+def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
+    """Plan the outputs ``requested`` from a model class (set logic on declarations only).
+
+    ``given_inputs``, when known, lets the plan tell outputs that need inputs
+    the scene lacks (a golf delivery) from those it can give.
+    """
+    requested = tuple(dict.fromkeys(requested))
+    provides = frozenset(model_cls.provides)
+    from_model, derived, missing = set(), set(), {}
+    for name in requested:
+        if name in provides:
+            from_model.add(name)
+            continue
+        possible, reason = derivable(name, provides, given_inputs)
+        if possible:
+            derived.add(name)
+            from_model |= IMPULSES | (provides & {"lateral_impulse"})
+        else:
+            missing[name] = reason or model_cls.why_not_provided(name)
+    inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))
+    if derived:
+        inputs |= NEEDS["impulses"] | DERIVATION_OPTIONAL
+    if derived & FROM_DELIVERY:
+        inputs |= NEEDS["delivery"]
+    if derived & FROM_MATERIALS:
+        inputs |= NEEDS["materials"]
+    return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
+                      frozenset(inputs))

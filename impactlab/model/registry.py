@@ -1,0 +1,77 @@
+"""Discovery of model plugins through the ``impactlab.models`` entry-point group.
+
+Built-in models register exactly like third-party ones (see pyproject.toml).
+Discovery is lazy and cached; :func:`refresh` rediscovers. A plugin that fails
+to import, is not an :class:`~impactlab.model.base.ImpactModel` subclass, or
+reuses a taken name is skipped with a :class:`~impactlab.errors.PluginWarning`;
+it never breaks the registry for the others.
+"""
+
+from __future__ import annotations
+
+import warnings
+from importlib import metadata
+
+from impactlab.errors import ModelNotFoundError, PluginWarning
+from impactlab.model.base import ImpactModel
+
+ENTRY_POINT_GROUP = "impactlab.models"
+
+_cache: dict[str, type[ImpactModel]] | None = None
+
+
+def _entry_points():
+    return metadata.entry_points(group=ENTRY_POINT_GROUP)
+
+
+def _discover() -> dict[str, type[ImpactModel]]:
+    found: dict[str, type[ImpactModel]] = {}
+    origin: dict[str, str] = {}
+    for entry_point in sorted(_entry_points(), key=lambda ep: (ep.name, ep.value)):
+        where = f"{entry_point.name} = {entry_point.value}"
+        try:
+            model_cls = entry_point.load()
+        except Exception as exc:  # a broken plugin must not take the others down
+            warnings.warn(f"impactlab model plugin '{where}' failed to load and is skipped: "
+                          f"{type(exc).__name__}: {exc}", PluginWarning, stacklevel=3)
+            continue
+        if not (isinstance(model_cls, type) and issubclass(model_cls, ImpactModel)):
+            warnings.warn(f"impactlab model plugin '{where}' is not an ImpactModel subclass and is skipped",
+                          PluginWarning, stacklevel=3)
+            continue
+        name = model_cls.name or entry_point.name
+        if name != entry_point.name:
+            warnings.warn(f"impactlab model plugin '{where}' declares name {model_cls.name!r}, which differs "
+                          f"from its entry-point name; it is skipped", PluginWarning, stacklevel=3)
+            continue
+        if name in found:
+            warnings.warn(f"impactlab model plugin '{where}' duplicates the name {name!r} already taken by "
+                          f"'{origin[name]}'; the later one is skipped", PluginWarning, stacklevel=3)
+            continue
+        found[name] = model_cls
+        origin[name] = where
+    return found
+
+
+def available() -> dict[str, type[ImpactModel]]:
+    """Registered models by name (discovered on first use, then cached)."""
+    global _cache
+    if _cache is None:
+        _cache = _discover()
+    return dict(_cache)
+
+
+def refresh() -> dict[str, type[ImpactModel]]:
+    """Forget the cache and discover the plugins again."""
+    global _cache
+    _cache = None
+    return available()
+
+
+def get_model(name: str) -> type[ImpactModel]:
+    """The model class registered as ``name``; unknown names raise with the choices and the closest match."""
+    models = available()
+    try:
+        return models[name]
+    except (KeyError, TypeError):
+        raise ModelNotFoundError(str(name), models) from None

@@ -1,0 +1,1 @@
+"""Figures: every figure-drawing function, and the paper report."""

@@ -1,0 +1,364 @@
+"""Plots drawn from result datasets (never from in-memory model state), so any saved file can be redrawn."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from impactlab.units import MPH
+from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
+
+_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
+#: one marker per line, so that a curve lying on another stays visible by its markers
+_MARKERS = ("o", "s", "^", "v", "D", "P", "X", "<", ">", "*")
+#: units a reader thinks in: millimetres for contact radii, microseconds for contact times, kilonewtons
+_DISPLAY_UNITS = {"m": ("mm", 1e3), "s": ("us", 1e6), "N": ("kN", 1e-3)}
+
+
+class FigureWarning(UserWarning):
+    """A figure that does not show what it claims: an empty panel or a legend entry with nothing drawn."""
+
+
+def _display(units: str) -> tuple[str, float]:
+    return _DISPLAY_UNITS.get(units, (units, 1.0))
+
+
+def _axis_label(long_name: str, units: str, width: int = 42) -> str:
+    import textwrap
+
+    return "\n".join(textwrap.wrap(f"{long_name} [{units}]", width))
+
+
+def conditions(dataset: xr.Dataset, skip=()) -> str:
+    """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
+    import json
+
+    try:
+        scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
+    except ValueError:
+        return ""
+    # swept fields (dimensions, fields a labelled dimension sets) vary between the lines, and a selected value
+    # is named in the title or legend: only what no coordinate carries is a condition of the whole figure
+    swept = set(dataset.dims) | set(dataset.coords) | set(skip)
+    if "club_speed" in swept:  # a delivery's impact speed follows its club speed
+        swept.add("speed")
+    words = []
+
+    def value(key):
+        item = scene.get(key)
+        if key in swept or item is None:
+            return None
+        return float(item) if not isinstance(item, str) else float(item)
+
+    if (speed := value("club_speed")) is not None:
+        words.append(f"club speed {speed / MPH:.0f} mph")
+    elif (speed := value("speed")) is not None:
+        words.append(f"{speed / MPH:.0f} mph")
+    for key, text in (("friction", "friction {:g}"), ("restitution", "e {:g}"),
+                      ("tangential_loss", "cover loss {:g}")):
+        item = value(key)
+        if item is not None and not (key == "tangential_loss" and item == 0.0):
+            words.append(text.format(item))
+    face, club = value("face_youngs_modulus"), value("club_mass")
+    stiffness = None if face is None else "rigid" if np.isinf(face) else f"E {face / 1e9:.0f} GPa"
+    if club is not None and np.isinf(club):
+        words.append(f"fixed face ({stiffness})" if stiffness else "fixed face")
+    else:
+        if stiffness:
+            words.append(f"{stiffness} face")
+        if club is not None:
+            words.append(f"{club * 1e3:.0f} g head")
+    return ", ".join(words)
+
+
+def audit(figure) -> list[str]:
+    """What is wrong with a drawn figure: panels with nothing finite drawn, legend entries with nothing drawn."""
+    problems = []
+    for index, axis in enumerate(figure.axes):
+        if not axis.get_visible():
+            continue
+        lines = [line for line in axis.get_lines() if line.get_label() and not line.get_label().startswith("_")]
+        finite = [line for line in axis.get_lines()
+                  if np.any(np.isfinite(np.asarray(line.get_ydata(), float)))
+                  and np.any(np.isfinite(np.asarray(line.get_xdata(), float)))]
+        collections = [c for c in axis.collections if len(c.get_offsets()) or len(c.get_paths())]
+        # bars (patches with an extent) and images (an index map) are drawn data as well as lines are
+        bars = [patch for patch in axis.patches if patch.get_width() != 0 or patch.get_height() != 0] \
+            if hasattr(axis, "patches") else []
+        if not finite and not collections and not bars and not axis.images:
+            problems.append(f"panel {index + 1} ({axis.get_ylabel()!r}) has nothing drawn")
+        for line in lines:
+            ys = np.asarray(line.get_ydata(), float)
+            if not np.any(np.isfinite(ys)):
+                problems.append(f"legend entry {line.get_label()!r} has nothing drawn")
+    return problems
+
+
+def _draw_measured(axis, output: str, names, xs) -> None:
+    """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label."""
+    from impactlab.data.validation import DATASETS
+
+    step = (xs.max() - xs.min()) / max(xs.size - 1, 1) if xs.size > 1 else 1.0
+    for column, name in enumerate(names):
+        data = DATASETS[name]
+        if data.quantity != output:
+            continue
+        # the labels side by side inside the dataset's column, so that overlapping error bars stay apart
+        positions = xs.max() + step * (0.6 + 1.2 * column + 0.35 * np.arange(len(data.values)))
+        sigma = np.asarray(data.sigma, float) if data.sigma is not None else None
+        what = "mean +- SD" if sigma is not None else "no uncertainty stated"
+        axis.errorbar(positions, np.asarray(data.values, float), yerr=sigma,
+                      fmt="k*" if sigma is None else "ks", markersize=6, capsize=3, zorder=4,
+                      label=f"measured: {name} ({what})")
+        for label, value, where in zip(data.labels, data.values, positions):
+            axis.annotate(label, (where, value), xytext=(4, 0), textcoords="offset points", fontsize=6,
+                          va="center", rotation=0)
+    # the measured points sit right of a rule: they were taken at no stated friction, not at the x there
+    axis.axvline(xs.max() + 0.3 * step, color="0.6", linewidth=0.8, label="_separator")
+    axis.annotate("measured", (xs.max() + 0.35 * step, 1.0), xycoords=("data", "axes fraction"), xytext=(0, -10),
+                  textcoords="offset points", fontsize=7, color="0.3")
+    axis.set_xlim(right=xs.max() + step * (0.6 + 1.2 * len(names) + 0.6))
+
+
+def _zoom(axis, xlim) -> None:
+    """Show xlim only, with the vertical range of what lies inside it (5 % margins)."""
+    low, high = xlim
+    inside = []
+    for line in axis.get_lines():
+        xs, ys = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+        keep = (xs >= low) & (xs <= high) & np.isfinite(ys)
+        inside.extend(ys[keep])
+    axis.set_xlim(low, high)
+    if inside:
+        bottom, top = min(inside), max(inside)
+        margin = 0.05 * (top - bottom) or 0.05 * abs(top) or 0.05
+        axis.set_ylim(bottom - margin, top + margin)
+
+
+def _relation(other: str) -> str:
+    return other.replace("partly ", "partly on ", 1) if other.startswith("partly ") else f"on {other}"
+
+
+def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
+    """The earlier line (label) this one lies on: wholly (share 1.0), else over the largest share >= half its points."""
+    best, share = None, 0.0
+    for other_xs, other_ys, other in drawn:
+        if np.shape(other_xs) != np.shape(xs) or not np.allclose(other_xs, xs):
+            continue
+        both = np.isfinite(other_ys) & np.isfinite(ys)
+        same = np.abs(np.where(both, other_ys - ys, 0.0)) <= tolerance
+        if np.array_equal(np.isnan(other_ys), np.isnan(ys)) and np.all(same):
+            return other, 1.0
+        if both.any() and 0.5 <= np.mean(same[both]) > share:
+            best, share = other, float(np.mean(same[both]))
+    return best, share
+
+
+def _save(figure, path) -> Path:
+    import warnings
+
+    problems = audit(figure)
+    if problems:
+        warnings.warn(f"{path}: " + "; ".join(problems), FigureWarning, stacklevel=3)
+    path = Path(path)
+    figure.savefig(path, dpi=110)
+    return path
+
+
+def _text(coordinate) -> str:
+    value = coordinate.item()
+    return f"{value:g}" if isinstance(value, (int, float)) else str(value)
+
+
+def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
+    """Draw every figure the study declared (``plots`` attribute) to FOLDER/STEM_NAME.png."""
+    import json
+
+    pictures = []
+    for spec in json.loads(dataset.attrs.get("plots", "[]") or "[]"):
+        path = folder / f"{stem}_{spec['name']}.png"
+        selected = dataset.sel(spec.get("select") or {})
+        if MODEL_DIM not in selected.dims:  # one model chosen: keep it as a one-long dimension
+            selected = selected.expand_dims({MODEL_DIM: [selected[MODEL_DIM].item()]})
+        if spec.get("kind") == "history":
+            for output in spec["y"]:
+                plot_histories(selected, path if len(spec["y"]) == 1 else path.with_stem(f"{path.stem}_{output}"),
+                               output, title=spec.get("title", ""))
+        else:
+            plot_results(selected, path, outputs=spec["y"], x=spec.get("x"), title=spec.get("title", ""),
+                         xlim=spec.get("xlim"), measured=spec.get("measured") or ())
+        pictures.append(path)
+    return pictures
+
+
+def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: str | None = None,
+                 title: str = "", xlim=None, measured=()) -> Path:
+    """Draw scalar outputs against one sweep dimension, one colour per model, one line style per other value.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A study result.
+    path : path
+        PNG file to write.
+    outputs : list of str, optional
+        Scalar outputs to draw (default: every scalar output in the dataset, at most six).
+    x : str, optional
+        Sweep dimension for the horizontal axis (default: the longest), or a scalar output: each
+        line is then drawn against that output along the longest sweep dimension (psi2 against
+        psi1, say).
+    xlim : (float, float), optional
+        A zoomed view of the horizontal axis; the vertical axis follows the data inside it.
+    measured : sequence of str
+        Shipped measured datasets (:data:`impactlab.data.validation.DATASETS`) of a drawn output: their
+        values, with error bars where the source states them, beside the curves at the right.
+    """
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    import matplotlib
+    from matplotlib.figure import Figure
+
+    names = [name for name in (outputs or dataset.data_vars) if is_scalar(name)
+             and not bool(np.all(np.isnan(dataset[name].values)))][:6]
+    sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
+    along_output = x is not None and x in dataset.data_vars
+    along = x
+    if (x is None or along_output) and sweep_dims:
+        along = max(sweep_dims, key=lambda dim: dataset.sizes[dim])
+        x = x or along
+    others = [dim for dim in sweep_dims if dim != along]
+    columns = min(len(names), 3) or 1
+    rows = max(1, -(-len(names) // columns))
+    size = (8.0, 5.2) if len(names) == 1 else (5.2 * columns, 3.8 * rows + 0.6)
+    figure = Figure(figsize=size)
+    axes = figure.subplots(rows, columns, squeeze=False)
+    colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
+    single_model = dataset.sizes[MODEL_DIM] == 1
+    # lines that lie on an earlier line, per label: the panels where they do (named in the legend)
+    coincide: dict[str, dict[str, list[str]]] = {}
+    for panel, (axis, name) in enumerate(zip(axes.flat, names)):
+        variable = dataset[name]
+        units, scale = _display(OUTPUTS[name].units)
+        drawn = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
+        span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
+        line_index = 0
+        for m_index, model in enumerate(dataset[MODEL_DIM].values):
+            per_model = variable.sel({MODEL_DIM: model})
+            stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
+            for l_index in range(stacked.sizes["_line"]):
+                line = stacked.isel(_line=l_index)
+                label = str(model)
+                if others:
+                    label += " " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
+                if along_output:
+                    horizontal = dataset[x].sel({MODEL_DIM: model})
+                    horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
+                    xs = horizontal.isel(_line=l_index).values
+                else:
+                    xs = dataset[x].values if x else [0.0]
+                # one model: a colour per line; several: a colour per model, a line style per other value
+                colour = colours[(l_index if single_model else m_index) % len(colours)]
+                style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
+                ys = np.atleast_1d(line.values) * scale
+                hidden, part = _lies_on(drawn, xs, ys, 2e-3 * span + 1e-300)
+                drawn.append((xs, ys, label))
+                if hidden is not None:
+                    key = hidden if part == 1.0 else f"partly {hidden}"
+                    coincide.setdefault(label, {}).setdefault(key, []).append(f"({chr(97 + panel)})")
+                # every line its own marker, spread along the line and offset from the others' so that a curve
+                # lying on another still shows; a line drawn later and thinner keeps the one below visible
+                every = max(1, len(xs) // 7)
+                look = dict(color=colour, marker=_MARKERS[line_index % len(_MARKERS)],
+                            markersize=5 if hidden is None else 8,
+                            markerfacecolor="none" if hidden is not None else colour,
+                            markevery=(line_index % every, every) if len(xs) > 1 else None)
+                axis.plot(xs, ys, linestyle=style, label=label, linewidth=1.6 if hidden is None else 1.0, **look)
+                # the markers again above every line, so that a curve covered by a later one still shows
+                axis.plot(xs, ys, linestyle="none", label="_markers", zorder=3, **look)
+                line_index += 1
+        if len(names) > 1:
+            axis.set_title(f"({chr(97 + panel)})", fontsize=9, loc="left")
+        axis.set_ylabel(_axis_label(OUTPUTS[name].long_name, units), fontsize=8)
+        if x:
+            if along_output:
+                x_units, _ = OUTPUTS[x].units, 1.0
+                axis.set_xlabel(_axis_label(OUTPUTS[x].long_name, x_units, 60), fontsize=8)
+            else:
+                attrs_x = dataset[x].attrs
+                axis.set_xlabel(_axis_label(attrs_x.get("long_name", x), attrs_x.get("units", ""), 60), fontsize=8)
+        axis.grid(True, alpha=0.3)
+        if measured and x and not along_output:
+            _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float))
+        if xlim is not None:
+            _zoom(axis, xlim)
+    for axis in list(axes.flat)[len(names):]:
+        axis.set_visible(False)
+    # the legend names the lines that lie on others, and where
+    for axis in axes.flat[:len(names)]:
+        for line in axis.get_lines():
+            notes = coincide.get(line.get_label()) if not line.get_label().startswith("_") else None
+            if notes:
+                # whole coincidences first; at most two relations, so that the legend stays readable
+                ordered = sorted(notes.items(), key=lambda item: (item[0].startswith("partly "), -len(item[1])))
+                where = "; ".join(_relation(other) + (f" in {' '.join(panels)}" if len(names) > 1 else "")
+                                  for other, panels in ordered[:2]) + ("; ..." if len(ordered) > 2 else "")
+                line.set_label(f"{line.get_label()} ({where})")
+    heading = title or dataset.attrs.get("title", "")
+    context = conditions(dataset)
+    figure.suptitle(heading + (f"\n{context}" if context else ""), fontsize=10)
+    if len(names) == 1 and len(axes.flat[0].lines) <= 4:
+        axes.flat[0].legend(fontsize=7)
+        figure.tight_layout(rect=(0, 0, 1, 0.95))
+    elif names:  # many entries: below the panels, where they hide no data
+        handles, labels = axes.flat[0].get_legend_handles_labels()
+        # as many columns as the longest entry leaves room for (about 14 characters of 8-point text per inch)
+        width = int(size[0] * 14)
+        columns_of_legend = max(1, min(3 if len(names) > 1 else 2, len(labels), width // max(map(len, labels))))
+        legend_rows = -(-len(labels) // columns_of_legend)
+        # the figure grows by the legend's height (0.17 in per row), so the panels keep their size
+        legend_height = 0.17 * legend_rows + 0.15
+        figure.set_figheight(size[1] + legend_height)
+        figure.legend(handles, labels, loc="lower center", ncol=columns_of_legend, fontsize=8, frameon=False)
+        figure.tight_layout(rect=(0, (legend_height + 0.1) / (size[1] + legend_height), 1, 0.95))
+    path = _save(figure, path)
+    return path
+
+
+def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "tangential_force",
+                   select: dict | None = None, title: str = "") -> Path:
+    """Draw a force history against time for every model that has it and every remaining sweep value."""
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib.figure import Figure
+
+    variable = dataset[output].sel(select or {}, method="nearest")
+    others = [dim for dim in variable.dims if dim not in (MODEL_DIM, TIME_DIM)]
+    units, scale = _display(OUTPUTS[output].units)
+    figure = Figure(figsize=(7, 4.5))
+    axis = figure.subplots()
+    line_index = 0
+    for model in variable[MODEL_DIM].values:
+        per_model = variable.sel({MODEL_DIM: model})
+        if bool(np.all(np.isnan(per_model.values))):
+            continue
+        stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
+        for index in range(stacked.sizes["_line"]):
+            line = stacked.isel(_line=index)
+            label = f"{model} " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
+            times = dataset[TIME_DIM].values * 1e6
+            every = max(1, times.size // 8)
+            axis.plot(times, line.values * scale, label=label.strip(), marker=_MARKERS[line_index % len(_MARKERS)],
+                      markevery=(line_index * every // 4 % every, every), markersize=4,
+                      linestyle=_STYLES[line_index % len(_STYLES)])
+            line_index += 1
+    axis.axhline(0.0, color="0.5", lw=0.8, label="_zero")
+    axis.set_xlabel("time from first contact [us]")
+    axis.set_ylabel(_axis_label(OUTPUTS[output].long_name, units))
+    context = conditions(dataset.sel(select or {}, method="nearest") if select else dataset)
+    axis.set_title((title or OUTPUTS[output].long_name) + (f"\n{context}" if context else ""), fontsize=10)
+    axis.legend(fontsize=8)
+    axis.grid(True, alpha=0.3)
+    figure.tight_layout()
+    path = _save(figure, path)
+    return path

@@ -1,0 +1,1 @@
+"""Execution: run_study, plans, executors, the progress store, assembly and fault handling."""

@@ -1,0 +1,167 @@
+"""Assemble per-model results (dimension ``case``) into one study dataset (sweep dimensions and ``model``)."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import functools
+import json
+import platform
+
+import numpy as np
+import xarray as xr
+
+from impactlab._version import __version__
+from impactlab.model.diagnostics import flag_attributes
+from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
+
+
+def assemble(study, plan, results: list[dict]) -> xr.Dataset:
+    """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance.
+
+    ``results`` holds, per model entry, its outputs over the flat cases as arrays in the vocabulary's
+    units (:func:`impactlab.run.execution.run_chunks`). The dataset is built once, here, from stacked arrays:
+    xarray is the edge of the framework, not its inside.
+    """
+    shape = study.shape if study.sweep else ()
+    sweep_dims = [axis.dim for axis in study.sweep]
+    time = _common_time([result["time"] for result in results])
+    data_vars = {}
+    for name in study.all_outputs:
+        spec = OUTPUTS[name]
+        history = time is not None and is_history(name)
+        stacked = np.stack([_on_time(result, name, time, history) for result in results])
+        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history else ()))
+        attributes = {"units": spec.units, "long_name": spec.long_name}
+        reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
+                   if name in result["missing"]]
+        if reasons:
+            attributes["missing"] = "; ".join(reasons)
+        dims = [MODEL_DIM] + sweep_dims + ([TIME_DIM] if history else [])
+        variable = xr.Variable(dims, stacked, attributes)
+        if name == "validity":
+            variable = _integer_flags(variable)
+            variable.attrs.update(flag_attributes())
+        data_vars[name] = variable
+    coords = {MODEL_DIM: xr.Variable(MODEL_DIM, [entry.id for entry in study.models],
+                                     {"long_name": "model",
+                                      "model_names": json.dumps([entry.name for entry in study.models])})}
+    for axis in study.sweep:
+        if axis.grouped:
+            labels = list(axis.labels) if axis.labels else list(range(axis.size))
+            coords[axis.dim] = xr.Variable(axis.dim, labels, {
+                "long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"})
+        for field in axis.fields:
+            spec = INPUTS[field.input]
+            # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
+            values = [float(f"{value * spec.display_factor:.12g}") for value in field.values]
+            coords[field.coord] = xr.Variable(axis.dim, values, {"units": spec.display_unit or spec.unit,
+                                                                 "long_name": spec.description,
+                                                                 "study_path": field.path})
+    if time is not None:
+        coords[TIME_DIM] = xr.Variable(TIME_DIM, time, {"units": "s", "long_name": "time since first contact"})
+    return xr.Dataset(data_vars, coords=coords, attrs=provenance(study, plan))
+
+
+def _common_time(times: list) -> np.ndarray | None:
+    """The time axis of the study's histories: the union of the models' own (an outer join; None without any)."""
+    present = [np.asarray(time, dtype=float) for time in times if time is not None]
+    if not present:
+        return None
+    if all(time.shape == present[0].shape and np.array_equal(time, present[0]) for time in present[1:]):
+        return present[0]
+    return functools.reduce(np.union1d, present)
+
+
+def _on_time(result: dict, name: str, time: np.ndarray | None, history: bool) -> np.ndarray:
+    """One model's values of ``name`` (cases first), placed on the common time axis with NaN where it has none."""
+    values = result["data"][name]
+    if not history:
+        return values
+    if values.ndim == 1:  # a model without histories: NaN over the time axis of those that have them
+        return np.full((values.shape[0], time.size), np.nan)
+    own = np.asarray(result["time"], dtype=float)
+    if own.shape == time.shape and np.array_equal(own, time):
+        return values
+    placed = np.full((values.shape[0], time.size), np.nan)
+    placed[:, np.searchsorted(time, own)] = values
+    return placed
+
+
+#: in the file, a case a model did not compute has this validity (CF _FillValue)
+VALIDITY_FILL = -1
+
+
+def _integer_flags(variable: xr.Variable) -> xr.Variable:
+    """Validity bits as the integers CF flag variables are (models compute them as floats, NaN where absent)."""
+    values = variable.values
+    if not np.isnan(values).any():
+        return variable.copy(data=values.astype(np.int16))
+    variable = variable.copy()
+    variable.encoding.update(dtype="int16", _FillValue=VALIDITY_FILL)  # stored as int16; NaN read back
+    return variable
+
+
+def versions() -> dict[str, str]:
+    """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage.
+
+    Read once per process (reading package metadata costs ~10 ms, more than a small study's physics);
+    the packages a process has imported do not change under it.
+    """
+    return dict(_versions())
+
+
+@functools.cache
+def _versions() -> dict[str, str]:
+    from importlib import metadata
+
+    found = {"impactlab_version": __version__, "python_version": platform.python_version()}
+    for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
+        try:
+            found[f"{package}_version"] = metadata.version(package)
+        except metadata.PackageNotFoundError:
+            found[f"{package}_version"] = "not installed"
+    return found
+
+
+@functools.cache
+def git_commit() -> str:
+    """The commit of the checkout impactlab runs from ('' if installed from a package), '-dirty' if edited.
+
+    Asked once per process (two git calls cost ~5 ms): the code a process runs is what it imported,
+    so the first answer is also the right one for a later edit of the checkout.
+    """
+    import subprocess
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    try:
+        commit = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True,
+                                timeout=5, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(here), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return ""
+    return f"{commit}-dirty" if dirty else commit
+
+
+def provenance(study, plan) -> dict[str, str | int]:
+    """What made this result: the study, its models with resolved options, versions, the plan."""
+    models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
+               "references": list(entry.model.references)} for entry in study.models]
+    scene = {name: (value if np.isfinite(value) else str(value)) for name, value in study.scene.inputs().items()}
+    return {
+        "title": f"impactlab study {study.name}",
+        "study_name": study.name,
+        "study_description": study.description,
+        "study_file": study.file or "",
+        "study_source": study.source,
+        "base_scene_si": json.dumps(scene, sort_keys=True),
+        "models": json.dumps(models),
+        "plan": plan.describe(),
+        "plots": json.dumps([plot.as_dict() for plot in study.plots]),
+        **versions(),
+        "git_commit": git_commit(),
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
+                       "z away from face; backspin positive",
+    }

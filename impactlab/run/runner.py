@@ -1,0 +1,161 @@
+"""Run a study: check every model can run, build the case inputs, call the models, assemble one dataset.
+
+Planning (what runs, what is derived, what is missing and why) happens
+before any model runs, so a study that cannot run fails at once and says why.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import attrs
+import numpy as np
+import xarray as xr
+
+from impactlab.run.assemble import assemble
+from impactlab.model.diagnostics import warn as warn_validity
+from impactlab.errors import FieldError
+from impactlab.model.planning import OutputPlan, require_inputs
+from impactlab.scene.core import ball_restitution, complete_inputs
+from impactlab.study.core import Study, load_study
+
+
+@attrs.frozen
+class StudyPlan:
+    """The work a study will do: one output plan per model entry, and the case count."""
+
+    study: str
+    n_cases: int
+    models: tuple[tuple[str, OutputPlan], ...]
+    #: which solver path the cases take, and why (one paragraph; empty without a club head)
+    paths: str = ""
+    #: the resources it will take (impactlab.study.limits.Estimate.describe)
+    resources: str = ""
+
+    def describe(self) -> str:
+        """The plan in words: cases x models, the resource estimate, per model what is computed, derived and missing."""
+        lines = [f"study {self.study!r}: {self.n_cases} case(s) x {len(self.models)} model(s)"]
+        if self.resources:
+            lines.append(f"  {self.resources}")
+        lines += [f"  [{entry_id}] {plan.describe()}" for entry_id, plan in self.models]
+        if self.paths:
+            lines.append(f"  contact: {self.paths}")
+        return "\n".join(lines)
+
+
+def describe_paths(study: Study) -> str:
+    """How many cases lie on one line (the 1-D solvers) and how many need the 3-D ones, and why."""
+    from impactlab.physics.contact import contact_state
+
+    if study.scene.club is None:
+        return ""
+    one_line = int(np.sum(contact_state(case_inputs(study))["one_dimensional"]))
+    coupled = study.n_cases - one_line
+    text = (f"{one_line} case(s) on one line (the mobility matrix is diagonal in the contact frame: a strike on the "
+            f"centre-of-mass line of a flat face) take the closed forms and the scaled 1-D solvers; {coupled} case(s) "
+            "are coupled (off the centre-of-mass line or on a curved face: the slip may turn) and take Stronge's "
+            "integration (rigid_coulomb) and the 3-D kernel (compliant models); restitution solves both with the "
+            "full mobility")
+    if "face_rotation" in study.outputs:
+        text += "; face_rotation is asked for, so the compliant models take the 3-D kernel for every case"
+    return text
+
+
+def plan_study(study: Study) -> StudyPlan:
+    """Plan every model of the study; refuse a model that lacks a required input, naming model and input.
+
+    A study that would need more cases or memory than :mod:`impactlab.study.limits` allows is refused here,
+    before its inputs are built.
+    """
+    from impactlab.study.limits import check
+
+    resources = check(study).describe()
+    given = set(study.scene.inputs())
+    plans = []
+    for entry in study.models:
+        plan = entry.model.plan(study.all_outputs, given)
+        require_inputs(f"{study.file or study.name}: model {entry.id!r}", entry.model.requires, given, "the study")
+        plans.append((entry.id, plan))
+    return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
+
+
+def case_inputs(study: Study) -> dict[str, np.ndarray]:
+    """Input arrays over the Cartesian product of the sweep, flattened in C order (first axis slowest)."""
+    base = study.scene.inputs()
+    grids = np.meshgrid(*[np.arange(axis.size) for axis in study.sweep], indexing="ij") if study.sweep else []
+    inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
+    for axis, grid in zip(study.sweep, grids):
+        for field in axis.fields:
+            inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
+    complete_inputs(inputs)
+    if study.scene.contact.restitution is None and study.scene.ball.restitution is not None \
+            and "contact.restitution" not in {field.path for axis in study.sweep for field in axis.fields}:
+        # the ball's restitution law at each case's own normal speed
+        inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
+    if np.any(inputs["angle"] >= np.pi / 2):
+        case = int(np.argmax(inputs["angle"] >= np.pi / 2))
+        raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",
+                         f"spin loft {np.degrees(inputs['angle'][case]):.1f} deg in case {case}")
+    return inputs
+
+
+def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
+              workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
+              progress_folder: str | Path | None = None, show_progress: bool = False,
+              output: str | Path | None = None) -> xr.Dataset:
+    """Run a study (path, YAML text, mapping or Study) and return its results as one dataset.
+
+    Parameters
+    ----------
+    executor : str
+        ``"auto"`` (serial for small studies, every core for large ones),
+        ``"serial"``, ``"processes"`` or ``"dask"``; the results are identical.
+    workers : int, optional
+        Worker processes (default: every core).
+    scheduler : str, optional
+        Address of a dask.distributed scheduler (with ``executor="dask"``;
+        without it a LocalCluster is started).
+    chunk_size : int, optional
+        Cases per unit of work.
+    progress_folder : path, optional
+        Where finished chunks are saved; a run interrupted at any point and
+        started again with the same folder computes only what is missing.
+    show_progress : bool
+        Draw a progress bar on stderr.
+    output : path, optional
+        Also write the result file here (atomically); with a progress folder, the folder stays locked
+        against another run until the file is written and the folder removed.
+    """
+    import contextlib
+
+    from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
+    from impactlab.io.results import write_results
+
+    study = load_study(source)
+    plan = plan_study(study)
+    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.data.sensitivity)
+        from impactlab.data.sensitivity import run_sensitivity
+
+        dataset = run_sensitivity(study, progress=progress)
+        if output is not None:
+            write_results(dataset, output)
+        return dataset
+    inputs = case_inputs(study)
+    outputs = study.all_outputs
+    say = progress or (lambda text: None)
+    with contextlib.ExitStack() as stack:
+        store = None
+        if progress_folder is not None:
+            store = stack.enter_context(ProgressStore(Path(progress_folder), fingerprint(study, outputs), say,
+                                                      output=output))
+        say(f"running {len(study.models)} model(s) on {study.n_cases} case(s)")
+        results = run_chunks(study, inputs, outputs, executor=executor, workers=workers, scheduler=scheduler,
+                             chunk_size=chunk_size, store=store, show_progress=show_progress)
+        dataset = assemble(study, plan, results)
+        if output is not None:
+            write_results(dataset, output)
+            if store is not None:
+                store.clear()
+    warn_validity(dataset)
+    return dataset

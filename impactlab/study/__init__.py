@@ -1,0 +1,1 @@
+"""Study loading: the YAML schema, blocks, sweeps, limits and line numbers."""

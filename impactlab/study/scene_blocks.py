@@ -1,0 +1,239 @@
+"""The scene blocks of a study (ball, face, club, strike, contact, impact, delivery) read into value objects.
+
+Split from :mod:`impactlab.study.core`, which reads the rest (sweeps, models, outputs, plots) and
+re-exports these builders. Each block is first structured by :mod:`impactlab.study.schema` (keys, kinds and
+units of its values); the builders here add what a schema cannot say: presets and their overrides, keys
+required together or excluding each other, choices from a table. Every error is a FieldError naming the
+field path.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import attrs
+
+from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike, club_preset
+from impactlab.errors import FieldError
+from impactlab.scene.materials import (
+    MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, face_preset,
+)
+from impactlab.scene.core import HANDEDNESS, Contact, Delivery, Impact, Scene
+from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ContactBlock, DeliveryBlock, FaceBlock,
+                                    ImpactBlock, RestitutionBlock, StrikeBlock, structure)
+
+
+def _construct(cls, where: str, **kwargs):
+    try:
+        return cls(**kwargs)
+    except FieldError as exc:
+        raise exc.at(prefix=where) from None
+
+
+def _material(block, path: str, base: Material | None) -> Material | None:
+    """The material of a block's youngs_modulus + poisson_ratio (both, or one over ``base``), else ``base``."""
+    modulus, ratio = block.youngs_modulus, block.poisson_ratio
+    if modulus is None and ratio is None:
+        return base
+    if base is not None:
+        modulus = base.youngs_modulus if modulus is None else modulus
+        ratio = base.poisson_ratio if ratio is None else ratio
+    if modulus is None:
+        raise FieldError(f"{path}.youngs_modulus", "a Young's modulus together with poisson_ratio", "nothing")
+    if ratio is None:
+        raise FieldError(f"{path}.poisson_ratio", "a Poisson ratio together with youngs_modulus", "nothing")
+    material = _construct(Material, path, youngs_modulus=modulus, poisson_ratio=ratio)
+    return attrs.evolve(material, name=base.name if base else "", source=base.source if base else "")
+
+
+def _preset(block, path: str, lookup, default):
+    """The preset the block names (its errors at ``path.preset``), or ``default`` where it names none."""
+    if block.preset is None:
+        return default
+    try:
+        return lookup(block.preset)
+    except FieldError as exc:
+        raise exc.at(prefix=path) from None
+
+
+def _given(block, base, keys: tuple[str, ...], defaults: Mapping) -> dict:
+    """Each key as the block gives it, else as ``base`` (a preset) has it, else its default (left out if none)."""
+    fields = {}
+    for key in keys:
+        value = getattr(block, key)
+        if value is None:
+            value = getattr(base, key) if base is not None else defaults.get(key)
+        if value is not None:
+            fields[key] = value
+    return fields
+
+
+def build_ball(value, path: str = "ball") -> Ball:
+    """A ball from a study block: a preset, its keys overridden, or every key given."""
+    block = structure(value, BallBlock, path)
+    base = _preset(block, path, ball_preset, None)
+    fields = _given(block, base, ("radius", "mass", "inertia_factor", "friction", "tangential_loss"),
+                    {"inertia_factor": 0.4, "tangential_loss": 0.0})
+    for key in ("radius", "mass"):
+        if key not in fields:
+            raise FieldError(f"{path}.{key}", f"the ball {key} (or a preset)", "nothing")
+    material = _material(block, path, base.material if base else None)
+    restitution = (_restitution_law(block.restitution, f"{path}.restitution") if block.restitution is not None
+                   else (base.restitution if base else None))
+    return _construct(Ball, path, material=material, restitution=restitution, name=base.name if base else "",
+                      source=base.source if base else "", **fields)
+
+
+def _restitution_law(law, path: str) -> RestitutionLaw:
+    """A restitution law from a number (constant) or a structured {law, value, reference_speed, slope, ...}."""
+    if not isinstance(law, RestitutionBlock):
+        return _construct(RestitutionLaw, path, kind="constant", value=law, source="given in the study")
+    if law.law not in RESTITUTION_LAWS:
+        raise FieldError(f"{path}.law", "a restitution law", law.law, choices=RESTITUTION_LAWS)
+    fields = {key: getattr(law, key) for key in ("value", "reference_speed", "slope", "exponent")
+              if getattr(law, key) is not None}
+    fields.update({key: tuple(getattr(law, key)) for key in ("speeds", "values") if getattr(law, key) is not None})
+    return _construct(RestitutionLaw, path, kind=law.law, source="given in the study", **fields)
+
+
+def build_face(value, path: str = "face") -> Face:
+    """A face from a study block: a preset, rigid, or a material, with an optional head mass."""
+    block = structure(value, FaceBlock, path)
+    base = _preset(block, path, face_preset, Face())
+    rigid = base.rigid if block.rigid is None else block.rigid
+    material = _material(block, path, None if rigid else base.material)
+    if rigid and material is not None:
+        raise FieldError(f"{path}.rigid", "either rigid: true or youngs_modulus + poisson_ratio, not both",
+                         "both")
+    return _construct(Face, path, material=material, rigid=rigid, mass=base.mass if block.mass is None else block.mass,
+                      name=base.name, source=base.source)
+
+
+def _inertia(value, path: str, base) -> tuple | None:
+    """A head inertia tensor (toe, up, target axes) from a 3x3 list or a block of components or principal moments."""
+    if value is None or isinstance(value, tuple):  # left out, or the tensor as a 3x3 list
+        return value if value is not None else base
+    given = [key for key in INERTIA_COMPONENTS if getattr(value, key) is not None]
+    if value.principal is not None or value.axes is not None:
+        if given:
+            raise FieldError(f"{path}.{given[0]}", "either principal + axes or tensor components, not both", given[0])
+        moments, axes = value.principal, value.axes
+        if moments is None or len(moments) != 3:
+            raise FieldError(f"{path}.principal", "three principal moments", moments)
+        if (not isinstance(axes, list) or len(axes) != 3
+                or not all(isinstance(row, list) and len(row) == 3 for row in axes)):
+            raise FieldError(f"{path}.axes", "three unit axes [toe, up, target], one per principal moment", axes)
+        try:
+            return ClubHead.from_principal(moments, axes, mass=1.0, center_of_mass=(0.0, 0.0, 1.0)).inertia
+        except FieldError as exc:
+            raise exc.at(prefix=path) from None
+        except (TypeError, ValueError):
+            raise FieldError(f"{path}.axes", "numbers", axes) from None
+    components = dict(zip(INERTIA_COMPONENTS, (0.0,) * 6))
+    if base is not None:
+        components.update(ClubHead(mass=1.0, inertia=base, center_of_mass=(0.0, 0.0, 1.0)).inertia_components())
+    for key in ("toe", "up", "target"):
+        if key not in given and base is None:
+            raise FieldError(f"{path}.{key}", f"the moment of inertia about the {key} axis", "nothing")
+    components.update({key: getattr(value, key) for key in given})
+    c = components
+    return ((c["toe"], c["toe_up"], c["toe_target"]), (c["toe_up"], c["up"], c["up_target"]),
+            (c["toe_target"], c["up_target"], c["target"]))
+
+
+def _center_of_mass(center: CenterBlock | None, path: str, base) -> tuple:
+    """The centre of mass {toe, high, depth}: each key as given, else the preset's (toe and high default to 0)."""
+    if center is None:
+        if base is None:
+            raise FieldError(path, "the centre of mass {toe, high, depth} or a preset", "nothing")
+        return base.center_of_mass
+    defaults = dict(zip(("toe", "high", "depth"), base.center_of_mass)) if base else {"toe": 0.0, "high": 0.0}
+    fields = _given(center, None, ("toe", "high", "depth"), defaults)
+    if "depth" not in fields:
+        raise FieldError(f"{path}.depth", "the centre of mass's depth behind the face", "nothing")
+    return fields["toe"], fields["high"], fields["depth"]
+
+
+def build_club(value, path: str = "club") -> ClubHead:
+    """A club head from a study block: a preset, its keys overridden, or every key given."""
+    block = structure(value, ClubBlock, path)
+    base = _preset(block, path, club_preset, None)
+    fields = _given(block, base, ("mass", "loft", "lie", "bulge_radius", "roll_radius", "restitution_gain"), {})
+    if "mass" not in fields:
+        raise FieldError(f"{path}.mass", "the head mass (or a preset)", "nothing")
+    fields["inertia"] = _inertia(block.inertia, f"{path}.inertia", base.inertia if base else None)
+    if fields["inertia"] is None:
+        raise FieldError(f"{path}.inertia", "the head's inertia (toe, up, target moments) or a preset", "nothing")
+    fields["center_of_mass"] = _center_of_mass(block.center_of_mass, f"{path}.center_of_mass", base)
+    material = base.material if base else None
+    if block.material is not None:
+        if not isinstance(block.material, str) or block.material not in MATERIAL_PRESETS:
+            raise FieldError(f"{path}.material", "a material preset", block.material, choices=MATERIAL_PRESETS)
+        material = MATERIAL_PRESETS[block.material]
+    material = None if block.rigid else _material(block, path, material)
+    if block.rigid and (block.youngs_modulus is not None or block.material is not None):
+        raise FieldError(f"{path}.rigid", "either rigid: true or a face material, not both", "both")
+    return _construct(ClubHead, path, material=material, name=base.name if base else "",
+                      source=base.source if base else "", **fields)
+
+
+def build_strike(value, path: str = "strike") -> Strike:
+    """Where on the club face the ball lands: toe and high from the face centre (0 where left out)."""
+    block = structure(value, StrikeBlock, path)
+    return _construct(Strike, path, **_given(block, None, ("toe", "high"), {}))
+
+
+def build_contact(value, path: str = "contact") -> Contact:
+    """The pair's friction and restitution, each None where left out (the ball's then apply)."""
+    block = structure(value, ContactBlock, path)
+    return _construct(Contact, path, friction=block.friction, restitution=block.restitution)
+
+
+def build_impact(value, path: str = "impact") -> Impact:
+    """Speed and angle of the face relative to the ball (both required), and the incoming spin."""
+    block = structure(value, ImpactBlock, path)
+    for key in ("speed", "angle"):
+        if getattr(block, key) is None:
+            raise FieldError(f"{path}.{key}", f"the impact {key}", "nothing")
+    return _construct(Impact, path, speed=block.speed, angle=block.angle, spin=block.spin or 0.0)
+
+
+def build_delivery(value, path: str = "delivery") -> Delivery:
+    """A golf delivery: club speed (required), path, face, attack and loft angles, handedness."""
+    block = structure(value, DeliveryBlock, path)
+    if block.club_speed is None:
+        raise FieldError(f"{path}.club_speed", "the club speed", "nothing")
+    if block.handedness not in HANDEDNESS:
+        raise FieldError(f"{path}.handedness", "the golfer's handedness", block.handedness, choices=HANDEDNESS)
+    angles = _given(block, None, ("path", "face_angle", "attack_angle", "dynamic_loft"), {})
+    return _construct(Delivery, path, club_speed=block.club_speed, handedness=block.handedness, **angles)
+
+
+def build_scene(document: Mapping) -> Scene:
+    """The scene a study document describes (without its sweep)."""
+    if "ball" not in document:
+        raise FieldError("ball", "a ball: {preset: NAME} or radius, mass, ...", "nothing")
+    ball, face, contact = (build_ball(document["ball"]), build_face(document.get("face")),
+                           build_contact(document.get("contact")))
+    club, strike = None, Strike()
+    if "club" in document:
+        if "face" in document:
+            raise FieldError("face", "either a face or a club (whose face it is), not both", "both")
+        club = build_club(document["club"])
+        face = Scene.face_of(club)
+    if "strike" in document:
+        if club is None:
+            raise FieldError("strike", "a club block to strike (a fixed or point-mass face has no off-centre)",
+                             "no club")
+        strike = build_strike(document["strike"])
+    if "delivery" in document:
+        impact = structure(document.get("impact"), ImpactBlock, "impact")
+        for key in ("speed", "angle"):
+            if getattr(impact, key) is not None:
+                raise FieldError(f"impact.{key}", "either a delivery or impact speed and angle, not both",
+                                 document["impact"][key])
+        return Scene.from_delivery(ball, face, contact, build_delivery(document["delivery"]), impact.spin or 0.0,
+                                   club, strike)
+    if "impact" not in document:
+        raise FieldError("impact", "impact conditions (speed and angle) or a delivery block", "nothing")
+    return Scene(ball, face, contact, build_impact(document["impact"]), club=club, strike=strike)

@@ -1,0 +1,159 @@
+"""YAML to plain Python data, remembering the line of every node so errors can point at it."""
+
+from __future__ import annotations
+
+import stat
+from pathlib import Path as FilePath
+from typing import Any
+
+import yaml
+
+from impactlab.errors import ResourceLimitError, StudyError
+
+#: a study or table larger than this is not a hand-written text file
+MAX_TEXT_BYTES = 16 * 2**20
+_BOMS = {b"\xff\xfe\x00\x00": "UTF-32", b"\x00\x00\xfe\xff": "UTF-32", b"\xff\xfe": "UTF-16",
+         b"\xfe\xff": "UTF-16"}
+
+
+def read_text_file(path: FilePath, what: str = "study file") -> str:
+    """The UTF-8 text of a regular file, or a StudyError that says what the file is instead."""
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        raise StudyError(f"{path}: no such {what}") from None
+    except OSError as exc:
+        raise StudyError(f"{path}: cannot read this {what}: {exc.strerror}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise StudyError(f"{path}: is a folder, not a {what}; give the .yaml file(s) inside it (e.g. {path}/*.yaml)")
+    if not stat.S_ISREG(info.st_mode):
+        raise StudyError(f"{path}: is not a regular file (a device or pipe); give a YAML {what}")
+    if info.st_size > MAX_TEXT_BYTES:
+        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a {what} (at most {MAX_TEXT_BYTES:,})")
+    data = path.read_bytes()
+    for bom, encoding in _BOMS.items():
+        if data.startswith(bom):
+            raise StudyError(f"{path}: is {encoding} text; save the {what} as UTF-8")
+    if b"\0" in data:
+        raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a YAML {what}")
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise StudyError(f"{path}:{line}: is not UTF-8 text (byte 0x{data[exc.start]:02x}); save the {what} as "
+                         "UTF-8") from None
+
+Path = tuple[Any, ...]
+
+
+def format_path(path: Path) -> str:
+    """('models', 2, 'name') -> 'models[2].name'."""
+    text = ""
+    for part in path:
+        if isinstance(part, int):
+            text += f"[{part}]"
+        else:
+            text += f".{part}" if text else str(part)
+    return text
+
+
+def parse_path(text: str) -> Path:
+    """Inverse of :func:`format_path` for paths without dots inside keys."""
+    parts: list[Any] = []
+    for chunk in text.split("."):
+        while "[" in chunk:
+            head, _, rest = chunk.partition("[")
+            if head:
+                parts.append(head)
+            index, _, chunk = rest.partition("]")
+            parts.append(int(index))
+        if chunk:
+            parts.append(chunk)
+    return tuple(parts)
+
+
+#: libyaml's parser where PyYAML was built with it (10x faster than the pure-Python one, the same nodes and marks)
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+
+def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]:
+    """Parse YAML text into Python data and a map from node path to 1-based line number.
+
+    Duplicate keys, which plain PyYAML silently overwrites, are refused. Aliases are expanded into
+    plain data (a study is a tree), so a recursive alias is refused and the expansion is bounded by
+    :func:`impactlab.study.limits.max_yaml_nodes` nodes: ten nested aliases of ten items each would
+    otherwise make 10^10 nodes.
+    """
+    from impactlab.study.limits import max_yaml_nodes
+
+    loader = _LOADER(text)
+    try:
+        node = loader.get_single_node()
+        lines: dict[Path, int] = {}
+        budget = _Budget(max_yaml_nodes(), file)
+        data = _convert(loader, node, (), lines, file, budget) if node is not None else None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"{file or '<study>'}:{mark.line + 1}" if mark else (file or "<study>")
+        problem = getattr(exc, "problem", None) or str(exc)
+        context, context_mark = getattr(exc, "context", None), getattr(exc, "context_mark", None)
+        if context and context_mark:
+            problem += f" ({context} on line {context_mark.line + 1})"
+        raise StudyError(f"{where}: not valid YAML: {problem}") from None
+    except RecursionError:  # nesting thousands deep, or a merge key (<<) that merges its own mapping
+        raise StudyError(f"{file or '<study>'}: the YAML nests too deeply or merges a mapping into itself") from None
+    finally:
+        loader.dispose()
+    return data, lines
+
+
+class _Budget:
+    """Nodes left to expand, and the collection nodes on the way down (an alias to one of them is a cycle)."""
+
+    def __init__(self, nodes: int, file):
+        self.left, self.limit, self.file, self.open = nodes, nodes, file or "<study>", set()
+
+    def enter(self, node, path: Path) -> None:
+        if id(node) in self.open:
+            raise StudyError(f"{self.file}:{node.start_mark.line + 1}: {format_path(path) or '<top>'}: a recursive "
+                             "alias (a node that contains itself); write the data out instead")
+        self.left -= 1
+        if self.left < 0:
+            raise ResourceLimitError(f"{self.file}: the YAML expands (through its aliases) to more than "
+                                     f"{self.limit:,} nodes; write the data out, or raise IMPACTLAB_MAX_YAML_NODES")
+
+
+def _convert(loader, node, path: Path, lines: dict[Path, int], file, budget: _Budget):
+    budget.enter(node, path)
+    lines[path] = node.start_mark.line + 1
+    if isinstance(node, yaml.MappingNode):
+        budget.open.add(id(node))
+        loader.flatten_mapping(node)
+        result = {}
+        for key_node, value_node in node.value:
+            if not isinstance(key_node, yaml.ScalarNode):  # a list or mapping as a key: never a study's
+                raise StudyError(f"{file or '<study>'}:{key_node.start_mark.line + 1}: {format_path(path) or '<top>'}: "
+                                 "a key must be a plain name, not a list or mapping")
+            key = loader.construct_object(key_node, deep=True)
+            if key in result:
+                raise StudyError(f"{file or '<study>'}:{key_node.start_mark.line + 1}: "
+                                 f"{format_path(path + (key,))}: key given twice")
+            result[key] = _convert(loader, value_node, path + (key,), lines, file, budget)
+        budget.open.discard(id(node))
+        return result
+    if isinstance(node, yaml.SequenceNode):
+        budget.open.add(id(node))
+        result = [_convert(loader, item, path + (index,), lines, file, budget) for index, item in enumerate(node.value)]
+        budget.open.discard(id(node))
+        return result
+    return loader.construct_object(node, deep=True)
+
+
+def line_of(lines: dict[Path, int], path: Path) -> int | None:
+    """Line of ``path`` or of its nearest ancestor that has one."""
+    while True:
+        if path in lines:
+            return lines[path]
+        if not path:
+            return None
+        path = path[:-1]
