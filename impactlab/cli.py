@@ -7,6 +7,7 @@ choices) and exit status 2, never a traceback.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import re
 import sys
@@ -74,14 +75,53 @@ def _cmd_run(args) -> int:
         progress_folder = output.with_name(f"{output.name}.progress")
         set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
                            "compute only the rest")
-        dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
-                            scheduler=args.scheduler, chunk_size=args.chunk_size,
-                            progress_folder=progress_folder, show_progress=not args.quiet, output=output)
+        with _validity_notes() as notes:
+            dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
+                                scheduler=args.scheduler, chunk_size=args.chunk_size,
+                                progress_folder=progress_folder, show_progress=not args.quiet, output=output)
         say(f"wrote {output}")
+        _summarise_notes(notes, output, full=args.notes)
         if args.plot:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+@contextlib.contextmanager
+def _validity_notes():
+    """Collect the run's ValidityWarnings instead of printing each: a golf study raises the same known notes
+    every time (the contact is larger than Hertz's small-contact assumption, ball and face differ in Dundurs'
+    beta), and repeated on every run they carry no signal. Every other warning is shown as it comes."""
+    import warnings
+
+    from impactlab.model.diagnostics import ValidityWarning
+
+    notes: list[str] = []
+    shown = warnings.showwarning
+
+    def collect(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, ValidityWarning):
+            notes.append(str(message))
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = collect
+    try:
+        yield notes
+    finally:
+        warnings.showwarning = shown
+
+
+def _summarise_notes(notes: list[str], output: Path, *, full: bool) -> None:
+    """One line per result file for its validity notes (all of them with ``--notes``), on stderr."""
+    if not notes:
+        return
+    if full:
+        for text in notes:
+            print(f"impactlab: note: {text}", file=sys.stderr)
+        return
+    print(f"impactlab: {len(notes)} validity note(s) on {output} (cases outside a model's assumptions); "
+          f"`impactlab show {output}` lists them, or run with --notes", file=sys.stderr)
 
 
 #: dask scheduler addresses: PROTOCOL://HOST[:PORT] or HOST:PORT
@@ -162,7 +202,18 @@ def _cmd_show(args) -> int:
     print("models:")
     for model in json.loads(dataset.attrs.get("models", "[]")):
         print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")
+    _print_validity_notes(dataset)
     return 0
+
+
+def _print_validity_notes(dataset) -> None:
+    from impactlab.model.diagnostics import messages
+
+    notes = messages(dataset)
+    if notes:
+        print("validity notes (cases outside a model's assumptions; the `validity` variable flags each case):")
+        for text in notes:
+            print(f"  {text}")
 
 
 def _cmd_plot(args) -> int:
@@ -406,6 +457,8 @@ def build_parser() -> argparse.ArgumentParser:
                                                        "also IMPACTLAB_MAX_CASES)")
     run.add_argument("--max-memory", type=_size, help="refuse studies estimated to need more memory than this, e.g. "
                                                        "16GiB (default 4GiB; also IMPACTLAB_MAX_MEMORY)")
+    run.add_argument("--notes", action="store_true",
+                     help="print every validity note in full (default: one line per result file with their count)")
     run.add_argument("-q", "--quiet", action="store_true")
     run.set_defaults(handler=_cmd_run)
 

@@ -102,7 +102,7 @@ INPUTS: dict[str, InputSpec] = {
     "speed": InputSpec("impact.speed", "m/s", "speed", "impact speed V along the path", _attr("impact", "speed"),
                        low=0.0, low_open=True, high_open=True),
     "angle": InputSpec("impact.angle", "rad", "angle", "face normal relative to path alpha",
-                       _attr("impact", "angle"), "deg", RAD_TO_DEG, low=-math.pi / 2, high=math.pi / 2,
+                       _attr("impact", "angle"), "degree", RAD_TO_DEG, low=-math.pi / 2, high=math.pi / 2,
                        low_open=True, high_open=True),
     "spin": InputSpec("impact.spin", "rad/s", "angular_speed",
                       "incoming spin, counted like spin_rate (positive: the backspin a lofted face gives; topspin "
@@ -128,13 +128,13 @@ def _delivery_value(attribute: str):
 _HALF_TURN = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
 INPUTS.update({
     "path": InputSpec("delivery.path", "rad", "angle", "club path, horizontal, in-to-out positive",
-                      _delivery_value("path"), "deg", RAD_TO_DEG, **_HALF_TURN),
+                      _delivery_value("path"), "degree", RAD_TO_DEG, **_HALF_TURN),
     "face_angle": InputSpec("delivery.face_angle", "rad", "angle", "face angle, horizontal, open positive",
-                            _delivery_value("face_angle"), "deg", RAD_TO_DEG, **_HALF_TURN),
+                            _delivery_value("face_angle"), "degree", RAD_TO_DEG, **_HALF_TURN),
     "attack_angle": InputSpec("delivery.attack_angle", "rad", "angle", "attack angle, upwards positive",
-                              _delivery_value("attack_angle"), "deg", RAD_TO_DEG, **_HALF_TURN),
+                              _delivery_value("attack_angle"), "degree", RAD_TO_DEG, **_HALF_TURN),
     "dynamic_loft": InputSpec("delivery.dynamic_loft", "rad", "angle", "dynamic loft of the face normal",
-                              _delivery_value("dynamic_loft"), "deg", RAD_TO_DEG, **_HALF_TURN),
+                              _delivery_value("dynamic_loft"), "degree", RAD_TO_DEG, **_HALF_TURN),
     "handedness": InputSpec("delivery.handedness", "1", "dimensionless", "+1 right-handed golfer, -1 left-handed",
                             _delivery_value("handedness"), low=-1.0, high=1.0),
 })
@@ -174,7 +174,7 @@ for _index, (_key, _words) in enumerate((("toe", "towards the toe"), ("high", "u
         f"club.center_of_mass.{_key}", "m", "length", f"club-head centre of mass from the face centre, {_words}",
         _club_value("center_of_mass", _index), "mm", 1e3, low_open=True, high_open=True)
 INPUTS.update({
-    "club_loft": InputSpec("club.loft", "rad", "angle", "static loft of the club head", _club_value("loft"), "deg",
+    "club_loft": InputSpec("club.loft", "rad", "angle", "static loft of the club head", _club_value("loft"), "degree",
                            RAD_TO_DEG, low=0.0, high=math.pi / 2, high_open=True),
     "face_bulge_radius": InputSpec("club.bulge_radius", "m", "length", "face bulge radius (heel to toe; inf: flat)",
                                    _club_value("bulge_radius"), "mm", 1e3, low=0.0, low_open=True),
@@ -215,11 +215,11 @@ class OutputSpec:
 
 
 OUTPUTS: dict[str, OutputSpec] = {
-    "launch_angle": OutputSpec("deg", "launch angle relative to path (theta)", factor=RAD_TO_DEG),
+    "launch_angle": OutputSpec("degree", "launch angle relative to path (theta)", factor=RAD_TO_DEG),
     "launch_ratio": OutputSpec("1", "launch ratio theta/alpha"),
-    "rebound_angle": OutputSpec("deg", "rebound angle from the face normal, face frame (specular = alpha)",
+    "rebound_angle": OutputSpec("degree", "rebound angle from the face normal, face frame (specular = alpha)",
                                 factor=RAD_TO_DEG),
-    "total_angle": OutputSpec("deg", "total angle: incidence plus rebound angle (plate experiment)",
+    "total_angle": OutputSpec("degree", "total angle: incidence plus rebound angle (plate experiment)",
                               factor=RAD_TO_DEG),
     "ball_speed": OutputSpec("m/s", "ball speed after impact, ground frame"),
     "spin_rate": OutputSpec("rpm", "ball spin after impact (backspin positive)", factor=RADS_TO_RPM),
@@ -251,13 +251,13 @@ OUTPUTS: dict[str, OutputSpec] = {
     "validity": OutputSpec("1", "validity flags, bits of flag_masks (0: within the model's assumptions)",
                            diagnostic=True),
     # golf deliveries (3-D, ground frame; horizontal angles positive to the right of the target line)
-    "spin_loft": OutputSpec("deg", "spin loft: angle between face normal and club velocity", factor=RAD_TO_DEG),
-    "vertical_launch_angle": OutputSpec("deg", "vertical launch angle above the horizontal", factor=RAD_TO_DEG),
-    "horizontal_launch_angle": OutputSpec("deg", "horizontal launch angle, right of the target line positive",
+    "spin_loft": OutputSpec("degree", "spin loft: angle between face normal and club velocity", factor=RAD_TO_DEG),
+    "vertical_launch_angle": OutputSpec("degree", "vertical launch angle above the horizontal", factor=RAD_TO_DEG),
+    "horizontal_launch_angle": OutputSpec("degree", "horizontal launch angle, right of the target line positive",
                                           factor=RAD_TO_DEG),
     "vertical_launch_ratio": OutputSpec("1", "vertical launch ratio (launch - attack)/(dynamic loft - attack)"),
     "horizontal_launch_ratio": OutputSpec("1", "horizontal launch ratio (launch - path)/(face - path)"),
-    "spin_axis": OutputSpec("deg", "spin axis tilt from horizontal, positive curving right", factor=RAD_TO_DEG),
+    "spin_axis": OutputSpec("degree", "spin axis tilt from horizontal, positive curving right", factor=RAD_TO_DEG),
     "back_spin": OutputSpec("rpm", "back spin: spin about the horizontal axis across the flight",
                             factor=RADS_TO_RPM),
     "side_spin": OutputSpec("rpm", "side spin: spin about the axis across the flight perpendicular to the back-spin "
@@ -265,7 +265,7 @@ OUTPUTS: dict[str, OutputSpec] = {
     "smash_factor": OutputSpec("1", "smash factor: ball speed over club speed"),
     "club_speed_after": OutputSpec("m/s", "club-head centre-of-mass speed after impact"),
     "club_angular_velocity": OutputSpec("rpm", "club-head angular speed after impact", factor=RADS_TO_RPM),
-    "face_rotation": OutputSpec("deg", "rotation of the club head during contact", factor=RAD_TO_DEG),
+    "face_rotation": OutputSpec("degree", "rotation of the club head during contact", factor=RAD_TO_DEG),
 }
 
 #: outputs with one value per case, in vocabulary order (diagnostics included)

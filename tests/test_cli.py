@@ -108,14 +108,23 @@ def test_plot_redraws_the_figures_a_study_declares(tmp_path, drawn_figures):
 
 
 @pytest.mark.slow
-def test_validity_is_warned_once_per_flag_in_words(tmp_path):
+def test_validity_notes_are_one_line_per_run_and_listed_in_full_on_request(tmp_path):
+    # a golf-like study raises the same two known notes every run: one line with their count, not both in full
     study = small_study(tmp_path, **{"youngs_modulus: 136 MPa": "youngs_modulus: 5 MPa"})
-    result = run_cli("run", study, "-o", tmp_path / "soft.h5")
+    out = tmp_path / "soft.h5"
+    result = run_cli("run", study, "-o", out)
     assert result.returncode == 0
-    warnings = [line for line in result.stderr.splitlines() if line.startswith("impactlab: warning:")]
-    assert warnings == ["impactlab: warning: maw: in 12 of 12 case(s) the contact radius exceeds 0.3 R, where "
-                        "Hertz's paraboloid misses the sphere's surface by more than 2 % at the contact edge (golf "
-                        "impacts reach 0.38-0.56 R: 4-9 %)",
-                        "impactlab: warning: maw: in 12 of 12 case(s) the normal-tangential coupling the model "
-                        "neglects (ball and face differ in Dundurs' beta) is estimated to change the tangential "
-                        "impulse by more than the tolerance asked for (output coupling_estimate; docs/models.md)"]
+    lines = [line for line in result.stderr.splitlines() if line.startswith("impactlab:")]
+    assert lines == [f"impactlab: 2 validity note(s) on {out} (cases outside a model's assumptions); "
+                     f"`impactlab show {out}` lists them, or run with --notes"]
+    full = [
+        "maw: in 12 of 12 case(s) the contact radius exceeds 0.3 R, where Hertz's paraboloid misses the sphere's "
+        "surface by more than 2 % at the contact edge (golf impacts reach 0.38-0.56 R: 4-9 %)",
+        "maw: in 12 of 12 case(s) the normal-tangential coupling the model neglects (ball and face differ in "
+        "Dundurs' beta) is estimated to change the tangential impulse by more than the tolerance asked for "
+        "(output coupling_estimate; docs/models.md)"]
+    noted = run_cli("run", study, "-o", tmp_path / "again.h5", "--notes")
+    assert [line for line in noted.stderr.splitlines() if line.startswith("impactlab:")] == \
+        [f"impactlab: note: {text}" for text in full]
+    shown = run_cli("show", out)
+    assert shown.returncode == 0 and all(f"  {text}" in shown.stdout.splitlines() for text in full)

@@ -135,7 +135,7 @@ def test_the_study_dataset_keeps_its_layout_and_provenance():
     result = impactlab.run_study(STUDY, executor="serial")
     assert result["launch_angle"].dims == ("model", "angle")
     assert list(result["model"].values) == ["maw", "rigid_coulomb", "restitution"]
-    assert result["angle"].attrs["units"] == "deg" and result["angle"].values[0] == 10.0
+    assert result["angle"].attrs["units"] == "degree" and result["angle"].values[0] == 10.0
     assert result["validity"].dtype == np.int16 and "flag_meanings" in result["validity"].attrs
     assert result.attrs["numpy_version"] == np.__version__ and result.attrs["study_name"] == "three-models"
     # the cached provenance is a copy each time: changing one result's attributes leaves the next alone

@@ -38,11 +38,11 @@ def test_issue_example_runs_with_the_promised_dimensions(example_result):
     ds = example_result
     assert dict(ds.sizes) == {"model": 3, "angle": 60, "friction": 3}
     assert list(ds.model.values) == ["maw", "rigid_coulomb", "restitution"]
-    assert ds.angle.attrs["units"] == "deg" and ds.angle.values[0] == pytest.approx(1.0)
+    assert ds.angle.attrs["units"] == "degree" and ds.angle.values[0] == pytest.approx(1.0)
     assert ds.friction.values.tolist() == [0.15, 0.25, 0.35]
     assert list(ds.data_vars) == ["launch_angle", "launch_ratio", "rebound_angle", "spin_rate", "ball_speed",
                                   "steps", "energy_error", "validity"]  # the stability report comes with every result
-    assert ds.launch_angle.attrs["units"] == "deg" and ds.spin_rate.attrs["units"] == "rpm"
+    assert ds.launch_angle.attrs["units"] == "degree" and ds.spin_rate.attrs["units"] == "rpm"
     assert ds.launch_angle.dims == ("model", "angle", "friction")
     assert np.all(np.isfinite(ds.launch_ratio.values))
 

@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
+from impactlab.io.results import CF_CONVENTIONS
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
@@ -58,6 +59,7 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
                                                                  "long_name": spec.description,
                                                                  "study_path": field.path})
     if time is not None:
+        # no CF standard_name "time": CF gives it calendar units (s since an epoch); this is elapsed time
         coords[TIME_DIM] = xr.Variable(TIME_DIM, time, {"units": "s", "long_name": "time since first contact"})
     return xr.Dataset(data_vars, coords=coords, attrs=provenance(study, plan))
 
@@ -149,6 +151,7 @@ def provenance(study, plan) -> dict[str, str | int]:
     models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
                "references": list(entry.model.references)} for entry in study.models]
     scene = {name: (value if np.isfinite(value) else str(value)) for name, value in study.scene.inputs().items()}
+    created = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
     return {
         "title": f"impactlab study {study.name}",
         "study_name": study.name,
@@ -161,7 +164,9 @@ def provenance(study, plan) -> dict[str, str | int]:
         "plots": json.dumps([plot.as_dict() for plot in study.plots]),
         **versions(),
         "git_commit": git_commit(),
-        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
-                       "z away from face; backspin positive",
+        "created": created,
+        "Conventions": CF_CONVENTIONS,  # CF metadata (checked by the IOOS compliance checker in the tests)
+        "history": f"{created} impactlab {__version__}: impactlab run {study.file or study.name}",
+        "frame_conventions": "impactlab vocabulary (docs/conventions.md): face frame x along incoming slip, "
+                             "z away from face; backspin positive",
     }
