@@ -249,7 +249,11 @@ class OpenConnectClient:
         if self._socket is None:
             raise GSProConnectError(f"{self.where}: not connected")
         try:
+            self._socket.settimeout(self.timeout)
             self._socket.sendall(payload)
+        except TimeoutError:
+            raise GSProConnectError(f"{self.where} took none of {what} within {self.timeout:g} s "
+                                    "(raise --timeout if GSPro is busy)") from None
         except OSError as exc:  # a reset or broken pipe: the peer went away
             raise GSProConnectError(f"{self.where} closed the connection before {what} was sent "
                                     f"({exc.strerror or exc})") from None

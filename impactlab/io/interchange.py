@@ -9,33 +9,26 @@ and gathered in the project's notes on vendors (GSPro Open Connect API v1).
 
 Ball data (``BallData``), all from impactlab outputs:
 
-============= ===== ===========================================================================
-field         unit  meaning and sign (impactlab output it comes from)
-============= ===== ===========================================================================
-Speed         mph   ball speed, ground frame (``ball_speed``; 1 mph = 0.44704 m/s exactly)
-VLA           deg   vertical launch angle above the horizontal (``vertical_launch_angle``)
-HLA           deg   horizontal launch angle, positive right of the target line
-                    (``horizontal_launch_angle``)
-TotalSpin     rpm   spin rate (``spin_rate``)
-SpinAxis      deg   tilt of the spin axis, positive curving right, a right-hander's fade
-                    (``spin_axis``)
-BackSpin      rpm   TotalSpin cos(SpinAxis)
-SideSpin      rpm   TotalSpin sin(SpinAxis): the same sign as SpinAxis, as GSPro's clients send it
-CarryDistance yd    carry (``carry_distance``), only when the result has it
-============= ===== ===========================================================================
+| field | unit | meaning and sign (impactlab output it comes from) |
+|---|---|---|
+| Speed | mph | ball speed, ground frame (``ball_speed``; 1 mph = 0.44704 m/s exactly) |
+| VLA | deg | vertical launch angle above the horizontal (``vertical_launch_angle``) |
+| HLA | deg | horizontal launch angle, positive right of the target line (``horizontal_launch_angle``) |
+| TotalSpin | rpm | spin rate (``spin_rate``) |
+| SpinAxis | deg | tilt of the spin axis, positive curving right, a right-hander's fade (``spin_axis``) |
+| BackSpin | rpm | TotalSpin cos(SpinAxis) |
+| SideSpin | rpm | TotalSpin sin(SpinAxis): the sign of SpinAxis, as GSPro's clients send it |
+| CarryDistance | yd | carry (``carry_distance``), only when the result has it |
 
 Club data (``ClubData``), from the study's delivery (a swept coordinate, or the base scene):
 
-============= ===== ===========================================================================
-Speed         mph   club speed (``delivery.club_speed``: the face's speed at the contact point)
-AngleOfAttack deg   attack angle, positive upwards (``delivery.attack_angle``)
-Loft          deg   dynamic loft (``delivery.dynamic_loft``)
-Path          deg   club path, positive right of the target line (``delivery.path``: in-to-out
-                    for a right-handed golfer; a left-handed golfer's in-to-out path is sent
-                    negative)
-FaceToTarget  deg   face angle, positive right of the target line (``delivery.face_angle``: open
-                    for a right-handed golfer; a left-hander's open face is sent negative)
-============= ===== ===========================================================================
+| field | unit | meaning and sign (study field it comes from) |
+|---|---|---|
+| Speed | mph | club-head speed at the face centre (``delivery.club_speed``) |
+| AngleOfAttack | deg | attack angle, positive upwards (``delivery.attack_angle``) |
+| Loft | deg | dynamic loft (``delivery.dynamic_loft``) |
+| Path | deg | club path, positive right of the target line (``delivery.path``; in-to-out, right-handed) |
+| FaceToTarget | deg | face angle, positive right of the target line (``delivery.face_angle``; open, right-handed) |
 
 Left out, so that no number is guessed: ``Lie`` (impactlab keeps the heel-toe line level and
 knows no dynamic lie), ``ClosureRate`` (the head's rotation before impact is not modelled),
