@@ -37,6 +37,7 @@ T_DEM = ["tests/test_dem.py", "tests/test_approaches.py", "tests/test_mutation_o
 T_RIGID = ["tests/test_rigid_models.py", "tests/test_clubs.py", "tests/test_mutation_oracles.py"]
 T_CORE = ["tests/test_maw.py", "tests/test_rigid_models.py", "tests/test_units_and_physics.py",
           "tests/test_mutation_oracles.py", "tests/test_properties.py"]
+T_GSPRO = ["tests/test_gspro.py", "tests/test_interchange.py"]
 T_CLUB = ["tests/test_clubs.py", "tests/test_delivery.py", "tests/test_mutation_oracles.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
@@ -169,8 +170,24 @@ MUTANTS = [
     ("study-poisson-override", "impactlab/study/scene_blocks.py",
      "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",
      ["tests/test_study.py", "tests/test_mutation_oracles.py"], "a preset's Poisson ratio override ignored"),
-    ("gspro-knots", "impactlab/io/interchange.py", "MPH = 0.44704", "MPH = 0.514444",
-     ["tests/test_interchange.py", "tests/test_mutation_oracles.py"], "mph taken as knots in the GSPro export"),
+    ("gspro-knots", "impactlab/units.py", "MPH = 0.44704", "MPH = 0.514444",
+     T_GSPRO, "mph taken as knots in the GSPro export"),
+    ("gspro-side-spin-sign", "impactlab/io/interchange.py",
+     '"SideSpin": round(values["spin_rate"] * math.sin(axis), 1)',
+     '"SideSpin": round(-values["spin_rate"] * math.sin(axis), 1)',
+     T_GSPRO, "GSPro SideSpin with the sign opposite to SpinAxis (Garmin's CSV convention)"),
+    ("gspro-handedness-dropped", "impactlab/io/interchange.py",
+     'degrees = degrees * np.sign(inputs["handedness"])', "degrees = degrees",
+     T_GSPRO, "a left-hander's path and face sent in golfer's words, not right-positive"),
+    ("gspro-carry-in-metres", "impactlab/io/interchange.py",
+     "* metres / YARD", "* metres", T_GSPRO, "CarryDistance sent in metres under Units Yards"),
+    ("gspro-braces-in-strings", "impactlab/io/gspro_connect.py",
+     'elif char == b\'"\':\n                self._in_string = True', "elif False:\n                pass",
+     T_GSPRO, "GSPro replies split by braces without regard to string literals"),
+    ("gspro-201-answers", "impactlab/io/gspro_connect.py",
+     "if reply.code in UNSOLICITED:\n                    self._note(reply)\n                    continue",
+     "if False:\n                    continue",
+     T_GSPRO, "an unsolicited 201 player-information message taken as the answer to a shot"),
 ]
 
 #: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out

@@ -318,14 +318,40 @@ def _cmd_paper(args) -> int:
 
 
 def _cmd_export(args) -> int:
-    from impactlab.io.interchange import write_gspro
+    from impactlab.io.interchange import checked_shots, write_gspro
     from impactlab.io.results import open_results
     from impactlab.io.safe_output import check_output
 
+    if args.gspro is not None:
+        from impactlab.io.gspro_connect import parse_address, send_shots
+
+        host, port = parse_address(args.gspro)  # a bad address is said before the file is read
+        shots = checked_shots(open_results(args.file), model=args.model, device_id=args.device_id)
+        say = (lambda text: print(text, file=sys.stderr))
+        if not shots:
+            say("no shot to send: no case of the result has every ball value (all NaN)")
+            return 0
+        replies = send_shots(shots, host, port, timeout=args.timeout, progress=say)
+        say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
+            f"(the last: {replies[-1].describe()})")
+        return 0
     check_output(args.output, what="shot file", suffix=".json")
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0
+
+
+def _seconds(text: str) -> float:
+    """argparse type: a positive, finite number of seconds."""
+    import math
+
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text}")
+    return value
 
 
 def _print_benchmarks(keys) -> list[str]:
@@ -488,11 +514,19 @@ def build_parser() -> argparse.ArgumentParser:
     convergence.add_argument("-q", "--quiet", action="store_true")
     convergence.set_defaults(handler=_cmd_convergence)
 
-    export = commands.add_parser("export", help="export a delivery result's ball data for golf simulators")
+    export = commands.add_parser("export", help="export a delivery result's shots to golf simulators (a file, or "
+                                                "GSPro Open Connect live)")
     export.add_argument("file", help="result file (.h5) of a study with a delivery block")
-    export.add_argument("-o", "--output", required=True, help="JSON file: an array of shot messages")
+    where = export.add_mutually_exclusive_group(required=True)
+    where.add_argument("-o", "--output", help="JSON file: an array of shot messages")
+    where.add_argument("--gspro", metavar="HOST:PORT",
+                       help="send each shot to GSPro Open Connect at HOST:PORT (port 921 if left out) and wait "
+                            "for its reply")
+    export.add_argument("--timeout", type=_seconds, default=5.0, metavar="SECONDS",
+                        help="--gspro: seconds to wait for the connection and for each reply (default 5)")
     export.add_argument("--format", choices=("gspro",), default="gspro",
-                        help="gspro: GSPro Open Connect v1 (Speed mph, SpinAxis/HLA positive right, VLA, spins rpm)")
+                        help="gspro: GSPro Open Connect v1 (Speed mph, SpinAxis/HLA positive right, VLA, spins rpm; "
+                             "club speed mph, attack angle, path, face, dynamic loft in deg)")
     export.add_argument("--model", help="only this model's shots (default: every model)")
     export.add_argument("--device-id", default="impactlab", help="DeviceID of the messages")
     export.set_defaults(handler=_cmd_export)

@@ -74,3 +74,14 @@ def test_cli_writes_json_and_names_what_a_plain_study_lacks(result, tmp_path, ca
     assert main(["export", str(tmp_path / "plain.h5"), "-o", str(tmp_path / "x.json")]) != 0
     assert "lacks ball_speed" in capsys.readouterr().err
     assert not (tmp_path / "x.json").exists()
+
+
+def test_each_shot_carries_the_club_data_of_its_delivery(result):
+    """ClubData in GSPro's units (mph, deg) from the study's delivery: 90 mph, -4 deg attack, 24 deg loft."""
+    for shot in gspro_shots(result):
+        face = shot["impactlab"]["face_angle"]  # the swept coordinate, in deg
+        assert shot["ClubData"] == {"Speed": 90.0, "AngleOfAttack": -4.0, "FaceToTarget": face, "Loft": 24.0,
+                                    "Path": 0.0}
+        assert shot["ShotDataOptions"] == {"ContainsBallData": True, "ContainsClubData": True,
+                                           "LaunchMonitorIsReady": True, "LaunchMonitorBallDetected": True,
+                                           "IsHeartBeat": False}

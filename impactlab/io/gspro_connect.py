@@ -1,0 +1,359 @@
+"""Send shots live to GSPro Open Connect v1: one TCP connection, one JSON message per shot, one reply each.
+
+The protocol (the vendor's page https://gsprogolf.com/GSProConnectV1.html; what it leaves out is
+established in PinPoint-Golf/libgspro ``docs/protocol.md``, commit 543a801, from about sixteen
+client implementations, and gathered in the project's notes on vendors):
+
+- GSPro Connect is a TCP server on port 921 (922 with its ``OpenAPIUseAltPort`` setting); the
+  launch monitor connects and sends; no authentication, no handshake.
+- Messages are JSON objects with **no framing**: no delimiter, no length prefix. A read can hold
+  part of a reply, one reply or several: GSPro itself sends ``{...200...}{...201...}`` in one
+  segment. Replies are therefore split from the byte stream by brace depth outside string
+  literals (:class:`JsonStreamSplitter`), never by newlines or by reads.
+- Each shot is answered with ``{"Code": 200, "Message": ...}``; ``201`` (player information:
+  handedness and club), ``202`` ("GSPro ready") and ``203`` ("GSPro round ended") arrive on their
+  own, not as answers, and are noted; ``501`` / ``5XX`` is a failure. Clients key on ``Code``,
+  never on ``Message`` (its text varies).
+
+Why the standard library: no package on PyPI speaks this protocol (none is named for GSPro in
+PyPI's index), and a client is a socket, ``json`` and a brace counter.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import socket
+import time
+from collections.abc import Callable, Sequence
+
+import attrs
+
+from impactlab.errors import EnvironmentFault, FieldError
+
+#: GSPro Connect's port (the vendor writes "0921")
+DEFAULT_PORT = 921
+#: the reply that accepts a shot
+ACCEPTED = 200
+#: messages GSPro sends of its own accord (player information, ready, round ended): not answers to a shot
+UNSOLICITED = {201: "player information", 202: "GSPro ready", 203: "GSPro round ended"}
+#: a reply longer than this is not GSPro's (a message is normally 300-900 bytes; libgspro bounds at 64 KiB)
+MAX_REPLY_BYTES = 64 * 1024
+#: a bare greeting one client's notes say GSPro may send at connection (samiur/gc2-connect-desktop,
+#: docs/GSPRO_TCP_PROTOCOL.md): tolerated, anything else outside a JSON object is not
+GREETING = b"GSPro ready"
+_WHITESPACE = b" \t\r\n"
+
+
+class GSProConnectError(EnvironmentFault):
+    """GSPro Connect could not be reached, did not answer, or refused a shot (exit status 3)."""
+
+
+class NotJsonError(ValueError):
+    """Bytes in the reply stream that are not a JSON object; ``text`` holds them (shortened)."""
+
+    def __init__(self, data: bytes, why: str):
+        self.text = _show(data)
+        super().__init__(f"{why}: {self.text}")
+
+
+def _show(data: bytes, limit: int = 80) -> str:
+    text = repr(bytes(data[:limit]))
+    return text + (f" ... ({len(data)} bytes)" if len(data) > limit else "")
+
+
+class JsonStreamSplitter:
+    """Split a byte stream into JSON objects by brace depth, counting braces outside string literals only.
+
+    Bytes go in as they arrive (:meth:`feed`); each complete top-level object comes out as bytes, in
+    order, however the stream was cut into reads. Whitespace between objects is skipped, and so is
+    the bare greeting :data:`GREETING`. Anything else outside an object raises :class:`NotJsonError`,
+    and so does an object longer than ``limit`` bytes. Whether an object's text is valid JSON is the
+    caller's ``json.loads`` to decide.
+    """
+
+    def __init__(self, limit: int = MAX_REPLY_BYTES):
+        self.limit = limit
+        self._object = bytearray()  # the object being read
+        self._stray = bytearray()   # text outside any object (only a prefix of the greeting may wait here)
+        self._depth = 0
+        self._in_string = False
+        self._escaped = False
+
+    @property
+    def pending(self) -> bool:
+        """Whether part of an object (or of the greeting) has arrived and waits for the rest."""
+        return bool(self._object or self._stray)
+
+    def feed(self, data: bytes) -> list[bytes]:
+        """Take the next bytes of the stream; return the objects they complete (possibly none)."""
+        found = []
+        for position, byte in enumerate(data):
+            char = bytes((byte,))
+            if self._depth == 0:
+                if self._stray or (char not in _WHITESPACE and char != b"{"):
+                    self._stray += char
+                    if GREETING.startswith(self._stray):
+                        if self._stray == GREETING:
+                            self._stray.clear()
+                        continue
+                    raise NotJsonError(bytes(self._stray) + data[position + 1:], "text that is not a JSON object")
+                if char in _WHITESPACE:
+                    continue
+                self._depth = 1
+                self._object = bytearray(b"{")
+                continue
+            self._object += char
+            if len(self._object) > self.limit:
+                raise NotJsonError(self._object, f"an object longer than {self.limit} bytes")
+            if self._in_string:
+                if self._escaped:
+                    self._escaped = False
+                elif char == b"\\":
+                    self._escaped = True
+                elif char == b'"':
+                    self._in_string = False
+            elif char == b'"':
+                self._in_string = True
+            elif char == b"{":
+                self._depth += 1
+            elif char == b"}":
+                self._depth -= 1
+                if self._depth == 0:
+                    found.append(bytes(self._object))
+                    self._object = bytearray()
+        return found
+
+
+@attrs.frozen
+class Reply:
+    """One message from GSPro Connect: its ``Code``, its ``Message`` and the whole object."""
+
+    code: int
+    message: str
+    body: dict
+
+    def describe(self) -> str:
+        """``Code 501: Bad JSON data``, with the player of a 201."""
+        text = f"Code {self.code}: {self.message or '(no Message)'}"
+        player = self.body.get("Player")
+        if isinstance(player, dict) and player:
+            text += " (" + ", ".join(f"{key} {value}" for key, value in player.items()) + ")"
+        return text
+
+
+def parse_reply(text: bytes) -> Reply:
+    """One object split from the stream, read as a reply; NotJsonError if it is not JSON or has no integer Code."""
+    try:
+        body = json.loads(text.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError):
+        raise NotJsonError(text, "a reply that is not JSON") from None
+    code = body.get("Code") if isinstance(body, dict) else None
+    if isinstance(code, float) and code.is_integer():
+        code = int(code)
+    if not isinstance(code, int) or isinstance(code, bool):
+        raise NotJsonError(text, "a JSON reply without an integer Code")
+    message = body.get("Message")
+    return Reply(code, message if isinstance(message, str) else "", body)
+
+
+def parse_address(text: str) -> tuple[str, int]:
+    """``HOST:PORT`` (or ``HOST``, port 921; ``[::1]:921`` for IPv6) as (host, port).
+
+    Raises
+    ------
+    FieldError
+        At ``--gspro``, for text that is not such an address or a port outside 1-65535.
+    """
+    expected = "HOST:PORT, e.g. 127.0.0.1:921 (HOST alone means port 921; [ADDRESS]:PORT for IPv6)"
+    match = re.fullmatch(r"\[([0-9A-Fa-f:.%\w]+)\](?::(\w*))?|([^:\[\]\s]+)(?::(\w*))?", text.strip())
+    if not match:
+        raise FieldError("--gspro", expected, text)
+    host = match.group(1) or match.group(3)
+    port_text = match.group(2) if match.group(1) else match.group(4)
+    if port_text is None:
+        return host, DEFAULT_PORT
+    if not port_text.isdigit() or not 1 <= int(port_text) <= 65535:
+        raise FieldError("--gspro", f"{expected}, with a port from 1 to 65535", text)
+    return host, int(port_text)
+
+
+class OpenConnectClient:
+    """A connection to GSPro Connect that sends shots one at a time and waits for each one's reply.
+
+    Parameters
+    ----------
+    host, port : str, int
+        Where GSPro Connect listens (:func:`parse_address`).
+    timeout : float
+        Seconds to wait for the connection, and for the reply to each shot.
+
+    on_notice : callable, optional
+        Called with a line of text for each message GSPro sends of its own accord (201, 202, 203):
+        these are kept in :attr:`notices` and do not answer a shot.
+
+    Every failure is a :class:`GSProConnectError` saying what happened: the connection refused or
+    not answered, no reply within ``timeout``, the connection closed, a reply that is not JSON, or
+    a reply other than 200 (its Code and Message).
+    """
+
+    def __init__(self, host: str, port: int, timeout: float, on_notice: Callable[[str], None] | None = None):
+        self.host, self.port, self.timeout = host, port, timeout
+        self.on_notice = on_notice
+        self.where = f"GSPro Connect at {host}:{port}" if ":" not in host else f"GSPro Connect at [{host}]:{port}"
+        self.notices: list[Reply] = []
+        self._splitter = JsonStreamSplitter()
+        self._waiting: list[Reply] = []  # replies read but not yet consumed, in order
+        self._socket: socket.socket | None = None
+
+    def __enter__(self) -> OpenConnectClient:
+        self.connect()
+        return self
+
+    def __exit__(self, *exc_info) -> None:
+        self.close()
+
+    def connect(self) -> None:
+        """Open the connection (TCP_NODELAY: one message, one segment, as GSPro's clients send them)."""
+        try:
+            self._socket = socket.create_connection((self.host, self.port), timeout=self.timeout)
+        except ConnectionRefusedError:
+            raise GSProConnectError(
+                f"{self.where} refused the connection: nothing listens there (start GSPro Connect, or check "
+                f"the port: {DEFAULT_PORT}, or 922 with its OpenAPIUseAltPort setting)") from None
+        except socket.gaierror as exc:
+            raise GSProConnectError(f"cannot find the host {self.host!r} for GSPro Connect: {exc.strerror}") from None
+        except TimeoutError:
+            raise GSProConnectError(f"{self.where} did not answer the connection within {self.timeout:g} s "
+                                    "(a firewall, or the wrong address? raise --timeout if the network is slow)"
+                                    ) from None
+        except OSError as exc:
+            raise GSProConnectError(f"cannot connect to {self.where}: {exc.strerror or exc}") from None
+        self._socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+
+    def close(self) -> None:
+        """Close the connection (a no-op when closed)."""
+        if self._socket is not None:
+            self._socket.close()
+            self._socket = None
+
+    def send(self, payload: bytes, what: str) -> Reply:
+        """Send one message (``what`` names it in errors) and return GSPro's 200 reply to it.
+
+        Raises
+        ------
+        GSProConnectError
+            On a closed connection, no reply within the timeout, a reply that is not JSON, or a
+            Code other than 200 (and the unsolicited 201-203).
+        """
+        if self._socket is None:
+            raise GSProConnectError(f"{self.where}: not connected")
+        try:
+            self._socket.settimeout(self.timeout)
+            self._socket.sendall(payload)
+        except TimeoutError:
+            raise GSProConnectError(f"{self.where} took none of {what} within {self.timeout:g} s "
+                                    "(raise --timeout if GSPro is busy)") from None
+        except OSError as exc:  # a reset or broken pipe: the peer went away
+            raise GSProConnectError(f"{self.where} closed the connection before {what} was sent "
+                                    f"({exc.strerror or exc})") from None
+        reply = self._next_answer(what)
+        if reply.code != ACCEPTED:
+            raise GSProConnectError(f"{self.where} did not accept {what}: {reply.describe()}")
+        return reply
+
+    def _next_answer(self, what: str) -> Reply:
+        """The next reply that answers a message, unsolicited ones noted on the way, read before the deadline."""
+        deadline = time.monotonic() + self.timeout
+        while True:
+            while self._waiting:
+                reply = self._waiting.pop(0)
+                if reply.code in UNSOLICITED:
+                    self._note(reply)
+                    continue
+                return reply
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise self._timeout(what)
+            self._socket.settimeout(remaining)
+            try:
+                data = self._socket.recv(4096)
+            except TimeoutError:
+                raise self._timeout(what) from None
+            except OSError as exc:
+                raise GSProConnectError(f"{self.where} closed the connection before answering {what} "
+                                        f"({exc.strerror or exc})") from None
+            if not data:
+                partial = " in the middle of a reply" if self._splitter.pending else ""
+                raise GSProConnectError(f"{self.where} closed the connection{partial} before answering {what}")
+            try:
+                self._waiting.extend(parse_reply(text) for text in self._splitter.feed(data))
+            except NotJsonError as exc:
+                raise GSProConnectError(f"{self.where} answered {what} with {exc} (is {self.host}:{self.port} "
+                                        "GSPro Connect?)") from None
+
+    def note_read(self) -> None:
+        """Note the unsolicited messages already read (a 201 in the packet of the last 200), without waiting."""
+        for reply in self._waiting:
+            if reply.code in UNSOLICITED:
+                self._note(reply)
+        self._waiting.clear()
+
+    def _note(self, reply: Reply) -> None:
+        self.notices.append(reply)
+        if self.on_notice is not None:
+            self.on_notice(f"{self.where} says: {reply.describe()}")
+
+    def _timeout(self, what: str) -> GSProConnectError:
+        partial = " (part of a reply came, not the rest)" if self._splitter.pending else ""
+        return GSProConnectError(f"{self.where} sent no reply to {what} within {self.timeout:g} s{partial} "
+                                 "(raise --timeout if GSPro is busy)")
+
+
+def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0,
+               progress: Callable[[str], None] | None = None) -> list[Reply]:
+    """Send GSPro Open Connect messages one at a time, each after the previous one is accepted.
+
+    Parameters
+    ----------
+    shots : sequence of dict
+        Messages of :func:`impactlab.io.interchange.gspro_shots` (their ``"impactlab"`` block is
+        not sent: :func:`impactlab.io.interchange.wire_message`).
+    host, port : str, int
+        Where GSPro Connect listens.
+    timeout : float
+        Seconds to wait for the connection and for each reply.
+    progress : callable, optional
+        Called with a line of text about each unsolicited message GSPro sends (201-203).
+
+    Returns
+    -------
+    list of Reply
+        GSPro's 200 reply to each shot, in order.
+
+    Raises
+    ------
+    GSProConnectError
+        The first failure, saying which shot it stopped at and how many were accepted before it.
+    """
+    from impactlab.io.interchange import wire_message
+
+    accepted: list[Reply] = []
+    client = OpenConnectClient(host, port, timeout, on_notice=progress)
+    with client:  # a failure to connect is said as it is
+        try:
+            for index, shot in enumerate(shots):
+                accepted.append(client.send(wire_message(shot), _name(shot, index, len(shots))))
+            client.note_read()
+        except GSProConnectError as exc:
+            raise GSProConnectError(f"{exc}; {len(accepted)} of {len(shots)} shot(s) were accepted before it"
+                                    ) from None
+    return accepted
+
+
+def _name(shot: dict, index: int, total: int) -> str:
+    """``shot 3 of 6 (ShotNumber 3; model maw, face_angle 3.0)``."""
+    trace = shot.get("impactlab") or {}
+    case = ", ".join(f"{key} {value}" for key, value in trace.items())
+    number = shot.get("ShotNumber")
+    return f"shot {index + 1} of {total} (ShotNumber {number}" + (f"; {case})" if case else ")")
