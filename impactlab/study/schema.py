@@ -188,6 +188,16 @@ class ImpactBlock:
 
 
 @attrs.frozen
+class HeadRotationBlock:
+    """``delivery.head_rotation``: the head's angular velocity at first contact about its toe, up and target axes."""
+
+    _what = "the head's angular velocity"
+    toe: Spin | None = None
+    up: Spin | None = None
+    target: Spin | None = None
+
+
+@attrs.frozen
 class DeliveryBlock:
     """The ``delivery`` block: a golf delivery in the golfer's terms."""
 
@@ -198,6 +208,11 @@ class DeliveryBlock:
     attack_angle: Angle | None = None
     dynamic_loft: Angle | None = None
     handedness: Name = "right"
+    loft_at: Name = "contact"
+    club_reference: Name = "centre_of_mass"
+    spin_loft: Angle | None = None
+    face_to_path: Angle | None = None
+    head_rotation: HeadRotationBlock | None = None
 
 
 @attrs.frozen
