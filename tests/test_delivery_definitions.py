@@ -291,3 +291,39 @@ def test_trackman_pga_driver_spin_loft_needs_a_face_to_path_of_about_five_degree
         delivery = Delivery.from_spin_loft(51.4, math.radians(14.7), face_to_path=sign * math.radians(5.37),
                                            attack_angle=math.radians(-0.9))
         assert math.degrees(delivery.dynamic_loft) == pytest.approx(12.8, abs=0.05)
+
+
+# -- presets as labelled sweep dimensions -------------------------------------------------------------------------
+def test_ball_and_club_presets_sweep_as_labelled_dimensions(monkeypatch):
+    """sweep: {ball.preset: [...], club.preset: [...]} gives string-labelled dimensions ``ball`` and ``club`` whose
+    every case equals the study run with those presets named outright, each ball with its own restitution law."""
+    import attrs
+
+    import impactlab
+    from impactlab.scene.materials import BALL_PRESETS, RestitutionLaw
+
+    ionomer = attrs.evolve(BALL_PRESETS["two_piece_ionomer"], restitution=RestitutionLaw("constant", value=0.75))
+    monkeypatch.setitem(BALL_PRESETS, "two_piece_ionomer", ionomer)
+    base = {"club": {"preset": "driver"}, "strike": {"toe": "8 mm"},
+            "delivery": {"club_speed": "100 mph", "attack_angle": "-2 deg", "dynamic_loft": "20 deg",
+                         "loft_at": "contact"},
+            "models": ["rigid_coulomb"], "outputs": ["spin_rate", "ball_speed", "spin_axis"]}
+    balls, clubs = ["tour_urethane", "two_piece_ionomer"], ["driver", "7_iron"]
+    swept = impactlab.run_study(impactlab.load_study(
+        dict(base, ball={"preset": "tour_urethane"}, sweep={"ball.preset": balls, "club.preset": clubs})))
+    assert list(swept.ball.values) == balls and list(swept.club.values) == clubs
+    assert swept.spin_rate.dims == ("model", "ball", "club")
+    for ball in balls:
+        for club in clubs:
+            alone = impactlab.run_study(impactlab.load_study(
+                dict(base, ball={"preset": ball}, club={"preset": club})))
+            for name in ("spin_rate", "ball_speed", "spin_axis"):
+                np.testing.assert_allclose(swept[name].sel(ball=ball, club=club).values, alone[name].values.ravel(),
+                                           rtol=1e-12, atol=1e-12)
+    # the balls differ in e: their ball speeds do
+    speeds = swept.ball_speed.sel(club="driver").values.ravel()
+    assert speeds[0] > speeds[1] + 0.5
+    with pytest.raises(FieldError) as error:
+        impactlab.load_study(dict(base, ball={"preset": "tour_urethane"}, sweep={"ball.preset": ["tour_urethane",
+                                                                                               "rubber"]}))
+    assert error.value.path.startswith("sweep.ball.preset[1]")

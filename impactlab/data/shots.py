@@ -75,9 +75,10 @@ class ShotTable:
     loft_at : str
         Where the table's dynamic loft and face angle were measured: ``contact`` (default; what a launch
         monitor reports: TrackMan defines dynamic loft as the loft "at the center-point of contact between the
-        club and ball") or ``centre`` (the face centre, as impactlab's delivery counts them). On a bulged and
-        rolled face a strike off the centre meets a face turned by atan(offset/radius), so a ``contact`` table's
-        deliveries are turned back to the face centre before the models see them (:func:`centre_delivery`).
+        club and ball") or ``centre`` (the face centre). It is the rows' ``Delivery.loft_at``: on a bulged and
+        rolled face a strike off the centre meets a face turned by its bulge and roll, and a ``contact`` row's
+        head is turned so that the face at the strike point has the measured loft and face angle
+        (:func:`impactlab.physics.delivery.centre_face`).
     """
 
     name: str
@@ -334,33 +335,15 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         d = {key: float(value[index]) for key, value in table.delivery.items()}
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
-                            handedness=table.handedness[index])
+                            handedness=table.handedness[index], loft_at=table.loft_at)
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
-    inputs = {key: np.array([values[key] for values in per_scene]) for key in sorted(keys)}
-    if table.loft_at == "contact":
-        inputs = centre_delivery(inputs, inputs)
-    inputs = complete_inputs(inputs)
+    inputs = complete_inputs({key: np.array([values[key] for values in per_scene]) for key in sorted(keys)})
     if contact.restitution is None and ball.restitution is not None:
-        inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the centred delivery
+        inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the contact
     return inputs
-
-
-def centre_delivery(inputs: dict, measured: dict) -> dict:
-    """The inputs with the face-centre dynamic loft and face angle whose face at the strike point has the
-    ``measured`` (contact-point) loft and face angle, and with the ball's restitution law re-evaluated there.
-
-    The face at a strike ``high`` up a face of roll radius R_r is lofted by atan(high/R_r) more than at its
-    centre; a strike ``toe`` towards the toe of a face of bulge radius R_b is open by atan(toe/R_b) more
-    (impactlab.physics.contact tilts the normal the same way). ``measured`` holds the launch monitor's
-    ``dynamic_loft`` and ``face_angle``; ``inputs`` the strike and face radii [SI].
-    """
-    out = dict(inputs)
-    out["dynamic_loft"] = measured["dynamic_loft"] - np.arctan(inputs["strike_high"] / inputs["face_roll_radius"])
-    out["face_angle"] = measured["face_angle"] - np.arctan(inputs["strike_toe"] / inputs["face_bulge_radius"])
-    return out
 
 
 def predict(model, inputs: dict) -> dict:
