@@ -327,3 +327,20 @@ def test_ball_and_club_presets_sweep_as_labelled_dimensions(monkeypatch):
         impactlab.load_study(dict(base, ball={"preset": "tour_urethane"}, sweep={"ball.preset": ["tour_urethane",
                                                                                                "rubber"]}))
     assert error.value.path.startswith("sweep.ball.preset[1]")
+
+
+def test_shot_tables_take_spin_loft_and_face_to_path_columns():
+    """A TrackMan export's Spin Loft and Face To Path give the dynamic loft and face angle a row leaves out; given
+    beside them they must agree, else the row is refused with its line."""
+    from impactlab.data.shots import read_csv
+    from impactlab.errors import StudyError
+
+    header = ("Club,Club Speed [mph],Attack Angle [deg],Club Path [deg],Face To Path [deg],Spin Loft [deg],"
+              "Dyn. Loft [deg],Spin Rate [rpm]\n")
+    table = read_csv(header + "driver,115,-0.9,-2,3,14.7,,2545\n", "s.csv")
+    loft, face = table.delivery["dynamic_loft"][0], table.delivery["face_angle"][0]
+    assert math.degrees(face) == pytest.approx(1.0, abs=1e-12)
+    assert _hand_spin_loft(math.degrees(loft), -0.9, 1.0, -2.0) == pytest.approx(14.7, abs=1e-9)
+    with pytest.raises(StudyError, match=r"s.csv:2: spin_loft: expected the spin loft the row's angles make "
+                                         r"\(14.0[0-9] deg"):
+        read_csv(header + "driver,115,-0.9,-2,3,14.7,12.8,2545\n", "s.csv")
