@@ -344,3 +344,30 @@ def test_shot_tables_take_spin_loft_and_face_to_path_columns():
     with pytest.raises(StudyError, match=r"s.csv:2: spin_loft: expected the spin loft the row's angles make "
                                          r"\(14.0[0-9] deg"):
         read_csv(header + "driver,115,-0.9,-2,3,14.7,12.8,2545\n", "s.csv")
+
+
+def test_head_rotation_sweeps_and_needs_a_club_in_a_sweep_too():
+    import impactlab
+
+    base = {"ball": {"preset": "tour_urethane"}, "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
+            "sweep": {"delivery.head_rotation.toe": ["0 deg/s", "1200 deg/s"]}, "models": ["rigid_coulomb"],
+            "outputs": ["spin_rate"]}
+    with pytest.raises(FieldError) as error:
+        impactlab.load_study(dict(base, face={"preset": "steel"}))
+    assert error.value.path == "sweep.delivery.head_rotation.toe[1]" and "club" in str(error.value)
+    ds = impactlab.run_study(impactlab.load_study(dict(base, club={"preset": "driver"})))
+    assert list(ds.toe.values) == pytest.approx([0.0, 1200.0])  # the coordinate in deg/s
+    spin = ds.spin_rate.values.ravel()
+    assert spin[1] < spin[0] - 100.0  # the face moving up faster than the CoG lowers the spin loft at contact
+
+
+def test_a_left_handed_head_turning_by_the_same_numbers_mirrors_the_right_handed_one():
+    scenes = [_scene(0.01, -0.004, rotation=(20.0, 40.0, -8.0), face_angle=2.0, path=-1.0, handedness=hand)
+              for hand in ("right", "left")]
+    result = get_model("rigid_coulomb")().compute_arrays(_inputs(scenes), ["spin_rate", "spin_axis",
+                                                                          "horizontal_launch_angle", "ball_speed"])
+    np.testing.assert_allclose(result["spin_rate"][1], result["spin_rate"][0], rtol=1e-12)
+    np.testing.assert_allclose(result["ball_speed"][1], result["ball_speed"][0], rtol=1e-12)
+    np.testing.assert_allclose(result["spin_axis"][1], -result["spin_axis"][0], rtol=1e-12)
+    np.testing.assert_allclose(result["horizontal_launch_angle"][1], -result["horizontal_launch_angle"][0],
+                               rtol=1e-12)

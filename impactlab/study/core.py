@@ -310,8 +310,13 @@ def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, l
 def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]], index: int) -> None:
     trial = dict(document)
     for path, values in fields:
-        section, key = path.split(".")
-        trial[section] = dict(trial.get(section) or {}, **{key: SI(values[index])})
+        section, *inner, key = path.split(".")  # a nested field: delivery.head_rotation.up
+        block = dict(trial.get(section) or {})
+        trial[section] = block
+        for part in inner:
+            block[part] = dict(block.get(part) or {})
+            block = block[part]
+        block[key] = SI(values[index])
     build_scene(trial)
 
 
