@@ -174,7 +174,7 @@ def test_trackman_face_centre_moves_one_degree_more_upward_for_the_derived_rotat
     assert face_attack - cg_attack == pytest.approx(1.0, abs=0.1)
 
 
-@pytest.mark.parametrize("model", ["rigid_coulomb", "maw", "restitution"])
+@pytest.mark.parametrize("model", ["rigid_coulomb", "maw", "restitution", "hertz_mindlin", "dem_linear"])
 def test_a_turning_head_keeps_momentum_and_energy_books(model):
     """With w != 0: linear momentum of ball + head, angular momentum about a fixed point (the head's spin
     I w included) and the kinetic energy lost (the models' energy_loss) balance to round-off."""
