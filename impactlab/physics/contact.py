@@ -139,7 +139,18 @@ def contact_state(inputs: dict) -> dict:
         contact [m]; ``head_inverse_inertia`` (n, 3, 3) or None; ``ball_spin`` (n, 3) [rad/s] before impact;
         ``initial_velocity`` (n, 3) [m/s], the relative contact velocity in the contact frame;
         ``one_dimensional`` (n,) bool: mobility diagonal in the contact frame, so the slip stays on one
-        line and the normal problem is uncoupled (the 1-D solvers apply).
+        line and the normal problem is uncoupled (the 1-D solvers apply); ``club_velocity`` (n, 3), the
+        head's centre-of-mass velocity before impact, and ``contact_velocity`` (n, 3), that of its material
+        point at the contact [m/s]; ``head_spin`` (n, 3), its angular velocity before impact [rad/s].
+
+    Notes
+    -----
+    Inputs of a launch monitor's delivery (:class:`impactlab.scene.core.Delivery` supplies them):
+    ``loft_at_contact`` 1 counts ``dynamic_loft`` and ``face_angle`` at the strike point (the head is turned
+    by :func:`impactlab.physics.delivery.centre_face`), 0 or absent at the face centre;
+    ``head_rotation_toe``, ``_up``, ``_target`` [rad/s] turn the head about its axes at impact (absent: 0);
+    ``club_reference`` (0 centre of mass, absent; 1 face centre; 2 contact point) is the point whose
+    velocity ``speed`` along the path and attack angle give, every other point moving by w x r from it.
     """
     speed = np.atleast_1d(np.asarray(inputs["speed"], float))
     n = speed.size
