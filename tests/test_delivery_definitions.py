@@ -371,3 +371,19 @@ def test_a_left_handed_head_turning_by_the_same_numbers_mirrors_the_right_handed
     np.testing.assert_allclose(result["spin_axis"][1], -result["spin_axis"][0], rtol=1e-12)
     np.testing.assert_allclose(result["horizontal_launch_angle"][1], -result["horizontal_launch_angle"][0],
                                rtol=1e-12)
+
+
+def test_a_turning_rate_without_its_unit_is_refused_not_guessed():
+    """2000 could be deg/s (a closure rate) or rpm (impactlab's spin): a bare number other than 0 is refused, in
+    the block and in a sweep."""
+    import impactlab
+
+    with pytest.raises(FieldError) as error:
+        build_delivery({"club_speed": "115 mph", "head_rotation": {"up": 2000}})
+    assert error.value.path == "delivery.head_rotation.up" and "deg/s" in str(error.value)
+    assert build_delivery({"club_speed": "115 mph", "head_rotation": {"up": 0}}).head_rotation == (0.0, 0.0, 0.0)
+    with pytest.raises(FieldError) as error:
+        impactlab.load_study({"ball": {"preset": "tour_urethane"}, "club": {"preset": "driver"},
+                              "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
+                              "sweep": {"delivery.head_rotation.up": [0, 1000]}, "models": ["rigid_coulomb"]})
+    assert error.value.path == "sweep.delivery.head_rotation.up[1]"

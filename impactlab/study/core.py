@@ -28,7 +28,8 @@ from impactlab.scene.core import Scene
 # the scene blocks live in study_scene; their builders stay importable from here
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike)
-from impactlab.study.schema import SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, structure
+from impactlab.study.schema import (SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, rate_with_unit,
+                                    structure)
 from impactlab.units import to_si
 from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS,
                                   SCALAR_OUTPUTS, check_output_names)
@@ -254,8 +255,10 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         block = structure(spec, RangeBlock, where)
         num = block.num
         check_cases(num, f"{where}.num")  # before the values are generated
-        start = to_si(block.start, dimension, f"{where}.start")
-        stop = to_si(block.stop, dimension, f"{where}.stop")
+        convert = ((lambda value, _, at: rate_with_unit(value, at)) if path.startswith("delivery.head_rotation.")
+                   else to_si)
+        start = convert(block.start, dimension, f"{where}.start")
+        stop = convert(block.stop, dimension, f"{where}.stop")
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
@@ -264,6 +267,8 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         if not spec:
             raise FieldError(where, "a non-empty list of values", spec)
         check_cases(len(spec), where)
+        if path.startswith("delivery.head_rotation."):  # a turning rate carries its unit (deg/s or rpm?)
+            return [rate_with_unit(item, f"{where}[{index}]") for index, item in enumerate(spec)]
         return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
     raise FieldError(where, "a list of values or {start, stop, num}", spec)
 
