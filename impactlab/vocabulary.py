@@ -137,7 +137,28 @@ INPUTS.update({
                               _delivery_value("dynamic_loft"), "degree", RAD_TO_DEG, **_HALF_TURN),
     "handedness": InputSpec("delivery.handedness", "1", "dimensionless", "+1 right-handed golfer, -1 left-handed",
                             _delivery_value("handedness"), low=-1.0, high=1.0),
+    "loft_at_contact": InputSpec(
+        "delivery.loft_at", "1", "dimensionless",
+        "1: dynamic loft and face angle are the face's at the contact point (loft_at: contact, as launch monitors "
+        "report them); 0: at the face centre (loft_at: centre)",
+        lambda scene: None if scene.delivery is None else float(scene.delivery.loft_at == "contact"),
+        low=0.0, high=1.0),
+    "club_reference": InputSpec(
+        "delivery.club_reference", "1", "dimensionless",
+        "the point of the head the club speed, path and attack angle belong to: 0 centre of mass, 1 face centre, "
+        "2 contact point (physics.contact.CLUB_REFERENCES)",
+        lambda scene: None if scene.delivery is None else float(scene.delivery.reference_code),
+        low=0.0, high=2.0),
 })
+for _index, (_key, _words) in enumerate((("toe", "about the head's toe axis (+: the face turns upwards, adding loft)"),
+                                         ("up", "about the head's up axis (+: the face closes)"),
+                                         ("target", "about the head's target axis (+: the toe moves down)"))):
+    INPUTS[f"head_rotation_{_key}"] = InputSpec(
+        f"delivery.head_rotation.{_key}", "rad/s", "angular_speed",
+        f"angular velocity of the club head at first contact, {_words}",
+        (lambda index: lambda scene: None if scene.delivery is None or scene.club is None
+         else scene.delivery.head_rotation[index])(_index),
+        "deg/s", RAD_TO_DEG, low_open=True, high_open=True)
 
 
 def _club_value(attribute: str, index: int | str | None = None):
@@ -194,6 +215,9 @@ INPUTS.update({
 INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items() if name != "handedness"}
 INPUT_BY_PATH["delivery.club_speed"] = "speed"
 INPUT_BY_PATH["club.mass"] = "club_mass"
+#: words, not numbers: a study says them once (a swept definition would mix two meanings of one number)
+for _path in ("delivery.loft_at", "delivery.club_reference"):
+    del INPUT_BY_PATH[_path]
 #: swept paths a study may not set (they are parts of a tensor or vector checked as a whole)
 for _path in [path for path in INPUT_BY_PATH if path.startswith(("club.inertia.", "club.center_of_mass."))]:
     del INPUT_BY_PATH[_path]

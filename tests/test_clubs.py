@@ -27,9 +27,11 @@ def _inputs(scenes):
 
 
 def _scene(club=DRIVER, toe=0.0, high=0.0, friction=0.4, restitution=0.8, face_angle=0.0, path=0.0,
-           handedness="right", loft=12.8, attack=-0.9, speed=51.4):
+           handedness="right", loft=12.8, attack=-0.9, speed=51.4, loft_at="centre"):
+    # loft and face angle at the face centre: these tests follow the bulge and roll tilting the contact normal
     delivery = Delivery(speed, path=math.radians(path), face_angle=math.radians(face_angle),
-                        attack_angle=math.radians(attack), dynamic_loft=math.radians(loft), handedness=handedness)
+                        attack_angle=math.radians(attack), dynamic_loft=math.radians(loft), handedness=handedness,
+                        loft_at=loft_at)
     return Scene.from_delivery(BALL, Scene.face_of(club), Contact(friction, restitution), delivery, 0.0, club,
                                Strike(toe, high))
 

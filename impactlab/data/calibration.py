@@ -29,7 +29,7 @@ from scipy.optimize import least_squares
 from impactlab.errors import FieldError
 from impactlab.scene.materials import RestitutionLaw
 from impactlab.data.shots import (
-    ERROR_KEYS, MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, shot_errors, summary, table_inputs,
 )
 
 #: parameter -> (bounds, start, what it is). A ball's restitution is bounded not to rise with the impact speed (its
@@ -83,16 +83,15 @@ class Calibration:
         return "; ".join(lines)
 
 
-def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> dict:
+def apply(inputs: dict, names, values, ball=None) -> dict:
     """The model inputs with the calibration parameters ``names`` set to ``values`` (SI arrays).
 
     ``ball`` (a :class:`~impactlab.scene.materials.Ball`) supplies the restitution law where the parameters do not
-    replace it. With ``loft_at="contact"`` a strike offset keeps the loft measured at the contact point (the face
-    centre's loft moves instead, :func:`impactlab.data.shots.centre_delivery`).
+    replace it. A fitted strike offset moves the strike: where the inputs count the loft at the contact point
+    (input ``loft_at_contact``, a table's ``loft_at: contact``) the contact point keeps the measured loft and the
+    head turns instead; at the face centre the contact point's loft changes with the roll.
     """
     from impactlab.physics.contact import contact_state
-    from impactlab.scene.core import complete_inputs
-
     out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
     given = dict(zip(names, values))
     n = out["speed"].size
@@ -100,11 +99,7 @@ def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> di
         if name in given:
             out[name] = np.full(n, given[name])
     if "strike_high" in given:
-        measured = {"dynamic_loft": out["dynamic_loft"] + np.arctan(out["strike_high"] / out["face_roll_radius"]),
-                    "face_angle": out["face_angle"] + np.arctan(out["strike_toe"] / out["face_bulge_radius"])}
         out["strike_high"] = out["strike_high"] + given["strike_high"]
-        if loft_at == "contact":
-            out = complete_inputs(centre_delivery(out, measured))
     if "face_restitution_gain" in given:
         wood = np.isfinite(out["face_bulge_radius"])
         out["club_restitution_gain"] = np.where(wood, given["face_restitution_gain"], 0.0)
@@ -173,7 +168,7 @@ def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict
     x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
 
     def predicted(x):
-        return predict(model, apply(inputs, names, x, ball_object, table.loft_at))
+        return predict(model, apply(inputs, names, x, ball_object))
 
     before = predicted(x0)
     # finite-difference steps of 1 % of each range: well above the models' discretisation error (1e-4)
@@ -202,8 +197,7 @@ def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict
 def predict_with(model, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
     """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
     inputs = table_inputs(table, ball)
-    return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball),
-                                table.loft_at))
+    return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
 
 
 def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,

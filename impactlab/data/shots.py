@@ -30,7 +30,7 @@ from impactlab.units import to_si
 #: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
     "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle", "dynamic_loft": "angle",
-    "strike_toe": "length", "strike_high": "length",
+    "strike_toe": "length", "strike_high": "length", "spin_loft": "angle", "face_to_path": "angle",
 }
 MEASURED_FIELDS = {
     "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
@@ -45,6 +45,7 @@ ALIASES = {
     "attack angle": "attack_angle", "aoa": "attack_angle", "angle of attack": "attack_angle",
     "club path": "path", "face angle": "face_angle", "dynamic loft": "dynamic_loft", "dyn. loft": "dynamic_loft",
     "dyn loft": "dynamic_loft", "impact offset": "strike_toe", "impact height": "strike_high",
+    "spin loft": "spin_loft", "face to path": "face_to_path",
     "ball speed": "ball_speed", "launch angle": "vertical_launch_angle", "launch direction": "horizontal_launch_angle",
     "spin rate": "spin_rate", "total spin": "spin_rate", "spin axis": "spin_axis", "shot": "label", "name": "label",
 }
@@ -75,9 +76,10 @@ class ShotTable:
     loft_at : str
         Where the table's dynamic loft and face angle were measured: ``contact`` (default; what a launch
         monitor reports: TrackMan defines dynamic loft as the loft "at the center-point of contact between the
-        club and ball") or ``centre`` (the face centre, as impactlab's delivery counts them). On a bulged and
-        rolled face a strike off the centre meets a face turned by atan(offset/radius), so a ``contact`` table's
-        deliveries are turned back to the face centre before the models see them (:func:`centre_delivery`).
+        club and ball") or ``centre`` (the face centre). It is the rows' ``Delivery.loft_at``: on a bulged and
+        rolled face a strike off the centre meets a face turned by its bulge and roll, and a ``contact`` row's
+        head is turned so that the face at the strike point has the measured loft and face angle
+        (:func:`impactlab.physics.delivery.centre_face`).
     """
 
     name: str
@@ -158,14 +160,15 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
     sigma = {key: np.array([row.get(f"{key}_sigma", math.nan) for row in rows], float) for key in MEASURED_FIELDS}
     for key in MEASURED_FIELDS:
         sigma[key] = np.where(np.isnan(sigma[key]), sigma_defaults.get(key, DEFAULT_SIGMA[key]), sigma[key])
+    problems = _resolve_spin_loft(delivery, rows, file)
     for key in ("path", "face_angle", "strike_toe", "strike_high"):
         delivery[key] = np.nan_to_num(delivery[key])  # square face and path, centred strike unless given
-    problems = []
     for index, row in enumerate(rows):
         where = f"{file}:{row.get('_line', '?')}"
         for key in ("club_speed", "attack_angle", "dynamic_loft"):
             if not np.isfinite(delivery[key][index]):
-                problems.append(f"{where}: {key}: expected the delivery's {key.replace('_', ' ')}, got nothing")
+                problems.append(f"{where}: {key}: expected the delivery's {key.replace('_', ' ')}"
+                                f"{' (or its spin loft)' if key == 'dynamic_loft' else ''}, got nothing")
         if "club" not in row:
             problems.append(f"{where}: club: expected a club preset name, got nothing")
         for key in MEASURED_FIELDS:
@@ -181,6 +184,39 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                      handedness=tuple(str(row.get("handedness", "right")) for row in rows),
                      delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at,
                      budgets=budgets or {})
+
+
+def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]:
+    """Rows that give the face to path instead of the face angle, or the 3-D spin loft instead of the dynamic loft
+    (TrackMan exports both, "Face To Path" and "Spin Loft"): the missing angle follows, in place; where both are
+    given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). Returns the problems found."""
+    from impactlab.physics.delivery import loft_for_spin_loft, spin_loft
+    from impactlab.scene.core import SPIN_LOFT_TOLERANCE
+
+    problems = []
+    path = np.nan_to_num(delivery["path"])
+    f2p, face = delivery["face_to_path"], delivery["face_angle"]
+    disagree = np.isfinite(f2p) & np.isfinite(face) & (np.abs(face - path - f2p) > SPIN_LOFT_TOLERANCE)
+    for index in np.nonzero(disagree)[0]:
+        problems.append(f"{file}:{rows[index].get('_line', '?')}: face_to_path: expected face_angle - path "
+                        f"({math.degrees(face[index] - path[index]):.2f} deg), got {math.degrees(f2p[index]):.2f} deg")
+    delivery["face_angle"] = np.where(np.isnan(face) & np.isfinite(f2p), path + f2p, face)
+    given = delivery["spin_loft"]
+    face, attack, loft = np.nan_to_num(delivery["face_angle"]), delivery["attack_angle"], delivery["dynamic_loft"]
+    implied = loft_for_spin_loft(given, path, face, attack)
+    with np.errstate(invalid="ignore"):
+        made = spin_loft(path, face, attack, loft)
+    for index in np.nonzero(np.isfinite(given))[0]:
+        where = f"{file}:{rows[index].get('_line', '?')}: spin_loft"
+        if np.isnan(loft[index]) and np.isnan(implied[index]) and np.isfinite(attack[index]):
+            problems.append(f"{where}: expected a spin loft at least the angle between face and path, got "
+                            f"{math.degrees(given[index]):.2f} deg")
+        elif np.isfinite(loft[index]) and abs(made[index] - given[index]) > SPIN_LOFT_TOLERANCE:
+            problems.append(f"{where}: expected the spin loft the row's angles make ({math.degrees(made[index]):.2f} "
+                            f"deg, within {math.degrees(SPIN_LOFT_TOLERANCE):.1f}), got "
+                            f"{math.degrees(given[index]):.2f} deg")
+    delivery["dynamic_loft"] = np.where(np.isnan(loft), implied, loft)
+    return problems
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
@@ -334,33 +370,15 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         d = {key: float(value[index]) for key, value in table.delivery.items()}
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
-                            handedness=table.handedness[index])
+                            handedness=table.handedness[index], loft_at=table.loft_at)
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
-    inputs = {key: np.array([values[key] for values in per_scene]) for key in sorted(keys)}
-    if table.loft_at == "contact":
-        inputs = centre_delivery(inputs, inputs)
-    inputs = complete_inputs(inputs)
+    inputs = complete_inputs({key: np.array([values[key] for values in per_scene]) for key in sorted(keys)})
     if contact.restitution is None and ball.restitution is not None:
-        inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the centred delivery
+        inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the contact
     return inputs
-
-
-def centre_delivery(inputs: dict, measured: dict) -> dict:
-    """The inputs with the face-centre dynamic loft and face angle whose face at the strike point has the
-    ``measured`` (contact-point) loft and face angle, and with the ball's restitution law re-evaluated there.
-
-    The face at a strike ``high`` up a face of roll radius R_r is lofted by atan(high/R_r) more than at its
-    centre; a strike ``toe`` towards the toe of a face of bulge radius R_b is open by atan(toe/R_b) more
-    (impactlab.physics.contact tilts the normal the same way). ``measured`` holds the launch monitor's
-    ``dynamic_loft`` and ``face_angle``; ``inputs`` the strike and face radii [SI].
-    """
-    out = dict(inputs)
-    out["dynamic_loft"] = measured["dynamic_loft"] - np.arctan(inputs["strike_high"] / inputs["face_roll_radius"])
-    out["face_angle"] = measured["face_angle"] - np.arctan(inputs["strike_toe"] / inputs["face_bulge_radius"])
-    return out
 
 
 def predict(model, inputs: dict) -> dict:

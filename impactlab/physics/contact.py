@@ -38,14 +38,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from impactlab.physics.delivery import centre_face
+
 #: inputs of the club head's rigid body (SI); without them the club is a point mass (or fixed if M = inf)
 INERTIA_INPUTS = tuple(f"club_inertia_{name}" for name in ("toe", "up", "target", "toe_up", "toe_target",
                                                               "up_target"))
 CENTER_INPUTS = ("club_cg_toe", "club_cg_high", "club_cg_depth")
 FACE_SHAPE_INPUTS = ("club_loft", "face_bulge_radius", "face_roll_radius")
 STRIKE_INPUTS = ("strike_toe", "strike_high")
+#: the head's angular velocity at first contact about its toe, up and target axes [rad/s]
+HEAD_ROTATION_INPUTS = ("head_rotation_toe", "head_rotation_up", "head_rotation_target")
+#: the point of the head whose velocity the delivery's club speed, path and attack angle give, by its code in
+#: the input ``club_reference`` (it matters only when the head turns: a head that does not turn moves as a point)
+CLUB_REFERENCES = ("centre_of_mass", "face_centre", "contact")
 #: every input of the 3-D geometry beyond the ball, speed, angle and spin (and the striking body's spin)
-GEOMETRY_INPUTS = INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS + ("club_spin",)
+GEOMETRY_INPUTS = (INERTIA_INPUTS + CENTER_INPUTS + FACE_SHAPE_INPUTS + STRIKE_INPUTS + ("club_spin",)
+                   + HEAD_ROTATION_INPUTS + ("club_reference", "loft_at_contact"))
 #: every input :func:`contact_state` reads (a batch without one of them takes its default)
 CONTACT_STATE_INPUTS = frozenset({"speed", "angle", "spin", "ball_mass", "ball_radius", "ball_inertia_factor",
                                   "club_mass", "dynamic_loft", "face_angle", "path", "attack_angle"}
@@ -98,9 +106,10 @@ def face_axes(dynamic_loft, face_angle):
 
 
 def _head_inertia(inputs, n, toe, up, normal):
-    """Inverse inertia tensor of the head in the ground frame at impact (n, 3, 3), or None for a point mass."""
+    """Inverse inertia tensor of the head in the ground frame at impact (n, 3, 3) and the head's toe, up and
+    target axes at impact (columns, (n, 3, 3)), or (None, None) for a point mass."""
     if not all(name in inputs for name in INERTIA_INPUTS):
-        return None
+        return None, None
     c = {name: np.broadcast_to(np.asarray(inputs[name], float), (n,)) for name in INERTIA_INPUTS}
     tensor = np.stack([
         np.stack([c["club_inertia_toe"], c["club_inertia_toe_up"], c["club_inertia_toe_target"]], -1),
@@ -113,7 +122,7 @@ def _head_inertia(inputs, n, toe, up, normal):
     target = np.cos(static) * normal - np.sin(static) * up
     vertical = np.sin(static) * normal + np.cos(static) * up
     axes = np.stack([toe, vertical, target], -1)  # columns: head axes in ground coordinates
-    return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes))
+    return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes)), axes
 
 
 def contact_state(inputs: dict) -> dict:
@@ -130,7 +139,18 @@ def contact_state(inputs: dict) -> dict:
         contact [m]; ``head_inverse_inertia`` (n, 3, 3) or None; ``ball_spin`` (n, 3) [rad/s] before impact;
         ``initial_velocity`` (n, 3) [m/s], the relative contact velocity in the contact frame;
         ``one_dimensional`` (n,) bool: mobility diagonal in the contact frame, so the slip stays on one
-        line and the normal problem is uncoupled (the 1-D solvers apply).
+        line and the normal problem is uncoupled (the 1-D solvers apply); ``club_velocity`` (n, 3), the
+        head's centre-of-mass velocity before impact, and ``contact_velocity`` (n, 3), that of its material
+        point at the contact [m/s]; ``head_spin`` (n, 3), its angular velocity before impact [rad/s].
+
+    Notes
+    -----
+    Inputs of a launch monitor's delivery (:class:`impactlab.scene.core.Delivery` supplies them):
+    ``loft_at_contact`` 1 counts ``dynamic_loft`` and ``face_angle`` at the strike point (the head is turned
+    by :func:`impactlab.physics.delivery.centre_face`), 0 or absent at the face centre;
+    ``head_rotation_toe``, ``_up``, ``_target`` [rad/s] turn the head about its axes at impact (absent: 0);
+    ``club_reference`` (0 centre of mass, absent; 1 face centre; 2 contact point) is the point whose
+    velocity ``speed`` along the path and attack angle give, every other point moving by w x r from it.
     """
     speed = np.atleast_1d(np.asarray(inputs["speed"], float))
     n = speed.size
@@ -138,9 +158,15 @@ def contact_state(inputs: dict) -> dict:
     def value(name, default):
         return np.broadcast_to(np.asarray(inputs.get(name, default), float), (n,))
 
+    bulge, roll = value("face_bulge_radius", np.inf), value("face_roll_radius", np.inf)
+    strike_toe, strike_high = value("strike_toe", 0.0), value("strike_high", 0.0)
     if "dynamic_loft" in inputs:
         loft, face = value("dynamic_loft", 0.0), value("face_angle", 0.0)
         path, attack = value("path", 0.0), value("attack_angle", 0.0)
+        at_contact = value("loft_at_contact", 0.0) > 0.5
+        if np.any(at_contact):  # the loft and face angle of the face at the strike point: turn the head to them
+            centre_loft, centre_angle = centre_face(loft, face, strike_toe, strike_high, bulge, roll)
+            loft, face = np.where(at_contact, centre_loft, loft), np.where(at_contact, centre_angle, face)
     else:  # a plate experiment: the club moves along X, the face normal is tilted up by the impact angle
         loft, face = value("angle", 0.0), np.zeros(n)
         path, attack = np.zeros(n), np.zeros(n)
@@ -149,16 +175,40 @@ def contact_state(inputs: dict) -> dict:
 
     ball_mass, radius = value("ball_mass", np.nan), value("ball_radius", np.nan)
     k2 = value("ball_inertia_factor", 0.4)
-    bulge, roll = value("face_bulge_radius", np.inf), value("face_roll_radius", np.inf)
-    strike_toe, strike_high = value("strike_toe", 0.0), value("strike_high", 0.0)
     # the face as the osculating paraboloid of its bulge and roll (exact to O(s^4/R^3) at offsets s)
     tilt_toe, tilt_high = strike_toe / bulge, strike_high / roll
     normal = _unit(flat_normal + tilt_toe[:, None] * toe + tilt_high[:, None] * up)
     sag = 0.5 * (strike_toe * tilt_toe + strike_high * tilt_high)
     point = strike_toe[:, None] * toe + strike_high[:, None] * up - sag[:, None] * flat_normal
 
-    # slip direction: the ball's contact point moves against the club's tangential velocity
-    relative = -club_direction
+    eye = np.eye(3)
+    club_mass = value("club_mass", np.inf)
+    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
+    inverse_inertia, axes = _head_inertia(inputs, n, toe, up, flat_normal)
+    if inverse_inertia is not None:
+        center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
+                  - value("club_cg_depth", 0.0)[:, None] * flat_normal)
+        lever = point - center
+    else:
+        center, lever = np.zeros((n, 3)), np.zeros((n, 3))
+    # the head turning at first contact (about its toe, up and target axes): the delivery's velocity is that of
+    # one point of the head (club_reference), every other point moves by w x (its offset from that one)
+    club_velocity = speed[:, None] * club_direction
+    rotation = np.zeros((n, 3))
+    if axes is not None and any(name in inputs for name in HEAD_ROTATION_INPUTS):
+        rotation = np.einsum("nia,na->ni", axes, np.stack([value(name, 0.0) for name in HEAD_ROTATION_INPUTS], -1))
+    turning = np.any(rotation != 0.0, axis=-1)
+    if np.any(turning):
+        reference = value("club_reference", 0.0)
+        reference_point = np.where((reference == 1.0)[:, None], 0.0, np.where((reference == 2.0)[:, None], point,
+                                                                               center))
+        club_velocity = club_velocity + _cross(rotation, center - reference_point)
+    # the velocity of the head's material point at the contact, before impact (the striking sphere's own spin,
+    # club_spin, enters below, counted about the slip frame it defines)
+    contact_velocity = club_velocity + _cross(rotation, lever)
+
+    # slip direction: the ball's contact point moves against the club's tangential velocity there
+    relative = np.where(turning[:, None], -contact_velocity / speed[:, None], -club_direction)
     tangential = relative - np.sum(relative * normal, -1, keepdims=True) * normal
     fallback = up - np.sum(up * normal, -1, keepdims=True) * normal  # head-on: any tangent will do
     has_slip = np.linalg.norm(tangential, axis=-1) > 1e-12
@@ -172,26 +222,16 @@ def contact_state(inputs: dict) -> dict:
     ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
     ball_point_velocity = -radius[:, None] * _cross(ball_spin, normal)
 
-    eye = np.eye(3)
     ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
         / ball_mass[:, None, None]
-    club_mass = value("club_mass", np.inf)
-    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
-    inverse_inertia = _head_inertia(inputs, n, toe, up, flat_normal)
     if inverse_inertia is not None:
-        center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
-                  - value("club_cg_depth", 0.0)[:, None] * flat_normal)
-        lever = point - center
         skew = _skew(lever)
         head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
-    else:
-        lever = np.zeros((n, 3))
     # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
     # head's contact point by w x lever (nothing for a point mass or a fixed face, which have no lever)
-    head_spin = value("club_spin", 0.0)[:, None] * lateral_direction
+    head_spin = value("club_spin", 0.0)[:, None] * lateral_direction + rotation
     head_point_velocity = _cross(head_spin, lever)
-    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - speed[:, None] * club_direction
-                        - head_point_velocity)
+    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - club_velocity - head_point_velocity)
     mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
     mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
     off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
@@ -207,6 +247,7 @@ def contact_state(inputs: dict) -> dict:
         "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": mobility,
         "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
         "ball_spin": ball_spin, "head_spin": head_spin, "one_dimensional": one_dimensional, "frame": frame,
+        "club_velocity": club_velocity, "contact_velocity": contact_velocity,
     }
 
 
@@ -273,7 +314,7 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
             impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
     if names & _NEEDS_HEAD:
         club = np.broadcast_to(np.asarray(club_mass, float), (n,))
-        club_velocity = speed[:, None] * state["club_direction"] - np.where(
+        club_velocity = state["club_velocity"] - np.where(
             np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
         if state["head_inverse_inertia"] is not None:
             club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],

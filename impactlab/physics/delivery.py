@@ -98,4 +98,91 @@ def launch(normal_impulse, tangential_impulse, spin_rate, *, ball_mass, path, fa
     }
 
 
+def contact_face(dynamic_loft, face_angle, strike_toe, strike_high, bulge_radius, roll_radius):
+    """Dynamic loft and face angle of the face at the strike point, from those at the face centre [rad].
+
+    The face is the osculating paraboloid of its bulge and roll (:mod:`impactlab.physics.contact`): at a strike
+    ``toe`` towards the toe and ``high`` up the face its outward normal is, in the face-centre axes (normal,
+    toe, up), the unit vector along (1, a, b) with a = toe/R_bulge and b = high/R_roll. The face's heel-toe line
+    at its centre is horizontal (the lie is not turned into the impact), so with the face-centre loft L_c and
+    face angle f_c the contact normal has the elevation and the horizontal direction (open positive)
+
+        sin L = (sin L_c + b cos L_c) / sqrt(1 + a^2 + b^2),
+        f = f_c + atan2(a, cos L_c - b sin L_c).
+
+    Parameters
+    ----------
+    dynamic_loft, face_angle : array_like
+        Loft and face angle of the face at its centre [rad] (face angle counted open, towards the golfer's
+        trail side, as :class:`impactlab.scene.core.Delivery` counts it).
+    strike_toe, strike_high : array_like
+        Strike point from the face centre towards the toe and up the face [m].
+    bulge_radius, roll_radius : array_like
+        Face radii heel to toe and sole to crown [m] (``inf``: flat).
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Dynamic loft and face angle of the face at the strike point [rad].
+
+    See Also
+    --------
+    centre_face : the inverse.
+    """
+    loft = np.asarray(dynamic_loft, dtype=float)
+    a = np.asarray(strike_toe, dtype=float) / np.asarray(bulge_radius, dtype=float)
+    b = np.asarray(strike_high, dtype=float) / np.asarray(roll_radius, dtype=float)
+    norm = np.sqrt(1.0 + a * a + b * b)
+    contact_loft = np.arcsin(np.clip((np.sin(loft) + b * np.cos(loft)) / norm, -1.0, 1.0))
+    return contact_loft, np.asarray(face_angle, dtype=float) + np.arctan2(a, np.cos(loft) - b * np.sin(loft))
+
+
+def centre_face(dynamic_loft, face_angle, strike_toe, strike_high, bulge_radius, roll_radius):
+    """Dynamic loft and face angle at the face centre whose face at the strike point has the given ones [rad].
+
+    The inverse of :func:`contact_face`: a launch monitor reports the loft and face angle "at the center-point
+    of contact between the club and ball" (TrackMan, Data Parameter Definitions,
+    https://support.trackmangolf.com/hc/en-us/articles/5089892383515), the face-centre orientation is what
+    turns the head. With b = high/R_roll, a = toe/R_bulge and N = sqrt(1 + a^2 + b^2):
+
+        L_c = asin(N sin L / sqrt(1 + b^2)) - atan(b),
+        f_c = f - atan2(a, cos L_c - b sin L_c).
+
+    Parameters and units as :func:`contact_face`, with the contact-point loft and face angle given.
+    """
+    loft = np.asarray(dynamic_loft, dtype=float)
+    a = np.asarray(strike_toe, dtype=float) / np.asarray(bulge_radius, dtype=float)
+    b = np.asarray(strike_high, dtype=float) / np.asarray(roll_radius, dtype=float)
+    norm = np.sqrt(1.0 + a * a + b * b)
+    centre_loft = np.arcsin(np.clip(norm * np.sin(loft) / np.sqrt(1.0 + b * b), -1.0, 1.0)) - np.arctan(b)
+    centre = np.asarray(face_angle, dtype=float) - np.arctan2(a, np.cos(centre_loft) - b * np.sin(centre_loft))
+    return centre_loft, centre
+
+
+def loft_for_spin_loft(spin_loft_angle, path, face_angle, attack_angle):
+    """The dynamic loft whose face makes the 3-D spin loft ``spin_loft_angle`` with the club velocity [rad].
+
+    With the club velocity v = (cos A cos p, cos A sin p, sin A) and the face normal
+    n = (cos L cos f, cos L sin f, sin L) (attack A, path p, face f, loft L), cos S = v . n =
+    c cos(L - phi) with c = sqrt((cos A cos(f - p))^2 + sin^2 A) and phi = atan2(sin A, cos A cos(f - p)); the
+    loft above the club's direction is L = phi + acos(cos S / c). TrackMan defines spin loft as this 3-D angle
+    ("the angle between the direction of the club head's movement and the club face's orientation at the time
+    of maximum compression", Data Parameter Definitions), not dynamic loft minus attack angle.
+
+    Returns
+    -------
+    ndarray
+        The dynamic loft [rad]; NaN where no loft gives that spin loft (a spin loft below the horizontal angle
+        between face and path, which it can never be smaller than).
+    """
+    s = np.asarray(spin_loft_angle, dtype=float)
+    attack = np.asarray(attack_angle, dtype=float)
+    horizontal = np.cos(attack) * np.cos(np.asarray(face_angle, dtype=float) - np.asarray(path, dtype=float))
+    reach = np.hypot(horizontal, np.sin(attack))
+    ratio = np.cos(s) / reach
+    with np.errstate(invalid="ignore"):
+        return np.where(ratio <= 1.0 + 1e-15, np.arctan2(np.sin(attack), horizontal)
+                        + np.arccos(np.clip(ratio, -1.0, 1.0)), np.nan)
+
+
 DELIVERY_INPUTS = ("path", "face_angle", "attack_angle", "dynamic_loft", "handedness")

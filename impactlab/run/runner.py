@@ -89,10 +89,21 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
         for field in axis.fields:
             inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
     complete_inputs(inputs)
-    if study.scene.contact.restitution is None and study.scene.ball.restitution is not None \
-            and "contact.restitution" not in {field.path for axis in study.sweep for field in axis.fields}:
-        # the ball's restitution law at each case's own normal speed
-        inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
+    ball_axes = [(axis, grid) for axis, grid in zip(study.sweep, grids) if axis.balls is not None]
+    if study.scene.contact.restitution is None and "contact.restitution" not in {
+            field.path for axis in study.sweep for field in axis.fields}:
+        if ball_axes:  # a swept ball preset: each case's ball's own law at its own normal speed
+            (axis, grid), = ball_axes
+            which = grid.reshape(-1)
+            laws = [ball_restitution(ball, inputs) for ball in axis.balls]
+            if any(law is not None for law in laws):
+                if any(law is None for law in laws):
+                    raise FieldError("sweep.ball.preset", "balls that all have a restitution law, or a "
+                                     "contact.restitution for all", "a ball without one")
+                inputs["restitution"] = np.choose(which, laws)
+        elif study.scene.ball.restitution is not None:
+            # the ball's restitution law at each case's own normal speed
+            inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
     if np.any(inputs["angle"] >= np.pi / 2):
         case = int(np.argmax(inputs["angle"] >= np.pi / 2))
         raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",

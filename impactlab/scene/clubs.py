@@ -213,11 +213,14 @@ G_CM2 = 1e-7  # kg m^2 per g cm^2
 MM = 1e-3
 
 #: Proceedings 49 (2020) 47 (ISEA 2020), https://www.mdpi.com/2504-3900/49/1/47,
-#: Table 1, a measured driver head. Its frame (Figure 1 there) has x along the face normal towards the ball (the ball's
-#: impact point lies at x = -21.3 mm from its centre, the head's CG at x = -42.3 mm); we take y vertical and z towards
-#: the toe (y: the largest moment, 5679 g cm^2, as a driver's about its vertical axis is, near the USGA limit of
-#: 5900; x, y, z right-handed puts z at the toe of a right-handed head), and the tensor's axes parallel to the head
-#: frame at address. Those two readings are ours, not the paper's words.
+#: Table 1, a measured driver head. Its CoM is "expressed in CoF reference frame" (the Centre of Face frame of its
+#: Figure 1, which we could not read): we take that frame as the face's, x along the face normal towards the ball (the
+#: ball's impact point lies at x = -21.3 mm from its centre, the head's CG at x = -42.3 mm), y up the face, z towards
+#: the toe (x, y, z right-handed puts z at the toe of a right-handed head), so the 2.9 mm is along the face, not
+#: vertical. The tensor's {C} axes: y vertical (the largest moment, 5679 g cm^2, as a driver's about its vertical axis
+#: is, near the USGA limit of 5900), z towards the toe, parallel to the head frame at address. These readings are
+#: ours, not the paper's words; the address-frame reading (2.9 mm vertical) would put the CG 10.1 mm up the face and
+#: raise centred spin by 19 % (docs/clubs.md, benchmarks/measure_delivery.py).
 DRIVER_2020 = dict(mass=0.204, center=(1.0, 2.9, 42.3),
                    tensor=[[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]])
 
@@ -239,7 +242,10 @@ CLUB_SOURCES = {
         "Measured head (measurement): Proceedings 49 (2020) 47, https://www.mdpi.com/2504-3900/49/1/47, Table 1: "
         "mass 204 g, CG [-42.3, 2.9, 1.0] mm from the face centre, inertia tensor [[2843, -733, 530.2], [-733, "
         "5679, 0.5], [530.2, 0.5, 4085]] g cm^2, loft 9.8 deg, bulge 305 mm. The mapping of its axes to toe/up/"
-        "target is ours (docs/clubs.md). Roll 254 mm and lie 58 deg: typical manufacturer specifications, not "
+        "target is ours (docs/clubs.md): the CoM 'expressed in CoF reference frame' is read in the face's frame "
+        "(x the face normal, y up the face, z to the toe), so the 2.9 mm is along the face (high), not vertical; "
+        "read in the address frame (2.9 mm vertical) it would be 10.1 mm up the face and centred spin 19 % higher. "
+        "Roll 254 mm and lie 58 deg: typical manufacturer specifications, not "
         "measured on this head. Face Ti-6Al-4V. Restitution gain 0.083: fitted (impactlab fit trackman_tour: maw "
         "0.082 +- 0.018, hertz_mindlin 0.084 +- 0.014) beside the tour_urethane ball's e = 0.787, a model output; it "
         "puts the driver's e at about 0.87, above the USGA's COR limit of 0.830, so it also stands in for what the "

@@ -7,6 +7,7 @@ import math
 import attrs
 import numpy as np
 
+from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.validators import check, finite, in_range, positive, to_float
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
@@ -69,6 +70,24 @@ class Impact:
 
 
 HANDEDNESS = ("right", "left")
+#: where the delivery's dynamic loft and face angle are the face's (physics.contact.LOFT_AT)
+LOFT_AT = ("contact", "centre")
+#: largest difference between a given spin loft and the one the given angles make [rad]: launch monitors print
+#: angles to 0.1 deg, so four rounded angles may disagree with a rounded spin loft by up to about 0.2 deg
+SPIN_LOFT_TOLERANCE = math.radians(0.2)
+
+
+def _rotation(value):
+    try:
+        values = tuple(float(x) for x in value)
+    except (TypeError, ValueError):
+        return value
+    return values
+
+
+def _check_rotation(instance, attribute, value):
+    if not isinstance(value, tuple) or len(value) != 3 or not all(math.isfinite(x) for x in value):
+        raise FieldError(attribute.name, "an angular velocity (toe, up, target) in rad/s, finite", value)
 
 
 @attrs.frozen
@@ -90,6 +109,27 @@ class Delivery:
         Elevation of the face normal above the horizontal at impact [rad].
     handedness : str
         ``"right"`` or ``"left"``.
+    loft_at : str
+        Where ``dynamic_loft`` and ``face_angle`` are the face's: ``"contact"`` (default), at the strike point,
+        as launch monitors report them (TrackMan, Data Parameter Definitions: dynamic loft and face angle "at
+        the center-point of contact between the club and ball at the time of maximum compression"), so that a
+        strike off the centre of a bulged or rolled face turns the head, not the launch; ``"centre"``, at the
+        face centre, the strike point's bulge and roll tilting the face further
+        (:func:`impactlab.physics.delivery.centre_face` converts one into the other). The same on a flat face
+        or a centred strike.
+    club_reference : str
+        The point of the head whose velocity ``club_speed``, ``path`` and ``attack_angle`` give:
+        ``"centre_of_mass"`` (default; TrackMan reports them "relative to the CoG, or more precisely at the
+        geometric center of the club head", typically within 6 mm of it: C. Hahn, "Club Data Definitions",
+        blog.trackmangolf.com/club-data-definitions), ``"face_centre"`` (optical monitors, "since it is where the
+        reflective markers are positioned", same source) or ``"contact"``. It matters only for a turning head
+        (``head_rotation``): the velocity is carried to every other point rigidly, v = v_ref + w x r.
+    head_rotation : (toe, up, target)
+        Angular velocity of the head at first contact about its toe, up and target axes (the head frame of
+        :mod:`impactlab.scene.clubs`, turned with the head at impact) [rad/s]; right-hand rule, so + toe turns
+        the face upwards (adds loft), + up closes it, + target moves the toe down. A left-handed golfer's head is
+        the mirror image: the same numbers (closing is + up whoever swings). Default zero (the head moves as a
+        point); it needs a club head.
     """
 
     club_speed: float = attrs.field(converter=to_float, validator=positive("a positive, finite club speed in m/s"))
@@ -103,11 +143,57 @@ class Delivery:
         -math.pi / 2, math.pi / 2, "a dynamic loft between -90 and 90 deg", low_open=True, high_open=True))
     handedness: str = attrs.field(default="right", validator=check(lambda v: v in HANDEDNESS,
                                                                    "right or left"))
+    loft_at: str = attrs.field(default="contact", validator=check(lambda v: v in LOFT_AT, "contact or centre"))
+    club_reference: str = attrs.field(default="centre_of_mass", validator=check(
+        lambda v: v in CLUB_REFERENCES, "centre_of_mass, face_centre or contact"))
+    head_rotation: tuple = attrs.field(default=(0.0, 0.0, 0.0), converter=_rotation, validator=_check_rotation)
 
     def __attrs_post_init__(self):
         if not self.spin_loft < math.pi / 2:
             raise FieldError("dynamic_loft", "a delivery whose face meets the ball (spin loft below 90 deg)",
                              f"spin loft {math.degrees(self.spin_loft):.1f} deg")
+
+    @classmethod
+    def from_spin_loft(cls, club_speed: float, spin_loft: float, *, face_to_path: float | None = None,
+                       face_angle: float | None = None, path: float = 0.0, attack_angle: float = 0.0,
+                       dynamic_loft: float | None = None, **fields) -> Delivery:
+        """A delivery given by its 3-D spin loft [rad] (TrackMan's: the angle between the club's velocity and the
+        face normal), with the face given by ``face_to_path`` (face angle minus path) or ``face_angle``.
+
+        The dynamic loft follows (:func:`impactlab.physics.delivery.loft_for_spin_loft`). Given as well, it
+        must agree with the spin loft to :data:`SPIN_LOFT_TOLERANCE`; otherwise, or where no loft makes that
+        spin loft, a FieldError says which numbers disagree.
+        """
+        from impactlab.physics.delivery import loft_for_spin_loft
+
+        if face_to_path is not None and face_angle is not None \
+                and abs(face_angle - path - face_to_path) > SPIN_LOFT_TOLERANCE:
+            raise FieldError("face_to_path", "face_angle - path (or only one of face_to_path, face_angle)",
+                             f"{math.degrees(face_to_path):.2f} deg against face_angle - path = "
+                             f"{math.degrees(face_angle - path):.2f} deg")
+        face = face_angle if face_angle is not None else path + (face_to_path or 0.0)
+        loft = float(loft_for_spin_loft(spin_loft, path, face, attack_angle))
+        if not math.isfinite(loft):
+            raise FieldError("spin_loft", "a spin loft at least the angle between face and path "
+                             f"({math.degrees(abs(face - path)):.2f} deg here) and one the attack angle allows",
+                             f"{math.degrees(spin_loft):.2f} deg")
+        if dynamic_loft is not None:
+            implied = cls(club_speed, path=path, face_angle=face, attack_angle=attack_angle,
+                          dynamic_loft=dynamic_loft, **fields).spin_loft
+            if abs(implied - spin_loft) > SPIN_LOFT_TOLERANCE:
+                raise FieldError(
+                    "spin_loft", f"the spin loft the delivery's angles make, within "
+                    f"{math.degrees(SPIN_LOFT_TOLERANCE):.1f} deg ({math.degrees(implied):.2f} deg from dynamic "
+                    f"loft {math.degrees(dynamic_loft):.2f}, attack {math.degrees(attack_angle):.2f}, face "
+                    f"{math.degrees(face):.2f}, path {math.degrees(path):.2f} deg), or only one of spin_loft and "
+                    "dynamic_loft", f"{math.degrees(spin_loft):.2f} deg")
+            loft = dynamic_loft
+        return cls(club_speed, path=path, face_angle=face, attack_angle=attack_angle, dynamic_loft=loft, **fields)
+
+    @property
+    def reference_code(self) -> int:
+        """``club_reference`` as the number the models' input ``club_reference`` carries."""
+        return CLUB_REFERENCES.index(self.club_reference)
 
     @property
     def sign(self) -> float:
@@ -146,6 +232,8 @@ class Scene:
                              f"mass {self.face.mass:g} kg")
         if self.club is None and self.strike != Strike():
             raise FieldError("strike", "a club head to strike off centre (a club block)", "no club")
+        if self.club is None and self.delivery is not None and any(self.delivery.head_rotation):
+            raise FieldError("delivery.head_rotation", "a club head to turn (a club block)", "no club")
         if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
                                           or self.impact.speed != self.delivery.club_speed):
             raise FieldError("impact", "the club speed and spin loft of the delivery (use Scene.from_delivery)",

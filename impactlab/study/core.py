@@ -28,7 +28,8 @@ from impactlab.scene.core import Scene
 # the scene blocks live in study_scene; their builders stay importable from here
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike)
-from impactlab.study.schema import SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, structure
+from impactlab.study.schema import (SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, rate_with_unit,
+                                    structure)
 from impactlab.units import to_si
 from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS,
                                   SCALAR_OUTPUTS, check_output_names)
@@ -55,6 +56,8 @@ class SweepAxis:
     dim: str
     fields: tuple[SweepField, ...]
     labels: tuple[str, ...] | None = None
+    #: a ``ball.preset`` sweep's balls, one per value: their restitution laws apply case by case
+    balls: tuple | None = attrs.field(default=None, eq=False, repr=False)
 
     @property
     def size(self) -> int:
@@ -252,8 +255,10 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         block = structure(spec, RangeBlock, where)
         num = block.num
         check_cases(num, f"{where}.num")  # before the values are generated
-        start = to_si(block.start, dimension, f"{where}.start")
-        stop = to_si(block.stop, dimension, f"{where}.stop")
+        convert = ((lambda value, _, at: rate_with_unit(value, at)) if path.startswith("delivery.head_rotation.")
+                   else to_si)
+        start = convert(block.start, dimension, f"{where}.start")
+        stop = convert(block.stop, dimension, f"{where}.stop")
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
@@ -262,6 +267,8 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         if not spec:
             raise FieldError(where, "a non-empty list of values", spec)
         check_cases(len(spec), where)
+        if path.startswith("delivery.head_rotation."):  # a turning rate carries its unit (deg/s or rpm?)
+            return [rate_with_unit(item, f"{where}[{index}]") for index, item in enumerate(spec)]
         return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
     raise FieldError(where, "a list of values or {start, stop, num}", spec)
 
@@ -308,8 +315,13 @@ def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, l
 def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]], index: int) -> None:
     trial = dict(document)
     for path, values in fields:
-        section, key = path.split(".")
-        trial[section] = dict(trial.get(section) or {}, **{key: SI(values[index])})
+        section, *inner, key = path.split(".")  # a nested field: delivery.head_rotation.up
+        block = dict(trial.get(section) or {})
+        trial[section] = block
+        for part in inner:
+            block[part] = dict(block.get(part) or {})
+            block = block[part]
+        block[key] = SI(values[index])
     build_scene(trial)
 
 
@@ -329,53 +341,77 @@ CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_
 
 #: study path of a field set by a club preset sweep: "club.preset:" + the field's own path
 PRESET_MARK = "club.preset:"
+BALL_PRESET_MARK = "ball.preset:"
+#: the sweep keys that set a whole block from a preset: the block, the mark of its fields
+PRESET_SWEEPS = {"club.preset": ("club", PRESET_MARK), "ball.preset": ("ball", BALL_PRESET_MARK)}
 
 
-def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str, str, list[float]]]:
-    """The club inputs of each preset in ``names`` (with the study's other club keys applied), as sweep fields."""
+def _ball_preset_inputs(document: Mapping) -> tuple[str, ...]:
+    """Inputs a ball preset sets: the ball's own, and the pair's friction where the study's contact leaves it out."""
+    own = tuple(name for name, spec in INPUTS.items() if spec.path.startswith("ball."))
+    contact = document.get("contact") or {}
+    return own + (() if isinstance(contact, Mapping) and contact.get("friction") is not None else ("friction",))
+
+
+def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list[tuple[str, str, list[float]]], list]:
+    """The inputs of each preset in ``names`` of block ``club`` or ``ball`` (the study's other keys of that block
+    applied), as sweep fields, and the scene of each preset (whose ball carries its restitution law)."""
+    block, mark = PRESET_SWEEPS[key]
     if not isinstance(names, list) or not names or not all(isinstance(name, str) for name in names) \
             or len(set(names)) != len(names):
-        raise FieldError(where, "a list of distinct club preset names", names)
-    if "club" not in document:
-        raise FieldError(where, "a club block in the study to sweep the preset of", "no club")
-    values = {name: [] for name in CLUB_PRESET_INPUTS}
+        raise FieldError(where, f"a list of distinct {block} preset names", names)
+    if block not in document:
+        raise FieldError(where, f"a {block} block in the study to sweep the preset of", f"no {block}")
+    wanted = CLUB_PRESET_INPUTS if block == "club" else _ball_preset_inputs(document)
+    values, scenes = {name: [] for name in wanted}, []
     for index, preset in enumerate(names):
-        trial = dict(document, club=dict(document.get("club") or {}, preset=preset))
+        trial = dict(document, **{block: dict(document.get(block) or {}, preset=preset)})
         try:
-            inputs = build_scene(trial).inputs()
+            scene = build_scene(trial)
         except FieldError as exc:
             raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
-        for name in CLUB_PRESET_INPUTS:
+        inputs = scene.inputs()
+        missing = [name for name in wanted if name not in inputs]
+        if missing:
+            raise FieldError(f"{where}[{index}]", f"a {block} preset that gives {INPUTS[missing[0]].path} like the "
+                             "others swept beside it", preset)
+        for name in wanted:
             values[name].append(inputs[name])
-    return [(f"{PRESET_MARK}{INPUTS[name].path}", name, values[name]) for name in CLUB_PRESET_INPUTS]
+        scenes.append(scene)
+    return [(f"{mark}{INPUTS[name].path}", name, values[name]) for name in wanted], scenes
 
 
 def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
         raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
-    raw_axes = []  # (dim or None, labels, [(path, input, values)])
+    raw_axes = []  # (dim or None, labels, [(path, input, values)], balls or None)
     for key, spec in sweep.items():
         key = str(key)
-        if key == "club.preset":  # a dimension "club" labelled by preset, setting every input of the head
-            raw_axes.append(("club", tuple(spec) if isinstance(spec, list) else None,
-                             _club_preset_fields(document, spec, f"sweep.{key}")))
+        if key in PRESET_SWEEPS:  # a dimension "club" or "ball" labelled by preset, setting every input of it
+            fields, scenes = _preset_fields(document, key, spec, f"sweep.{key}")
+            raw_axes.append((PRESET_SWEEPS[key][0], tuple(spec), fields,
+                             tuple(scene.ball for scene in scenes) if key == "ball.preset" else None))
             continue
         if "." in key or not isinstance(spec, Mapping) or set(spec) <= set(SWEEP_RANGE_KEYS):
             name, values = _sweep_field_values(key, spec, f"sweep.{key}")
             _refuse_repeats(f"sweep.{key}", values, spec)
             _check_sweep_values(document, f"sweep.{key}", [(key, values)])
-            raw_axes.append((None, None, [(key, name, values)]))
+            raw_axes.append((None, None, [(key, name, values)], None))
             continue
         # a named dimension along which several fields change together
         if not key.isidentifier() or key in (MODEL_DIM, "time"):
             raise FieldError(f"sweep.{key}", "a dimension name (letters, digits, _; not model or time)", key)
         labels = spec.get("labels")
         fields = [(path, *_sweep_field_values(path, values, f"sweep.{key}.{path}"))
-                  for path, values in spec.items() if path not in ("labels", "club.preset")]
-        if "club.preset" in spec:
-            fields += _club_preset_fields(document, spec["club.preset"], f"sweep.{key}.club.preset")
-            labels = labels if labels is not None else spec["club.preset"]
+                  for path, values in spec.items() if path != "labels" and path not in PRESET_SWEEPS]
+        balls = None
+        for preset_key in (name for name in PRESET_SWEEPS if name in spec):
+            more, scenes = _preset_fields(document, preset_key, spec[preset_key], f"sweep.{key}.{preset_key}")
+            fields += more
+            labels = labels if labels is not None else spec[preset_key]
+            if preset_key == "ball.preset":
+                balls = tuple(scene.ball for scene in scenes)
         if not fields:
             raise FieldError(f"sweep.{key}", "at least one dotted field path with its values", "none")
         sizes = {len(values) for _, _, values in fields} | ({len(labels)} if isinstance(labels, list) else set())
@@ -387,36 +423,38 @@ def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
         if labels is None:  # fields changing together may repeat a value, but not a whole row
             _refuse_repeats(f"sweep.{key}", list(zip(*[values for _, _, values in fields])), [])
         _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields
-                                                         if not path.startswith(PRESET_MARK)])
-        raw_axes.append((key, tuple(labels) if labels else None, fields))
+                                                         if not path.startswith(_MARKS)])
+        raw_axes.append((key, tuple(labels) if labels else None, fields, balls))
 
-    paths = [path for _, _, fields in raw_axes for path, _, _ in fields]
+    paths = [path for _, _, fields, _ in raw_axes for path, _, _ in fields]
     repeated = sorted({path for path in paths if paths.count(path) > 1})
-    swept_inputs = [(name, path) for _, _, fields in raw_axes for path, name, _ in fields]
+    swept_inputs = [(name, path) for _, _, fields, _ in raw_axes for path, name, _ in fields]
     names = [name for name, _ in swept_inputs]
-    twice = [path for name, path in swept_inputs if names.count(name) > 1 and not path.startswith(PRESET_MARK)]
+    twice = [path for name, path in swept_inputs if names.count(name) > 1 and not path.startswith(_MARKS)]
     if twice and not repeated:
-        raise FieldError(f"sweep.{twice[0]}", "each field swept at most once (a swept club preset sets it)",
+        raise FieldError(f"sweep.{twice[0]}", "each field swept at most once (a swept preset sets it)",
                          "swept twice")
     if repeated:
         raise FieldError(f"sweep.{repeated[0]}", "each field swept at most once", "swept twice")
-    short = [path.split(".")[-1] for path in paths if not path.startswith(PRESET_MARK)]
-    taken = {dim for dim, _, _ in raw_axes if dim}
+    short = [path.split(".")[-1] for path in paths if not path.startswith(_MARKS)]
+    taken = {dim for dim, _, _, _ in raw_axes if dim}
 
-    def name_of(path):
-        if path.startswith(PRESET_MARK):  # set by a club preset: named by its input, which never clashes
-            own = path[len(PRESET_MARK):]
-            return next(name for name in CLUB_PRESET_INPUTS if INPUTS[name].path == own)
+    def name_of(path, name):
+        if path.startswith(_MARKS):  # set by a preset: named by its input, which never clashes
+            return name
         last = path.split(".")[-1]
         clash = short.count(last) > 1 or last in (MODEL_DIM, "time") or last in taken
         return path.replace(".", "_") if clash else last
 
     axes = []
-    for dim, labels, fields in raw_axes:
-        sweep_fields = tuple(SweepField(path, name, tuple(float(v) for v in values), name_of(path))
+    for dim, labels, fields, balls in raw_axes:
+        sweep_fields = tuple(SweepField(path, name, tuple(float(v) for v in values), name_of(path, name))
                              for path, name, values in fields)
-        axes.append(SweepAxis(dim or sweep_fields[0].coord, sweep_fields, labels))
+        axes.append(SweepAxis(dim or sweep_fields[0].coord, sweep_fields, labels, balls))
     return tuple(axes)
+
+
+_MARKS = (PRESET_MARK, BALL_PRESET_MARK)
 
 
 def _build_models(value) -> tuple[ModelEntry, ...]:

@@ -18,7 +18,8 @@ from impactlab.errors import FieldError
 from impactlab.scene.materials import (
     MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, face_preset,
 )
-from impactlab.scene.core import HANDEDNESS, Contact, Delivery, Impact, Scene
+from impactlab.physics.contact import CLUB_REFERENCES
+from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
 from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ContactBlock, DeliveryBlock, FaceBlock,
                                     ImpactBlock, RestitutionBlock, StrikeBlock, structure)
 
@@ -199,14 +200,31 @@ def build_impact(value, path: str = "impact") -> Impact:
 
 
 def build_delivery(value, path: str = "delivery") -> Delivery:
-    """A golf delivery: club speed (required), path, face, attack and loft angles, handedness."""
+    """A golf delivery: club speed (required), path, face, attack and loft angles (or the spin loft, with the
+    face to path), handedness, where the loft is the face's, the head's reference point and its rotation."""
     block = structure(value, DeliveryBlock, path)
     if block.club_speed is None:
         raise FieldError(f"{path}.club_speed", "the club speed", "nothing")
-    if block.handedness not in HANDEDNESS:
-        raise FieldError(f"{path}.handedness", "the golfer's handedness", block.handedness, choices=HANDEDNESS)
-    angles = _given(block, None, ("path", "face_angle", "attack_angle", "dynamic_loft"), {})
-    return _construct(Delivery, path, club_speed=block.club_speed, handedness=block.handedness, **angles)
+    for key, choices in (("handedness", HANDEDNESS), ("loft_at", LOFT_AT), ("club_reference", CLUB_REFERENCES)):
+        if getattr(block, key) not in choices:
+            raise FieldError(f"{path}.{key}", f"one of {', '.join(choices)}", getattr(block, key), choices=choices)
+    rotation = block.head_rotation
+    words = dict(handedness=block.handedness, loft_at=block.loft_at, club_reference=block.club_reference,
+                 head_rotation=tuple(0.0 if rotation is None or getattr(rotation, axis) is None
+                                     else getattr(rotation, axis) for axis in ("toe", "up", "target")))
+    if block.spin_loft is None:
+        if block.face_to_path is not None:
+            if block.face_angle is not None:
+                raise FieldError(f"{path}.face_to_path", "either face_angle or face_to_path (face angle - path)",
+                                 "both")
+            block = attrs.evolve(block, face_angle=(block.path or 0.0) + block.face_to_path)
+        angles = _given(block, None, ("path", "face_angle", "attack_angle", "dynamic_loft"), {})
+        return _construct(Delivery, path, club_speed=block.club_speed, **angles, **words)
+    angles = _given(block, None, ("path", "face_angle", "attack_angle", "dynamic_loft", "face_to_path"), {})
+    try:
+        return Delivery.from_spin_loft(block.club_speed, block.spin_loft, **angles, **words)
+    except FieldError as exc:
+        raise exc.at(prefix=path) from None
 
 
 def build_scene(document: Mapping) -> Scene:

@@ -58,6 +58,29 @@ Name = NewType("Name", str)
 Restitution = NewType("Restitution", object)
 #: a head's inertia: a :class:`InertiaBlock` or a 3x3 list of lists
 InertiaSpec = NewType("InertiaSpec", object)
+#: an angular velocity that must carry its unit (0 excepted): a head's turning rate is quoted in deg/s by launch
+#: monitors (closure rate) and spin in rpm by impactlab, so a bare number would be a guess between them
+Rate = NewType("Rate", float)
+RATE_EXPECTED = ("an angular velocity with its unit, e.g. '2000 deg/s' or '35 rad/s' (a bare number is ambiguous: "
+                 "closure rates are quoted in deg/s, spin in rpm)")
+
+
+def rate_with_unit(value, where: str = "") -> float:
+    """An angular velocity [rad/s] from a quantity with its unit; a bare number other than 0 is refused."""
+    if isinstance(value, SI):
+        return float(value)
+    bare = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if isinstance(value, str):
+        try:
+            float(value)
+            bare = True
+        except ValueError:
+            pass
+    if bare:
+        if float(value) == 0.0:
+            return 0.0
+        raise FieldError(where, RATE_EXPECTED, value)
+    return to_si(value, "angular_speed", where)
 
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
                Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless"}
@@ -188,6 +211,16 @@ class ImpactBlock:
 
 
 @attrs.frozen
+class HeadRotationBlock:
+    """``delivery.head_rotation``: the head's angular velocity at first contact about its toe, up and target axes."""
+
+    _what = "the head's angular velocity"
+    toe: Rate | None = None
+    up: Rate | None = None
+    target: Rate | None = None
+
+
+@attrs.frozen
 class DeliveryBlock:
     """The ``delivery`` block: a golf delivery in the golfer's terms."""
 
@@ -198,6 +231,11 @@ class DeliveryBlock:
     attack_angle: Angle | None = None
     dynamic_loft: Angle | None = None
     handedness: Name = "right"
+    loft_at: Name = "contact"
+    club_reference: Name = "centre_of_mass"
+    spin_loft: Angle | None = None
+    face_to_path: Angle | None = None
+    head_rotation: HeadRotationBlock | None = None
 
 
 @attrs.frozen
@@ -391,7 +429,8 @@ def _converter() -> Converter:
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
     for type_, hook in ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count), (Name, lambda v, _: v),
-                        (Restitution, _restitution), (InertiaSpec, _inertia_spec)):
+                        (Restitution, _restitution), (InertiaSpec, _inertia_spec),
+                        (Rate, lambda v, _: rate_with_unit(v))):
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
                                               lambda t: _list_hook(t, converter))
