@@ -298,3 +298,156 @@ def test_default_model_is_best_published_model():
     rms = {m: validate_carry(m)["rms_carry_error"] for m in flight.MODELS if m != "vacuum"}
     rms = {m: (v if np.isfinite(v) else np.inf) for m, v in rms.items()}
     assert min(rms, key=rms.get) == flight.DEFAULT_MODEL
+
+
+# --------------------------------------------------------------------------
+# impactlab.fly: units, arrays, the air
+# --------------------------------------------------------------------------
+def test_fly_takes_units_numbers_and_quantities_alike():
+    import pint
+
+    import impactlab
+
+    ureg = pint.UnitRegistry()
+    by_text = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm",
+                            spin_axis="5 deg", launch_direction="-2 deg")
+    by_si = impactlab.fly(167 * MPH, np.radians(10.9), 2686 * RPM, np.radians(5), np.radians(-2))
+    by_pint = impactlab.fly(ureg.Quantity(167, "mph"), ureg.Quantity(10.9, "deg"), ureg.Quantity(2686, "rpm"),
+                            ureg.Quantity(5, "deg"), ureg.Quantity(-2, "deg"))
+    physics = flight.fly(167 * MPH, np.radians(10.9), 2686 * RPM, np.radians(5), np.radians(-2))
+    for result in (by_text, by_si, by_pint):
+        assert float(result.carry_distance) == pytest.approx(float(physics["carry_distance"]), rel=1e-12)
+        assert float(result.landing_angle) == pytest.approx(np.degrees(float(physics["landing_angle"])), rel=1e-12)
+    assert by_text.carry_distance.attrs["units"] == "m"
+    assert by_text.landing_angle.attrs["units"] == "degree"
+    assert by_text.flight_time.attrs["units"] == "s"
+
+
+def test_fly_broadcasts_arrays():
+    import impactlab
+
+    result = impactlab.fly(ball_speed=[60.0, 70.0], launch_angle=np.radians([[10.0], [14.0], [18.0]]),
+                           spin_rate="3000 rpm")
+    assert result.carry_distance.shape == (3, 2)
+    single = flight.fly(70.0, np.radians(14.0), 3000 * RPM)
+    assert float(result.carry_distance[1, 1]) == pytest.approx(float(single["carry_distance"]), rel=1e-12)
+
+
+def test_fly_conditions_are_the_air_they_say():
+    import impactlab
+
+    # 25 degC, 1013.25 hPa, dry: the same flight as the physics function given that air directly
+    air = {"temperature": "25 degC", "pressure": "1013.25 hPa", "relative_humidity": "0 %", "headwind": "10 mph",
+           "crosswind": "5 mph"}
+    result = impactlab.fly("120 mph", "16.3 deg", "7097 rpm", conditions=air)
+    direct = flight.fly(120 * MPH, np.radians(16.3), 7097 * RPM, temperature=298.15, pressure=101325.0,
+                        relative_humidity=0.0, wind=(-10 * MPH, 5 * MPH, 0.0))
+    assert float(result.carry_distance) == pytest.approx(float(direct["carry_distance"]), rel=1e-12)
+    assert float(result.offline_distance) > 0  # a wind blowing to the right pushes the ball right
+    assert result.attrs["air_density_kg_m3"] == pytest.approx(101325.0 / (287.05 * 298.15), rel=1e-3)
+    # altitude alone sets the ISA pressure: Denver (1609 m) is 83.4 kPa (ISO 2533)
+    denver = impactlab.fly("167 mph", "10.9 deg", "2686 rpm", conditions={"altitude": "5280 ft"})
+    assert denver.attrs["air_pressure_Pa"] == pytest.approx(83.4e3, rel=2e-3)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(ball_speed="167", launch_angle=0.2, spin_rate=300.0), "has no unit"),
+    (dict(ball_speed="167 deg", launch_angle=0.2, spin_rate=300.0), "do not convert"),
+    (dict(ball_speed=-5.0, launch_angle=0.2, spin_rate=300.0), "positive ball speed"),
+    (dict(ball_speed=70.0, launch_angle="10 mph", spin_rate=300.0), "not an angle unit"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=-1.0), "spin rate >= 0"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0, conditions={"temp": "20 degC"}), "conditions.temp"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0,
+          conditions={"pressure": "1000 hPa", "altitude": "100 m"}), "not both"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0, conditions={"relative_humidity": 60}), "between 0 and 1"),
+])
+def test_fly_refuses_bad_values_with_one_message(kwargs, words):
+    import impactlab
+    from impactlab.errors import FieldError
+
+    with pytest.raises(FieldError, match=words):
+        impactlab.fly(**kwargs)
+
+
+# --------------------------------------------------------------------------
+# A study asks for the flight after any impact model
+# --------------------------------------------------------------------------
+def _golf_study(outputs, **extra):
+    return {"name": "flight", "ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+            "contact": {"friction": 0.4, "restitution": 0.8},
+            "delivery": {"club_speed": "110 mph", "path": "2 deg", "face_angle": "-1 deg", "attack_angle": "-1 deg",
+                         "dynamic_loft": "13 deg"},
+            "sweep": {"strike.toe": ["-10 mm", "0 mm", "10 mm"]},
+            "models": ["rigid_coulomb", {"name": "restitution", "tangential_restitution": 0.1}],
+            "outputs": outputs, **extra}
+
+
+LAUNCH = ["ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin", "spin_axis"]
+FLIGHT = ["carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time"]
+
+
+def test_study_flight_equals_fly_on_the_models_launch():
+    import impactlab
+
+    air = {"temperature": "30 degC", "altitude": "400 m", "relative_humidity": "70 %", "headwind": "3 m/s",
+           "crosswind": "-2 m/s"}
+    result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions=air))
+    ball = impactlab.load_study(_golf_study(LAUNCH)).scene.ball
+    for model in result.model.values:
+        row = result.sel(model=model)
+        spin = np.hypot(row.back_spin.values, row.side_spin.values) * RPM  # the spin across the flight
+        alone = impactlab.fly(row.ball_speed.values, np.radians(row.vertical_launch_angle.values), spin,
+                              np.radians(row.spin_axis.values), np.radians(row.horizontal_launch_angle.values),
+                              conditions=air, ball_mass=ball.mass, ball_radius=ball.radius)
+        for name in FLIGHT:
+            np.testing.assert_allclose(row[name].values, alone[name].values, rtol=1e-9, err_msg=name)
+    assert np.all(result.carry_distance.values > 150) and result.carry_distance.attrs["units"] == "m"
+    assert result.landing_angle.attrs["units"] == "degree"
+
+
+def test_study_not_asking_for_the_flight_does_not_compute_it(monkeypatch):
+    import impactlab
+
+    calls = []
+    original = flight.fly
+    monkeypatch.setattr(flight, "fly", lambda *a, **k: calls.append(1) or original(*a, **k))
+    impactlab.run_study(_golf_study(LAUNCH), executor="serial")
+    assert calls == []
+    impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]), executor="serial")
+    assert len(calls) == 2  # once per model (one chunk each)
+    # nor does a model computed without named outputs
+    model = impactlab.get_model("rigid_coulomb")()
+    model.compute(impactlab.load_study(_golf_study(LAUNCH)).scene.inputs())
+    assert len(calls) == 2
+
+
+def test_study_conditions_sweep_and_no_delivery():
+    import impactlab
+
+    study = _golf_study(["carry_distance"], conditions={"temperature": "20 degC"})
+    study["sweep"] = {"conditions.altitude": ["0 m", "1609 m"]}
+    result = impactlab.run_study(study)
+    carry = result.carry_distance.values  # (model, altitude)
+    assert np.all(carry[:, 1] > carry[:, 0] * 1.03)  # thinner air carries further (Denver: several percent)
+    plate = {"name": "plate", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
+             "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "30 deg"},
+             "models": ["rigid_coulomb"], "outputs": ["ball_speed", "carry_distance"]}
+    result = impactlab.run_study(plate)
+    assert np.isnan(result.carry_distance.values).all()
+    assert "golf delivery" in result.carry_distance.attrs["missing"]
+
+
+@pytest.mark.parametrize("conditions, words", [
+    ({"temperature": 25}, "with its unit"),
+    ({"altitude": 1600}, "with its unit"),
+    ({"humidity": "50 %"}, "conditions.humidity"),
+    ({"pressure": "1000 hPa", "altitude": "100 m"}, "not both"),
+    ({"temperature": "25 m"}, "do not convert"),
+])
+def test_study_conditions_block_refuses_with_its_path(conditions, words):
+    import impactlab
+    from impactlab.errors import FieldError
+
+    with pytest.raises(FieldError, match=words) as caught:
+        impactlab.load_study(_golf_study(["carry_distance"], conditions=conditions))
+    assert "conditions" in str(caught.value)

@@ -21,7 +21,8 @@ from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import FieldError, ModelContractError
 from impactlab.model.planning import OutputPlan, plan_outputs, require_inputs
 from impactlab.model.derive import NEEDS, derive
-from impactlab.vocabulary import CASE_DIM, EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS, TIME_DIM, check_output_names, is_history
+from impactlab.vocabulary import (CASE_DIM, EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS, TIME_DIM, check_output_names,
+                                  is_history)
 
 
 #: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)

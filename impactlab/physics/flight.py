@@ -738,7 +738,7 @@ def fly(
     out = {
         "carry_distance": np.hypot(carry_x, carry_y).reshape(shape),
         "carry_x": carry_x.reshape(shape),
-        "offline_distance": (-carry_y).reshape(shape),
+        "offline_distance": (0.0 - carry_y).reshape(shape),
         "apex_height": apex.reshape(shape),
         "landing_angle": np.arctan2(-v_land[2], vh).reshape(shape),
         "flight_time": t_land.reshape(shape),
