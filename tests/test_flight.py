@@ -451,3 +451,39 @@ def test_study_conditions_block_refuses_with_its_path(conditions, words):
     with pytest.raises(FieldError, match=words) as caught:
         impactlab.load_study(_golf_study(["carry_distance"], conditions=conditions))
     assert "conditions" in str(caught.value)
+
+
+# --------------------------------------------------------------------------
+# Trajectory figures
+# --------------------------------------------------------------------------
+def test_trajectory_figure_lands_where_the_result_says(tmp_path, monkeypatch):
+    import impactlab
+    from impactlab.plot import figures
+
+    result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions={"temperature": "10 degC"}))
+    captured = []
+    monkeypatch.setattr(figures, "_save", lambda figure, path: captured.append(figure) or path)
+    figures.plot_trajectories(result, tmp_path / "t.png")
+    side, top = captured[0].axes[:2]
+    ends = np.array([[line.get_xdata()[-1], line.get_ydata()[-1]] for line in top.get_lines()
+                     if len(line.get_xdata()) > 2])
+    carry = result.carry_distance.transpose("model", ...).values.reshape(-1)
+    offline = result.offline_distance.transpose("model", ...).values.reshape(-1)
+    np.testing.assert_allclose(np.hypot(ends[:, 0], ends[:, 1]), carry, rtol=1e-9)
+    np.testing.assert_allclose(ends[:, 1], offline, atol=1e-9)
+    heights = [np.max(line.get_ydata()) for line in side.get_lines()]
+    np.testing.assert_allclose(np.sort(heights), np.sort(result.apex_height.values.reshape(-1)), rtol=1e-3)
+
+
+def test_cli_draws_trajectories_and_refuses_a_result_without_launch(tmp_path, capsys):
+    import impactlab
+    from impactlab.cli import main
+
+    good, bad = tmp_path / "good.h5", tmp_path / "bad.h5"
+    impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]), output=good)
+    assert main(["plot", str(good), "--trajectories"]) == 0
+    assert (tmp_path / "good_trajectories.png").stat().st_size > 10_000
+    impactlab.run_study(_golf_study(["ball_speed", "carry_distance"]), output=bad)
+    assert main(["plot", str(bad), "--trajectories"]) == 2
+    err = capsys.readouterr().err
+    assert "vertical_launch_angle" in err and "Traceback" not in err
