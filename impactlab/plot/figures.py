@@ -22,7 +22,14 @@ class FigureWarning(UserWarning):
     """A figure that does not show what it claims: an empty panel or a legend entry with nothing drawn."""
 
 
-def _display(units: str) -> tuple[str, float]:
+#: outputs shown in other units than their unit's default: the ball flight's distances in yards, as golfers read them
+_DISPLAY_BY_NAME = {"carry_distance": ("yd", 1 / 0.9144), "offline_distance": ("yd", 1 / 0.9144),
+                    "apex_height": ("yd", 1 / 0.9144)}
+
+
+def _display(units: str, name: str | None = None) -> tuple[str, float]:
+    if name in _DISPLAY_BY_NAME:
+        return _DISPLAY_BY_NAME[name]
     return _DISPLAY_UNITS.get(units, (units, 1.0))
 
 
@@ -240,7 +247,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     coincide: dict[str, dict[str, list[str]]] = {}
     for panel, (axis, name) in enumerate(zip(axes.flat, names)):
         variable = dataset[name]
-        units, scale = _display(OUTPUTS[name].units)
+        units, scale = _display(OUTPUTS[name].units, name)
         drawn = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
         span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
         line_index = 0
