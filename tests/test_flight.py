@@ -512,3 +512,16 @@ def test_cli_draws_trajectories_and_refuses_a_result_without_launch(tmp_path, ca
     assert main(["plot", str(bad), "--trajectories"]) == 2
     err = capsys.readouterr().err
     assert "vertical_launch_angle" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/flight.md"])
+def test_documented_fly_examples_run(page, capsys):
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / page).read_text()
+    blocks = [block for block in re.findall(r"```python\n(.*?)```", text, flags=re.S) if "impactlab.fly(" in block]
+    assert blocks
+    for block in blocks:
+        exec(compile(block, page, "exec"), {})  # noqa: S102 - our own documentation
+    assert "yd" in capsys.readouterr().out or page == "README.md"
