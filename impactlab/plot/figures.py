@@ -459,22 +459,24 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
             marks = dict(color=colours[m % len(colours)], linestyle=style, marker=_MARKERS[m % len(_MARKERS)],
                          markevery=[-1], markersize=5, markerfacecolor="none")
             side.plot(result["x"][k], result["z"][k], label=label, **marks)
-            top.plot(result["x"][k], result["y"][k], **marks)
+            top.plot(result["x"][k], result["y"][k], label=label, **marks)
             drawn += 1
     if not drawn:
         raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
     side.set_ylabel("height [m]")
     side.set_ylim(bottom=0.0)
     side.set_title("side view (heights not to scale with distances)")
-    top.set_ylabel("offline [m]\n(right of the target line: down)")
+    top.set_ylabel("offline, right of the target\nline downwards [m]")
     top.set_xlabel("along the target line [m]")
     top.axhline(0.0, color="0.6", linewidth=0.8)
     top.invert_yaxis()  # seen from above, with the target to the right, the golfer's right is down the page
     top.set_title("top view (from above, target to the right)")
+    side.set_xlabel("along the target line [m]")
+    side.tick_params(labelbottom=True)
     for axis in (side, top):
         axis.grid(True, alpha=0.3)
         yards = axis.secondary_xaxis("top", functions=(lambda v: v / 0.9144, lambda v: v * 0.9144))
-        yards.set_xlabel("yd" if axis is side else "")
+        yards.set_xlabel("[yd]", fontsize=8)
     figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
                   title_fontsize=7)
     air_words = (f"air {air['temperature'] - 273.15:.0f} degC, {float(air['pressure']) / 100:.0f} hPa, "
