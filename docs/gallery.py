@@ -18,6 +18,9 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                             "impactlab convergence studies/work_precision.yaml --plot"),
          "sensitivity_indices": ("Sobol total indices of every input for launch angle, spin, ball speed and beta, "
                                  "per model and delivery", "impactlab run studies/sensitivity.yaml --plot"),
+         "flight_trajectories": ("Ball flight after each model's launch, side and top view: driver struck heel, "
+                                 "centre and toe (studies/flight.yaml)",
+                                 "impactlab run studies/flight.yaml --plot (or impactlab plot RESULT --trajectories)"),
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),

@@ -146,12 +146,25 @@ def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
 
         return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
-        return draw_declared(dataset, png.parent, png.stem)
-    pictures = [plot_results(dataset, png)]
-    for name in dataset.data_vars:
-        if is_history(name):
-            pictures.append(plot_histories(dataset, png.with_name(f"{png.stem}_{name}.png"), name))
+        pictures = draw_declared(dataset, png.parent, png.stem)
+    else:
+        pictures = [plot_results(dataset, png)]
+        for name in dataset.data_vars:
+            if is_history(name):
+                pictures.append(plot_histories(dataset, png.with_name(f"{png.stem}_{name}.png"), name))
+    if _has_flight(dataset):  # a golf result that asked for the flight: its paths, side and top
+        from impactlab.plot.figures import plot_trajectories
+
+        pictures.append(plot_trajectories(dataset, png.with_name(f"{png.stem}_trajectories.png")))
     return pictures
+
+
+def _has_flight(dataset) -> bool:
+    from impactlab.plot.figures import TRAJECTORY_LAUNCH
+    from impactlab.vocabulary import FLIGHT_OUTPUTS
+
+    return any(name in dataset.data_vars for name in FLIGHT_OUTPUTS) and all(
+        name in dataset.data_vars for name in TRAJECTORY_LAUNCH) and bool(dataset["ball_speed"].notnull().any())
 
 
 def _cmd_models(args) -> int:
@@ -240,6 +253,13 @@ def _cmd_plot(args) -> int:
         if args.x not in dims + scalars:
             raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x,
                              choices=dims + scalars)
+    if args.trajectories:
+        from impactlab.plot.figures import plot_trajectories
+
+        default = Path(args.file).with_name(f"{Path(args.file).stem}_trajectories.png")
+        output = check_output(args.output or default, what="picture", suffix=".png")
+        print(f"wrote {plot_trajectories(dataset, output)}", file=sys.stderr)
+        return 0
     output = check_output(args.output or Path(args.file).with_suffix(".png"), what="picture", suffix=".png")
     if args.history:
         plot_histories(dataset, output, args.history)
@@ -503,6 +523,9 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_argument("--history", metavar="OUTPUT", help="draw this history (e.g. tangential_force) against time")
     plot.add_argument("-v", "--variable", dest="variables", action="append",
                       help="a scalar output to draw (repeatable; default: all)")
+    plot.add_argument("--trajectories", action="store_true",
+                      help="draw the ball flight after each model's launch, side and top view (a golf result "
+                           "holding ball_speed, vertical/horizontal_launch_angle, back_spin, side_spin, spin_axis)")
     plot.set_defaults(handler=_cmd_plot)
     convergence = commands.add_parser("convergence", help="error against run time for every model of a study")
     convergence.add_argument("study", help="study YAML file (its cases and outputs are used)")

@@ -35,7 +35,7 @@ from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
 from impactlab.model.base import ImpactModel
 from impactlab.physics.mechanics import effective_mass
 from impactlab.scene.core import Contact, Impact, Scene
-from impactlab.vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
+from impactlab.vocabulary import EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -98,7 +98,7 @@ def _with(inputs: dict, **changes) -> dict:
 
 
 def _scalar_outputs(model, inputs) -> list[str]:
-    wanted = list(SCALAR_OUTPUTS)
+    wanted = list(EVERY_SCALAR_OUTPUT)
     plan = model.plan(wanted, inputs)
     return [name for name in wanted if name not in plan.missing]
 

@@ -35,7 +35,8 @@ def registry():
     """The shared pint unit registry (created on first use: pint is slow to load)."""
     import pint
 
-    ureg = pint.UnitRegistry()
+    # "15 degC" is a temperature, not 15 times an offset unit (which pint refuses as ambiguous)
+    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     return ureg
 
 
@@ -121,3 +122,7 @@ RAD_TO_DEG = 180.0 / math.pi
 RADS_TO_RPM = 60.0 / (2.0 * math.pi)
 #: metres per second in a mile per hour (exact: the international mile)
 MPH = 0.44704
+
+
+#: air temperature (the ball flight's conditions): K; "15 degC" and "59 degF" are read as temperatures
+DIMENSIONS["temperature"] = ("K", "K", "a temperature")

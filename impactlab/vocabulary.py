@@ -125,6 +125,14 @@ def _delivery_value(attribute: str):
     return getter
 
 
+def _conditions_value(attribute: str):
+    def getter(scene):
+        conditions = getattr(scene, "conditions", None)
+        return None if conditions is None else getattr(conditions, attribute)
+
+    return getter
+
+
 _HALF_TURN = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
 INPUTS.update({
     "path": InputSpec("delivery.path", "rad", "angle", "club path, horizontal, in-to-out positive",
@@ -211,6 +219,28 @@ INPUTS.update({
                              _strike_value("high"), "mm", 1e3, low=-0.1, high=0.1, low_open=True, high_open=True),
 })
 
+# the air a golf shot flies through (a study's ``conditions`` block; impactlab.scene.flight.Conditions): used only by
+# the ball flight, which only a study asking for a flight output computes
+INPUTS.update({
+    "air_temperature": InputSpec("conditions.temperature", "K", "temperature", "air temperature",
+                                 _conditions_value("temperature"), low=150.0, high=350.0),
+    "air_pressure": InputSpec("conditions.pressure", "Pa", "pressure",
+                              "station air pressure (absent: the ISA pressure at the altitude)",
+                              _conditions_value("pressure"), low=0.0, low_open=True, high=2e5),
+    "relative_humidity": InputSpec("conditions.relative_humidity", "1", "dimensionless",
+                                   "relative humidity of the air, a fraction 0-1",
+                                   _conditions_value("relative_humidity"), low=0.0, high=1.0),
+    "altitude": InputSpec("conditions.altitude", "m", "length",
+                          "height of the tee above sea level (sets the ISA pressure when no pressure is given)",
+                          _conditions_value("altitude"), low=-500.0, high=11000.0),
+    "headwind": InputSpec("conditions.headwind", "m/s", "speed",
+                          "wind against the shot, along the target line (negative: a tailwind)",
+                          _conditions_value("headwind"), low=-50.0, high=50.0),
+    "crosswind": InputSpec("conditions.crosswind", "m/s", "speed",
+                           "wind across the target line, blowing towards the right (left to right) positive",
+                           _conditions_value("crosswind"), low=-50.0, high=50.0),
+})
+
 #: study path -> input name (a delivery's club speed is the impact speed)
 INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items() if name != "handedness"}
 INPUT_BY_PATH["delivery.club_speed"] = "speed"
@@ -236,6 +266,8 @@ class OutputSpec:
     factor: float = 1.0
     #: part of the stability report that every study result carries
     diagnostic: bool = False
+    #: computed only when asked for by name (the ball flight): left out of "every output" defaults
+    on_request: bool = False
 
 
 OUTPUTS: dict[str, OutputSpec] = {
@@ -290,6 +322,14 @@ OUTPUTS: dict[str, OutputSpec] = {
     "club_speed_after": OutputSpec("m/s", "club-head centre-of-mass speed after impact"),
     "club_angular_velocity": OutputSpec("rpm", "club-head angular speed after impact", factor=RADS_TO_RPM),
     "face_rotation": OutputSpec("degree", "rotation of the club head during contact", factor=RAD_TO_DEG),
+    # the ball flight after the launch (impactlab.physics.flight; docs/flight.md), computed only when asked for
+    "carry_distance": OutputSpec("m", "carry: horizontal distance from the tee to where the ball comes back to tee "
+                                 "height", on_request=True),
+    "offline_distance": OutputSpec("m", "landing point from the target line, right positive", on_request=True),
+    "apex_height": OutputSpec("m", "apex: greatest height above the tee", on_request=True),
+    "landing_angle": OutputSpec("degree", "landing angle: descent below the horizontal at landing",
+                                factor=RAD_TO_DEG, on_request=True),
+    "flight_time": OutputSpec("s", "flight time from launch to landing", on_request=True),
 }
 
 #: outputs with one value per case, in vocabulary order (diagnostics included)
@@ -298,6 +338,10 @@ DIAGNOSTIC_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.diagno
 #: outputs with values over the shared ``time`` axis, in vocabulary order
 HISTORY_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == HISTORY)
 _SCALARS, _HISTORIES = frozenset(SCALAR_OUTPUTS), frozenset(HISTORY_OUTPUTS)
+#: the scalar outputs a run gives when none are named: all but those computed only on request (the ball flight)
+EVERY_SCALAR_OUTPUT = tuple(name for name in SCALAR_OUTPUTS if not OUTPUTS[name].on_request)
+#: the ball-flight outputs
+FLIGHT_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.on_request)
 
 
 def is_scalar(name: str) -> bool:

@@ -21,7 +21,8 @@ from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import FieldError, ModelContractError
 from impactlab.model.planning import OutputPlan, plan_outputs, require_inputs
 from impactlab.model.derive import NEEDS, derive
-from impactlab.vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, check_output_names, is_history
+from impactlab.vocabulary import (CASE_DIM, EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS, TIME_DIM, check_output_names,
+                                  is_history)
 
 
 #: samples of a history when a model does not say (rule 8, :meth:`ImpactModel.history_length`)
@@ -217,7 +218,8 @@ class ImpactModel:
             Input name -> scalar or 1-D array (SI), or scenes.
         outputs : iterable of str, optional
             Names from :data:`impactlab.vocabulary.OUTPUTS`; default: what the
-            model provides and what derives from it, histories excluded.
+            model provides and what derives from it, histories and the ball flight
+            (computed only when named) excluded.
 
         Returns
         -------
@@ -236,7 +238,7 @@ class ImpactModel:
         """
         batch = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)  # checked once per batch
         if outputs is None:
-            outputs = list(SCALAR_OUTPUTS)
+            outputs = list(EVERY_SCALAR_OUTPUT)
         plan = self.plan(outputs, batch)
         self._check_needed(batch, plan)
         n_cases = batch.n_cases

@@ -17,6 +17,7 @@ from impactlab.physics import hertz
 from impactlab.physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, ground_outputs, impulse_vector
 from impactlab.physics.delivery import DELIVERY_INPUTS
 from impactlab.physics.mechanics import AFTER_IMPACT_INPUTS
+from impactlab.vocabulary import FLIGHT_OUTPUTS
 
 IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
 FROM_IMPULSES = frozenset({
@@ -28,6 +29,10 @@ FROM_DELIVERY = frozenset({
     "spin_loft", "vertical_launch_angle", "horizontal_launch_angle", "vertical_launch_ratio",
     "horizontal_launch_ratio", "spin_axis", "back_spin", "side_spin",
 })
+#: the ball flight after the launch (impactlab.physics.flight), computed only when asked for by name
+FROM_FLIGHT = frozenset(FLIGHT_OUTPUTS)
+#: the air of a study's conditions block (absent: the standard air of impactlab.scene.flight)
+FLIGHT_INPUTS = ("air_temperature", "air_pressure", "relative_humidity", "altitude", "headwind", "crosswind")
 #: Maw-Barber-Fawcett's normalised incidence and rebound, from the materials and friction of the scene
 FROM_MATERIALS = frozenset({"normalised_incidence", "normalised_rebound"})
 MATERIAL_INPUTS = ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus", "face_poisson_ratio",
@@ -36,6 +41,7 @@ MATERIAL_INPUTS = ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_mod
 NEEDS = {
     "impulses": frozenset(AFTER_IMPACT_INPUTS) - {"spin"},
     "delivery": frozenset(DELIVERY_INPUTS),
+    "flight": frozenset(DELIVERY_INPUTS),
     "materials": frozenset(MATERIAL_INPUTS),
 }
 #: inputs the derivation uses when given
@@ -48,11 +54,11 @@ NO_LATERAL = ("the model gives impulses on one line (no lateral_impulse), and th
 
 def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]:
     """Whether ``name`` can be derived for a model that provides ``provides``; if not, why (None: not derivable)."""
-    if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS:
+    if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS | FROM_FLIGHT:
         return False, None
     if given_inputs is not None and "lateral_impulse" not in provides and set(INERTIA_INPUTS) <= set(given_inputs):
         return False, NO_LATERAL
-    if name in FROM_DELIVERY and given_inputs is not None and not NEEDS["delivery"] <= set(given_inputs):
+    if name in FROM_DELIVERY | FROM_FLIGHT and given_inputs is not None and not NEEDS["delivery"] <= set(given_inputs):
         return False, NO_DELIVERY
     if name in FROM_MATERIALS and given_inputs is not None and not NEEDS["materials"] <= set(given_inputs):
         return False, NO_MATERIALS
@@ -71,11 +77,16 @@ def derive(names, raw, inputs) -> dict:
     needed = set(names & FROM_IMPULSES)
     if names & FROM_MATERIALS:
         needed |= {"tangential_restitution", "normal_velocity"}  # what normalised_slip reads
+    if names & FROM_FLIGHT:
+        needed |= {"ball_speed"}
     basics = after_impact(state, impulse, names=needed, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})
-    if names & FROM_DELIVERY:
+    if names & (FROM_DELIVERY | FROM_FLIGHT):
         golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})
         out.update({name: golf[name] for name in names & FROM_DELIVERY})
+        if names & FROM_FLIGHT:
+            flown = fly_launch(basics["ball_speed"], golf, inputs)
+            out.update({name: flown[name] for name in names & FROM_FLIGHT})
     if names & FROM_MATERIALS:
         out.update({name: value for name, value in normalised_slip(state, basics, inputs).items() if name in names})
     return out
@@ -96,3 +107,20 @@ def normalised_slip(state: dict, basics: dict, inputs: dict) -> dict:
         incidence = kappa * np.abs(slip) / (friction * normal_speed)
         rebound = -basics["tangential_restitution"] * incidence * normal_speed / basics["normal_velocity"]
     return {"normalised_incidence": incidence, "normalised_rebound": rebound}
+
+
+def fly_launch(ball_speed, golf: dict, inputs) -> dict:
+    """The ball flight of a launch in golf terms (:func:`impactlab.physics.flight.fly`; SI arrays).
+
+    The spin flown is the spin across the flight, ``hypot(back_spin, side_spin)``, about the axis tilted by
+    ``spin_axis``; spin along the flight (rifle spin) makes no lift in the model and is left out. The ball's mass
+    and radius are the scene's; the air is the study's ``conditions`` (absent: the standard air of
+    :mod:`impactlab.scene.flight`). The same numbers as :func:`impactlab.fly` with those arguments.
+    """
+    from impactlab.physics.flight import fly
+    from impactlab.scene.flight import air_arrays
+
+    spin = np.hypot(golf["back_spin"], golf["side_spin"])
+    return fly(ball_speed, golf["vertical_launch_angle"], spin, golf["spin_axis"], golf["horizontal_launch_angle"],
+               ball_mass=inputs["ball_mass"], ball_radius=inputs["ball_radius"],
+               **air_arrays({name: inputs[name] for name in FLIGHT_INPUTS if name in inputs}))

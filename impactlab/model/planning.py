@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import attrs
 
-from impactlab.model.derive import FROM_DELIVERY, FROM_MATERIALS, IMPULSES, NEEDS, derivable
-from impactlab.model.derive import DERIVATION_OPTIONAL
+from impactlab.model.derive import FROM_DELIVERY, FROM_FLIGHT, FROM_MATERIALS, IMPULSES, NEEDS, derivable
+from impactlab.model.derive import DERIVATION_OPTIONAL, FLIGHT_INPUTS
 from impactlab.errors import ModelInputError
 from impactlab.vocabulary import INPUTS
 
@@ -47,8 +47,11 @@ class OutputPlan:
     def describe(self) -> str:
         """One paragraph in words."""
         parts = [f"{self.model}: computes {', '.join(sorted(self.from_model)) or 'nothing'}"]
-        if self.derived:
-            parts.append(f"derives {', '.join(sorted(self.derived))} from the impulses")
+        if self.derived - FROM_FLIGHT:
+            parts.append(f"derives {', '.join(sorted(self.derived - FROM_FLIGHT))} from the impulses")
+        if self.derived & FROM_FLIGHT:
+            parts.append(f"flies the launch for {', '.join(sorted(self.derived & FROM_FLIGHT))} (Smits & Smith 1994 "
+                         "aerodynamics; the study's conditions or 15 degC, 101 325 Pa, 50 % humidity, still air)")
         for name, reason in self.missing.items():
             parts.append(f"leaves {name} NaN ({reason})")
         return "; ".join(parts)
@@ -90,6 +93,8 @@ def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
         inputs |= NEEDS["impulses"] | DERIVATION_OPTIONAL
     if derived & FROM_DELIVERY:
         inputs |= NEEDS["delivery"]
+    if derived & FROM_FLIGHT:
+        inputs |= NEEDS["flight"] | set(FLIGHT_INPUTS)
     if derived & FROM_MATERIALS:
         inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import attrs
 import numpy as np
@@ -225,6 +226,9 @@ class Scene:
     club: ClubHead | None = None
     #: where the ball meets the face of ``club``
     strike: Strike = Strike()
+    #: the air the ball flies through after launch (impactlab.scene.flight.Conditions; None: the standard air),
+    #: used only by the ball-flight outputs
+    conditions: Any = None
 
     def __attrs_post_init__(self):
         if self.club is not None and (self.face.mass != self.club.mass or self.face.material != self.club.material):

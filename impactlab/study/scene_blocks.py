@@ -20,8 +20,8 @@ from impactlab.scene.materials import (
 )
 from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
-from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ContactBlock, DeliveryBlock, FaceBlock,
-                                    ImpactBlock, RestitutionBlock, StrikeBlock, structure)
+from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ConditionsBlock, ContactBlock, DeliveryBlock,
+                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock, structure)
 
 
 def _construct(cls, where: str, **kwargs):
@@ -227,8 +227,26 @@ def build_delivery(value, path: str = "delivery") -> Delivery:
         raise exc.at(prefix=path) from None
 
 
+def build_conditions(value):
+    """The air of a ``conditions`` block (units required), or None when the study has none (the standard air)."""
+    from impactlab.scene.flight import Conditions
+
+    if value is None:
+        return None
+    block = structure(value, ConditionsBlock, "conditions")
+    given = {key: getattr(block, key) for key in attrs.fields_dict(ConditionsBlock) if getattr(block, key) is not None}
+    return _construct(Conditions, "conditions", **given)
+
+
 def build_scene(document: Mapping) -> Scene:
     """The scene a study document describes (without its sweep)."""
+    scene = _build_scene(document)
+    if "conditions" in document:
+        scene = attrs.evolve(scene, conditions=build_conditions(document["conditions"]))
+    return scene
+
+
+def _build_scene(document: Mapping) -> Scene:
     if "ball" not in document:
         raise FieldError("ball", "a ball: {preset: NAME} or radius, mass, ...", "nothing")
     ball, face, contact = (build_ball(document["ball"]), build_face(document.get("face")),

@@ -48,6 +48,11 @@ Inertia = NewType("Inertia", float)
 Number = NewType("Number", float)
 #: a restitution slope de/dv: a bare number in s/m or a quantity of inverse speed
 InverseSpeed = NewType("InverseSpeed", float)
+#: quantities whose unit must be written (a bare number is refused): the air conditions
+Temperature = NewType("Temperature", float)
+UnitPressure = NewType("UnitPressure", float)
+UnitLength = NewType("UnitLength", float)
+UnitSpeed = NewType("UnitSpeed", float)
 #: true or false, nothing else ("yes" and 1 are refused, where plain ``bool`` would accept them)
 Flag = NewType("Flag", bool)
 #: a whole number >= 1 (the length of a sweep range)
@@ -84,6 +89,7 @@ def rate_with_unit(value, where: str = "") -> float:
 
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
                Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless"}
+_WITH_UNIT = {Temperature: "temperature", UnitPressure: "pressure", UnitLength: "length", UnitSpeed: "speed"}
 
 
 class SI(float):
@@ -239,6 +245,23 @@ class DeliveryBlock:
 
 
 @attrs.frozen
+class ConditionsBlock:
+    """The ``conditions`` block: the air a golf shot flies through (the ball-flight outputs only).
+
+    Every value carries its unit (``"25 degC"``, ``"1013 hPa"``, ``"1600 m"``, ``"5 mph"``); a relative humidity is
+    a fraction 0-1 or a percentage (``"60 %"``).
+    """
+
+    _what = "the air conditions"
+    temperature: Temperature | None = None
+    pressure: UnitPressure | None = None
+    relative_humidity: Number | None = None
+    altitude: UnitLength | None = None
+    headwind: UnitSpeed | None = None
+    crosswind: UnitSpeed | None = None
+
+
+@attrs.frozen
 class RangeBlock:
     """A sweep range; ``start`` and ``stop`` are converted by the sweep, which knows the swept field's dimension."""
 
@@ -263,6 +286,7 @@ class StudyBlock:
     contact: Any = None
     impact: Any = None
     delivery: Any = None
+    conditions: Any = None
     sweep: Any = None
     models: Any = None
     outputs: Any = None
@@ -314,7 +338,8 @@ class ParameterRangeBlock:
 
 
 BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, CenterBlock, ClubBlock, StrikeBlock,
-          ContactBlock, ImpactBlock, DeliveryBlock, RangeBlock, PlotBlock, SensitivityBlock, ParameterRangeBlock)
+          ContactBlock, ImpactBlock, DeliveryBlock, ConditionsBlock, RangeBlock, PlotBlock, SensitivityBlock,
+          ParameterRangeBlock)
 
 
 def keys_of(cls) -> tuple[str, ...]:
@@ -338,6 +363,23 @@ def _quantity_hook(dimension: str):
             return float(value)
         return to_si(value, dimension)
     return structure
+
+
+def _unit_required_hook(dimension: str):
+    """A quantity whose unit must be written: a bare number is refused, its unit never guessed."""
+    def structure(value, _):
+        if isinstance(value, SI):
+            return float(value)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            example = {"temperature": "15 degC", "pressure": "1013 hPa", "length": "1600 m", "speed": "5 mph"}
+            raise FieldError("", f"{DIMENSIONS_WORDS[dimension]} with its unit, e.g. '{example[dimension]}' (a bare "
+                                 "number's unit is never guessed)", value)
+        return to_si(value, dimension)
+    return structure
+
+
+DIMENSIONS_WORDS = {"temperature": "a temperature", "pressure": "a pressure", "length": "a length",
+                    "speed": "a speed"}
 
 
 def _inverse_speed(value, _) -> float:
@@ -428,6 +470,8 @@ def _converter() -> Converter:
     converter = Converter()
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
+    for type_, dimension in _WITH_UNIT.items():
+        converter.register_structure_hook(type_, _unit_required_hook(dimension))
     for type_, hook in ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count), (Name, lambda v, _: v),
                         (Restitution, _restitution), (InertiaSpec, _inertia_spec),
                         (Rate, lambda v, _: rate_with_unit(v))):
@@ -520,7 +564,8 @@ def _field_error(exc, value, where: str, steps: tuple, cls, name: str | None) ->
 
 
 __all__ = ["structure", "keys_of", "lookup", "SI", "BallBlock", "RestitutionBlock", "FaceBlock", "InertiaBlock",
-           "CenterBlock", "ClubBlock", "StrikeBlock", "ContactBlock", "ImpactBlock", "DeliveryBlock", "RangeBlock",
+           "CenterBlock", "ClubBlock", "StrikeBlock", "ContactBlock", "ImpactBlock", "DeliveryBlock", "ConditionsBlock",
+           "RangeBlock",
            "StudyBlock", "PlotBlock", "SensitivityBlock", "ParameterRangeBlock",
            "Length", "Mass", "Pressure", "Speed", "Angle", "Spin", "Inertia", "Number",
            "InverseSpeed", "Flag", "Count", "Name"]

@@ -1,0 +1,117 @@
+"""The ball-flight model against TrackMan's published tour carries (impactlab/data/validation/trackman_carry.yaml).
+
+:func:`carry_table` reads the measured rows (launch in, max height, land angle and carry out, per club) with their
+citation; :func:`validate_carry` flies each row's launch with a model of :data:`impactlab.physics.flight.MODELS`
+and gives model beside measurement. ``python -m impactlab.data.carry [MODEL ...]`` prints the tables of
+docs/flight.md.
+"""
+
+from __future__ import annotations
+
+import functools
+from importlib import resources
+
+import attrs
+import numpy as np
+import yaml
+
+from impactlab.physics import flight
+from impactlab.units import MPH
+
+YARD = 0.9144  #: m (exact, the international yard)
+RPM = np.pi / 30.0  #: rad/s per rpm
+
+
+@attrs.frozen
+class CarryTable:
+    """Measured launch and flight per club (SI): what the flight model is validated on.
+
+    Attributes
+    ----------
+    clubs : tuple of str
+    ball_speed, launch_angle, spin_rate : ndarray
+        The launch: m/s, rad, rad/s.
+    max_height, land_angle, carry : ndarray
+        The measured flight: m, rad, m.
+    source, confirmed : str
+        Citation, and which cells were checked as text.
+    """
+
+    clubs: tuple
+    ball_speed: np.ndarray = attrs.field(eq=False)
+    launch_angle: np.ndarray = attrs.field(eq=False)
+    spin_rate: np.ndarray = attrs.field(eq=False)
+    max_height: np.ndarray = attrs.field(eq=False)
+    land_angle: np.ndarray = attrs.field(eq=False)
+    carry: np.ndarray = attrs.field(eq=False)
+    source: str = ""
+    confirmed: str = ""
+
+
+@functools.cache
+def carry_table(name: str = "trackman_carry") -> CarryTable:
+    """The measured table ``name`` shipped in impactlab/data/validation (units converted to SI)."""
+    document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text())
+    units = document["units"]
+    assert units == {"ball_speed": "mph", "launch_angle": "deg", "spin_rate": "rpm", "max_height": "yd",
+                     "land_angle": "deg", "carry": "yd"}, units
+    rows = document["rows"]
+
+    def column(key, factor):
+        return np.array([row[key] for row in rows], dtype=float) * factor
+
+    return CarryTable(tuple(row["club"] for row in rows), column("ball_speed", MPH),
+                      column("launch_angle", np.pi / 180), column("spin_rate", RPM), column("max_height", YARD),
+                      column("land_angle", np.pi / 180), column("carry", YARD), document["source"].strip(),
+                      document.get("confirmed", "").strip())
+
+
+def validate_carry(model: str = flight.DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
+    """Fly every row of ``table`` with ``model``; model and measurement side by side (SI) and the carry errors.
+
+    Parameters
+    ----------
+    model : str
+        A key of :data:`impactlab.physics.flight.MODELS`.
+    table : CarryTable, optional
+        Default :func:`carry_table`.
+    **options
+        Passed to :func:`impactlab.physics.flight.fly` (air, spin decay...); default the standard air
+        (15 degC, 101 325 Pa, 50 %), since TrackMan's table is not normalised to any.
+
+    Returns
+    -------
+    dict
+        ``carry``, ``apex_height`` [m], ``landing_angle`` [rad] of the model; ``carry_error`` (relative, model over
+        measurement minus 1); ``rms_carry_error`` (relative); ``table``.
+    """
+    table = table or carry_table()
+    result = flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, model=model, **options)
+    error = result["carry_distance"] / table.carry - 1.0
+    return {"carry": result["carry_distance"], "apex_height": result["apex_height"],
+            "landing_angle": result["landing_angle"], "carry_error": error,
+            "rms_carry_error": float(np.sqrt(np.mean(np.square(error)))), "table": table}
+
+
+def format_validation(model: str = flight.DEFAULT_MODEL, **options) -> str:
+    """The validation of ``model`` as a Markdown table (yards, degrees), with its RMS carry error."""
+    check = validate_carry(model, **options)
+    table = check["table"]
+    lines = [f"{model}: RMS carry error {100 * check['rms_carry_error']:.1f} %, mean "
+             f"{100 * float(np.nanmean(check['carry_error'])):+.1f} %", "",
+             "| club | carry TM yd | model yd | error | height TM yd | model yd | land TM deg | model deg |",
+             "|---|---|---|---|---|---|---|---|"]
+    for index, club in enumerate(table.clubs):
+        lines.append(
+            f"| {club} | {table.carry[index] / YARD:.0f} | {check['carry'][index] / YARD:.1f} | "
+            f"{100 * check['carry_error'][index]:+.1f} % | {table.max_height[index] / YARD:.0f} | "
+            f"{check['apex_height'][index] / YARD:.1f} | {np.degrees(table.land_angle[index]):.0f} | "
+            f"{np.degrees(check['landing_angle'][index]):.1f} |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
+    import sys
+
+    for name in sys.argv[1:] or [key for key in flight.MODELS if key != "vacuum"]:
+        print(format_validation(name), end="\n\n")

@@ -1,0 +1,313 @@
+"""Ball flight in a user's terms: the air a shot flies through, and :func:`impactlab.fly`.
+
+:func:`fly` takes a launch as a launch monitor gives it (ball speed, vertical and horizontal launch angle, spin rate
+and spin axis) in SI numbers, strings with units or pint quantities, scalars or arrays, flies it with
+:func:`impactlab.physics.flight.fly` and returns an :class:`xarray.Dataset` of the carry, apex, landing angle,
+offline distance and flight time in the units of :data:`impactlab.vocabulary.OUTPUTS`. A study asks for the same
+outputs after any impact model (:mod:`impactlab.model.derive`); its ``conditions`` block is a :class:`Conditions`.
+
+Signs (docs/conventions.md): ``spin_axis``, ``launch_direction`` and ``offline_distance`` are positive to the right
+of the target line; a positive spin axis curves the ball right. The model, its coefficients and its validation
+against TrackMan's tour averages are in docs/flight.md.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import attrs
+import numpy as np
+
+from impactlab.errors import FieldError
+from impactlab.physics import flight as physics
+from impactlab.units import to_si
+from impactlab.validators import in_range, to_float
+
+#: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
+STANDARD_TEMPERATURE = 288.15
+STANDARD_RELATIVE_HUMIDITY = 0.5
+#: keys of a conditions mapping (fly's ``conditions=``, a study's ``conditions:`` block), with their dimensions
+CONDITION_KEYS = {"temperature": "temperature", "pressure": "pressure", "relative_humidity": "dimensionless",
+                  "altitude": "length", "headwind": "speed", "crosswind": "speed"}
+
+
+@attrs.frozen
+class Conditions:
+    """The air a golf shot flies through (a study's ``conditions`` block), SI values.
+
+    Parameters
+    ----------
+    temperature : float
+        Air temperature [K]; default 288.15 K (15 degC). Not lapsed with altitude.
+    pressure : float or None
+        Station pressure [Pa]; None: the ISA pressure at ``altitude`` (sea level without one). Give either
+        ``pressure`` or ``altitude``, not both.
+    relative_humidity : float
+        Fraction 0-1; default 0.5.
+    altitude : float or None
+        Height of the tee above sea level [m], used for the ISA pressure.
+    headwind : float
+        Wind against the shot along the target line [m/s] (negative: a tailwind); uniform with height.
+    crosswind : float
+        Wind across the target line [m/s], positive blowing towards the right (a left-to-right wind).
+    """
+
+    temperature: float = attrs.field(default=STANDARD_TEMPERATURE, converter=to_float, validator=in_range(
+        150.0, 350.0, "an air temperature between 150 and 350 K (-123 and 77 degC)"))
+    pressure: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        0.0, 2e5, "an air pressure between 0 and 200 kPa", low_open=True, optional=True))
+    relative_humidity: float = attrs.field(default=STANDARD_RELATIVE_HUMIDITY, converter=to_float,
+                                           validator=in_range(0.0, 1.0, "a relative humidity between 0 and 1 "
+                                                              "(a fraction, or e.g. '50 %')"))
+    altitude: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        -500.0, 11000.0, "an altitude between -500 and 11 000 m (the ISA troposphere)", optional=True))
+    headwind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
+    crosswind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
+
+    def __attrs_post_init__(self):
+        if self.pressure is not None and self.altitude is not None:
+            raise FieldError("altitude", "either a pressure or an altitude (which sets the ISA pressure), not both",
+                             f"pressure {self.pressure:g} Pa and altitude {self.altitude:g} m")
+
+
+def air_arrays(inputs: Mapping) -> dict:
+    """The keyword arguments of :func:`impactlab.physics.flight.fly` for the air in ``inputs`` (SI arrays).
+
+    ``inputs`` maps the input names of :data:`impactlab.vocabulary.INPUTS` (``air_temperature``, ``air_pressure``,
+    ``relative_humidity``, ``altitude``, ``headwind``, ``crosswind``) to values; absent ones take the standard air.
+    """
+    temperature = inputs.get("air_temperature", STANDARD_TEMPERATURE)
+    pressure = inputs.get("air_pressure")
+    if pressure is None:
+        pressure = physics.pressure_at_altitude(inputs.get("altitude", 0.0))
+    headwind = np.asarray(inputs.get("headwind", 0.0), dtype=float)
+    crosswind = np.asarray(inputs.get("crosswind", 0.0), dtype=float)
+    headwind, crosswind = np.broadcast_arrays(headwind, crosswind)
+    wind = np.stack([-headwind, crosswind, np.zeros_like(headwind)], axis=-1)
+    return {"temperature": temperature, "pressure": pressure,
+            "relative_humidity": inputs.get("relative_humidity", STANDARD_RELATIVE_HUMIDITY), "wind": wind}
+
+
+def _bare_text(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def quantity_array(value, dimension: str, path: str) -> np.ndarray:
+    """``value`` as an SI float array: numbers (SI) as they are, strings with units and pint quantities converted.
+
+    Parameters
+    ----------
+    value : float, array_like, str, sequence of str or pint.Quantity
+        Numbers are SI (angles in rad, spin in rad/s); a string must carry its unit (``"167 mph"``): a number
+        written as text is refused, its unit is not guessed.
+    dimension : str
+        A key of :data:`impactlab.units.DIMENSIONS`.
+    path : str
+        The argument's name, for messages.
+
+    Raises
+    ------
+    FieldError
+        A value of the wrong dimension, a string without a unit, or something that is not a quantity.
+    """
+    if isinstance(value, bool) or value is None:
+        raise FieldError(path, f"{_words(dimension)}", value)
+    if hasattr(value, "magnitude") and hasattr(value, "units") and hasattr(value, "to"):  # a pint quantity
+        magnitude = np.asarray(value.magnitude, dtype=float)
+        unit = f"{value.units:~}" or "dimensionless"
+        if dimension == "temperature":  # offset units: convert the values, not a factor
+            try:
+                return np.asarray(value.to("K").magnitude, dtype=float)
+            except Exception:  # noqa: BLE001 - pint's DimensionalityError
+                raise FieldError(path, _words(dimension), f"{value}") from None
+        factor = to_si(f"1 {unit}", dimension, path) if unit != "dimensionless" else to_si(1.0, dimension, path)
+        return magnitude * factor
+    if isinstance(value, str):
+        if _bare_text(value):
+            raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
+                                   f"'{value} {_EXAMPLE[dimension]}', or a number in SI)", value)
+        return np.asarray(to_si(value, dimension, path), dtype=float)
+    if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) for item in value):
+        return np.array([float(quantity_array(item, dimension, f"{path}[{index}]"))
+                         for index, item in enumerate(value)])
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise FieldError(path, _words(dimension), value) from None
+    return array
+
+
+_EXAMPLE = {"speed": "mph", "angle": "deg", "angular_speed": "rpm", "temperature": "degC", "pressure": "hPa",
+            "length": "m", "mass": "g", "dimensionless": "%"}
+
+
+def _words(dimension: str) -> str:
+    from impactlab.units import DIMENSIONS
+
+    si_unit = DIMENSIONS[dimension][0]
+    if dimension == "dimensionless":
+        return "a number (or a string with a unit such as '50 %')"
+    return f"{DIMENSIONS[dimension][2]}: a number in {si_unit} or a string with a unit (e.g. '{_EXAMPLE[dimension]}')"
+
+
+def conditions_from(conditions) -> Conditions:
+    """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`."""
+    if conditions is None:
+        return Conditions()
+    if isinstance(conditions, Conditions):
+        return conditions
+    if not isinstance(conditions, Mapping):
+        raise FieldError("conditions", "a mapping with keys from: " + ", ".join(CONDITION_KEYS), conditions)
+    values = {}
+    for key, value in conditions.items():
+        if key not in CONDITION_KEYS:
+            raise FieldError(f"conditions.{key}", "a key of the air conditions", str(key), choices=CONDITION_KEYS)
+        if value is None:
+            continue
+        array = quantity_array(value, CONDITION_KEYS[key], f"conditions.{key}")
+        if array.ndim:
+            raise FieldError(f"conditions.{key}", "one value (the air is the same for every shot of a call)", value)
+        values[key] = float(array)
+    try:
+        return Conditions(**values)
+    except FieldError as exc:
+        raise exc.at(prefix="conditions") from None
+
+
+def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0, conditions=None, *,
+        ball_mass=physics.BALL_MASS, ball_radius=physics.BALL_RADIUS, model=physics.DEFAULT_MODEL,
+        trajectories=False):
+    """Fly golf shots from their launch to where they come back to tee height; one Dataset of the results.
+
+    Parameters
+    ----------
+    ball_speed : float, array_like, str or pint.Quantity
+        Ball speed at launch: a number in m/s, or with a unit (``"167 mph"``).
+    launch_angle : float, array_like, str or pint.Quantity
+        Vertical launch angle above the horizontal: a number in rad, or with a unit (``"10.9 deg"``).
+    spin_rate : float, array_like, str or pint.Quantity
+        Spin rate (total spin, >= 0): a number in rad/s, or with a unit (``"2686 rpm"``).
+    spin_axis : float, array_like, str or pint.Quantity
+        Tilt of the spin axis, rad or with a unit; positive tilted right, the ball curves right (TrackMan's sign).
+    launch_direction : float, array_like, str or pint.Quantity
+        Horizontal launch angle, rad or with a unit; positive right of the target line.
+    conditions : None, mapping or Conditions
+        The air: ``temperature`` (K, or ``"25 degC"``), ``pressure`` (Pa or ``"1013 hPa"``; absent: the ISA
+        pressure at ``altitude``), ``relative_humidity`` (fraction, or ``"50 %"``), ``altitude`` (m, or
+        ``"5280 ft"``), ``headwind`` and ``crosswind`` (m/s or ``"10 mph"``; headwind against the shot,
+        crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air.
+    ball_mass, ball_radius : float, str or pint.Quantity
+        Default the R&A/USGA limits, 45.93 g and 21.335 mm.
+    model : str
+        Aerodynamic model, a key of :data:`impactlab.physics.flight.MODELS` (default ``"smits_smith_1994"``).
+    trajectories : bool
+        Also return the sampled paths ``x``, ``y`` (right positive), ``z`` [m] over ``t`` [s], on dims
+        (``shot``, ``t``); each shot's path stops at its landing point (later samples repeat it).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``carry_distance``, ``offline_distance``, ``apex_height`` [m], ``landing_angle`` [degree] and
+        ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
+        scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
+        aerodynamic model and its references in ``attrs``.
+
+    Raises
+    ------
+    FieldError
+        A value of the wrong dimension or out of range (speed <= 0, spin < 0), a string without a unit.
+
+    Notes
+    -----
+    Point-mass flight with drag, Magnus lift and spin decay (:func:`impactlab.physics.flight.fly`); the default
+    coefficients are Smits & Smith (1994), wind-tunnel fits, not tuned to any launch-monitor table. Against
+    TrackMan's PGA Tour averages they carry 5.0 % RMS off (docs/flight.md).
+
+    References
+    ----------
+    A. J. Smits and D. R. Smith, "A new aerodynamic model of a golf ball in flight", Science and Golf II (1994)
+    340-347.
+
+    Examples
+    --------
+    >>> import impactlab
+    >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
+    >>> round(float(shot.carry_distance) / 0.9144)  # yards
+    249
+    """
+    import xarray as xr
+
+    from impactlab.vocabulary import OUTPUTS
+
+    values = {
+        "ball_speed": quantity_array(ball_speed, "speed", "ball_speed"),
+        "launch_angle": quantity_array(launch_angle, "angle", "launch_angle"),
+        "spin_rate": quantity_array(spin_rate, "angular_speed", "spin_rate"),
+        "spin_axis": quantity_array(spin_axis, "angle", "spin_axis"),
+        "launch_direction": quantity_array(launch_direction, "angle", "launch_direction"),
+    }
+    mass = quantity_array(ball_mass, "mass", "ball_mass")
+    radius = quantity_array(ball_radius, "length", "ball_radius")
+    for name, array in values.items():
+        if not np.all(np.isfinite(array)):
+            raise FieldError(name, "finite values", array.tolist() if array.ndim else float(array))
+    if np.any(values["ball_speed"] <= 0.0):
+        raise FieldError("ball_speed", "a positive ball speed", values["ball_speed"].tolist())
+    if np.any(values["spin_rate"] < 0.0):
+        raise FieldError("spin_rate", "a spin rate >= 0 (the direction of the spin is the spin axis)",
+                         values["spin_rate"].tolist())
+    if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
+        raise FieldError("launch_angle", "a launch angle between -90 and 90 deg", values["launch_angle"].tolist())
+    if np.any(mass <= 0.0) or np.any(radius <= 0.0):
+        raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
+                         (mass if np.any(mass <= 0.0) else radius).tolist())
+    if model not in physics.MODELS:
+        raise FieldError("model", "an aerodynamic model", str(model), choices=physics.MODELS)
+    air = conditions_from(conditions)
+    air_inputs = {"air_temperature": air.temperature, "relative_humidity": air.relative_humidity,
+                  "headwind": air.headwind, "crosswind": air.crosswind}
+    if air.pressure is not None:
+        air_inputs["air_pressure"] = air.pressure
+    if air.altitude is not None:
+        air_inputs["altitude"] = air.altitude
+    arguments = air_arrays(air_inputs)
+    arguments["wind"] = arguments["wind"].reshape(3)
+    result = physics.fly(values["ball_speed"], values["launch_angle"], values["spin_rate"], values["spin_axis"],
+                         values["launch_direction"], ball_mass=mass, ball_radius=radius, model=model,
+                         return_trajectories=trajectories, **arguments)
+    shape = np.shape(result["carry_distance"])
+    dims = tuple(f"shot_{index}" for index in range(len(shape)))
+    data = {}
+    for name in ("carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time"):
+        spec = OUTPUTS[name]
+        data[name] = (dims, np.asarray(result[name]) * spec.factor, {"units": spec.units, "long_name": spec.long_name})
+    coords = {}
+    if trajectories:
+        coords["t"] = ("t", result["t"], {"units": "s", "long_name": "time since launch"})
+        for axis, words in (("x", "along the target line"), ("y", "right of the target line"), ("z", "height")):
+            data[f"trajectory_{axis}"] = (("shot", "t"), result[axis],
+                                          {"units": "m", "long_name": f"ball position, {words}"})
+    pressure = float(arguments["pressure"])
+    attributes = {
+        "aerodynamic_model": model,
+        "aerodynamic_references": physics.MODEL_REFERENCES[model],
+        "air_temperature_K": air.temperature,
+        "air_pressure_Pa": pressure,
+        "air_relative_humidity": air.relative_humidity,
+        "air_density_kg_m3": float(physics.air_density(air.temperature, pressure, air.relative_humidity)),
+        "headwind_m_s": air.headwind,
+        "crosswind_m_s": air.crosswind,
+        "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),
+        "ball_radius_m": float(radius) if radius.ndim == 0 else str(radius.tolist()),
+    }
+    return xr.Dataset(data, coords=coords, attrs=attributes)
+
+
+__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS"]

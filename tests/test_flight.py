@@ -1,0 +1,527 @@
+"""The ball flight (impactlab.physics.flight, impactlab.fly, a study's flight outputs) against oracles written
+independently of the code: the vacuum projectile, an independent scipy DOP853 integration, published air tables
+(ISA, Buck), the published coefficient formulas, symmetries, and TrackMan's measured tour carries."""
+
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from impactlab.data.carry import RPM, YARD, carry_table, validate_carry
+from impactlab.physics import flight
+from impactlab.units import MPH
+
+G = flight.G0
+DRIVER = {"ball_speed": 167 * MPH, "launch_angle": np.radians(10.9), "spin_rate": 2686 * RPM}
+SEVEN = {"ball_speed": 120 * MPH, "launch_angle": np.radians(16.3), "spin_rate": 7097 * RPM}
+
+
+# --------------------------------------------------------------------------
+# Air
+# --------------------------------------------------------------------------
+def test_air_density_isa_sea_level():
+    # ISA: 1.2250 kg/m^3 at 288.15 K, 101325 Pa, dry.
+    assert flight.air_density(288.15, 101325.0, 0.0) == pytest.approx(1.2250, abs=5e-4)
+
+
+def test_air_density_humid_air_is_lighter_and_vectorised():
+    rh = np.array([0.0, 0.5, 1.0])
+    rho = flight.air_density(303.15, 101325.0, rh)
+    assert rho.shape == (3,)
+    assert np.all(np.diff(rho) < 0)
+    # 30 degC saturated air: about 1.145 kg/m^3 (dry 1.164); e_s(30 C) = 4.24 kPa.
+    assert flight.saturation_vapour_pressure(303.15) == pytest.approx(4246, rel=2e-3)
+    assert rho[2] == pytest.approx(1.1455, abs=2e-3)
+
+
+def test_pressure_at_altitude_isa_table():
+    # ISO 2533 tabulated values: 1000 m 89 874.6 Pa, 5000 m 54 019.9 Pa, 11 000 m 22 632 Pa.
+    p = flight.pressure_at_altitude(np.array([0.0, 1000.0, 5000.0, 11000.0]))
+    np.testing.assert_allclose(p, [101325.0, 89874.6, 54019.9, 22632.1], rtol=2e-4)
+
+
+def test_viscosity_sutherland():
+    assert flight.air_viscosity(288.15) == pytest.approx(1.7894e-5, rel=1e-3)
+
+
+# --------------------------------------------------------------------------
+# Aerodynamic coefficients
+# --------------------------------------------------------------------------
+def test_smits_smith_coefficients_as_published():
+    # CD = 0.24 + 0.18 S + 0.06 sin(pi (Re - 9e4)/2e5); CL = 0.54 S^0.4
+    cd, cl = flight.aero_coefficients([0.1, 0.2], [9.0e4, 1.9e5], model="smits_smith_1994")
+    np.testing.assert_allclose(cd, [0.24 + 0.018, 0.24 + 0.036 + 0.06], rtol=1e-12)
+    np.testing.assert_allclose(cl, [0.54 * 0.1**0.4, 0.54 * 0.2**0.4], rtol=1e-12)
+
+
+def test_lyu_coefficients_as_published():
+    cd, cl = flight.aero_coefficients([0.2], [1.0e5], model="lyu_2018")
+    assert cd[0] == pytest.approx(1.91e-11 * 1e10 - 5.40e-6 * 1e5 + 0.56)
+    assert cl[0] == pytest.approx(-3.25 * 0.04 + 1.99 * 0.2)
+
+
+def test_usga_patent_coefficients_reproduce_patent_data_points():
+    # US 6,186,002 example data: S 0.218, Re 0.812e5 -> CL 0.278, CD 0.305;
+    # S 0.092, Re 2.0e5 -> CL 0.153, CD 0.241 (regression R^2 0.99).
+    cd, cl = flight.aero_coefficients([0.218, 0.092], [0.812e5, 2.0e5], model="usga_patent_2001")
+    np.testing.assert_allclose(cl, [0.278, 0.153], atol=0.005)
+    np.testing.assert_allclose(cd, [0.305, 0.241], atol=0.01)
+
+
+def test_composite_models_as_documented():
+    # lift held at the peak of Lyu et al. 2018's published fit, -3.25 S^2 + 1.99 S: 1.99^2 / 13 = 0.3046 at S 0.306
+    cd, cl = flight.aero_coefficients([0.1, 0.5], [1.5e5, 1.5e5], model="smits_smith_lift_capped")
+    assert cl[0] == pytest.approx(0.54 * 0.1**0.4) and cl[1] == pytest.approx(0.3046, abs=1e-4)
+    assert cd[1] == pytest.approx(0.24 + 0.18 * 0.5 + 0.06 * np.sin(np.pi * 0.3))
+    # induced drag fitted on the USGA ITR example data: CD = a + b Re + k CL^2 reproduces the patent's measured
+    # condition means (CD 0.223..0.305, shot SD <= 0.006) within 0.01
+    data = np.array(flight.USGA_ITR_EXAMPLE)
+    design = np.column_stack([np.ones(len(data)), data[:, 0], data[:, 3] ** 2])
+    fit = design @ np.linalg.lstsq(design, data[:, 2], rcond=None)[0]
+    np.testing.assert_allclose(fit, data[:, 2], atol=0.01)
+    assert 1.2 < flight.INDUCED_DRAG_FACTOR < 1.7
+    cd_l, cl_l = flight.aero_coefficients([0.2], [1.5e5], model="lyu_2018")
+    cd_i, cl_i = flight.aero_coefficients([0.2], [1.5e5], model="lyu_2018_induced_drag")
+    assert cl_i[0] == cl_l[0] and cd_i[0] == pytest.approx(cd_l[0] + flight.INDUCED_DRAG_FACTOR * cl_l[0] ** 2)
+
+
+# --------------------------------------------------------------------------
+# Analytic projectile (vacuum) limit
+# --------------------------------------------------------------------------
+@pytest.mark.parametrize("deg", [5.0, 20.0, 45.0, 70.0])
+def test_vacuum_matches_analytic_projectile(deg):
+    v, th = 50.0, np.radians(deg)
+    r = flight.fly(v, th, 3000 * RPM, np.radians(15), np.radians(7), model="vacuum")
+    rng = v**2 * np.sin(2 * th) / G
+    assert r["carry_distance"] == pytest.approx(rng, rel=1e-9)
+    assert r["apex_height"] == pytest.approx((v * np.sin(th)) ** 2 / (2 * G), rel=1e-9)
+    assert r["flight_time"] == pytest.approx(2 * v * np.sin(th) / G, rel=1e-9)
+    assert r["landing_angle"] == pytest.approx(th, rel=1e-9)
+    # launched 7 deg right, no curvature in vacuum
+    assert r["offline_distance"] == pytest.approx(rng * np.sin(np.radians(7)), rel=1e-9)
+    assert r["carry_x"] == pytest.approx(rng * np.cos(np.radians(7)), rel=1e-9)
+
+
+# --------------------------------------------------------------------------
+# Independent integrator cross-check (scipy adaptive RK45/DOP853)
+# --------------------------------------------------------------------------
+def _scipy_reference(v0, th, w0, alpha, model="smits_smith_1994", lam=2.0e-5, T=288.15, rh=0.5):
+    """Straightforward re-implementation, y LEFT internally, solved by DOP853."""
+    rho = flight.air_density(T, 101325.0, rh)
+    mu = flight.air_viscosity(T)
+    R, m = flight.BALL_RADIUS, flight.BALL_MASS
+    k = rho * np.pi * R**2 / (2 * m)
+    vhat = np.array([np.cos(th), 0.0, np.sin(th)])
+    right = np.array([0.0, -1.0, 0.0])
+    up = np.cross(right, vhat)
+    axis = np.cos(alpha) * right - np.sin(alpha) * up
+
+    def f(t, y):
+        v = y[3:6]
+        sp = np.linalg.norm(v)
+        c = np.cross(axis, v / sp)
+        sa = np.linalg.norm(c)
+        s = R * y[6] * sa / sp
+        re = rho * sp * 2 * R / mu
+        cd, cl = flight.aero_coefficients(s, re, model)
+        a = -k * cd * sp * v + k * cl * sp**2 * c / sa - np.array([0, 0, G])
+        return np.concatenate([v, a, [-lam * rho / 1.225 * sp * y[6] / R]])
+
+    def hit(t, y):
+        return y[2]
+
+    def top(t, y):
+        return y[5]
+
+    hit.terminal, hit.direction = True, -1
+    top.direction = -1
+    y0 = np.concatenate([[0, 0, 0], v0 * vhat, [w0]])
+    sol = solve_ivp(f, (0, 20), y0, method="DOP853", rtol=1e-11, atol=1e-11,
+                    events=(hit, top), first_step=1e-3)
+    ye = sol.y_events[0][0]
+    apex = sol.y_events[1][0][2]
+    return np.hypot(ye[0], ye[1]), -ye[1], sol.t_events[0][0], apex
+
+
+@pytest.mark.parametrize("alpha_deg", [0.0, 25.0])
+def test_matches_scipy_dop853(alpha_deg):
+    a = np.radians(alpha_deg)
+    r = flight.fly(DRIVER["ball_speed"], DRIVER["launch_angle"], DRIVER["spin_rate"], a)
+    carry, off, tf, _ = _scipy_reference(DRIVER["ball_speed"], DRIVER["launch_angle"],
+                                         DRIVER["spin_rate"], a)
+    assert r["carry_distance"] == pytest.approx(carry, abs=1e-4)
+    assert r["offline_distance"] == pytest.approx(off, abs=1e-4)
+    assert r["flight_time"] == pytest.approx(tf, abs=1e-5)
+
+
+def test_step_size_convergence():
+    kw = dict(SEVEN, spin_axis=np.radians(-12), wind=(-4.0, 3.0, 0.0))
+    a = flight.fly(**kw, dt=0.02)
+    b = flight.fly(**kw, dt=0.002)
+    for key in ("carry_distance", "offline_distance", "apex_height", "flight_time", "landing_angle"):
+        assert a[key] == pytest.approx(b[key], abs=1e-5)
+
+
+# --------------------------------------------------------------------------
+# Symmetries and signs
+# --------------------------------------------------------------------------
+def test_spin_axis_mirror_symmetry():
+    ax = np.radians([-30, -10, 10, 30])
+    r = flight.fly(**DRIVER, spin_axis=ax)
+    np.testing.assert_allclose(r["offline_distance"], -r["offline_distance"][::-1], atol=1e-9)
+    np.testing.assert_allclose(r["carry_distance"], r["carry_distance"][::-1], rtol=1e-12)
+    # positive axis = tilted right = curves right
+    assert r["offline_distance"][3] > r["offline_distance"][2] > 0
+
+
+def test_launch_direction_and_crosswind_signs():
+    r = flight.fly(**DRIVER, launch_direction=np.radians(3))
+    assert r["offline_distance"] > 0
+    calm = flight.fly(**SEVEN)
+    from_left = flight.fly(**SEVEN, wind=(0.0, 5.0, 0.0))  # blowing toward the right
+    assert from_left["offline_distance"] > 1.0
+    head = flight.fly(**SEVEN, wind=(-5.0, 0.0, 0.0))
+    tail = flight.fly(**SEVEN, wind=(5.0, 0.0, 0.0))
+    assert head["carry_distance"] < calm["carry_distance"] < tail["carry_distance"]
+
+
+def test_zero_spin_gives_no_lift():
+    # With zero spin the spin axis is meaningless: no sideways force, and the
+    # flight equals a drag-only flight solved independently.
+    r = flight.fly(50.0, np.radians(20), 0.0, spin_axis=np.radians([-40.0, 0.0, 40.0]))
+    np.testing.assert_allclose(r["offline_distance"], 0.0, atol=1e-12)
+    np.testing.assert_allclose(r["carry_distance"], r["carry_distance"][1], rtol=1e-12)
+    carry, _, _, apex = _scipy_reference(50.0, np.radians(20), 0.0, 0.0)
+    assert r["carry_distance"][1] == pytest.approx(carry, abs=1e-4)
+    assert r["apex_height"][1] == pytest.approx(apex, abs=1e-5)
+    # and any spin at all adds lift: higher apex than the zero-spin shot
+    spun = flight.fly(50.0, np.radians(20), 3000 * RPM)
+    assert spun["apex_height"] > r["apex_height"][1]
+
+
+def test_more_backspin_raises_apex():
+    spins = np.array([1000, 2000, 3000, 4000, 6000, 8000]) * RPM
+    r = flight.fly(SEVEN["ball_speed"], SEVEN["launch_angle"], spins)
+    assert np.all(np.diff(r["apex_height"]) > 0)
+    assert np.all(np.diff(r["landing_angle"]) > 0)
+
+
+def test_higher_altitude_carries_further():
+    alts = np.array([0.0, 500.0, 1609.0, 2240.0])  # sea level ... Denver, Mexico City
+    for club in (DRIVER, SEVEN):
+        r = flight.fly(**club, altitude=alts)
+        assert np.all(np.diff(r["carry_distance"]) > 0)
+    # Denver driver gain is several percent (TrackMan and USGA both quote
+    # roughly 6-10 %; not an oracle for the exact figure).
+    r = flight.fly(**DRIVER, altitude=[0.0, 1609.0])
+    gain = r["carry_distance"][1] / r["carry_distance"][0] - 1
+    assert 0.03 < gain < 0.12
+
+
+def test_energy_never_increases_without_wind():
+    r = flight.fly(**DRIVER, spin_axis=np.radians(20), return_trajectories=True)
+    e = 0.5 * (r["vx"] ** 2 + r["vy"] ** 2 + r["vz"] ** 2) + G * r["z"]
+    assert np.all(np.diff(e, axis=1) <= 1e-9 * np.abs(e[:, :-1]))
+    assert e[0, -1] < e[0, 0]
+
+
+def test_spin_decay():
+    r = flight.fly(**DRIVER)
+    assert 0.6 < r["landing_spin"] / DRIVER["spin_rate"] < 0.9  # Penner: ~75 % for a drive
+    r0 = flight.fly(**DRIVER, spin_decay=0.0)
+    assert r0["landing_spin"] == pytest.approx(DRIVER["spin_rate"])
+    assert r0["apex_height"] > r["apex_height"]
+
+
+# --------------------------------------------------------------------------
+# Vectorisation and speed
+# --------------------------------------------------------------------------
+def test_broadcasting_and_scalar_consistency():
+    v = np.array([[60.0], [70.0]])
+    th = np.radians([10.0, 14.0, 18.0])
+    r = flight.fly(v, th, 3000 * RPM)
+    assert r["carry_distance"].shape == (2, 3)
+    single = flight.fly(70.0, np.radians(14.0), 3000 * RPM)
+    assert r["carry_distance"][1, 1] == pytest.approx(float(single["carry_distance"]), rel=1e-12)
+    tr = flight.fly(v, th, 3000 * RPM, return_trajectories=True)
+    assert tr["x"].shape[0] == 6
+    np.testing.assert_allclose(tr["x"][:, -1], r["carry_x"].ravel(), rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_ten_thousand_shots_fast():
+    rng = np.random.default_rng(1)
+    n = 10_000
+    t0 = time.perf_counter()
+    r = flight.fly(rng.uniform(40, 80, n), np.radians(rng.uniform(8, 30, n)),
+                   rng.uniform(2000, 10000, n) * RPM, np.radians(rng.uniform(-20, 20, n)))
+    elapsed = time.perf_counter() - t0
+    assert np.all(np.isfinite(r["carry_distance"]))
+    # ~1.3 s on an idle 2-core machine (dt = 0.02 s); the bound only catches
+    # a regression to per-shot Python loops (which take > 60 s).
+    assert elapsed < 10.0, elapsed
+
+
+def test_rejects_bad_input():
+    with pytest.raises(ValueError):
+        flight.fly(-1.0, 0.2, 100.0)
+    with pytest.raises(ValueError):
+        flight.fly(60.0, 0.2, 100.0, model="nope")
+
+
+# --------------------------------------------------------------------------
+# Validation against TrackMan PGA Tour averages (measurements; impactlab/data/validation/trackman_carry.yaml)
+# --------------------------------------------------------------------------
+def test_carry_table_is_the_published_table():
+    table = carry_table()
+    assert len(table.clubs) == 12 and table.clubs[0] == "Driver" and table.clubs[-1] == "PW"
+    # cells confirmed as text (Golf Monthly 2023-12-05): driver 167 mph / 275 yd / 32 yd, 7-iron 120 mph / 172 yd
+    assert table.ball_speed[0] == pytest.approx(167 * MPH) and table.carry[0] == pytest.approx(275 * YARD)
+    assert table.max_height[0] == pytest.approx(32 * YARD)
+    assert table.ball_speed[8] == pytest.approx(120 * MPH) and table.carry[8] == pytest.approx(172 * YARD)
+    assert "TrackMan" in table.source and "not normalised" in table.source
+
+
+def test_carry_table_file_says_measurement_and_is_shipped():
+    from importlib import resources
+
+    import yaml
+
+    document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath("trackman_carry.yaml").read_text())
+    assert document["kind"] == "measurement"
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "No published coefficient set meets 3 % RMS on the TrackMan PGA Tour table as published: Smits & Smith 1994 "
+    "gives 5.0 % (driver -9.4 %, irons +2..+7 %); the best composite of published pieces 3.1 %. Coefficients are "
+    "deliberately NOT tuned to this table (docs/flight.md)."))
+def test_trackman_pga_carry_rms_within_3_percent():
+    assert validate_carry()["rms_carry_error"] <= 0.03
+
+
+def test_trackman_pga_regression_guard():
+    # Locks in the measured skill of the default published model so that a code change cannot silently make it
+    # worse (measured: RMS 5.0 %, every club within -9.4..+6.8 %; heights +1..+8 yd, land angles 3..8 deg shallow).
+    check = validate_carry()
+    table = check["table"]
+    assert check["rms_carry_error"] <= 0.052
+    assert np.all(np.abs(check["carry_error"]) <= 0.10)
+    assert np.all(np.abs(check["apex_height"] - table.max_height) <= 9 * YARD)
+    assert np.all(np.abs(np.degrees(check["landing_angle"] - table.land_angle)) <= 9.0)
+
+
+def test_composite_models_regression_guard():
+    # measured (docs/flight.md): lift capped 3.1 % RMS (driver -9.4 %); Lyu + induced drag 5.0 % (all -3..-7 %)
+    assert validate_carry("smits_smith_lift_capped")["rms_carry_error"] <= 0.032
+    check = validate_carry("lyu_2018_induced_drag")
+    assert check["rms_carry_error"] <= 0.052
+    assert np.all(np.abs(check["apex_height"] - check["table"].max_height) <= 5 * YARD)
+
+
+def test_default_model_is_best_published_model():
+    rms = {m: validate_carry(m)["rms_carry_error"] for m in flight.PUBLISHED_MODELS}
+    rms = {m: (v if np.isfinite(v) else np.inf) for m, v in rms.items()}
+    assert min(rms, key=rms.get) == flight.DEFAULT_MODEL
+
+
+# --------------------------------------------------------------------------
+# impactlab.fly: units, arrays, the air
+# --------------------------------------------------------------------------
+def test_fly_takes_units_numbers_and_quantities_alike():
+    import pint
+
+    import impactlab
+
+    ureg = pint.UnitRegistry()
+    by_text = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm",
+                            spin_axis="5 deg", launch_direction="-2 deg")
+    by_si = impactlab.fly(167 * MPH, np.radians(10.9), 2686 * RPM, np.radians(5), np.radians(-2))
+    by_pint = impactlab.fly(ureg.Quantity(167, "mph"), ureg.Quantity(10.9, "deg"), ureg.Quantity(2686, "rpm"),
+                            ureg.Quantity(5, "deg"), ureg.Quantity(-2, "deg"))
+    physics = flight.fly(167 * MPH, np.radians(10.9), 2686 * RPM, np.radians(5), np.radians(-2))
+    for result in (by_text, by_si, by_pint):
+        assert float(result.carry_distance) == pytest.approx(float(physics["carry_distance"]), rel=1e-12)
+        assert float(result.landing_angle) == pytest.approx(np.degrees(float(physics["landing_angle"])), rel=1e-12)
+    assert by_text.carry_distance.attrs["units"] == "m"
+    assert by_text.landing_angle.attrs["units"] == "degree"
+    assert by_text.flight_time.attrs["units"] == "s"
+
+
+def test_fly_broadcasts_arrays():
+    import impactlab
+
+    result = impactlab.fly(ball_speed=[60.0, 70.0], launch_angle=np.radians([[10.0], [14.0], [18.0]]),
+                           spin_rate="3000 rpm")
+    assert result.carry_distance.shape == (3, 2)
+    single = flight.fly(70.0, np.radians(14.0), 3000 * RPM)
+    assert float(result.carry_distance[1, 1]) == pytest.approx(float(single["carry_distance"]), rel=1e-12)
+
+
+def test_fly_conditions_are_the_air_they_say():
+    import impactlab
+
+    # 25 degC, 1013.25 hPa, dry: the same flight as the physics function given that air directly
+    air = {"temperature": "25 degC", "pressure": "1013.25 hPa", "relative_humidity": "0 %", "headwind": "10 mph",
+           "crosswind": "5 mph"}
+    result = impactlab.fly("120 mph", "16.3 deg", "7097 rpm", conditions=air)
+    direct = flight.fly(120 * MPH, np.radians(16.3), 7097 * RPM, temperature=298.15, pressure=101325.0,
+                        relative_humidity=0.0, wind=(-10 * MPH, 5 * MPH, 0.0))
+    assert float(result.carry_distance) == pytest.approx(float(direct["carry_distance"]), rel=1e-12)
+    assert float(result.offline_distance) > 0  # a wind blowing to the right pushes the ball right
+    assert result.attrs["air_density_kg_m3"] == pytest.approx(101325.0 / (287.05 * 298.15), rel=1e-3)
+    # altitude alone sets the ISA pressure: Denver (1609 m) is 83.4 kPa (ISO 2533)
+    denver = impactlab.fly("167 mph", "10.9 deg", "2686 rpm", conditions={"altitude": "5280 ft"})
+    assert denver.attrs["air_pressure_Pa"] == pytest.approx(83.4e3, rel=2e-3)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(ball_speed="167", launch_angle=0.2, spin_rate=300.0), "has no unit"),
+    (dict(ball_speed="167 deg", launch_angle=0.2, spin_rate=300.0), "do not convert"),
+    (dict(ball_speed=-5.0, launch_angle=0.2, spin_rate=300.0), "positive ball speed"),
+    (dict(ball_speed=70.0, launch_angle="10 mph", spin_rate=300.0), "not an angle unit"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=-1.0), "spin rate >= 0"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0, conditions={"temp": "20 degC"}), "conditions.temp"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0,
+          conditions={"pressure": "1000 hPa", "altitude": "100 m"}), "not both"),
+    (dict(ball_speed=70.0, launch_angle=0.2, spin_rate=300.0, conditions={"relative_humidity": 60}), "between 0 and 1"),
+])
+def test_fly_refuses_bad_values_with_one_message(kwargs, words):
+    import impactlab
+    from impactlab.errors import FieldError
+
+    with pytest.raises(FieldError, match=words):
+        impactlab.fly(**kwargs)
+
+
+# --------------------------------------------------------------------------
+# A study asks for the flight after any impact model
+# --------------------------------------------------------------------------
+def _golf_study(outputs, **extra):
+    return {"name": "flight", "ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+            "contact": {"friction": 0.4, "restitution": 0.8},
+            "delivery": {"club_speed": "110 mph", "path": "2 deg", "face_angle": "-1 deg", "attack_angle": "-1 deg",
+                         "dynamic_loft": "13 deg"},
+            "sweep": {"strike.toe": ["-10 mm", "0 mm", "10 mm"]},
+            "models": ["rigid_coulomb", {"name": "restitution", "tangential_restitution": 0.1}],
+            "outputs": outputs, **extra}
+
+
+LAUNCH = ["ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin", "spin_axis"]
+FLIGHT = ["carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time"]
+
+
+def test_study_flight_equals_fly_on_the_models_launch():
+    import impactlab
+
+    air = {"temperature": "30 degC", "altitude": "400 m", "relative_humidity": "70 %", "headwind": "3 m/s",
+           "crosswind": "-2 m/s"}
+    result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions=air))
+    ball = impactlab.load_study(_golf_study(LAUNCH)).scene.ball
+    for model in result.model.values:
+        row = result.sel(model=model)
+        spin = np.hypot(row.back_spin.values, row.side_spin.values) * RPM  # the spin across the flight
+        alone = impactlab.fly(row.ball_speed.values, np.radians(row.vertical_launch_angle.values), spin,
+                              np.radians(row.spin_axis.values), np.radians(row.horizontal_launch_angle.values),
+                              conditions=air, ball_mass=ball.mass, ball_radius=ball.radius)
+        for name in FLIGHT:
+            np.testing.assert_allclose(row[name].values, alone[name].values, rtol=1e-9, err_msg=name)
+    assert np.all(result.carry_distance.values > 150) and result.carry_distance.attrs["units"] == "m"
+    assert result.landing_angle.attrs["units"] == "degree"
+
+
+def test_study_not_asking_for_the_flight_does_not_compute_it(monkeypatch):
+    import impactlab
+
+    calls = []
+    original = flight.fly
+    monkeypatch.setattr(flight, "fly", lambda *a, **k: calls.append(1) or original(*a, **k))
+    impactlab.run_study(_golf_study(LAUNCH), executor="serial")
+    assert calls == []
+    impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]), executor="serial")
+    assert len(calls) == 2  # once per model (one chunk each)
+    # nor does a model computed without named outputs
+    model = impactlab.get_model("rigid_coulomb")()
+    model.compute(impactlab.load_study(_golf_study(LAUNCH)).scene.inputs())
+    assert len(calls) == 2
+
+
+def test_study_conditions_sweep_and_no_delivery():
+    import impactlab
+
+    study = _golf_study(["carry_distance"], conditions={"temperature": "20 degC"})
+    study["sweep"] = {"conditions.altitude": ["0 m", "1609 m"]}
+    result = impactlab.run_study(study)
+    carry = result.carry_distance.values  # (model, altitude)
+    assert np.all(carry[:, 1] > carry[:, 0] * 1.03)  # thinner air carries further (Denver: several percent)
+    plate = {"name": "plate", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
+             "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "30 deg"},
+             "models": ["rigid_coulomb"], "outputs": ["ball_speed", "carry_distance"]}
+    result = impactlab.run_study(plate)
+    assert np.isnan(result.carry_distance.values).all()
+    assert "golf delivery" in result.carry_distance.attrs["missing"]
+
+
+@pytest.mark.parametrize("conditions, words", [
+    ({"temperature": 25}, "with its unit"),
+    ({"altitude": 1600}, "with its unit"),
+    ({"humidity": "50 %"}, "conditions.humidity"),
+    ({"pressure": "1000 hPa", "altitude": "100 m"}, "not both"),
+    ({"temperature": "25 m"}, "do not convert"),
+])
+def test_study_conditions_block_refuses_with_its_path(conditions, words):
+    import impactlab
+    from impactlab.errors import FieldError
+
+    with pytest.raises(FieldError, match=words) as caught:
+        impactlab.load_study(_golf_study(["carry_distance"], conditions=conditions))
+    assert "conditions" in str(caught.value)
+
+
+# --------------------------------------------------------------------------
+# Trajectory figures
+# --------------------------------------------------------------------------
+def test_trajectory_figure_lands_where_the_result_says(tmp_path, monkeypatch):
+    import impactlab
+    from impactlab.plot import figures
+
+    result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions={"temperature": "10 degC"}))
+    captured = []
+    monkeypatch.setattr(figures, "_save", lambda figure, path: captured.append(figure) or path)
+    figures.plot_trajectories(result, tmp_path / "t.png")
+    side, top = captured[0].axes[:2]
+    ends = np.array([[line.get_xdata()[-1], line.get_ydata()[-1]] for line in top.get_lines()
+                     if len(line.get_xdata()) > 2])
+    carry = result.carry_distance.transpose("model", ...).values.reshape(-1)
+    offline = result.offline_distance.transpose("model", ...).values.reshape(-1)
+    np.testing.assert_allclose(np.hypot(ends[:, 0], ends[:, 1]), carry, rtol=1e-9)
+    np.testing.assert_allclose(ends[:, 1], offline, atol=1e-9)
+    heights = [np.max(line.get_ydata()) for line in side.get_lines()]
+    np.testing.assert_allclose(np.sort(heights), np.sort(result.apex_height.values.reshape(-1)), rtol=1e-3)
+
+
+def test_cli_draws_trajectories_and_refuses_a_result_without_launch(tmp_path, capsys):
+    import impactlab
+    from impactlab.cli import main
+
+    good, bad = tmp_path / "good.h5", tmp_path / "bad.h5"
+    impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]), output=good)
+    assert main(["plot", str(good), "--trajectories"]) == 0
+    assert (tmp_path / "good_trajectories.png").stat().st_size > 10_000
+    impactlab.run_study(_golf_study(["ball_speed", "carry_distance"]), output=bad)
+    assert main(["plot", str(bad), "--trajectories"]) == 2
+    err = capsys.readouterr().err
+    assert "vertical_launch_angle" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/flight.md"])
+def test_documented_fly_examples_run(page, capsys):
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / page).read_text()
+    blocks = [block for block in re.findall(r"```python\n(.*?)```", text, flags=re.S) if "impactlab.fly(" in block]
+    assert blocks
+    for block in blocks:
+        exec(compile(block, page, "exec"), {})  # noqa: S102 - our own documentation
+    assert "yd" in capsys.readouterr().out or page == "README.md"
