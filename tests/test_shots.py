@@ -89,14 +89,14 @@ def test_a_launch_monitors_loft_is_the_loft_of_the_face_where_the_ball_meets_it(
 def test_the_face_gain_raises_the_balls_restitution_law_on_woods_only():
     table = shot_table("trackman_tour")
     inputs = table_inputs(table)
-    ball_e = 0.787  # the tour_urethane preset's constant law
+    ball_e = 0.787  # the urethane_tour preset's constant law
     wood = np.array([club == "driver" for club in table.clubs])
     assert np.allclose(inputs["restitution"][wood], ball_e + 0.083, atol=1e-12)
     assert np.allclose(inputs["restitution"][~wood], ball_e, atol=1e-12)
     changed = apply(inputs, ["face_restitution_gain"], [0.02], loft_at=table.loft_at)
     assert np.allclose(changed["restitution"], inputs["restitution"])  # no ball given: e stays as the inputs had it
     from impactlab.scene.materials import ball_preset
-    changed = apply(inputs, ["face_restitution_gain"], [0.02], ball_preset("tour_urethane"), table.loft_at)
+    changed = apply(inputs, ["face_restitution_gain"], [0.02], ball_preset("urethane_tour"), table.loft_at)
     assert np.allclose(changed["restitution"], np.where(wood, ball_e + 0.02, ball_e), atol=1e-12)
 
 
@@ -127,7 +127,7 @@ def synthetic_table(model, truth):
     table = read_yaml(text, "synthetic.yaml")
     from impactlab.scene.materials import ball_preset
     predicted = predict(model, apply(table_inputs(table), list(truth), list(truth.values()),
-                                     ball_preset("tour_urethane"), table.loft_at))
+                                     ball_preset("urethane_tour"), table.loft_at))
     for key in ("ball_speed", "vertical_launch_angle", "spin_rate"):
         table.measured[key][:] = predicted[key]
     return table

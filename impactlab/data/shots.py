@@ -319,14 +319,14 @@ def read_shots(path) -> ShotTable:
 def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None) -> dict:
     """Model inputs (SI arrays) of every row: its club preset, its delivery and strike, and the ball.
 
-    ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: tour_urethane}``);
+    ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: urethane_tour}``);
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
     from impactlab.scene.clubs import Strike, club_preset
     from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
     from impactlab.study.core import build_ball
 
-    ball = build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
+    ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact = Contact(**(contact or {}))
     scenes = []
     for index in range(table.size):

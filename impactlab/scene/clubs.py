@@ -241,7 +241,7 @@ CLUB_SOURCES = {
         "5679, 0.5], [530.2, 0.5, 4085]] g cm^2, loft 9.8 deg, bulge 305 mm. The mapping of its axes to toe/up/"
         "target is ours (docs/clubs.md). Roll 254 mm and lie 58 deg: typical manufacturer specifications, not "
         "measured on this head. Face Ti-6Al-4V. Restitution gain 0.083: fitted (impactlab fit trackman_tour: maw "
-        "0.082 +- 0.018, hertz_mindlin 0.084 +- 0.014) beside the tour_urethane ball's e = 0.787, a model output; it "
+        "0.082 +- 0.018, hertz_mindlin 0.084 +- 0.014) beside the urethane_tour ball's e = 0.787, a model output; it "
         "puts the driver's e at about 0.87, above the USGA's COR limit of 0.830, so it also stands in for what the "
         "models leave out of a driver's smash factor (Proceedings 49 (2020) 47 needed under 3 g more head mass with "
         "e = 0.83; the shaft's share of the club mass is not modelled)."),
