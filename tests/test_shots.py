@@ -48,17 +48,20 @@ def test_every_bad_cell_is_reported_with_line_and_column_and_nothing_is_dropped(
     assert "shots.csv:4: expected 12 columns, got 3" in message
 
 
-def test_a_row_without_a_delivery_or_a_measurement_is_refused_not_skipped():
+def test_a_row_without_a_delivery_or_a_measurement_is_skipped_with_its_reason_and_the_rest_used():
     text = CSV.replace("A,driver,115,-0.9,12.8,0,0,171,10.4,,2545,", "A,driver,115,-0.9,,0,0,,,,,")
-    with pytest.raises(StudyError) as caught:
-        read_csv(text, "shots.csv")
-    assert "shots.csv:2: dynamic_loft" in str(caught.value)
-    assert "shots.csv:2: expected at least one measured quantity" in str(caught.value)
+    table = read_csv(text, "shots.csv")
+    assert table.labels == ("B",)  # row A skipped, row B used
+    (line, reason), = table.skipped
+    assert line == 2 and "no dynamic loft" in reason and "no measured launch quantity" in reason
+    only_bad = CSV.splitlines()[0] + "\nA,driver,115,-0.9,,0,0,,,,,\n"
+    with pytest.raises(StudyError, match=r"no row the impact models can use .*shots.csv:2: no dynamic loft"):
+        read_csv(only_bad, "shots.csv")
 
 
 def test_an_unknown_column_is_named_in_a_warning():
-    with pytest.warns(UserWarning, match="Carry"):
-        read_csv(CSV.replace("Spin Axis [deg]", "Carry [yd]"), "shots.csv")
+    with pytest.warns(UserWarning, match="Wind Speed"):
+        read_csv(CSV.replace("Spin Axis [deg]", "Wind Speed [mph]"), "shots.csv")
 
 
 def test_yaml_tables_check_their_keys_with_lines():
@@ -214,7 +217,7 @@ def test_the_validation_figure_draws_the_measured_values_and_every_model():
 
 def test_a_number_without_a_unit_is_refused_not_guessed():
     # 115 could be mph or m/s: a launch-monitor export without units is refused, naming the cell
-    with pytest.raises(StudyError, match=r"shots.csv:2:3 \(Club Speed\): expected a value with its unit"):
+    with pytest.raises(StudyError, match=r"shots.csv:1:3 \(Club Speed\): expected a unit for the club speed"):
         read_csv(CSV.replace("Club Speed [mph]", "Club Speed"), "shots.csv")
     with pytest.raises(StudyError, match="ball_speed_sigma: expected a positive uncertainty"):
         read_csv(CSV.replace("Spin Axis [deg]", "Ball Speed Sigma [mph]").replace("2545,", "2545,0"), "shots.csv")

@@ -22,6 +22,7 @@ right-handed one: the same numbers describe it in the same named axes.
 from __future__ import annotations
 
 import math
+import re
 
 import attrs
 import numpy as np
@@ -300,3 +301,45 @@ def club_preset(name: str) -> ClubHead:
         return CLUB_PRESETS[name]
     except (KeyError, TypeError):
         raise FieldError("preset", "a club preset name", name, choices=CLUB_PRESETS) from None
+
+
+_WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9}
+_WEDGES = {"pw": "pitching_wedge", "pitchingwedge": "pitching_wedge", "pitching": "pitching_wedge",
+           "p": "pitching_wedge", "gw": "gap_wedge", "gapwedge": "gap_wedge", "aw": "gap_wedge",
+           "approachwedge": "gap_wedge", "uw": "gap_wedge", "sw": "sand_wedge", "sandwedge": "sand_wedge",
+           "lw": "lob_wedge", "lobwedge": "lob_wedge"}
+#: a wedge named by its loft [deg] -> the catalogue wedge nearest that loft (catalogue lofts: 46, 50, 56, 60)
+_WEDGE_LOFTS = ((44, 47, "pitching_wedge"), (48, 53, "gap_wedge"), (54, 57, "sand_wedge"), (58, 64, "lob_wedge"))
+
+
+def club_key(name: str) -> str | None:
+    """The catalogue key of a club as launch monitors name it, or None when it names no club of the catalogue.
+
+    Understood: catalogue keys (``7_iron``), ``Driver``/``Dr``/``1w``/``1 Wood``, ``3 Wood``/``3w``/``W3``,
+    ``4 Hybrid``/``4h``/``H4``, ``8 Iron``/``8i``/``I8``/``Eisen 8``, ``PW``/``Pitching Wedge``/``P``,
+    ``GW``/``AW``/``Gap Wedge``, ``SW``, ``LW`` and wedges by loft (``56°``, ``56 Degree``, ``58``: 44-47 deg
+    pitching, 48-53 gap, 54-57 sand, 58-64 lob wedge), case, spaces, dashes and underscores aside.
+    """
+    if not isinstance(name, str):
+        return None
+    if name in CLUB_PRESETS:
+        return name
+    text = re.sub(r"[\s_\-.]+", "", name.strip().lower())
+    text = text.replace("°", "deg").replace("º", "deg")
+    for word, digit in _WORDS.items():
+        text = text.replace(word, str(digit))
+    key = None
+    if text in ("driver", "dr", "d", "1w", "1wood", "w1", "drv"):
+        key = "driver"
+    elif text in _WEDGES:
+        key = _WEDGES[text]
+    elif match := re.fullmatch(r"(?:(\d)(?:w|wood|fw)|(?:w|wood|fw)(\d))", text):
+        key = f"{match.group(1) or match.group(2)}_wood"
+    elif match := re.fullmatch(r"(?:(\d)(?:h|hy|hyb|hybrid|rescue|u|ut|utility)|(?:h|hy|hybrid)(\d))", text):
+        key = f"{match.group(1) or match.group(2)}_hybrid"
+    elif match := re.fullmatch(r"(?:(\d)(?:i|ir|iron|eisen|fer)|(?:i|iron|eisen|fer)(\d))", text):
+        key = f"{match.group(1) or match.group(2)}_iron"
+    elif match := re.fullmatch(r"(\d{2})(?:deg|degree|degrees|degreewedge|wedge|w)?", text):
+        loft = int(match.group(1))
+        key = next((wedge for low, high, wedge in _WEDGE_LOFTS if low <= loft <= high), None)
+    return key if key in CLUB_PRESETS else None
