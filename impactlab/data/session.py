@@ -608,6 +608,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         raise StudyError(f"{file}: {len(problems)} bad cell(s) or row(s): {shown}")
 
     _flag_estimated(layout, header, columns, values, flags, used, unused)
+    if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
+        _read_flags(header, columns, flags, used, unused, file, shot_lines)
     for field, limit in layout.clamped.items():
         clamped = np.abs(values[field]) >= limit * (1 - 1e-5)
         if clamped.any():
@@ -699,6 +701,20 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused) -> Non
             present = estimated & np.isfinite(values[field])
             if present.any():
                 flags[(field, "estimated")] = present
+
+
+def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
+    """The ``flags`` column of impactlab's normalised table (``spin_rate:estimated;spin_axis:clamped``)."""
+    column = [_norm(cell) for cell in header].index("flags")
+    unused.remove(header[column])
+    used.append((header[column], "flags (field:estimated, field:clamped, field:no data)", "", 1.0))
+    for index, cell in enumerate(columns[column]):
+        for item in filter(None, (part.strip() for part in cell.split(";"))):
+            field, _, kind = item.partition(":")
+            if field not in FIELDS or kind not in ("estimated", "clamped", "no data"):
+                raise StudyError(f"{file}:{lines[index]}: flags: expected field:estimated, field:clamped or "
+                                 f"field:no data with a field of the vocabulary, got {item!r}")
+            flags.setdefault((field, kind), np.zeros(len(lines), bool))[index] = True
 
 
 def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
