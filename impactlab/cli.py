@@ -307,11 +307,14 @@ def _cmd_validate(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
     over, rows = [], []
+    from impactlab.scene.clubs import user_clubs
+
     for name in names:
-        table = shot_table(name, args.include_flagged)
-        if table is not None:
-            over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
-            continue
+        with user_clubs(args.club):
+            table = shot_table(name, args.include_flagged)
+            if table is not None:
+                over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
+                continue
         import numpy as np
 
         data = get_dataset(name)
@@ -366,9 +369,12 @@ def _cmd_fit(args) -> int:
 
     if args.json:  # refused before minutes of fitting, not after
         check_output(args.json, what="--json file", suffix=".json")
-    table = shot_table(args.dataset, args.include_flagged)
-    if table is not None:
-        return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
+    from impactlab.scene.clubs import user_clubs
+
+    with user_clubs(args.club):
+        table = shot_table(args.dataset, args.include_flagged)
+        if table is not None:
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
     data = get_dataset(args.dataset)
     known = [entry.id for entry in data.load_study().models]
     models = args.model or known
@@ -398,12 +404,18 @@ def _cmd_shots(args) -> int:
 
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
+    from impactlab.scene.clubs import user_clubs
+
     session = read_session(args.file, args.vendor)
-    print(describe(session, args.include_flagged))
+    with user_clubs(args.club):
+        print(describe(session, args.include_flagged))
     if args.csv:
         write_normalised(session, args.csv)
         print(f"wrote {args.csv} ({session.size} shot(s), the vocabulary's names and units)", file=sys.stderr)
     return 0
+
+
+CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -482,6 +494,7 @@ def build_parser() -> argparse.ArgumentParser:
                                         "prediction to this CSV file")
     validate.add_argument("--include-flagged", action="store_true",
                           help="shot tables: compare estimated and clamped values too (left out by default)")
+    validate.add_argument("--club", action="append", help=CLUB_HELP)
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
@@ -491,6 +504,7 @@ def build_parser() -> argparse.ArgumentParser:
     shots.add_argument("--vendor", help="read with this vendor layout (default: recognised from the header)")
     shots.add_argument("--include-flagged", action="store_true",
                        help="count estimated and clamped values as usable (left out of fits by default)")
+    shots.add_argument("--club", action="append", help=CLUB_HELP)
     shots.set_defaults(handler=_cmd_shots)
 
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
@@ -504,6 +518,7 @@ def build_parser() -> argparse.ArgumentParser:
     fitting.add_argument("--json", help="also write the fits to this JSON file")
     fitting.add_argument("--include-flagged", action="store_true",
                          help="shot tables: fit estimated and clamped values too (left out by default)")
+    fitting.add_argument("--club", action="append", help=CLUB_HELP)
     fitting.set_defaults(handler=_cmd_fit)
 
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
