@@ -251,7 +251,8 @@ class Session:
 
         keep = np.ones(self.size, bool)
         reasons = [[] for _ in range(self.size)]
-        clubs = [club_key(name) if name else None for name in self.text["club"]]
+        keys = {name: club_key(name) if name else None for name in set(self.text["club"])}  # once per name
+        clubs = [keys[name] for name in self.text["club"]]
         for index, (name, key) in enumerate(zip(self.text["club"], clubs)):
             if not name:
                 reasons[index].append("no club named")
@@ -314,8 +315,9 @@ class Session:
                                  f"{given[np.flatnonzero(bad)[0]]:g}")
             sigma[key] = np.where(np.isfinite(given), given, DEFAULT_SIGMA[key])
         labels = tuple(self.text["label"][i] or f"line {self.lines[i]}" for i in index)
+        keys = {name: club_key(name) for name in {self.text["club"][i] for i in index}}
         return ShotTable(name=Path(self.file).stem, source=f"read from {self.file} ({self.vendor.name})",
-                         labels=labels, clubs=tuple(club_key(self.text["club"][i]) for i in index),
+                         labels=labels, clubs=tuple(keys[self.text["club"][i]] for i in index),
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
                          skipped=tuple(skipped))
@@ -646,17 +648,20 @@ def _generic_field(header: str) -> tuple[str | None, str | None]:
 
 def _decimal_mark(columns: list, file: str) -> str:
     """'.' or ',' for the numbers of the file; StudyError when both occur (never read one as the other)."""
+    import pandas as pd
+
     comma_example = point_example = None
     for raw in columns:
-        for value in raw:
-            value = value.strip().rstrip("LRlr ").strip()
-            if comma_example is None and _NUMBER_COMMA.match(value):
-                comma_example = value
-            elif point_example is None and "." in value and _NUMBER_POINT.match(value):
-                point_example = value
-            if comma_example and point_example:
-                raise StudyError(f"{file}: numbers are written with both decimal marks ({point_example!r} and "
-                                 f"{comma_example!r}); the file cannot be read without guessing which is meant")
+        cells = pd.Series(raw, dtype=object).astype(str).str.strip().str.rstrip("LRlr ").str.strip()
+        commas = cells[cells.str.match(_NUMBER_COMMA.pattern)]
+        points = cells[cells.str.contains(".", regex=False) & cells.str.match(_NUMBER_POINT.pattern)]
+        if comma_example is None and len(commas):
+            comma_example = commas.iloc[0]
+        if point_example is None and len(points):
+            point_example = points.iloc[0]
+        if comma_example and point_example:
+            raise StudyError(f"{file}: numbers are written with both decimal marks ({point_example!r} and "
+                             f"{comma_example!r}); the file cannot be read without guessing which is meant")
     return "," if comma_example else "."
 
 

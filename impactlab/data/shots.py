@@ -310,6 +310,8 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
 
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact = Contact(**(contact or {}))
+    # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
+    scene_ball = attrs.evolve(ball, restitution=None) if contact.restitution is None else ball
     scenes = []
     for index in range(table.size):
         club = club_preset(table.clubs[index])
@@ -317,7 +319,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
                             handedness=table.handedness[index])
-        scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
+        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
