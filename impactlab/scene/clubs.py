@@ -320,7 +320,8 @@ _IRON_STEP = {"3_iron": -2, "4_iron": -1, "5_iron": 0, "6_iron": 1, "7_iron": 2,
 _IRON_ESTIMATE = ("Estimate, not a measurement: a cavity-back head. Moments about the toe, up and target axes: the "
                   "6-iron's (800, 2600, 3200 g cm^2: Golf Digest's manufacturer figures of 2400-3000 about the "
                   "vertical axis; a perimeter-weighted plate for the others) shifted by (20, 50, 50) g cm^2 a club, "
-                  "the wedges' taller heads above; CG 6 mm (wedges 5 mm) behind the face, 2 mm towards the heel. Face: "
+                  "the gap, sand and lob wedge the same steps from the pitching wedge's (900, 2800, 3500); CG 6 mm "
+                  "(wedges 5 mm) behind the face, 2 mm towards the heel. Face: "
                   "flat steel (17-4PH), rigid-faced (no spring-like gain). ")
 _WOOD_ESTIMATE = ("Estimate, not a measurement: the 3-wood preset's head (see fairway_wood) with {mass} g; moments "
                   "scaled by the mass; CG 25 mm behind the face and 5 mm low; bulge 300 mm, roll 280 mm; face "
@@ -356,9 +357,13 @@ def _catalogue() -> dict[str, ClubHead]:
             restitution_gain=0.083)
     for key, step in _IRON_STEP.items():
         mass = 254.0 + 7.0 * step
-        shift = step - 1  # clubs from the 6-iron
-        moments = (800.0 + 20.0 * shift, 2600.0 + 50.0 * shift, 3200.0 + 50.0 * shift)
         wedge = key.endswith("wedge")
+        if wedge:  # from the pitching wedge's taller head, the same step a club
+            shift = min(step, 7) - 5
+            moments = (900.0 + 20.0 * shift, 2800.0 + 50.0 * shift, 3500.0 + 50.0 * shift)
+        else:  # from the 6-iron
+            shift = step - 1
+            moments = (800.0 + 20.0 * shift, 2600.0 + 50.0 * shift, 3200.0 + 50.0 * shift)
         name = key.replace("_", " ").replace(" iron", "-iron")
         clubs[key] = ClubHead(
             mass=mass * 1e-3, inertia=tuple(m * G_CM2 for m in moments),
