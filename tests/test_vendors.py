@@ -219,3 +219,34 @@ def test_a_large_session_is_summarised_not_listed():
     text = labels_text([f"shot {i}" for i in range(200_000)])
     assert text.startswith("shot 0, shot 1, shot 2, shot 3, ...") and text.endswith("shot 199999")
     assert len(text) < 100
+
+
+def test_a_row_without_face_or_path_is_compared_on_what_does_not_need_them():
+    text = ("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Face Angle [deg],Club Path [deg],"
+            "Ball Speed [mph],Launch Direction [deg],Spin Axis [deg],Handedness\n"
+            "7i,85,-4,24,1.0,-2.0,120,0.5,3,right\n"
+            "7i,85,-4,24,,,120,0.5,3,L\n")
+    table = read_session_text(text, "f.csv").shot_table()
+    assert table.handedness == ("right", "left")
+    assert table.measured["ball_speed"][1] == pytest.approx(120 * MPH)  # kept
+    # a square face would be a guess: no launch direction or spin axis compared on the row without face and path
+    assert np.isnan(table.measured["horizontal_launch_angle"][1]) and np.isnan(table.measured["spin_axis"][1])
+    assert table.measured["horizontal_launch_angle"][0] == pytest.approx(0.5 * DEG)
+    assert table.delivery["face_angle"][0] == pytest.approx(1.0 * DEG)
+    assert table.delivery["path"][0] == pytest.approx(-2.0 * DEG)
+
+
+def test_a_value_just_inside_the_garmin_stop_is_not_flagged_clamped():
+    text = (DATA / "garmin_r10.csv").read_text().replace(",Measured,30.0,", ",Measured,29.5,")
+    session = read_session_text(text, "g.csv")
+    assert ("spin_axis", "clamped") not in session.flags
+
+
+def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused():
+    # ';' splits every line alike; ',' only splits the decimal comma of one cell: the file is ';'-separated, and
+    # its '1,5' and '1.6' are two notations, refused rather than read as 1.5 and 1.6 or 15 and 1.6
+    with pytest.raises(StudyError, match=r"both decimal marks \('1.6' and '1,5'\)"):
+        read_session_text('Club;Ball Speed [mph]\nDriver;"1,5"\nDriver;1.6\n', "m.csv")
+    # a comma-separated file with a quoted decimal comma keeps its comma separator
+    session = read_session_text('Club,Ball Speed [mph]\nDriver,"150,5"\nDriver,"151,0"\n', "c.csv")
+    assert session.values["ball_speed"].tolist() == pytest.approx([150.5 * MPH, 151.0 * MPH])

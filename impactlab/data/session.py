@@ -400,15 +400,18 @@ def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str
         line_offset = 1
     sample = [line for line in text[:20000].splitlines() if line.strip()][:6]
     if delimiter is None:
-        counts = {}
+        # the separator that splits the header (the widest of the first lines: a title line may come first)
+        # into the most columns, then the one whose other lines agree with that width
+        scores = {}
         for candidate in (",", ";", "\t"):
             widths = [len(next(csv.reader([line], delimiter=candidate))) for line in sample] or [1]
-            counts[candidate] = max(widths)
-        delimiter = max(counts, key=lambda c: (counts[c], c == ","))
-        if counts[delimiter] <= 1:
+            widest = max(widths)
+            scores[candidate] = (widest, sum(width == widest for width in widths), candidate == ",")
+        delimiter = max(scores, key=scores.get)
+        if scores[delimiter][0] <= 1:
             delimiter = ","
         if delimiter != ",":
-            notes.append(f"separator {delimiter!r} (the header splits into {counts[delimiter]} columns with it)")
+            notes.append(f"separator {delimiter!r} (the header splits into {scores[delimiter][0]} columns with it)")
     reader = csv.reader(io.StringIO(text, newline=""), delimiter=delimiter, skipinitialspace=True)
     rows, lines = [], []
     try:
