@@ -113,6 +113,10 @@ class VendorMap:
     columns: dict = attrs.field(eq=False)
     implied_units: dict = attrs.field(factory=dict, eq=False)
     loft_at: str = "contact"
+    #: the point of the head whose motion the club data give: geometric_centre (TrackMan: ~ the centre of mass),
+    #: face_centre (optical monitors) or unknown
+    club_reference_point: str = attrs.field(default="unknown", validator=attrs.validators.in_(
+        ("geometric_centre", "face_centre", "unknown")))
     club_reference: str = ""
     signs: str = ""
     missing: tuple[str, ...] = ("",)
@@ -139,6 +143,7 @@ def _norm(text: str) -> str:
 
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
+            "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix"}
     unknown = set(document) - keys
     if unknown:
@@ -162,8 +167,9 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
         implied_units={_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
-        loft_at=document.get("loft_at", "contact"), club_reference=" ".join(str(document.get("club_reference",
-                                                                                              "")).split()),
+        loft_at=document.get("loft_at", "contact"),
+        club_reference_point=document.get("club_reference_point", "unknown"),
+        club_reference=" ".join(str(document.get("club_reference", "")).split()),
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
         summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)))
@@ -316,7 +322,12 @@ class Session:
             sigma[key] = np.where(np.isfinite(given), given, DEFAULT_SIGMA[key])
         labels = tuple(self.text["label"][i] or f"line {self.lines[i]}" for i in index)
         keys = {name: club_key(name) for name in {self.text["club"][i] for i in index}}
-        return ShotTable(name=Path(self.file).stem, source=f"read from {self.file} ({self.vendor.name})",
+        source = f"read from {self.file} ({self.vendor.name})"
+        if self.vendor.club_reference_point != "unknown":
+            source += f"; club data at the head's {self.vendor.club_reference_point.replace('_', ' ')}"
+        elif self.vendor is not GENERIC:
+            source += "; the point of the head its club data describe is not stated"
+        return ShotTable(name=Path(self.file).stem, source=source,
                          labels=labels, clubs=tuple(keys[self.text["club"][i]] for i in index),
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
@@ -841,7 +852,8 @@ def describe(session: Session, include_flagged: bool = False) -> str:
     out.append("  which predictions need what:")
     for what, need in NEEDS.items():
         out.append(f"    {what}: {need}")
-    out.append(f"  club data reference point: {session.vendor.club_reference}")
+    out.append(f"  club data reference point ({session.vendor.club_reference_point.replace('_', ' ')}): "
+               f"{session.vendor.club_reference}")
     if session.vendor.signs:
         out.append(f"  signs: {session.vendor.signs}")
     return "\n".join(out)
