@@ -250,3 +250,28 @@ def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused(
     # a comma-separated file with a quoted decimal comma keeps its comma separator
     session = read_session_text('Club,Ball Speed [mph]\nDriver,"150,5"\nDriver,"151,0"\n', "c.csv")
     assert session.values["ball_speed"].tolist() == pytest.approx([150.5 * MPH, 151.0 * MPH])
+
+
+def test_every_shipped_layout_loads_and_a_broken_one_is_named():
+    from impactlab.data.session import _vendor_from_document, vendor_maps
+
+    maps = vendor_maps()
+    assert {"trackman_tps", "garmin_golf", "foresight_fsx", "rapsodo_mlm2pro", "flightscope_cloud",
+            "flightscope_fsgolf"} <= set(maps)
+    assert maps["trackman_tps"].club_reference_point == "geometric_centre"
+    assert maps["foresight_fsx"].club_reference_point == "face_centre"
+    with pytest.raises(StudyError, match=r"x.yaml: columns.Ball: 'ball_sped' is not a session field"):
+        _vendor_from_document({"id": "x", "name": "x", "source": "", "recognise": ["Ball"], "units": "header",
+                               "columns": {"Ball": "ball_sped"}}, "x.yaml")
+
+
+def test_a_yaml_shot_table_takes_launch_monitor_club_names():
+    from impactlab.data.shots import read_yaml
+
+    text = ("name: t\nrows:\n  - {club: 8 Iron, club_speed: 80 mph, attack_angle: -4 deg, dynamic_loft: 30 deg, "
+            "ball_speed: 105 mph}\n  - {club: Putter, club_speed: 10 mph, attack_angle: 0 deg, dynamic_loft: 4 deg, "
+            "ball_speed: 12 mph}\n")
+    with pytest.raises(StudyError, match=r"t.yaml:4: club: expected a club of the catalogue .* got 'Putter'"):
+        read_yaml(text, "t.yaml")
+    table = read_yaml(text.split("  - {club: Putter")[0], "t.yaml")
+    assert table.clubs == ("8_iron",)
