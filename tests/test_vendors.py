@@ -275,3 +275,14 @@ def test_a_yaml_shot_table_takes_launch_monitor_club_names():
         read_yaml(text, "t.yaml")
     table = read_yaml(text.split("  - {club: Putter")[0], "t.yaml")
     assert table.clubs == ("8_iron",)
+
+
+def test_a_trackman_row_marked_not_for_stats_is_skipped_with_that_reason():
+    text = (DATA / "trackman_tps.csv").read_bytes().decode("utf-8-sig")
+    last = text.rstrip("\r\n").rsplit("\r\n", 1)[1]
+    text = text.replace(last, last.replace('"TRUE"', '"FALSE"'))
+    session = read_session_text(text, "t.csv")
+    keep, skipped = session.usable()
+    assert keep.tolist() == [True, False]
+    assert skipped == [(5, "marked not to use in the file (Use In Stat = FALSE)")]
+    assert session.shot_table().labels == ("5/6/2026 6:58:02 PM",)

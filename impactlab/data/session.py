@@ -125,6 +125,8 @@ class VendorMap:
     clamped: dict = attrs.field(factory=dict, eq=False)
     summary_rows: dict | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
+    #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
+    excluded: dict | None = attrs.field(default=None, eq=False)
 
     def rule(self, header: str) -> ColumnRule | None:
         """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
@@ -144,7 +146,8 @@ def _norm(text: str) -> str:
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
             "club_reference_point",
-            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix"}
+            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
+            "excluded"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -172,7 +175,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         club_reference=" ".join(str(document.get("club_reference", "")).split()),
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
-        summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)))
+        summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)),
+        excluded=document.get("excluded"))
 
 
 @functools.cache
@@ -264,6 +268,10 @@ class Session:
                 reasons[index].append("no club named")
             elif key is None:
                 reasons[index].append(f"club {name!r} is not in the club catalogue")
+        for index in np.flatnonzero(self.flags.get(("row", "excluded"), np.zeros(self.size, bool))):
+            reasons[index].append("marked not to use in the file" + (
+                f" ({self.vendor.excluded['column']} = {', '.join(map(str, self.vendor.excluded['values']))})"
+                if self.vendor.excluded else ""))
         for field in NEEDED_DELIVERY:
             for index in np.flatnonzero(~np.isfinite(self.values[field])):
                 reasons[index].append(f"no {DESCRIPTIONS[field]}")
@@ -624,6 +632,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         raise StudyError(f"{file}: {len(problems)} bad cell(s) or row(s): {shown}")
 
     _flag_estimated(layout, header, columns, values, flags, used, unused)
+    _flag_excluded(layout, header, columns, flags, used, unused)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
         _read_flags(header, columns, flags, used, unused, file, shot_lines)
     for field, limit in layout.clamped.items():
@@ -722,6 +731,23 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused) -> Non
                 flags[(field, "estimated")] = present
 
 
+def _flag_excluded(layout, header, columns, flags, used, unused) -> None:
+    rule = layout.excluded
+    if not rule:
+        return
+    names = [_norm(split_header(c)[0]) for c in header]
+    if _norm(rule["column"]) not in names:
+        return
+    column = names.index(_norm(rule["column"]))
+    if header[column] in unused:
+        unused.remove(header[column])
+        used.append((header[column], "rows marked not to use: " + " or ".join(map(str, rule["values"])), "", 1.0))
+    marks = {_norm(v) for v in rule["values"]}
+    excluded = np.array([_norm(cell) in marks for cell in columns[column]])
+    if excluded.any():
+        flags[("row", "excluded")] = excluded
+
+
 def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
     """The ``flags`` column of impactlab's normalised table (``spin_rate:estimated;spin_axis:clamped``)."""
     column = [_norm(cell) for cell in header].index("flags")
@@ -730,7 +756,8 @@ def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
     for index, cell in enumerate(columns[column]):
         for item in filter(None, (part.strip() for part in cell.split(";"))):
             field, _, kind = item.partition(":")
-            if field not in FIELDS or kind not in ("estimated", "clamped", "no data"):
+            if (field, kind) != ("row", "excluded") and (field not in FIELDS
+                                                          or kind not in ("estimated", "clamped", "no data")):
                 raise StudyError(f"{file}:{lines[index]}: flags: expected field:estimated, field:clamped or "
                                  f"field:no data with a field of the vocabulary, got {item!r}")
             flags.setdefault((field, kind), np.zeros(len(lines), bool))[index] = True
@@ -824,7 +851,7 @@ def describe(session: Session, include_flagged: bool = False) -> str:
     if session.flags:
         out.append("  values flagged:")
         for (field, kind), rows in sorted(session.flags.items()):
-            what = {"no data": "no-data sentinel, read as missing",
+            what = {"excluded": "marked not to use in the file", "no data": "no-data sentinel, read as missing",
                     "estimated": "estimated by the monitor, not measured",
                     "clamped": "at the monitor's limit (clamped)"}[kind]
             out.append(f"    {field}: {int(rows.sum())} row(s) {what}")
