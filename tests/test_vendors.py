@@ -286,3 +286,14 @@ def test_a_trackman_row_marked_not_for_stats_is_skipped_with_that_reason():
     assert keep.tolist() == [True, False]
     assert skipped == [(5, "marked not to use in the file (Use In Stat = FALSE)")]
     assert session.shot_table().labels == ("5/6/2026 6:58:02 PM",)
+
+
+def test_the_second_foresight_file_a_shot_starting_right_with_side_spin_right():
+    # christianrehn/CombineTest data/LastShot.CSV: Azimuth +0.591 deg, Side Spin +95 rpm, Offline +2.461 m
+    session = read_session(DATA / "foresight_lastshot_5.csv")
+    v = session.values
+    assert v["horizontal_launch_angle"][0] == pytest.approx(0.591012 * DEG)
+    assert v["side_spin"][0] == pytest.approx(95 * RPM) and v["offline_distance"][0] == pytest.approx(2.461071)
+    assert v["spin_axis"][0] == pytest.approx(math.atan(95 / 6804))  # positive: curving right
+    assert v["carry_distance"][0] == pytest.approx(132.602173) and v["club_speed"][0] == pytest.approx(36.710655)
+    assert v["attack_angle"][0] == pytest.approx(-5.920732 * DEG) and v["path"][0] == pytest.approx(1.910474 * DEG)
