@@ -297,3 +297,27 @@ def test_the_second_foresight_file_a_shot_starting_right_with_side_spin_right():
     assert v["spin_axis"][0] == pytest.approx(math.atan(95 / 6804))  # positive: curving right
     assert v["carry_distance"][0] == pytest.approx(132.602173) and v["club_speed"][0] == pytest.approx(36.710655)
     assert v["attack_angle"][0] == pytest.approx(-5.920732 * DEG) and v["path"][0] == pytest.approx(1.910474 * DEG)
+
+
+def test_a_garmin_version_that_writes_the_spin_axis_the_other_way_is_turned_and_said():
+    # DrivingRange-2026-05-23 (jgamblin/golf, 32 columns): Sidespin +401 rpm and Spin Axis +10.93 deg on a ball
+    # that starts at 5.15 deg and lands at 3.64 deg (curving left): this version counts its axis positive left
+    session = read_session(DATA / "garmin_r10_b.csv")
+    v = session.values
+    assert v["side_spin"][1] == pytest.approx(-401.0394449986973 * RPM)
+    assert v["spin_axis"][1] == pytest.approx(-10.930000305175781 * DEG)  # curving left: negative
+    assert v["spin_axis"][0] == pytest.approx(15.989999771118164 * DEG)  # Sidespin -1245: curving right
+    assert any("counts the axis positive curving left" in note for note in session.notes)
+    assert session.flags[("spin_axis", "clamped")].tolist() == [False, False, True]  # -30.0 in the file
+    # the 42-column version (positive curving right, opposite to its Sidespin) is read as written
+    a = read_session(DATA / "garmin_r10.csv")
+    assert a.values["spin_axis"][0] == pytest.approx(-9.213339805603027 * DEG)
+    assert not any("curving left" in note for note in a.notes)
+
+
+def test_spin_columns_that_disagree_row_by_row_are_flagged_not_trusted():
+    text = ("Club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm],Spin Axis [deg],Side Spin [rpm]\n"
+            "7i,120,16,6000,5,500\n7i,120,16,6000,5,-500\n")
+    session = read_session_text(text, "s.csv")
+    assert session.flags[("spin_axis", "inconsistent")].tolist() == [False, True]
+    assert session.flagged("spin_axis").tolist() == [False, True]

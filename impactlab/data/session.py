@@ -125,6 +125,9 @@ class VendorMap:
     clamped: dict = attrs.field(factory=dict, eq=False)
     summary_rows: dict | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
+    #: True: the file's spin-axis sign is checked against its side spin (whose sign the layout states) and turned
+    #: when every row disagrees (Garmin Golf app versions write the axis with either sign)
+    spin_axis_follows_side_spin: bool = False
     #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
     excluded: dict | None = attrs.field(default=None, eq=False)
 
@@ -147,7 +150,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
-            "excluded"}
+            "excluded", "spin_axis_follows_side_spin"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -176,7 +179,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
         summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)),
-        excluded=document.get("excluded"))
+        excluded=document.get("excluded"),
+        spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 
 
 @functools.cache
@@ -247,7 +251,7 @@ class Session:
         """Rows whose ``field`` is flagged (estimated or clamped; no-data values are already missing)."""
         mask = np.zeros(self.size, bool)
         for (name, kind), rows in self.flags.items():
-            if name == field and kind in ("estimated", "clamped"):
+            if name == field and kind in ("estimated", "clamped", "inconsistent"):
                 mask |= rows
         return mask
 
@@ -640,6 +644,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if clamped.any():
             flags[(field, "clamped")] = clamped
     _derive(values, used, notes, flags)
+    _check_spin_signs(layout, values, used, notes, flags)
     handedness = text_values["handedness"]
     bad_hand = sorted({h for h in handedness if h and h.lower() not in ("right", "left", "r", "l", "rh", "lh")})
     if bad_hand:
@@ -757,7 +762,8 @@ def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
         for item in filter(None, (part.strip() for part in cell.split(";"))):
             field, _, kind = item.partition(":")
             if (field, kind) != ("row", "excluded") and (field not in FIELDS
-                                                          or kind not in ("estimated", "clamped", "no data")):
+                                                          or kind not in ("estimated", "clamped", "no data",
+                                                                          "inconsistent")):
                 raise StudyError(f"{file}:{lines[index]}: flags: expected field:estimated, field:clamped or "
                                  f"field:no data with a field of the vocabulary, got {item!r}")
             flags.setdefault((field, kind), np.zeros(len(lines), bool))[index] = True
@@ -786,6 +792,33 @@ def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
         if off.any():
             notes.append(f"face to path differs from face angle - club path by more than 0.05 deg in {int(off.sum())}"
                          f" row(s) (kept as measured; face angle and path are used)")
+
+
+def _check_spin_signs(layout, values, used, notes, flags) -> None:
+    """Side spin and spin axis describe one tilt: in the vocabulary both are positive curving right. Where a file
+    gives both, rows whose signs disagree (both clearly non-zero: 50 rpm, 0.5 deg) are a convention the layout does
+    not describe: a layout whose axis follows its side spin has its axis turned when every such row disagrees;
+    otherwise the disagreeing rows' spin axis and side spin are flagged ``inconsistent`` (left out like estimated
+    values) and the report says how many."""
+    given = {field for _, field, _, _ in used}
+    if not {"spin_axis", "side_spin"} <= given:
+        return
+    side, axis = values["side_spin"], values["spin_axis"]
+    with np.errstate(invalid="ignore"):
+        clear = (np.abs(side) > 50 * 2 * math.pi / 60) & (np.abs(axis) > math.radians(0.5))
+        disagree = clear & (np.sign(side) != np.sign(axis))
+    if not disagree.any():
+        return
+    if layout.spin_axis_follows_side_spin and disagree.sum() == clear.sum():
+        values["spin_axis"] = -axis
+        notes.append(f"spin axis: its sign disagrees with the side spin's in all {int(clear.sum())} row(s) with "
+                     f"clear spin, so this export counts the axis positive curving left; turned to the vocabulary's "
+                     f"(positive curving right, agreeing with the side spin)")
+        return
+    for field in ("spin_axis", "side_spin"):
+        flags[(field, "inconsistent")] = disagree
+    notes.append(f"side spin and spin axis disagree in sign in {int(disagree.sum())} of {int(clear.sum())} row(s) "
+                 f"with clear spin: those rows' spin axis and side spin are flagged inconsistent and left out")
 
 
 def _inherit(flags: dict, field: str, sources) -> None:
@@ -852,6 +885,7 @@ def describe(session: Session, include_flagged: bool = False) -> str:
         out.append("  values flagged:")
         for (field, kind), rows in sorted(session.flags.items()):
             what = {"excluded": "marked not to use in the file", "no data": "no-data sentinel, read as missing",
+                    "inconsistent": "whose sign disagrees with the other spin column's",
                     "estimated": "estimated by the monitor, not measured",
                     "clamped": "at the monitor's limit (clamped)"}[kind]
             out.append(f"    {field}: {int(rows.sum())} row(s) {what}")
