@@ -905,7 +905,9 @@ def describe(session: Session, include_flagged: bool = False) -> str:
         out.append(f"    ... and {len(reasons) - 8} other reasons")
     ball = np.isfinite(session.values["ball_speed"]) & np.isfinite(session.values["vertical_launch_angle"]) & \
         np.isfinite(session.values["spin_rate"])
-    out.append(f"  ball data (ball speed, launch angle, spin): {int(ball.sum())} row(s)")
+    measured_spin = ball & ~session.flagged("spin_rate")
+    out.append(f"  ball data (ball speed, launch angle, spin): {int(ball.sum())} row(s), {int(measured_spin.sum())} "
+               f"with a spin that is not flagged")
     square = keep & ~(np.isfinite(session.values["face_angle"]) & np.isfinite(session.values["path"]))
     if square.any():
         out.append(f"  {int(square.sum())} usable row(s) without face angle or club path: compared on ball speed, "
