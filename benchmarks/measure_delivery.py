@@ -4,7 +4,7 @@ docs/validation.md quote.
 Run:  python benchmarks/measure_delivery.py     (about 10 s)
 
 Every case: TrackMan's PGA Tour driver average (115 mph, attack -0.9 deg, dynamic loft 12.8 deg, square; measured,
-trackman_tour.yaml), the ``driver`` preset (measured head, Proceedings 49 (2020) 47), the ``tour_urethane`` ball
+trackman_tour.yaml), the ``driver`` preset (measured head, Proceedings 49 (2020) 47), the ``urethane_tour`` ball
 (mu 0.40 from the sled, e 0.787 + the driver's face gain 0.083, fitted), models rigid_coulomb and maw. Prints:
 1. centred driver spin: as today, with the head rotation TrackMan's "1 deg" implies, with the 3-D spin loft of
    14.7 deg given instead of the dynamic loft, and with the other reading of the centre of mass's 2.9 mm;
@@ -24,7 +24,7 @@ PGA = {"club_speed": "115 mph", "attack_angle": "-0.9 deg", "dynamic_loft": "12.
 
 
 def run(delivery=None, club=None, strike=None, sweep=None):
-    document = {"ball": {"preset": "tour_urethane"}, "club": club or {"preset": "driver"},
+    document = {"ball": {"preset": "urethane_tour"}, "club": club or {"preset": "driver"},
                 "delivery": dict(PGA, **(delivery or {})), "models": MODELS, "outputs": OUTPUTS}
     if strike:
         document["strike"] = strike

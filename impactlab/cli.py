@@ -397,16 +397,21 @@ def _cmd_validate(args) -> int:
     from impactlab.data.validation import DATASETS, errors, get_dataset
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
-    if args.plot:  # refused before the models run, not after
-        from impactlab.io.safe_output import check_output
+    from impactlab.io.safe_output import check_output
 
+    if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png")
-    over = []
+    if args.csv:
+        check_output(args.csv, what="--csv file", suffix=".csv")
+    over, rows = [], []
+    from impactlab.scene.clubs import user_clubs
+
     for name in names:
-        table = shot_table(name)
-        if table is not None:
-            over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot)
-            continue
+        with user_clubs(args.club):
+            table = shot_table(name, args.include_flagged)
+            if table is not None:
+                over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
+                continue
         import numpy as np
 
         data = get_dataset(name)
@@ -436,6 +441,16 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
+    if args.csv:
+        from impactlab.data.shot_report import write_prediction_rows
+
+        if not rows:
+            from impactlab.errors import StudyError
+
+            raise StudyError("--csv: no shot table was validated (the per-shot table holds shot tables' rows: "
+                             "give --dataset FILE.csv, a shot-table .yaml or trackman_tour)")
+        write_prediction_rows(rows, args.csv)
+        print(f"wrote {args.csv} ({len(rows)} shot-model row(s), measured beside predicted)", file=sys.stderr)
     if over:
         print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
         return 1
@@ -451,9 +466,12 @@ def _cmd_fit(args) -> int:
 
     if args.json:  # refused before minutes of fitting, not after
         check_output(args.json, what="--json file", suffix=".json")
-    table = shot_table(args.dataset)
-    if table is not None:
-        return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
+    from impactlab.scene.clubs import user_clubs
+
+    with user_clubs(args.club):
+        table = shot_table(args.dataset, args.include_flagged)
+        if table is not None:
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
     data = get_dataset(args.dataset)
     known = [entry.id for entry in data.load_study().models]
     models = args.model or known
@@ -475,6 +493,26 @@ def _cmd_fit(args) -> int:
         write_atomically(args.json, json.dumps(results, indent=1).encode())
         print(f"wrote {args.json}", file=sys.stderr)
     return 0
+
+
+def _cmd_shots(args) -> int:
+    from impactlab.data.session import describe, read_session, write_normalised
+    from impactlab.io.safe_output import check_output
+
+    if args.csv:
+        check_output(args.csv, what="--csv file", suffix=".csv")
+    from impactlab.scene.clubs import user_clubs
+
+    session = read_session(args.file, args.vendor)
+    with user_clubs(args.club):
+        print(describe(session, args.include_flagged))
+    if args.csv:
+        write_normalised(session, args.csv)
+        print(f"wrote {args.csv} ({session.size} shot(s), the vocabulary's names and units)", file=sys.stderr)
+    return 0
+
+
+CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -562,7 +600,22 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--benchmark", action="append",
                           help="only this Chung & Ooi / Kharaz benchmark, or 'all' (repeatable; default: all, "
                                "unless --dataset is given)")
+    validate.add_argument("--csv", help="shot tables: write every shot's measured launch beside each model's "
+                                        "prediction to this CSV file")
+    validate.add_argument("--include-flagged", action="store_true",
+                          help="shot tables: compare estimated and clamped values too (left out by default)")
+    validate.add_argument("--club", action="append", help=CLUB_HELP)
     validate.set_defaults(handler=_cmd_validate)
+
+    shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
+    shots.add_argument("file", help="a session file: TrackMan, Garmin Golf, Foresight FSX, Rapsodo, FlightScope "
+                                    "export, or an impactlab shot-table CSV")
+    shots.add_argument("--csv", help="write the normalised table (the vocabulary's names, units in the header)")
+    shots.add_argument("--vendor", help="read with this vendor layout (default: recognised from the header)")
+    shots.add_argument("--include-flagged", action="store_true",
+                       help="count estimated and clamped values as usable (left out of fits by default)")
+    shots.add_argument("--club", action="append", help=CLUB_HELP)
+    shots.set_defaults(handler=_cmd_shots)
 
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
     fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them), or a shot table "
@@ -573,6 +626,9 @@ def build_parser() -> argparse.ArgumentParser:
     fitting.add_argument("--parameter", action="append",
                          help="parameter to fit (repeatable; default: friction, and beta for restitution)")
     fitting.add_argument("--json", help="also write the fits to this JSON file")
+    fitting.add_argument("--include-flagged", action="store_true",
+                         help="shot tables: fit estimated and clamped values too (left out by default)")
+    fitting.add_argument("--club", action="append", help=CLUB_HELP)
     fitting.set_defaults(handler=_cmd_fit)
 
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")

@@ -61,7 +61,7 @@ def test_a_study_without_contact_takes_the_balls_data_and_the_faces_gain():
     # a driver and a 6-iron on the calibrated ball: the ball's friction and restitution law, plus the wood face's
     # gain on the driver only
     base = """
-ball: {preset: tour_urethane}
+ball: {preset: urethane_tour}
 club: {preset: PRESET}
 delivery: {club_speed: 45 m/s, attack_angle: 0 deg, dynamic_loft: 15 deg}
 models: [rigid_coulomb]
@@ -69,7 +69,7 @@ outputs: [normal_velocity, ball_speed]
 """
     from impactlab.scene.materials import ball_preset
     from impactlab.run.runner import case_inputs
-    ball = ball_preset("tour_urethane")
+    ball = ball_preset("urethane_tour")
     assert ball.friction == 0.40  # the sled measurement (Henrikson et al. 2020)
     for preset, gain in (("driver", 0.083), ("6_iron", 0.0)):
         study = impactlab.load_study(base.replace("PRESET", preset))
@@ -152,3 +152,19 @@ def test_hysteretic_law_per_case_equals_the_grouped_solution():
                 else float(alone["normal_impulse"][0])
             assert abs(float(together[name][case]) - float(alone[name][0])) < 2e-5 * scale, (name, case)
     assert np.all(together["energy_loss"].values > 0)
+
+
+def test_one_name_per_ball_the_former_name_is_an_alias_that_says_so():
+    from impactlab.scene.materials import BALL_PRESETS, PresetAliasNote, ball_preset
+
+    assert "tour_urethane" not in BALL_PRESETS  # one preset per ball
+    with pytest.warns(PresetAliasNote, match="'tour_urethane' is a former name of 'urethane_tour'"):
+        ball = ball_preset("tour_urethane")
+    assert ball is BALL_PRESETS["urethane_tour"]
+    # the kept ball carries the calibrated contact data: the sled's friction (Henrikson et al. 2020, 0.40)
+    assert ball.friction == 0.40 and ball.restitution is not None
+    with pytest.warns(PresetAliasNote):
+        study = impactlab.load_study("ball: {preset: tour_urethane}\nclub: {preset: driver}\n"
+                                     "delivery: {club_speed: 45 m/s, attack_angle: 0 deg, dynamic_loft: 15 deg}\n"
+                                     "models: [rigid_coulomb]\n")
+    assert study is not None

@@ -308,9 +308,9 @@ def test_ball_and_club_presets_sweep_as_labelled_dimensions(monkeypatch):
             "delivery": {"club_speed": "100 mph", "attack_angle": "-2 deg", "dynamic_loft": "20 deg",
                          "loft_at": "contact"},
             "models": ["rigid_coulomb"], "outputs": ["spin_rate", "ball_speed", "spin_axis"]}
-    balls, clubs = ["tour_urethane", "two_piece_ionomer"], ["driver", "7_iron"]
+    balls, clubs = ["urethane_tour", "two_piece_ionomer"], ["driver", "7_iron"]
     swept = impactlab.run_study(impactlab.load_study(
-        dict(base, ball={"preset": "tour_urethane"}, sweep={"ball.preset": balls, "club.preset": clubs})))
+        dict(base, ball={"preset": "urethane_tour"}, sweep={"ball.preset": balls, "club.preset": clubs})))
     assert list(swept.ball.values) == balls and list(swept.club.values) == clubs
     assert swept.spin_rate.dims == ("model", "ball", "club")
     for ball in balls:
@@ -324,7 +324,7 @@ def test_ball_and_club_presets_sweep_as_labelled_dimensions(monkeypatch):
     speeds = swept.ball_speed.sel(club="driver").values.ravel()
     assert speeds[0] > speeds[1] + 0.5
     with pytest.raises(FieldError) as error:
-        impactlab.load_study(dict(base, ball={"preset": "tour_urethane"}, sweep={"ball.preset": ["tour_urethane",
+        impactlab.load_study(dict(base, ball={"preset": "urethane_tour"}, sweep={"ball.preset": ["urethane_tour",
                                                                                                "rubber"]}))
     assert error.value.path.startswith("sweep.ball.preset[1]")
 
@@ -349,7 +349,7 @@ def test_shot_tables_take_spin_loft_and_face_to_path_columns():
 def test_head_rotation_sweeps_and_needs_a_club_in_a_sweep_too():
     import impactlab
 
-    base = {"ball": {"preset": "tour_urethane"}, "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
+    base = {"ball": {"preset": "urethane_tour"}, "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
             "sweep": {"delivery.head_rotation.toe": ["0 deg/s", "1200 deg/s"]}, "models": ["rigid_coulomb"],
             "outputs": ["spin_rate"]}
     with pytest.raises(FieldError) as error:
@@ -383,7 +383,7 @@ def test_a_turning_rate_without_its_unit_is_refused_not_guessed():
     assert error.value.path == "delivery.head_rotation.up" and "deg/s" in str(error.value)
     assert build_delivery({"club_speed": "115 mph", "head_rotation": {"up": 0}}).head_rotation == (0.0, 0.0, 0.0)
     with pytest.raises(FieldError) as error:
-        impactlab.load_study({"ball": {"preset": "tour_urethane"}, "club": {"preset": "driver"},
+        impactlab.load_study({"ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
                               "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
                               "sweep": {"delivery.head_rotation.up": [0, 1000]}, "models": ["rigid_coulomb"]})
     assert error.value.path == "sweep.delivery.head_rotation.up[1]"

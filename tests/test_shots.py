@@ -48,17 +48,20 @@ def test_every_bad_cell_is_reported_with_line_and_column_and_nothing_is_dropped(
     assert "shots.csv:4: expected 12 columns, got 3" in message
 
 
-def test_a_row_without_a_delivery_or_a_measurement_is_refused_not_skipped():
+def test_a_row_without_a_delivery_or_a_measurement_is_skipped_with_its_reason_and_the_rest_used():
     text = CSV.replace("A,driver,115,-0.9,12.8,0,0,171,10.4,,2545,", "A,driver,115,-0.9,,0,0,,,,,")
-    with pytest.raises(StudyError) as caught:
-        read_csv(text, "shots.csv")
-    assert "shots.csv:2: dynamic_loft" in str(caught.value)
-    assert "shots.csv:2: expected at least one measured quantity" in str(caught.value)
+    table = read_csv(text, "shots.csv")
+    assert table.labels == ("B",)  # row A skipped, row B used
+    (line, reason), = table.skipped
+    assert line == 2 and "no dynamic loft" in reason and "no measured launch quantity" in reason
+    only_bad = CSV.splitlines()[0] + "\nA,driver,115,-0.9,,0,0,,,,,\n"
+    with pytest.raises(StudyError, match=r"no row the impact models can use .*shots.csv:2: no dynamic loft"):
+        read_csv(only_bad, "shots.csv")
 
 
 def test_an_unknown_column_is_named_in_a_warning():
-    with pytest.warns(UserWarning, match="Carry"):
-        read_csv(CSV.replace("Spin Axis [deg]", "Carry [yd]"), "shots.csv")
+    with pytest.warns(UserWarning, match="Wind Speed"):
+        read_csv(CSV.replace("Spin Axis [deg]", "Wind Speed [mph]"), "shots.csv")
 
 
 def test_yaml_tables_check_their_keys_with_lines():
@@ -96,14 +99,14 @@ def test_a_launch_monitors_loft_is_the_loft_of_the_face_where_the_ball_meets_it(
 def test_the_face_gain_raises_the_balls_restitution_law_on_woods_only():
     table = shot_table("trackman_tour")
     inputs = table_inputs(table)
-    ball_e = 0.787  # the tour_urethane preset's constant law
+    ball_e = 0.787  # the urethane_tour preset's constant law
     wood = np.array([club == "driver" for club in table.clubs])
     assert np.allclose(inputs["restitution"][wood], ball_e + 0.083, atol=1e-12)
     assert np.allclose(inputs["restitution"][~wood], ball_e, atol=1e-12)
     changed = apply(inputs, ["face_restitution_gain"], [0.02])
     assert np.allclose(changed["restitution"], inputs["restitution"])  # no ball given: e stays as the inputs had it
     from impactlab.scene.materials import ball_preset
-    changed = apply(inputs, ["face_restitution_gain"], [0.02], ball_preset("tour_urethane"))
+    changed = apply(inputs, ["face_restitution_gain"], [0.02], ball_preset("urethane_tour"))
     assert np.allclose(changed["restitution"], np.where(wood, ball_e + 0.02, ball_e), atol=1e-12)
 
 
@@ -134,7 +137,7 @@ def synthetic_table(model, truth):
     table = read_yaml(text, "synthetic.yaml")
     from impactlab.scene.materials import ball_preset
     predicted = predict(model, apply(table_inputs(table), list(truth), list(truth.values()),
-                                     ball_preset("tour_urethane")))
+                                     ball_preset("urethane_tour")))
     for key in ("ball_speed", "vertical_launch_angle", "spin_rate"):
         table.measured[key][:] = predicted[key]
     return table
@@ -221,7 +224,7 @@ def test_the_validation_figure_draws_the_measured_values_and_every_model():
 
 def test_a_number_without_a_unit_is_refused_not_guessed():
     # 115 could be mph or m/s: a launch-monitor export without units is refused, naming the cell
-    with pytest.raises(StudyError, match=r"shots.csv:2:3 \(Club Speed\): expected a value with its unit"):
+    with pytest.raises(StudyError, match=r"shots.csv:1:3 \(Club Speed\): expected a unit for the club speed"):
         read_csv(CSV.replace("Club Speed [mph]", "Club Speed"), "shots.csv")
     with pytest.raises(StudyError, match="ball_speed_sigma: expected a positive uncertainty"):
         read_csv(CSV.replace("Spin Axis [deg]", "Ball Speed Sigma [mph]").replace("2545,", "2545,0"), "shots.csv")

@@ -130,7 +130,7 @@ def _residuals(predicted: dict, table: ShotTable) -> np.ndarray:
 def _table_ball(table: ShotTable, ball_block: dict | None):
     from impactlab.study.core import build_ball
 
-    return build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
+    return build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
 
 
 def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
@@ -144,7 +144,7 @@ def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict
     parameters : sequence of str
         Names from :data:`PARAMETERS`.
     ball : dict, optional
-        A study ``ball:`` block (default: the table's, else the ``tour_urethane`` preset).
+        A study ``ball:`` block (default: the table's, else the ``urethane_tour`` preset).
     start : dict, optional
         Start values by parameter name (default: :data:`PARAMETERS`).
     """

@@ -37,12 +37,14 @@ def _is_shot_yaml(path: Path) -> bool:
     return re.search(r"^rows\s*:", text, flags=re.MULTILINE) is not None
 
 
-def shot_table(name: str) -> ShotTable | None:
-    """A shot table: a .csv file, a .yaml file with ``rows:``, or a shipped table by name; None otherwise."""
+def shot_table(name: str, include_flagged: bool = False) -> ShotTable | None:
+    """A shot table: a .csv file (a launch-monitor export as exported, or impactlab's layout), a .yaml file with
+    ``rows:``, or a shipped table by name; None otherwise. ``include_flagged`` keeps estimated and clamped values
+    in the comparison (left out by default)."""
     path = Path(name)
     suffix = path.suffix.lower()
     if suffix == ".csv" or (suffix in (".yaml", ".yml") and _is_shot_yaml(path)):
-        return read_shots(path)
+        return read_shots(path, include_flagged)
     if name in SHOT_TABLES:
         text = resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text()
         return read_yaml(text, f"impactlab/data/validation/{name}.yaml")
@@ -110,12 +112,41 @@ def shots_figure(table: ShotTable, predictions: dict):
     return figure
 
 
-def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list[str]:
-    """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget."""
+def labels_text(labels, most: int = 8) -> str:
+    """The row labels of a table for a report: all of a small table, the first and last few of a large one."""
+    labels = list(labels)
+    if len(labels) <= most:
+        return ", ".join(labels)
+    return f"{', '.join(labels[:most // 2])}, ..., {', '.join(labels[-2:])}"
+
+
+def skipped_text(table: ShotTable) -> list[str]:
+    """Lines saying which rows of the file were skipped and why (counted by reason; ``impactlab shots`` has all)."""
+    from collections import Counter
+
+    if not table.skipped:
+        return []
+    reasons = Counter(why for _, why in table.skipped)
+    out = [f"  {len(table.skipped)} row(s) of the file skipped (impactlab shots FILE says more):"]
+    for why, count in reasons.most_common(5):
+        lines = [str(line) for line, reason in table.skipped if reason == why]
+        out.append(f"    {why}: {count} row(s), line(s) {', '.join(lines[:5])}{' ...' if count > 5 else ''}")
+    if len(reasons) > 5:
+        out.append(f"    and {len(reasons) - 5} other reason(s)")
+    return out
+
+
+def print_shot_errors(table: ShotTable, models, plot: str | None = None, rows: list | None = None) -> list[str]:
+    """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget.
+
+    ``rows``, when given a list, receives the per-shot table (:func:`prediction_rows`) of every model.
+    """
     from impactlab.model.registry import get_model
 
-    print(f"{table.name}: {table.size} row(s) ({', '.join(table.labels)})")
+    print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
     print(f"  source: {table.source}")
+    for line in skipped_text(table):
+        print(line)
     keys = [key for key, value in data_uncertainty(table).items() if math.isfinite(value)]
     print(f"  {'RMS error':<16}" + "".join(f"{key:>22}" for key in keys))
     sigma = data_uncertainty(table)
@@ -135,9 +166,63 @@ def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list
         print(f"  {name:<16}" + "".join(cells))
     print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
           "getting worse)\n")
+    if rows is not None:
+        rows.extend(prediction_rows(table, predictions))
     if plot:
         print(f"wrote {plot_shots(table, predictions, plot)}", file=sys.stderr)
     return sorted(set(over))
+
+
+#: the per-shot table's quantities: (field, unit, factor from SI)
+_CSV_QUANTITIES = (("ball_speed", "m/s", 1.0), ("vertical_launch_angle", "deg", RAD_TO_DEG),
+                   ("horizontal_launch_angle", "deg", RAD_TO_DEG), ("spin_rate", "rpm", RADS_TO_RPM),
+                   ("spin_axis", "deg", RAD_TO_DEG))
+
+
+def prediction_rows(table: ShotTable, predictions: dict) -> list[dict]:
+    """One row per shot and model: the shot's delivery, each measured quantity beside the model's prediction.
+
+    ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Keys carry their unit
+    (``ball_speed measured [m/s]``); a quantity the table does not measure is an empty cell.
+    """
+    out = []
+    for model, predicted in predictions.items():
+        for index in range(table.size):
+            row = {"table": table.name, "shot": table.labels[index], "club": table.clubs[index],
+                   "handedness": table.handedness[index], "model": model,
+                   "club_speed [m/s]": table.delivery["club_speed"][index],
+                   "attack_angle [deg]": table.delivery["attack_angle"][index] * RAD_TO_DEG,
+                   "dynamic_loft [deg]": table.delivery["dynamic_loft"][index] * RAD_TO_DEG,
+                   "path [deg]": table.delivery["path"][index] * RAD_TO_DEG,
+                   "face_angle [deg]": table.delivery["face_angle"][index] * RAD_TO_DEG}
+            for field, unit, factor in _CSV_QUANTITIES:
+                measured = table.measured[field][index] * factor
+                value = predicted[field][index] * factor
+                row[f"{field} measured [{unit}]"] = measured
+                row[f"{field} predicted [{unit}]"] = value
+            out.append(row)
+    return out
+
+
+def write_prediction_rows(rows: list[dict], path) -> Path:
+    """Write :func:`prediction_rows` as CSV (measured beside predicted; empty cells: not measured)."""
+    import csv
+    import io
+
+    from impactlab.io.safe_output import write_atomically
+
+    columns = ["table", "shot", "club", "handedness", "model", "club_speed [m/s]", "attack_angle [deg]",
+               "dynamic_loft [deg]", "path [deg]", "face_angle [deg]"]
+    for field, unit, _ in _CSV_QUANTITIES:
+        columns += [f"{field} measured [{unit}]", f"{field} predicted [{unit}]"]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(columns)
+    for row in rows:
+        writer.writerow(["" if isinstance(row[key], float) and not math.isfinite(row[key])
+                         else (f"{row[key]:.6g}" if isinstance(row[key], float) else row[key])
+                         for key in columns])
+    return write_atomically(path, buffer.getvalue().encode())
 
 
 def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bool = False,
@@ -154,6 +239,9 @@ def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bo
                                if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
         result = calibrate(model, table, names)
         print(f"{name} on {table.name} ({table.size} rows): {result.describe()}")
+        if name == (models or FIT_MODELS)[0]:
+            for line in skipped_text(table):
+                print(line)
         keys = [key for key in ERROR_KEYS if math.isfinite(result.errors_after[key])]
         print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
         print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))

@@ -15,8 +15,6 @@ its bad rows listed.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import re
 from pathlib import Path
@@ -95,6 +93,8 @@ class ShotTable:
     #: model id -> {error key of :data:`ERROR_KEYS` -> largest allowed RMS}: regression budgets, not the data's
     #: uncertainty (tests/test_shots.py holds them and checks they only tighten)
     budgets: dict = attrs.field(factory=dict, eq=False)
+    #: (file line, reason) of every row of the file the impact models could not use (a session's other rows are)
+    skipped: tuple = attrs.field(default=(), eq=False)
 
     @property
     def size(self) -> int:
@@ -110,7 +110,7 @@ class ShotTable:
                             handedness=tuple(self.handedness[i] for i in index),
                             delivery={k: v[index] for k, v in self.delivery.items()},
                             measured={k: v[index] for k, v in self.measured.items()},
-                            sigma={k: v[index] for k, v in self.sigma.items()})
+                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=())
 
 
 def _field_of(header: str) -> tuple[str | None, str | None]:
@@ -220,55 +220,34 @@ def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
-    from impactlab.scene.clubs import CLUB_PRESETS
+    from impactlab.scene.clubs import CLUB_PRESETS, club_key
 
-    if "club" in row and row["club"] not in CLUB_PRESETS:
-        problems.append(f"{where}: club: expected a club preset ({', '.join(CLUB_PRESETS)}), got {row['club']!r}")
+    if "club" in row:
+        key = club_key(row["club"])
+        if key is None:
+            problems.append(f"{where}: club: expected a club of the catalogue ({', '.join(CLUB_PRESETS)}) or a "
+                            f"launch monitor's name of one ('7 Iron', '1w', 'PW', '56°'), got {row['club']!r}")
+        else:
+            row["club"] = key
     if row.get("handedness", "right") not in ("right", "left"):
         problems.append(f"{where}: handedness: expected right or left, got {row['handedness']!r}")
 
 
-def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: str = "") -> ShotTable:
-    """A shot table from CSV text: a header row of fields with units, one shot per line."""
-    reader = csv.reader(io.StringIO(text))
-    try:
-        header = next(reader)
-    except StopIteration:
-        raise StudyError(f"{file}: empty file; expected a header row of columns with units") from None
-    columns = [_field_of(cell) for cell in header]
-    unknown = [header[i] for i, (field, _) in enumerate(columns) if field is None and header[i].strip()]
-    rows, problems = [], []
-    for line_number, cells in enumerate(reader, start=2):
-        if not any(cell.strip() for cell in cells):
-            continue
-        if len(cells) != len(header):
-            problems.append(f"{file}:{line_number}: expected {len(header)} columns, got {len(cells)}")
-            continue
-        row = {"_line": line_number}
-        for column, (cell, (field, unit)) in enumerate(zip(cells, columns), start=1):
-            if field is None:
-                continue
-            where = f"{file}:{line_number}:{column} ({header[column - 1].strip()})"
-            if field in TEXT_FIELDS:
-                if cell.strip():
-                    row[field] = cell.strip()
-                continue
-            try:
-                value = _convert(cell, field, unit, where)
-            except FieldError as exc:
-                problems.append(str(exc))
-                continue
-            if not np.isnan(value):
-                row[field] = value
-        _check_text(row, f"{file}:{line_number}", problems)
-        rows.append(row)
-    if problems:
-        raise StudyError(f"{file}: {len(problems)} bad cell(s): " + "; ".join(problems))
-    table = _assemble(rows, name or Path(file).stem, source or f"read from {file}", file, {}, {})
-    if unknown:
+def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: str = "",
+             include_flagged: bool = False) -> ShotTable:
+    """A shot table from CSV text: a launch-monitor export as exported, or impactlab's own layout (a header row of
+    fields with units, one shot per line); see :mod:`impactlab.data.session`. Rows the impact models cannot use
+    are skipped with their reason (``ShotTable.skipped``); a cell that cannot be read refuses the file."""
+    from impactlab.data.session import GENERIC, read_session_text
+
+    session = read_session_text(text, file)
+    table = session.shot_table(include_flagged)
+    if name or source:
+        table = attrs.evolve(table, name=name or table.name, source=source or table.source)
+    if session.vendor is GENERIC and session.unused:
         import warnings
 
-        warnings.warn(f"{file}: columns not used (not a delivery or launch quantity): {', '.join(unknown)}",
+        warnings.warn(f"{file}: columns not used (not a delivery or launch quantity): {', '.join(session.unused)}",
                       stacklevel=2)
     return table
 
@@ -336,16 +315,19 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
                      dict(document.get("ball") or {}), sigma_defaults, loft_at, budgets)
 
 
-def read_shots(path) -> ShotTable:
-    """A shot table from a .csv or .yaml/.yml file."""
+def read_shots(path, include_flagged: bool = False) -> ShotTable:
+    """A shot table from a .csv file (a launch-monitor export as exported, or impactlab's layout) or a .yaml/.yml
+    file; ``include_flagged`` keeps estimated and clamped values in the comparison."""
     from impactlab.study.yaml_lines import read_text_file
 
     path = Path(path)
     if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
-    text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() == ".csv":
-        return read_csv(text, str(path))
+        from impactlab.data.session import read_session
+
+        return read_session(path).shot_table(include_flagged)
+    text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() in (".yaml", ".yml"):
         return read_yaml(text, str(path))
     raise StudyError(f"{path}: expected a .csv or .yaml shot table")
@@ -355,15 +337,17 @@ def read_shots(path) -> ShotTable:
 def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None) -> dict:
     """Model inputs (SI arrays) of every row: its club preset, its delivery and strike, and the ball.
 
-    ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: tour_urethane}``);
+    ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: urethane_tour}``);
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
     from impactlab.scene.clubs import Strike, club_preset
     from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
     from impactlab.study.core import build_ball
 
-    ball = build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
+    ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact = Contact(**(contact or {}))
+    # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
+    scene_ball = attrs.evolve(ball, restitution=None) if contact.restitution is None else ball
     scenes = []
     for index in range(table.size):
         club = club_preset(table.clubs[index])
@@ -371,7 +355,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
                             handedness=table.handedness[index], loft_at=table.loft_at)
-        scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
+        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))

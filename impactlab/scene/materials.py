@@ -201,16 +201,15 @@ _FITTED = ("Restitution: e = 0.787 at any normal speed against a rigid steel fac
            "hertz_mindlin), so the paper's elastic cover is kept.")
 
 BALL_PRESETS: dict[str, Ball] = {
-    "urethane_tour": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["urethane_cover"], "urethane tour ball",
-                          MATERIAL_PRESETS["urethane_cover"].source),
-    "surlyn_distance": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["surlyn_cover"], "surlyn distance ball",
-                            MATERIAL_PRESETS["surlyn_cover"].source),
-    # balls with their contact data against a steel face (a study may leave out contact:)
-    "tour_urethane": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["urethane_cover"],
-                          "tour urethane ball (calibrated contact data)",
+    # the tour urethane ball with its contact data against a steel face (a study may leave out contact:; a
+    # study's contact: block overrides them)
+    "urethane_tour": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["urethane_cover"],
+                          "urethane tour ball (calibrated contact data)",
                           " ".join([MATERIAL_PRESETS["urethane_cover"].source, _BALL_INERTIA,
                                     _SLED.format(mu=0.40, cover="urethane"), _FITTED]),
                           friction=0.40, restitution=FITTED_RESTITUTION, tangential_loss=0.0),
+    "surlyn_distance": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["surlyn_cover"], "surlyn distance ball",
+                            MATERIAL_PRESETS["surlyn_cover"].source),
     "two_piece_ionomer": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["surlyn_cover"],
                               "two-piece ionomer ball (contact data partly assumed)",
                               " ".join([MATERIAL_PRESETS["surlyn_cover"].source, _BALL_INERTIA,
@@ -228,8 +227,27 @@ FACE_PRESETS: dict[str, Face] = {
 }
 
 
+#: former names of ball presets -> the one name kept (a note says so when one is used)
+BALL_ALIASES: dict[str, str] = {
+    # two presets of one ball, 'urethane_tour' (no contact data) and 'tour_urethane' (with the calibrated contact
+    # data), were merged into 'urethane_tour' with the contact data: a study's contact: block still overrides them
+    "tour_urethane": "urethane_tour",
+}
+
+
+class PresetAliasNote(UserWarning):
+    """A preset was named by a former name: the preset it now stands for is used, and the note says which."""
+
+
 def ball_preset(name: str) -> Ball:
-    """The ball preset called ``name``."""
+    """The ball preset called ``name`` (a former name in :data:`BALL_ALIASES` gives its preset, with a note)."""
+    if isinstance(name, str) and name in BALL_ALIASES:
+        import warnings
+
+        kept = BALL_ALIASES[name]
+        warnings.warn(f"ball preset {name!r} is a former name of {kept!r} (the same ball with its calibrated "
+                      f"contact data); write {kept!r}", PresetAliasNote, stacklevel=2)
+        name = kept
     try:
         return BALL_PRESETS[name]
     except (KeyError, TypeError):

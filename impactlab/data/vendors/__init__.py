@@ -1,0 +1,1 @@
+"""Launch-monitor export layouts as data: one YAML column map per vendor (read by impactlab.data.session)."""

@@ -1,0 +1,323 @@
+"""Launch-monitor exports read as exported (impactlab.data.session): each vendor's layout on a fixture made from a
+real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and units
+converted by their definitions, not values computed by the reader."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from impactlab.cli import main
+from impactlab.data.session import read_session, read_session_text, write_normalised
+from impactlab.errors import StudyError
+
+DATA = Path(__file__).parent / "data" / "vendors"
+MPH = 0.44704  # m/s (1 mile = 1609.344 m)
+YD = 0.9144  # m
+FT = 0.3048  # m
+KMH = 1 / 3.6  # m/s
+RPM = 2 * math.pi / 60  # rad/s
+DEG = math.pi / 180
+
+
+def test_trackman_tps_with_its_bom_sep_line_units_row_and_crlf():
+    raw = (DATA / "trackman_tps.csv").read_bytes()
+    assert raw.startswith(b"\xef\xbb\xbfsep=,\r\n")  # the fixture is written as TPS writes it
+    session = read_session(DATA / "trackman_tps.csv")
+    assert session.vendor.id == "trackman_tps" and session.size == 2
+    assert list(session.lines) == [4, 5]  # sep=, header and units row come first
+    v = session.values
+    # the 7 Iron shot of OpenFlight-Test.Normalized.csv (saunterbrands/golf-one-openflight)
+    assert v["club_speed"][0] == pytest.approx(85.35030422333571 * MPH, rel=1e-12)
+    assert v["attack_angle"][0] == pytest.approx(-5.200000000000001 * DEG, rel=1e-12)
+    assert v["path"][0] == pytest.approx(-6 * DEG)
+    assert v["dynamic_loft"][0] == pytest.approx(19.697 * DEG)
+    assert v["face_angle"][0] == pytest.approx(-0.116 * DEG)
+    assert v["ball_speed"][0] == pytest.approx(123.78914638511098 * MPH)
+    assert v["horizontal_launch_angle"][0] == pytest.approx(-1.2260000000000015 * DEG)
+    assert v["spin_rate"][0] == pytest.approx(5491.609999999997 * RPM)
+    assert v["spin_axis"][0] == pytest.approx(11.506000000000004 * DEG)
+    assert v["strike_toe"][0] == pytest.approx(-6.264760811126327e-3)
+    assert v["carry_distance"][0] == pytest.approx(177.21028090888305 * YD)
+    assert v["apex_height"][0] == pytest.approx(89.41193327997439 * FT)
+    assert session.text["club"] == ("7 Iron", "Driver")
+    # the estimated driver spin is flagged, and left out of the comparison unless asked
+    assert session.flags[("spin_rate", "estimated")].tolist() == [False, True]
+    table = session.shot_table()
+    assert table.clubs == ("7_iron", "driver") and table.loft_at == "contact"
+    assert np.isnan(table.measured["spin_rate"][1]) and np.isnan(table.measured["spin_axis"][1])
+    assert table.measured["spin_rate"][0] == pytest.approx(5491.609999999997 * RPM)
+    assert session.shot_table(include_flagged=True).measured["spin_rate"][1] == pytest.approx(1509.99 * RPM)
+    # the (Sim) columns are not measurements and do not clash with Spin Axis
+    assert "Spin Axis (Sim)" in session.unused
+
+
+def test_garmin_sidespin_is_turned_to_the_sign_of_its_spin_axis_and_flags_are_kept():
+    session = read_session(DATA / "garmin_r10.csv")
+    assert session.vendor.id == "garmin_golf" and session.size == 4
+    v = session.values
+    # row 1 of DrivingRange-2026-04-19 (jgamblin/golf): Sidespin +197.257 rpm with Spin Axis -9.213 deg; a ball
+    # curving left: the vocabulary's side spin (positive curving right) is -197.257 rpm
+    assert v["side_spin"][0] == pytest.approx(-197.2572784423828 * RPM)
+    assert v["spin_axis"][0] == pytest.approx(-9.213339805603027 * DEG)
+    assert v["face_angle"][0] == pytest.approx(11.132929801940918 * DEG)  # 'Club Face' is the face angle
+    assert v["carry_distance"][0] == pytest.approx(48.473463283749076 * YD)  # [Yards]
+    assert v["apex_height"][0] == pytest.approx(5.9529531450513575 * YD)  # [yds]
+    both = np.isfinite(v["side_spin"]) & (np.abs(v["side_spin"]) > 0)
+    assert np.all(np.sign(v["side_spin"][both]) == np.sign(v["spin_axis"][both]))
+    assert session.flags[("spin_rate", "estimated")].tolist() == [True, True, False, False]
+    assert session.flags[("spin_axis", "clamped")].tolist() == [False, False, True, False]  # the R10's 30 deg stop
+    keep, skipped = session.usable()
+    assert not keep.any()  # the R10 measures no dynamic loft
+    assert all("no dynamic loft" in why for _, why in skipped)
+    assert "no club speed" in dict(skipped)[6]
+    with pytest.raises(StudyError, match="no row the impact models can use"):
+        session.shot_table()
+
+
+def test_foresight_sentinel_is_no_data_and_the_spin_axis_follows_from_side_and_back_spin():
+    session = read_session(DATA / "foresight_lastshot.csv")
+    assert session.vendor.id == "foresight_fsx" and session.size == 1
+    v = session.values
+    assert v["club_speed"][0] == pytest.approx(36.311745) and v["ball_speed"][0] == pytest.approx(49.575752)
+    assert v["horizontal_launch_angle"][0] == pytest.approx(-4.488229 * DEG)
+    for field in ("dynamic_loft", "face_angle", "face_to_path", "strike_toe", "strike_high"):
+        assert np.isnan(v[field][0]) and session.flags[(field, "no data")][0], field  # 16777215, not 292817 deg
+    # side spin -1561, back spin 5554 (LastShot2.CSV): an axis tilted left by atan(1561/5554)
+    assert v["spin_axis"][0] == pytest.approx(-math.atan(1561 / 5554))
+    assert v["spin_rate"][0] == pytest.approx(5769 * RPM)  # Total Spin is used as given
+    from impactlab.scene.clubs import club_key
+    assert club_key(session.text["club"][0]) == "driver"  # '1w'
+
+
+def test_rapsodo_title_summary_rows_and_the_layouts_units():
+    session = read_session(DATA / "rapsodo_mlm2pro.csv")
+    assert session.vendor.id == "rapsodo_mlm2pro" and session.size == 1
+    assert [line for line, _ in session.skipped] == [5, 6]  # Average and Std. Dev.
+    assert any("units not in the file" in note for note in session.notes)  # said, with the layout's source
+    v = session.values
+    assert v["ball_speed"][0] == pytest.approx(108.4 * MPH) and v["apex_height"][0] == pytest.approx(87.1 * FT)
+    assert v["offline_distance"][0] == pytest.approx(-11.5 * YD) and v["spin_axis"][0] == pytest.approx(-4.1 * DEG)
+
+
+def test_a_file_whose_header_disagrees_with_its_rows_is_refused_at_the_cell_not_misread():
+    # the FlightScope cloud scrape (ryanlchan/flightscope-to-csv) writes Shape after Launch V while its header puts
+    # it before Launch H: 'straight' lands under Launch V
+    with pytest.raises(StudyError, match=r"flightscope_cloud.csv:2:23 \(Launch V \(\*\)\): expected a number, "
+                                         r"got 'straight'"):
+        read_session(DATA / "flightscope_cloud.csv")
+
+
+def test_quoted_decimal_commas_and_left_right_suffixes_are_read_not_truncated():
+    session = read_session(DATA / "flightscope_fsgolf_metric.csv")
+    assert session.vendor.id == "flightscope_fsgolf" and session.size == 2
+    v = session.values
+    assert v["attack_angle"].tolist() == pytest.approx([-0.9 * DEG, 1.4 * DEG])  # "-0,9" is not 0, "1,4" not 14
+    assert v["spin_axis"].tolist() == pytest.approx([-16.7 * DEG, 3.5 * DEG])  # "16,7 L", "3,5 R"
+    assert v["horizontal_launch_angle"].tolist() == pytest.approx([1.5 * DEG, -0.5 * DEG])
+    assert v["ball_speed"][0] == pytest.approx(238.2 * KMH)
+    assert session.skipped == [(4, "a summary row ('Avg'), not a shot")]
+
+
+SEMICOLON = ("Club;Club Speed [mph];Attack Angle [deg];Dyn. Loft [deg];Ball Speed [mph];Launch Angle [deg];"
+             "Spin Rate [rpm]\n7 Iron;\"85,4\";\"-0,9\";\"19,7\";\"123,8\";\"15,4\";5492\n"
+             "Driver;101,5;1,8;14,2;148,2;12,1;2500\n")
+
+
+def test_semicolons_and_decimal_commas_in_impactlabs_own_layout():
+    session = read_session_text(SEMICOLON, "s.csv")
+    assert session.values["attack_angle"].tolist() == pytest.approx([-0.9 * DEG, 1.8 * DEG])
+    assert session.values["club_speed"][0] == pytest.approx(85.4 * MPH)
+    assert any("separator ';'" in note for note in session.notes)
+    table = session.shot_table()
+    assert table.clubs == ("7_iron", "driver")
+
+
+def test_mixed_decimal_marks_are_refused_naming_both():
+    with pytest.raises(StudyError, match=r"both decimal marks \('101.5' and '85,4'\)"):
+        read_session_text(SEMICOLON.replace("101,5", "101.5"), "s.csv")
+
+
+def test_a_quantity_given_twice_is_refused_naming_both_columns():
+    text = "Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Ball Speed [mph],Ball Speed [m/s]\n" \
+           "driver,100,0,12,150,67\n"
+    with pytest.raises(StudyError, match=r"columns 'Ball Speed \[mph\]' and 'Ball Speed \[m/s\]' both give the "
+                                         r"ball speed"):
+        read_session_text(text, "d.csv")
+
+
+def test_two_units_for_one_column_are_refused():
+    text = "Club,Club Speed [mph],Ball Speed\n,[m/s],[mph]\ndriver,40,60\n"
+    with pytest.raises(StudyError, match=r"column 'Club Speed \[mph\]' states two units"):
+        read_session_text(text, "u.csv")
+
+
+def test_the_normalised_table_reads_back_to_the_same_values_and_flags(tmp_path):
+    session = read_session(DATA / "garmin_r10.csv")
+    out = write_normalised(session, tmp_path / "normal.csv")
+    again = read_session(out)
+    assert again.vendor.id == "impactlab"
+    for field in ("club_speed", "side_spin", "spin_axis", "carry_distance", "face_angle"):
+        np.testing.assert_allclose(again.values[field], session.values[field], rtol=1e-9, equal_nan=True)
+    assert set(again.flags) == set(session.flags)
+    for key in session.flags:
+        assert again.flags[key].tolist() == session.flags[key].tolist()
+
+
+def test_club_names_of_launch_monitors_map_onto_the_catalogue():
+    from impactlab.scene.clubs import club_key
+
+    expected = {"Driver": "driver", "1w": "driver", "Dr": "driver", "7i": "7_iron", "7 Iron": "7_iron",
+                "PW": "pitching_wedge", "Pitching Wedge": "pitching_wedge", "6_iron": "6_iron"}
+    for name, key in expected.items():
+        assert club_key(name) == key, name
+    assert club_key("Putter") is None and club_key("") is None
+
+
+def test_shots_command_reports_and_writes_the_normalised_table(tmp_path, capsys):
+    out = tmp_path / "normal.csv"
+    assert main(["shots", str(DATA / "garmin_r10.csv"), "--csv", str(out)]) == 0
+    report = capsys.readouterr().out
+    assert "Garmin Golf app" in report and "'Sidespin' [rpm] -> side_spin (sign turned" in report
+    assert "spin_axis: 1 row(s) at the monitor's limit (clamped)" in report
+    assert "impact models: 0 of 4 row(s) usable" in report and "no dynamic loft" in report
+    assert out.read_text().startswith("line,label,club,club_speed [m/s]")
+
+
+def test_a_bad_session_ends_in_one_message_with_its_line_and_exit_2(tmp_path, capsys):
+    path = tmp_path / "bad.csv"
+    path.write_text(SEMICOLON.replace("\"123,8\"", "fast"))
+    assert main(["shots", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.csv:2:5 (Ball Speed [mph]): expected a number, got 'fast'" in err and "Traceback" not in err
+
+
+def test_validate_writes_each_shot_measured_beside_each_models_prediction(tmp_path, capsys):
+    from impactlab.data.shots import predict, table_inputs
+    from impactlab.model.registry import get_model
+
+    out = tmp_path / "pred.csv"
+    path = DATA / "trackman_tps.csv"
+    assert main(["validate", "--dataset", str(path), "--model", "rigid_coulomb", "--csv", str(out)]) == 0
+    import csv
+
+    rows = list(csv.DictReader(out.open()))
+    assert [row["model"] for row in rows] == ["rigid_coulomb", "rigid_coulomb"]
+    assert float(rows[0]["ball_speed measured [m/s]"]) == pytest.approx(123.78914638511098 * MPH, rel=1e-5)
+    assert float(rows[0]["spin_rate measured [rpm]"]) == pytest.approx(5491.61, rel=1e-5)
+    assert rows[1]["spin_rate measured [rpm]"] == ""  # estimated: not compared
+    table = read_session(path).shot_table()
+    predicted = predict(get_model("rigid_coulomb")(), table_inputs(table))
+    assert float(rows[0]["spin_rate predicted [rpm]"]) == pytest.approx(predicted["spin_rate"][0] / RPM, rel=1e-5)
+    assert float(rows[1]["ball_speed predicted [m/s]"]) == pytest.approx(predicted["ball_speed"][1], rel=1e-5)
+
+
+def test_a_large_session_is_summarised_not_listed():
+    from impactlab.data.shot_report import labels_text
+
+    text = labels_text([f"shot {i}" for i in range(200_000)])
+    assert text.startswith("shot 0, shot 1, shot 2, shot 3, ...") and text.endswith("shot 199999")
+    assert len(text) < 100
+
+
+def test_a_row_without_face_or_path_is_compared_on_what_does_not_need_them():
+    text = ("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Face Angle [deg],Club Path [deg],"
+            "Ball Speed [mph],Launch Direction [deg],Spin Axis [deg],Handedness\n"
+            "7i,85,-4,24,1.0,-2.0,120,0.5,3,right\n"
+            "7i,85,-4,24,,,120,0.5,3,L\n")
+    table = read_session_text(text, "f.csv").shot_table()
+    assert table.handedness == ("right", "left")
+    assert table.measured["ball_speed"][1] == pytest.approx(120 * MPH)  # kept
+    # a square face would be a guess: no launch direction or spin axis compared on the row without face and path
+    assert np.isnan(table.measured["horizontal_launch_angle"][1]) and np.isnan(table.measured["spin_axis"][1])
+    assert table.measured["horizontal_launch_angle"][0] == pytest.approx(0.5 * DEG)
+    assert table.delivery["face_angle"][0] == pytest.approx(1.0 * DEG)
+    assert table.delivery["path"][0] == pytest.approx(-2.0 * DEG)
+
+
+def test_a_value_just_inside_the_garmin_stop_is_not_flagged_clamped():
+    text = (DATA / "garmin_r10.csv").read_text().replace(",Measured,30.0,", ",Measured,29.5,")
+    session = read_session_text(text, "g.csv")
+    assert ("spin_axis", "clamped") not in session.flags
+
+
+def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused():
+    # ';' splits every line alike; ',' only splits the decimal comma of one cell: the file is ';'-separated, and
+    # its '1,5' and '1.6' are two notations, refused rather than read as 1.5 and 1.6 or 15 and 1.6
+    with pytest.raises(StudyError, match=r"both decimal marks \('1.6' and '1,5'\)"):
+        read_session_text('Club;Ball Speed [mph]\nDriver;"1,5"\nDriver;1.6\n', "m.csv")
+    # a comma-separated file with a quoted decimal comma keeps its comma separator
+    session = read_session_text('Club,Ball Speed [mph]\nDriver,"150,5"\nDriver,"151,0"\n', "c.csv")
+    assert session.values["ball_speed"].tolist() == pytest.approx([150.5 * MPH, 151.0 * MPH])
+
+
+def test_every_shipped_layout_loads_and_a_broken_one_is_named():
+    from impactlab.data.session import _vendor_from_document, vendor_maps
+
+    maps = vendor_maps()
+    assert {"trackman_tps", "garmin_golf", "foresight_fsx", "rapsodo_mlm2pro", "flightscope_cloud",
+            "flightscope_fsgolf"} <= set(maps)
+    assert maps["trackman_tps"].club_reference_point == "geometric_centre"
+    assert maps["foresight_fsx"].club_reference_point == "face_centre"
+    with pytest.raises(StudyError, match=r"x.yaml: columns.Ball: 'ball_sped' is not a session field"):
+        _vendor_from_document({"id": "x", "name": "x", "source": "", "recognise": ["Ball"], "units": "header",
+                               "columns": {"Ball": "ball_sped"}}, "x.yaml")
+
+
+def test_a_yaml_shot_table_takes_launch_monitor_club_names():
+    from impactlab.data.shots import read_yaml
+
+    text = ("name: t\nrows:\n  - {club: 8 Iron, club_speed: 80 mph, attack_angle: -4 deg, dynamic_loft: 30 deg, "
+            "ball_speed: 105 mph}\n  - {club: Putter, club_speed: 10 mph, attack_angle: 0 deg, dynamic_loft: 4 deg, "
+            "ball_speed: 12 mph}\n")
+    with pytest.raises(StudyError, match=r"t.yaml:4: club: expected a club of the catalogue .* got 'Putter'"):
+        read_yaml(text, "t.yaml")
+    table = read_yaml(text.split("  - {club: Putter")[0], "t.yaml")
+    assert table.clubs == ("8_iron",)
+
+
+def test_a_trackman_row_marked_not_for_stats_is_skipped_with_that_reason():
+    text = (DATA / "trackman_tps.csv").read_bytes().decode("utf-8-sig")
+    last = text.rstrip("\r\n").rsplit("\r\n", 1)[1]
+    text = text.replace(last, last.replace('"TRUE"', '"FALSE"'))
+    session = read_session_text(text, "t.csv")
+    keep, skipped = session.usable()
+    assert keep.tolist() == [True, False]
+    assert skipped == [(5, "marked not to use in the file (Use In Stat = FALSE)")]
+    assert session.shot_table().labels == ("5/6/2026 6:58:02 PM",)
+
+
+def test_the_second_foresight_file_a_shot_starting_right_with_side_spin_right():
+    # christianrehn/CombineTest data/LastShot.CSV: Azimuth +0.591 deg, Side Spin +95 rpm, Offline +2.461 m
+    session = read_session(DATA / "foresight_lastshot_5.csv")
+    v = session.values
+    assert v["horizontal_launch_angle"][0] == pytest.approx(0.591012 * DEG)
+    assert v["side_spin"][0] == pytest.approx(95 * RPM) and v["offline_distance"][0] == pytest.approx(2.461071)
+    assert v["spin_axis"][0] == pytest.approx(math.atan(95 / 6804))  # positive: curving right
+    assert v["carry_distance"][0] == pytest.approx(132.602173) and v["club_speed"][0] == pytest.approx(36.710655)
+    assert v["attack_angle"][0] == pytest.approx(-5.920732 * DEG) and v["path"][0] == pytest.approx(1.910474 * DEG)
+
+
+def test_a_garmin_version_that_writes_the_spin_axis_the_other_way_is_turned_and_said():
+    # DrivingRange-2026-05-23 (jgamblin/golf, 32 columns): Sidespin +401 rpm and Spin Axis +10.93 deg on a ball
+    # that starts at 5.15 deg and lands at 3.64 deg (curving left): this version counts its axis positive left
+    session = read_session(DATA / "garmin_r10_b.csv")
+    v = session.values
+    assert v["side_spin"][1] == pytest.approx(-401.0394449986973 * RPM)
+    assert v["spin_axis"][1] == pytest.approx(-10.930000305175781 * DEG)  # curving left: negative
+    assert v["spin_axis"][0] == pytest.approx(15.989999771118164 * DEG)  # Sidespin -1245: curving right
+    assert any("counts the axis positive curving left" in note for note in session.notes)
+    assert session.flags[("spin_axis", "clamped")].tolist() == [False, False, True]  # -30.0 in the file
+    # the 42-column version (positive curving right, opposite to its Sidespin) is read as written
+    a = read_session(DATA / "garmin_r10.csv")
+    assert a.values["spin_axis"][0] == pytest.approx(-9.213339805603027 * DEG)
+    assert not any("curving left" in note for note in a.notes)
+
+
+def test_spin_columns_that_disagree_row_by_row_are_flagged_not_trusted():
+    text = ("Club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm],Spin Axis [deg],Side Spin [rpm]\n"
+            "7i,120,16,6000,5,500\n7i,120,16,6000,5,-500\n")
+    session = read_session_text(text, "s.csv")
+    assert session.flags[("spin_axis", "inconsistent")].tolist() == [False, True]
+    assert session.flagged("spin_axis").tolist() == [False, True]
