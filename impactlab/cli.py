@@ -328,7 +328,10 @@ def _cmd_validate(args) -> int:
                     data.sigma)))) else "outside the data's sigma")
             else:
                 agreement = "no uncertainty stated"
-            if budget is not None and error["rms"] > budget:
+            if error["unused"]:
+                over.append(f"{name}/{model}")
+                verdict = f"COULD NOT PREDICT {', '.join(error['unused'])} (not used in rms and max); {agreement}"
+            elif budget is not None and error["rms"] > budget:
                 over.append(f"{name}/{model}")
                 verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
             else:

@@ -15,6 +15,8 @@ and Kharaz, Gorham & Salman's (2001) experiment, in :mod:`.benchmarks`
 
 from __future__ import annotations
 
+import math
+
 import os
 from importlib import resources
 from pathlib import Path
@@ -227,10 +229,18 @@ def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
 
 
 def errors(data: MeasuredData, models=None) -> dict[str, dict]:
-    """Model id -> {rms, max, residuals} of prediction minus measurement."""
+    """Model id -> {rms, max, residuals, predicted, unused} of prediction minus measurement.
+
+    ``rms`` and ``max`` are over the points the model could predict; ``unused`` names the others (a non-finite
+    prediction), which are never folded silently into a NaN or left out unsaid.
+    """
     result = {}
     for model, predicted in predictions(data, models).items():
         residuals = predicted - data.measured
-        result[model] = {"rms": float(np.sqrt(np.mean(residuals**2))), "max": float(np.max(np.abs(residuals))),
-                         "residuals": residuals, "predicted": predicted}
+        finite = np.isfinite(residuals)
+        used = residuals[finite]
+        result[model] = {"rms": float(np.sqrt(np.mean(used**2))) if used.size else math.nan,
+                         "max": float(np.max(np.abs(used))) if used.size else math.nan,
+                         "residuals": residuals, "predicted": predicted,
+                         "unused": tuple(str(label) for label, ok in zip(data.labels, finite) if not ok)}
     return result
