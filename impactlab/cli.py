@@ -40,7 +40,6 @@ def _size(text: str) -> int:
 def _cmd_run(args) -> int:
     from impactlab.errors import StudyError
     from impactlab.run.faults import set_interrupt_hint
-    from impactlab.study.limits import check as check_limits
     from impactlab.run.runner import plan_study, run_study
     from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
     from impactlab.study.core import load_study
@@ -61,22 +60,23 @@ def _cmd_run(args) -> int:
     outputs = [Path(args.output) if args.output else name_in(outdir or Path("."), study.name, ".h5")
                for study in studies]
     refuse_clashes([(f"{study.file} (name {study.name!r})", output) for study, output in zip(studies, outputs)])
-    for study in studies:
-        check_limits(study)  # for every study before the first runs
+    # every study planned (limits checked, models planned) before the first runs; the run takes its plan
+    plans = [plan_study(study) for study in studies]
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
         check_output(output)
         if args.plot not in (None, True):
             check_output(Path(args.plot), what="picture", suffix=".png")
-    for study, output in zip(studies, outputs):
+    for study, output, plan in zip(studies, outputs, plans):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
         set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
                            "compute only the rest")
         dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
                             scheduler=args.scheduler, chunk_size=args.chunk_size,
-                            progress_folder=progress_folder, show_progress=not args.quiet, output=output)
+                            progress_folder=progress_folder, show_progress=not args.quiet, output=output,
+                            plan=plan)
         say(f"wrote {output}")
         if args.plot:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):

@@ -106,7 +106,7 @@ def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> di
     replace it. With ``loft_at="contact"`` a strike offset keeps the loft measured at the contact point (the face
     centre's loft moves instead, :func:`impactlab.data.shots.centre_delivery`).
     """
-    from impactlab.physics.contact import contact_state
+    from impactlab.physics.contact import approach_state
     from impactlab.scene.core import complete_inputs
 
     out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
@@ -132,7 +132,7 @@ def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> di
         law = ball.restitution
     if law is not None:
         gain = out.get("club_restitution_gain", 0.0)
-        out["restitution"] = np.clip(law(contact_state(out)["normal_speed"]) + gain, 0.0, 1.0)
+        out["restitution"] = np.clip(law(approach_state(out)["normal_speed"]) + gain, 0.0, 1.0)
     return out
 
 

@@ -116,7 +116,18 @@ def _head_inertia(inputs, n, toe, up, normal):
     return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes))
 
 
-def contact_state(inputs: dict) -> dict:
+def approach_state(inputs: dict) -> dict:
+    """The contact frame and the approach velocities of each case, without the mobility (SI arrays).
+
+    The part of :func:`contact_state` that a ball's restitution law needs (``normal_speed``), without the
+    (n, 3, 3) mobility and head inertia that make up most of its cost; the same arithmetic, so the same bits.
+    Returns ``normal_speed``, ``slip_speed``, ``initial_velocity``, ``frame`` and the directions of
+    :func:`contact_state`.
+    """
+    return contact_state(inputs, mobility=False)
+
+
+def contact_state(inputs: dict, mobility: bool = True) -> dict:
     """Contact frame, approach velocity and mobility of each case, from model inputs (SI arrays).
 
     Returns
@@ -131,6 +142,8 @@ def contact_state(inputs: dict) -> dict:
         ``initial_velocity`` (n, 3) [m/s], the relative contact velocity in the contact frame;
         ``one_dimensional`` (n,) bool: mobility diagonal in the contact frame, so the slip stays on one
         line and the normal problem is uncoupled (the 1-D solvers apply).
+
+    With ``mobility=False`` only the frame and the approach velocities (:func:`approach_state`).
     """
     speed = np.atleast_1d(np.asarray(inputs["speed"], float))
     n = speed.size
@@ -172,18 +185,11 @@ def contact_state(inputs: dict) -> dict:
     ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
     ball_point_velocity = -radius[:, None] * _cross(ball_spin, normal)
 
-    eye = np.eye(3)
-    ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
-        / ball_mass[:, None, None]
-    club_mass = value("club_mass", np.inf)
-    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
-    inverse_inertia = _head_inertia(inputs, n, toe, up, flat_normal)
-    if inverse_inertia is not None:
+    has_inertia = all(name in inputs for name in INERTIA_INPUTS)
+    if has_inertia:
         center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
                   - value("club_cg_depth", 0.0)[:, None] * flat_normal)
         lever = point - center
-        skew = _skew(lever)
-        head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     else:
         lever = np.zeros((n, 3))
     # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
@@ -192,6 +198,20 @@ def contact_state(inputs: dict) -> dict:
     head_point_velocity = _cross(head_spin, lever)
     initial = np.einsum("nia,ni->na", frame, ball_point_velocity - speed[:, None] * club_direction
                         - head_point_velocity)
+    if not mobility:
+        return {"slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
+                "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
+                "slip_speed": initial[:, 0], "initial_velocity": initial, "frame": frame}
+
+    eye = np.eye(3)
+    ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
+        / ball_mass[:, None, None]
+    club_mass = value("club_mass", np.inf)
+    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
+    inverse_inertia = _head_inertia(inputs, n, toe, up, flat_normal) if has_inertia else None
+    if inverse_inertia is not None:
+        skew = _skew(lever)
+        head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
     mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
     off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
