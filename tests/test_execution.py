@@ -163,3 +163,33 @@ def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_
         for name in GOLF["outputs"]:
             np.testing.assert_array_equal(result[name].sel(model=entry.id).values.reshape(-1),
                                           alone[entry.id][name].values)
+
+
+@pytest.mark.parametrize("tty", [True, False])
+def test_the_progress_bar_redraws_on_a_terminal_and_writes_tenths_to_a_log(monkeypatch, tty):
+    import io
+
+    from impactlab.run.execution import Progress
+
+    class Stream(io.StringIO):
+        def isatty(self):
+            return tty
+
+    stream = Stream()
+    monkeypatch.setattr("sys.stderr", stream)
+    progress = Progress(1000, enabled=True)
+    for _ in range(100):
+        progress.advance(10)
+    progress.close()
+    text = stream.getvalue()
+    assert "1000/1000" in text and "cases" in text
+    if tty:
+        assert "\r" in text  # redrawn in place
+    else:  # a log: whole lines, no carriage return
+        assert "\r" not in text and len(text.splitlines()) == 11  # the first chunk, then every tenth
+    quiet = Stream()
+    monkeypatch.setattr("sys.stderr", quiet)
+    silent = Progress(1000, enabled=False)
+    silent.advance(1000)
+    silent.close()
+    assert quiet.getvalue() == ""

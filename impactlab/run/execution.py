@@ -32,6 +32,7 @@ from pathlib import Path
 
 import attrs
 import numpy as np
+from tqdm import tqdm
 
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import EnvironmentFault, StudyError
@@ -180,28 +181,39 @@ class _Pool:
 
 
 class Progress:
-    """One progress bar on stderr, fed by completed chunks whatever the executor."""
+    """One progress bar on stderr, fed by completed chunks whatever the executor.
+
+    On a terminal, a tqdm bar redrawn in place; where stderr is not a terminal (logs, CI) a line every tenth
+    (tqdm's own meter as text), never carriage returns; nothing when not ``enabled``.
+    """
 
     def __init__(self, total: int, enabled: bool, label: str = "cases"):
         self.total, self.done, self.enabled, self.label = total, 0, enabled, label
         self.start = time.perf_counter()
         self.tty = sys.stderr.isatty()
         self.last_tenth = -1
+        self.bar = tqdm(total=total, unit=f" {label}", file=sys.stderr, disable=not (enabled and self.tty),
+                        dynamic_ncols=True, leave=True)
 
     def advance(self, count: int) -> None:
         """Count ``count`` more cases done; redraw the bar (a line every tenth where stderr is not a terminal)."""
         self.done += count
         if not self.enabled:
             return
-        fraction = self.done / max(self.total, 1)
-        elapsed = time.perf_counter() - self.start
-        bar = "#" * int(30 * fraction)
-        text = f"[{bar:<30}] {self.done}/{self.total} {self.label} ({100 * fraction:.0f} %, {elapsed:.1f} s)"
         if self.tty:
-            print(f"\r{text}", end="" if self.done < self.total else "\n", file=sys.stderr, flush=True)
-        elif int(10 * fraction) > self.last_tenth:  # logs and CI: a line every tenth
+            self.bar.update(count)
+            if self.done >= self.total:
+                self.close()
+            return
+        fraction = self.done / max(self.total, 1)
+        if int(10 * fraction) > self.last_tenth:  # logs and CI: a line every tenth
             self.last_tenth = int(10 * fraction)
-            print(text, file=sys.stderr, flush=True)
+            meter = tqdm.format_meter(self.done, self.total, time.perf_counter() - self.start, unit=f" {self.label}")
+            print(meter, file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        """End the bar (its line stays on the terminal); idempotent."""
+        self.bar.close()
 
 
 class ProgressStore:
@@ -364,6 +376,7 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
             check_interrupt()  # the safe point: this chunk is saved, the next has not started
         finished = True
     finally:
+        progress.close()
         if pool is not None:
             pool.close(abort=not finished)
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
