@@ -100,6 +100,16 @@ MUTANTS = [
      "for i in range(reach):\n                    limit = max((h - xi2[i]) * load, 0.0)",
      "for i in range(reach - 1):\n                    limit = max((h - xi2[i]) * load, 0.0)",
      T_MAW, "kernel loop skips the outermost spring in contact (off by one)"),
+    # --- data/least_squares.py (the one least-squares core of fit and calibrate)
+    ("least-squares-variances", "impactlab/data/least_squares.py",
+     "sigma[depends] = np.sqrt(np.maximum(np.diag(inner), 0.0))", "sigma[depends] = np.maximum(np.diag(inner), 0.0)",
+     ["tests/test_least_squares.py"], "uncertainties reported as variances, not standard deviations"),
+    ("least-squares-no-rescale", "impactlab/data/least_squares.py",
+     "inner = inner * (float(residuals @ residuals) / (n - depends.sum()))", "inner = inner",
+     ["tests/test_least_squares.py"], "unit-weight fits not rescaled by the reduced chi-square"),
+    ("least-squares-near-bound-half-sigma", "impactlab/data/least_squares.py",
+     "(distance <= uncertainties)", "(distance <= 0.5 * uncertainties)",
+     ["tests/test_least_squares.py"], "'near its bound' only within half a sigma"),
     # --- physics/kernels/contact3d.py (the 3-D kernel's one MDR spring update, and its callers)
     ("contact3d-spring-cap-doubled", "impactlab/physics/kernels/contact3d.py",
      "if squared > cap * cap:", "if squared > 4.0 * cap * cap:",
