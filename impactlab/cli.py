@@ -41,7 +41,6 @@ def _size(text: str) -> int:
 def _cmd_run(args) -> int:
     from impactlab.errors import StudyError
     from impactlab.run.faults import set_interrupt_hint
-    from impactlab.study.limits import check as check_limits
     from impactlab.run.runner import plan_study, run_study
     from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
     from impactlab.study.core import load_study
@@ -62,15 +61,15 @@ def _cmd_run(args) -> int:
     outputs = [Path(args.output) if args.output else name_in(outdir or Path("."), study.name, ".h5")
                for study in studies]
     refuse_clashes([(f"{study.file} (name {study.name!r})", output) for study, output in zip(studies, outputs)])
-    for study in studies:
-        check_limits(study)  # for every study before the first runs
+    # every study planned (limits checked, models planned) before the first runs; the run takes its plan
+    plans = [plan_study(study) for study in studies]
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
         check_output(output)
         if args.plot not in (None, True):
             check_output(Path(args.plot), what="picture", suffix=".png")
-    for study, output in zip(studies, outputs):
+    for study, output, plan in zip(studies, outputs, plans):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
         set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
@@ -78,7 +77,8 @@ def _cmd_run(args) -> int:
         with _validity_notes() as notes:
             dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
                                 scheduler=args.scheduler, chunk_size=args.chunk_size,
-                                progress_folder=progress_folder, show_progress=not args.quiet, output=output)
+                                progress_folder=progress_folder, show_progress=not args.quiet, output=output,
+                                plan=plan)
         say(f"wrote {output}")
         _summarise_notes(notes, output, full=args.notes)
         if args.plot:
@@ -430,7 +430,10 @@ def _cmd_validate(args) -> int:
                     data.sigma)))) else "outside the data's sigma")
             else:
                 agreement = "no uncertainty stated"
-            if budget is not None and error["rms"] > budget:
+            if error["unused"]:
+                over.append(f"{name}/{model}")
+                verdict = f"COULD NOT PREDICT {', '.join(error['unused'])} (not used in rms and max); {agreement}"
+            elif budget is not None and error["rms"] > budget:
                 over.append(f"{name}/{model}")
                 verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
             else:

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from impactlab.physics import _kernels, dem, mdr
+from impactlab.physics import dem, mdr
+from impactlab.physics import kernels as _kernels
 from impactlab.model.registry import get_model
 from impactlab.testing import check_model
 

@@ -110,3 +110,88 @@ def test_a_killed_run_resumes_to_the_identical_result(tmp_path):
                     "-q"], check=True)
     same(impactlab.open_results(out), impactlab.open_results(fresh))
     assert np.all(np.isfinite(impactlab.open_results(out).launch_ratio.values))
+
+
+GOLF = {"name": "once", "ball": {"preset": "tour_urethane"}, "club": {"preset": "driver"},
+        "delivery": {"club_speed": "100 mph", "attack_angle": "-1 deg", "dynamic_loft": "13 deg"},
+        "sweep": {"strike.toe": ["-10 mm", "0 mm", "10 mm"], "delivery.club_speed": ["90 mph", "110 mph"]},
+        "models": ["rigid_coulomb", "restitution", "maw"], "outputs": ["ball_speed", "spin_rate", "spin_axis"]}
+
+
+def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_path, monkeypatch):
+    """Limits once per study, each model planned once per study, the 3x3 mobility once per chunk (serial: shared
+    by the models), and the ball's restitution from the approach speeds alone; results bit-identical to each
+    model computed on its own (planned by itself, its own contact state)."""
+    import yaml
+
+    from impactlab.cli import main
+    from impactlab.model import case_inputs as batch_module
+    from impactlab.model.base import ImpactModel
+    from impactlab.physics import contact
+    from impactlab.run.runner import case_input_names, case_inputs
+    from impactlab.study import limits
+
+    study = impactlab.load_study(GOLF)
+    inputs = case_inputs(study)
+    assert case_input_names(study) == set(inputs) and "restitution" in inputs  # the ball's law applies
+    alone = {entry.id: entry.model.compute(inputs, GOLF["outputs"]) for entry in study.models}
+
+    counts = {"check": 0, "plan": 0, "mobility": 0}
+    real_check, real_plan, real_state = limits.check, ImpactModel.plan, contact.contact_state
+
+    def check(*args, **kwargs):
+        counts["check"] += 1
+        return real_check(*args, **kwargs)
+
+    def plan(self, *args, **kwargs):
+        counts["plan"] += 1
+        return real_plan(self, *args, **kwargs)
+
+    def state(inputs, mobility=True):
+        counts["mobility"] += bool(mobility)
+        return real_state(inputs, mobility)
+
+    monkeypatch.setattr(limits, "check", check)
+    monkeypatch.setattr(ImpactModel, "plan", plan)
+    monkeypatch.setattr(contact, "contact_state", state)
+    monkeypatch.setattr(batch_module, "contact_state", state)
+    path = tmp_path / "once.yaml"
+    path.write_text(yaml.safe_dump(GOLF, sort_keys=False))
+    out = tmp_path / "once.h5"
+    assert main(["run", str(path), "-o", str(out), "-q", "--executor", "serial", "--chunk-size", "4"]) == 0
+    assert counts == {"check": 1, "plan": 3, "mobility": 2}  # 6 cases in chunks of 4: two chunks
+    result = impactlab.open_results(out)
+    for entry in study.models:
+        for name in GOLF["outputs"]:
+            np.testing.assert_array_equal(result[name].sel(model=entry.id).values.reshape(-1),
+                                          alone[entry.id][name].values)
+
+
+@pytest.mark.parametrize("tty", [True, False])
+def test_the_progress_bar_redraws_on_a_terminal_and_writes_tenths_to_a_log(monkeypatch, tty):
+    import io
+
+    from impactlab.run.execution import Progress
+
+    class Stream(io.StringIO):
+        def isatty(self):
+            return tty
+
+    stream = Stream()
+    monkeypatch.setattr("sys.stderr", stream)
+    progress = Progress(1000, enabled=True)
+    for _ in range(100):
+        progress.advance(10)
+    progress.close()
+    text = stream.getvalue()
+    assert "1000/1000" in text and "cases" in text
+    if tty:
+        assert "\r" in text  # redrawn in place
+    else:  # a log: whole lines, no carriage return
+        assert "\r" not in text and len(text.splitlines()) == 11  # the first chunk, then every tenth
+    quiet = Stream()
+    monkeypatch.setattr("sys.stderr", quiet)
+    silent = Progress(1000, enabled=False)
+    silent.advance(1000)
+    silent.close()
+    assert quiet.getvalue() == ""

@@ -394,9 +394,9 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkey
     computed = []
     real = impactlab.run.execution.compute_chunk
 
-    def counting(model, inputs, outputs, chunk):
+    def counting(model, inputs, outputs, chunk, *rest):  # rest: the study's plan, paths flag
         computed.append(chunk)
-        return real(model, inputs, outputs, chunk)
+        return real(model, inputs, outputs, chunk, *rest)
 
     monkeypatch.setattr("impactlab.run.execution.compute_chunk", counting)
     code, _ = cli(capsys, "run", study, "-o", tmp_path / "r.h5", "--executor", "serial", "--chunk-size", "30")

@@ -150,9 +150,9 @@ def test_a_worker_task_carries_its_own_cases_only(monkeypatch):
     sizes = []
     real = ProcessPoolExecutor.submit
 
-    def recording(self, function, model, inputs, outputs, chunk):
+    def recording(self, function, model, inputs, outputs, chunk, *rest):  # rest: the study's plan, paths flag
         sizes.append({values.size for values in inputs.values()})
-        return real(self, function, model, inputs, outputs, chunk)
+        return real(self, function, model, inputs, outputs, chunk, *rest)
 
     monkeypatch.setattr(ProcessPoolExecutor, "submit", recording)
     result = impactlab.run_study(STUDY, executor="processes", workers=2, chunk_size=4)

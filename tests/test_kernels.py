@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from impactlab.physics import _kernels, hertz, mdr
+from impactlab.physics import hertz, mdr
+from impactlab.physics import kernels as _kernels
 
 pytestmark = pytest.mark.skipif(not _kernels.HAVE_NUMBA, reason="numba is not installed")
 

@@ -321,7 +321,7 @@ def test_more_than_one_block_of_cases_gives_each_case_its_own_answer(golf_inputs
     The numpy path matters here: a compiled kernel handed a slice one short reads the next value of the
     underlying array past the slice's end (no bounds check) and so hides the bug; numpy refuses the shapes.
     """
-    from impactlab.physics import _kernels
+    from impactlab.physics import kernels as _kernels
 
     if kernels == "numpy":
         monkeypatch.setattr(_kernels, "HAVE_NUMBA", False)

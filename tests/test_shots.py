@@ -228,3 +228,18 @@ def test_a_number_without_a_unit_is_refused_not_guessed():
         read_csv(CSV.replace("Club Speed [mph]", "Club Speed"), "shots.csv")
     with pytest.raises(StudyError, match="ball_speed_sigma: expected a positive uncertainty"):
         read_csv(CSV.replace("Spin Axis [deg]", "Ball Speed Sigma [mph]").replace("2545,", "2545,0"), "shots.csv")
+
+
+@pytest.mark.parametrize(("block", "line", "key"), [
+    ("budgets: [maw, 1.0]", 2, "budgets"), ("sigma: [1 mph]", 2, "sigma"), ("units: [mph, deg]", 2, "units"),
+    ("ball: [tour_urethane]", 2, "ball"), ("budgets: {maw: [1, 2]}", 2, "budgets.maw"),
+    ("budgets: {maw: {'ball_speed [%]': -1}}", 2, "budgets.maw")
+])
+def test_a_yaml_shot_table_block_of_the_wrong_shape_is_one_message_at_its_line(tmp_path, capsys, block, line, key):
+    """Issue 23: a list where a mapping belongs was an internal error (exit 1); now a message at file:line."""
+    path = tmp_path / "t.yaml"
+    path.write_text(f"name: t\n{block}\nrows:\n  - {{club: driver, club_speed: 50 m/s, attack_angle: 0 deg, "
+                    "dynamic_loft: 12 deg, ball_speed: 70 m/s}\n")
+    assert main(["validate", "--dataset", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"t.yaml:{line}: {key}: expected" in err and "internal error" not in err and "Traceback" not in err

@@ -161,3 +161,20 @@ def test_validate_says_agreement_with_the_data_apart_from_keeping_a_budget(capsy
     assert "outside the data's sigma (regression budget kept)" in lines["dem_linear"]
     assert "within the data's sigma" in lines["maw"]
     assert not any(line.rstrip().endswith(" ok") for line in lines.values())
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("budgets: [maw]\n", ":8: budgets: expected a mapping"),
+    ("note: {a: 1}\n", ":8: note: expected text"),
+])
+def test_a_measured_data_file_of_the_wrong_shape_is_one_message_at_its_line(tmp_path, capsys, text, message):
+    path = write_session(tmp_path, "  - {label: driver, value: 0.8}\n", text)
+    assert main(["validate", "--dataset", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "session.yaml" in err and "internal error" not in err and "Traceback" not in err
+
+
+def test_a_measured_point_of_the_wrong_shape_is_said_at_its_line(tmp_path, capsys):
+    path = write_session(tmp_path, "  - {label: driver, value: [0.8]}\n", "")
+    assert main(["validate", "--dataset", str(path)]) == 2
+    assert "points[0].value: expected a finite number" in capsys.readouterr().err

@@ -7,11 +7,12 @@ and spin axis against every measured value of a
 uncertainty. Several parameters at once (:data:`PARAMETERS`): friction, the
 cover's tangential loss, a linear restitution law of the normal speed (e at
 40 m/s and its slope), the restitution gain of a thin wood face, and a mean
-strike offset up the face. The covariance is (J^T J)^-1 at the optimum (the
-residuals are in units of their sigma, so it is not rescaled), with its
-correlation matrix; a parameter whose column of J vanishes, or whose one-sigma
-uncertainty exceeds half its allowed range, is reported as not identified by
-the data.
+strike offset up the face. The optimiser, the covariance (not rescaled: the
+residuals are in units of their sigma), and the rules for "identified", "at its
+bound" and "beyond a physical limit" (a driver's COR above the USGA/R&A limit of
+0.830) are those of :mod:`impactlab.data.least_squares`, shared with
+:mod:`impactlab.data.fitting`. Rows the model cannot predict (a non-finite
+prediction of a measured value) are left out and named.
 
 Cross-validation: fit on all rows but some, predict those; by default one row
 is left out at a time. The errors on the rows not fitted are the honest
@@ -24,8 +25,8 @@ import math
 
 import attrs
 import numpy as np
-from scipy.optimize import least_squares
 
+from impactlab.data import least_squares
 from impactlab.errors import FieldError
 from impactlab.scene.materials import RestitutionLaw
 from impactlab.data.shots import (
@@ -46,15 +47,24 @@ PARAMETERS = {
 #: normal speed at which the fitted restitution law's ``restitution`` applies [m/s]
 REFERENCE_SPEED = 40.0
 DEFAULT_PARAMETERS = ("friction", "tangential_loss", "restitution", "face_restitution_gain")
+#: ball speed of the USGA/R&A pendulum test of a driver's coefficient of restitution [m/s] (160 ft/s)
+COR_TEST_SPEED = 48.77
+#: the USGA/R&A limit of a driver's coefficient of restitution (a rule, not a measurement): Equipment Rules
+#: (2023), Part 2, 5a, measured by the USGA's "Procedure for Measuring the Velocity Ratio of a Club Head for
+#: Conformance to Rule 4-1e" at 48.77 m/s
+DRIVER_COR_LIMIT = 0.830
 
 
 @attrs.frozen
 class Calibration:
     """Fitted parameters of one model on one shot table, with their uncertainty and the errors before and after.
 
-    ``values`` and ``uncertainties`` are SI (one sigma; ``inf`` where not identified); ``rms_before`` and
-    ``rms_after`` are the RMS of the sigma-weighted residuals; ``errors_before`` and ``errors_after`` the RMS
-    errors per measured quantity (:func:`impactlab.data.shots.summary`).
+    ``values`` and ``uncertainties`` are SI (one standard deviation, not a variance; ``inf`` where not
+    identified); ``identified``, ``at_bound`` and ``near_bound`` per parameter and ``beyond_limit`` (one sentence
+    per physical limit the fit exceeds) follow the rules of :mod:`impactlab.data.least_squares`;
+    ``unused_rows`` names the rows left out (the model could not predict them). ``rms_before`` and ``rms_after``
+    are the RMS of the sigma-weighted residuals; ``errors_before`` and ``errors_after`` the RMS errors per
+    measured quantity (:func:`impactlab.data.shots.summary`).
     """
 
     model: str
@@ -69,17 +79,23 @@ class Calibration:
     rms_after: float
     errors_before: dict = attrs.field(eq=False)
     errors_after: dict = attrs.field(eq=False)
+    at_bound: tuple[bool, ...] = ()
+    near_bound: tuple[bool, ...] = ()
+    beyond_limit: tuple[str, ...] = ()
+    unused_rows: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """The calibration as plain data (JSON-ready; ``impactlab fit --json``)."""
         return attrs.asdict(self)
 
     def describe(self) -> str:
-        """One line: each parameter with its one-sigma uncertainty, or 'not identified by these data'."""
-        lines = []
-        for name, value, sigma, ok in zip(self.parameters, self.values, self.uncertainties, self.identified):
-            state = f"{value:.4g} +- {sigma:.2g}" if ok else f"{value:.4g} (not identified by these data)"
-            lines.append(f"{name} = {state}")
+        """One line: each parameter with its one-sigma uncertainty, or 'not identified by these data', its
+        bound and any physical limit it exceeds said."""
+        lines = [f"{name} = {least_squares.state(*state)}"
+                 for name, *state in zip(self.parameters, self.values, self.uncertainties, self.identified,
+                                         self.at_bound or (False,) * len(self.parameters),
+                                         self.near_bound or (False,) * len(self.parameters))]
+        lines += [f"BEYOND A PHYSICAL LIMIT: {message}" for message in self.beyond_limit]
         return "; ".join(lines)
 
 
@@ -91,7 +107,7 @@ def apply(inputs: dict, names, values, ball=None) -> dict:
     (input ``loft_at_contact``, a table's ``loft_at: contact``) the contact point keeps the measured loft and the
     head turns instead; at the face centre the contact point's loft changes with the roll.
     """
-    from impactlab.physics.contact import contact_state
+    from impactlab.physics.contact import approach_state
     out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
     given = dict(zip(names, values))
     n = out["speed"].size
@@ -111,7 +127,7 @@ def apply(inputs: dict, names, values, ball=None) -> dict:
         law = ball.restitution
     if law is not None:
         gain = out.get("club_restitution_gain", 0.0)
-        out["restitution"] = np.clip(law(contact_state(out)["normal_speed"]) + gain, 0.0, 1.0)
+        out["restitution"] = np.clip(law(approach_state(out)["normal_speed"]) + gain, 0.0, 1.0)
     return out
 
 
@@ -162,36 +178,58 @@ def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict
         raise FieldError("--parameter", f"at most as many parameters as measured values ({measured_values})",
                          list(names))
     ball_object = _table_ball(table, ball)
-    inputs = table_inputs(table, ball)
     low = np.array([PARAMETERS[name][0][0] for name in names])
     high = np.array([PARAMETERS[name][0][1] for name in names])
     x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
+    inputs = table_inputs(table, ball)
+    first = predict(model, apply(inputs, names, x0, ball_object))
+    usable = least_squares.usable_rows(np.stack([first[key] for key in MEASURED_FIELDS], axis=1),
+                                       np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
+    unused = tuple(label for label, ok in zip(table.labels, usable) if not ok)
+    if not usable.any():
+        raise FieldError("shot table", "rows the model can predict", f"none of {table.size} ({model.name!r})")
+    if unused:
+        table = table.subset(usable)
+        inputs = table_inputs(table, ball)
 
     def predicted(x):
         return predict(model, apply(inputs, names, x, ball_object))
 
     before = predicted(x0)
-    # finite-difference steps of 1 % of each range: well above the models' discretisation error (1e-4)
-    solution = least_squares(lambda x: _residuals(predicted(x), table), x0, bounds=(low, high),
-                             x_scale=high - low, diff_step=0.01 * (high - low) / np.maximum(np.abs(x0), 1e-3),
-                             method="trf")
-    jacobian = solution.jac
-    singular = np.linalg.svd(jacobian * (high - low), compute_uv=False)
-    covariance = np.linalg.pinv(jacobian.T @ jacobian)
-    sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
-    column = np.linalg.norm(jacobian, axis=0)
-    identified = (column > 1e-9 * max(column.max(), 1e-300)) & (sigma < 0.5 * (high - low))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        correlation = covariance / np.outer(sigma, sigma)
+    solution = least_squares.solve(lambda x: _residuals(predicted(x), table), x0, low, high, weighted=True,
+                                   names=names, limits=_limits(ball_object))
+    correlation = solution.correlation
     return Calibration(
-        model=model.name, table=table.name, parameters=names, values=tuple(float(v) for v in solution.x),
-        uncertainties=tuple(float(s) if ok else math.inf for s, ok in zip(sigma, identified)),
+        model=model.name, table=table.name, parameters=names, values=tuple(float(v) for v in solution.values),
+        uncertainties=tuple(float(s) for s in solution.uncertainties),
         correlation=tuple(tuple(float(c) for c in row) for row in correlation),
-        identified=tuple(bool(v) for v in identified), singular_values=tuple(float(s) for s in singular),
-        rms_before=float(np.sqrt(np.mean(_residuals(before, table) ** 2))),
-        rms_after=float(np.sqrt(np.mean(solution.fun**2))),
+        identified=tuple(bool(v) for v in solution.identified),
+        singular_values=tuple(float(s) for s in solution.singular_values),
+        rms_before=float(np.sqrt(np.mean(solution.start_residuals**2))),
+        rms_after=float(np.sqrt(np.mean(solution.residuals**2))),
         errors_before=summary(shot_errors(before, table)),
-        errors_after=summary(shot_errors(predicted(solution.x), table)))
+        errors_after=summary(shot_errors(predicted(solution.values), table)),
+        at_bound=tuple(bool(v) for v in solution.at_bound), near_bound=tuple(bool(v) for v in solution.near_bound),
+        beyond_limit=solution.beyond_limit, unused_rows=unused)
+
+
+def _limits(ball) -> tuple:
+    """The physical limits a calibration is checked against: a driver's COR (ball law at the USGA test speed
+    plus the wood face's gain) at most :data:`DRIVER_COR_LIMIT`."""
+
+    def driver_cor(fitted: dict):
+        if "face_restitution_gain" not in fitted:
+            return None
+        if "restitution" in fitted:
+            ball_e = fitted["restitution"] + fitted.get("restitution_slope", 0.0) * (COR_TEST_SPEED - REFERENCE_SPEED)
+        elif ball is not None and ball.restitution is not None:
+            ball_e = float(ball.restitution(COR_TEST_SPEED))
+        else:
+            return None
+        return ball_e + fitted["face_restitution_gain"]
+
+    return (least_squares.PhysicalLimit(f"a driver's COR at {COR_TEST_SPEED} m/s (ball law + face gain)",
+                                        driver_cor, DRIVER_COR_LIMIT, "USGA/R&A Equipment Rules, Part 2, 5a"),)
 
 
 def predict_with(model, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:

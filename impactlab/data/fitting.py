@@ -3,18 +3,20 @@
 Weighted least squares (scipy.optimize.least_squares, trust region with
 bounds) of the model's prediction against a :class:`~impactlab.data.validation.MeasuredData`
 set: residuals (predicted - measured)/sigma, sigma the source's stated
-uncertainty, or 1 when it gives none. The parameter covariance is
-(J^T J)^-1 at the optimum, scaled by the residual variance SSR/(n - p) when
-the source gives no uncertainty (and n > p). A parameter the data do not
-constrain (its column of J vanishes) is reported as not identified.
+uncertainty, or 1 when it gives none. The optimiser, the covariance (rescaled
+by the reduced chi-square SSR/(n - p) when the source gives no uncertainty)
+and the rules for "identified" and "at its bound" are those of
+:mod:`impactlab.data.least_squares`, shared with the shot-table calibration.
+Points the model cannot predict (a non-finite prediction) are left out and
+named.
 """
 
 from __future__ import annotations
 
 import attrs
 import numpy as np
-from scipy.optimize import least_squares
 
+from impactlab.data import least_squares
 from impactlab.errors import FieldError
 from impactlab.run.runner import case_inputs
 from impactlab.data.validation import MeasuredData, point_order
@@ -33,9 +35,11 @@ DEFAULT_PARAMETERS = {"restitution": ("friction", "tangential_restitution")}
 class FitResult:
     """A least-squares fit of one model's parameters to a measured dataset.
 
-    Uncertainties are one standard deviation (inf where the data do not identify the parameter);
-    ``residuals`` are predicted minus measured at the optimum, ``rms`` their root mean square and
-    ``start_rms`` the same before fitting."""
+    Uncertainties are one standard deviation, not variances (inf where the data do not identify the
+    parameter); ``identified``, ``at_bound`` and ``near_bound`` follow :mod:`impactlab.data.least_squares`;
+    ``residuals`` are predicted minus measured at the optimum over the points used, ``rms`` their root mean
+    square and ``start_rms`` the same before fitting; ``unused_points`` names the measured points left out
+    (the model could not predict them)."""
     model: str
     dataset: str
     parameters: tuple[str, ...]
@@ -46,6 +50,8 @@ class FitResult:
     residuals: tuple[float, ...]  # predicted - measured at the optimum
     rms: float
     start_rms: float
+    near_bound: tuple[bool, ...] = ()  # the bound lies within one standard deviation
+    unused_points: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """The fit as plain data (JSON-ready)."""
@@ -53,16 +59,14 @@ class FitResult:
 
 
 def describe(result: FitResult) -> str:
-    """One line per parameter, in words."""
-    lines = []
-    for name, value, sigma, identified, bound in zip(result.parameters, result.values, result.uncertainties,
-                                                     result.identified, result.at_bound):
-        if not identified:
-            lines.append(f"{name} = not identified (the data do not depend on it; left at {value:.3g})")
-        elif bound:
-            lines.append(f"{name} = {value:.3f} (at its bound: the model cannot reach the data)")
-        else:
-            lines.append(f"{name} = {value:.3f} +- {sigma:.3f}")
+    """One line: each parameter with its one-sigma uncertainty, its bound or 'not identified' said
+    (:func:`impactlab.data.least_squares.state`), and the points left out."""
+    near = result.near_bound or (False,) * len(result.parameters)
+    lines = [f"{name} = {least_squares.state(*state, spec='.3f', sigma_spec='.3f')}"
+             for name, *state in zip(result.parameters, result.values, result.uncertainties, result.identified,
+                                     result.at_bound, near)]
+    if result.unused_points:
+        lines.append(f"points not used (the model cannot predict them): {', '.join(result.unused_points)}")
     return "; ".join(lines)
 
 
@@ -82,9 +86,9 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
             raise FieldError("--parameter", f"a parameter of model {entry.name!r}", name,
                              choices=[p for p in PARAMETERS if PARAMETERS[p][0] == "input" or p in options])
     base = case_inputs(study)
-    order = point_order(data, study)
+    order = np.asarray(point_order(data, study))
     sigma = np.asarray(data.sigma, dtype=float) if data.sigma is not None else np.ones(len(data.values))
-    measured = data.measured
+    measured = np.asarray(data.measured, dtype=float)
 
     def predict(vector):
         inputs = dict(base)
@@ -95,33 +99,27 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
             else:
                 model_options[name] = float(value)
         model = type(entry.model)(**model_options)
-        return model.compute_arrays(inputs, [data.quantity]).in_units(data.quantity)[order]
-
-    def residuals(vector):
-        return (predict(vector) - measured) / sigma
+        return np.asarray(model.compute_arrays(inputs, [data.quantity]).in_units(data.quantity))[order]
 
     start = np.array([options.get(name, PARAMETERS[name][2]) if PARAMETERS[name][0] == "option"
                       else float(np.mean(base[name])) for name in parameters])
     lower = np.array([PARAMETERS[name][1][0] for name in parameters])
     upper = np.array([PARAMETERS[name][1][1] for name in parameters])
     start = np.clip(start, lower + 1e-6, upper - 1e-6)
-    # relative finite-difference steps of 1e-2 keep the models' discretisation (a resolution that can change
-    # with the parameter, errors ~ tolerance = 1e-4) a few percent of each difference
-    solution = least_squares(residuals, start, bounds=(lower, upper), diff_step=1e-2, x_scale="jac")
-    jacobian = solution.jac
-    n, p = len(measured), len(parameters)
-    identified = np.linalg.norm(jacobian, axis=0) > 1e-6 * max(1.0, np.linalg.norm(jacobian))
-    uncertainties = np.full(p, np.inf)
-    if identified.any():
-        block = jacobian[:, identified]
-        covariance = np.linalg.pinv(block.T @ block)
-        if data.sigma is None and n > identified.sum():
-            covariance *= 2.0 * solution.cost / (n - identified.sum())
-        uncertainties[identified] = np.sqrt(np.diag(covariance))
-    final = solution.fun * sigma  # predicted - measured at the optimum
-    at_bound = np.isclose(solution.x, lower, rtol=0, atol=1e-4) | np.isclose(solution.x, upper, rtol=0, atol=1e-4)
-    return FitResult(model_id, data.name, parameters, tuple(float(v) for v in solution.x),
-                     tuple(float(u) for u in uncertainties), tuple(bool(i) for i in identified),
-                     tuple(bool(b) for b in at_bound),
+    usable = least_squares.usable_rows(predict(start), measured)
+    if not usable.any():
+        raise FieldError("--model", f"a model that can predict {data.name}'s points", model_id)
+    unused = tuple(str(label) for label, ok in zip(data.labels, usable) if not ok)
+
+    def residuals(vector):
+        return ((predict(vector) - measured) / sigma)[usable]
+
+    solution = least_squares.solve(residuals, start, lower, upper, weighted=data.sigma is not None,
+                                   names=parameters)
+    final = solution.residuals * sigma[usable]  # predicted - measured at the optimum
+    first = solution.start_residuals * sigma[usable]
+    return FitResult(model_id, data.name, parameters, tuple(float(v) for v in solution.values),
+                     tuple(float(u) for u in solution.uncertainties), tuple(bool(i) for i in solution.identified),
+                     tuple(bool(b) for b in solution.at_bound),
                      tuple(float(r) for r in final), float(np.sqrt(np.mean(final**2))),
-                     float(np.sqrt(np.mean((predict(start) - measured) ** 2))))
+                     float(np.sqrt(np.mean(first**2))), tuple(bool(b) for b in solution.near_bound), unused)

@@ -44,7 +44,8 @@ from impactlab.errors import FieldError, StudyError
 FIELDS = {
     "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle",
     "dynamic_loft": "angle", "face_to_path": "angle", "spin_loft": "angle", "strike_toe": "length",
-    "strike_high": "length", "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
+    "strike_high": "length", "ball_speed": "speed", "vertical_launch_angle": "angle",
+    "horizontal_launch_angle": "angle",
     "spin_rate": "angular_speed", "spin_axis": "angle", "back_spin": "angular_speed", "side_spin": "angular_speed",
     "smash_factor": "dimensionless",
     "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",

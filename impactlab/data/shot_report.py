@@ -17,7 +17,7 @@ import numpy as np
 
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from impactlab.data.shots import (
-    ERROR_KEYS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
 )
 
 #: shot tables shipped with impactlab (impactlab/data/validation/NAME.yaml)
@@ -164,6 +164,10 @@ def print_shot_errors(table: ShotTable, models, plot: str | None = None, rows: l
                 over.append(f"{table.name}/{name}")
             cells.append(f"{rms[key]:.2f}{'*' if rms[key] <= sigma[key] else ''}{mark}".rjust(22))
         print(f"  {name:<16}" + "".join(cells))
+        unused = _unpredicted(predictions[name], table)
+        if unused:
+            over.append(f"{table.name}/{name}")
+            print(f"  {'':<16}rows not used (the model cannot predict them; OVER): {', '.join(unused)}")
     print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
           "getting worse)\n")
     if rows is not None:
@@ -225,6 +229,15 @@ def write_prediction_rows(rows: list[dict], path) -> Path:
     return write_atomically(path, buffer.getvalue().encode())
 
 
+def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
+    """Labels of the rows whose prediction of a measured value is not finite (left out of every RMS)."""
+    from impactlab.data.least_squares import usable_rows
+
+    usable = usable_rows(np.stack([predicted[key] for key in MEASURED_FIELDS], axis=1),
+                         np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
+    return [label for label, ok in zip(table.labels, usable) if not ok]
+
+
 def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bool = False,
               json_path: str | None = None) -> int:
     """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
@@ -242,6 +255,8 @@ def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bo
         if name == (models or FIT_MODELS)[0]:
             for line in skipped_text(table):
                 print(line)
+        if result.unused_rows:
+            print(f"  rows not used (the model cannot predict them): {', '.join(result.unused_rows)}")
         keys = [key for key in ERROR_KEYS if math.isfinite(result.errors_after[key])]
         print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
         print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))

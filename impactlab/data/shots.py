@@ -35,8 +35,6 @@ MEASURED_FIELDS = {
     "spin_rate": "angular_speed", "spin_axis": "angle",
 }
 TEXT_FIELDS = ("label", "club", "handedness")
-#: top-level keys of a YAML shot table
-TABLE_KEYS = ("name", "source", "ball", "units", "sigma", "loft_at", "budgets", "rows")
 #: usual launch-monitor column names -> field (lower case, single spaces)
 ALIASES = {
     "club speed": "club_speed", "clubspeed": "club_speed", "club head speed": "club_speed",
@@ -254,23 +252,29 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
 
 def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     """A shot table from YAML: ``name``, ``source``, optional ``ball``, ``units``, ``sigma``, and ``rows``."""
+    from impactlab.data.documents import ShotTableBlock, structure_document
     from impactlab.study.yaml_lines import line_of, load_yaml
 
     document, lines = load_yaml(text, file)
     if not isinstance(document, dict) or "rows" not in document:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
-    units = document.get("units") or {}
-    problems = [f"{file}:{line_of(lines, (key,))}: {key}: expected a key of a shot table ({', '.join(TABLE_KEYS)})"
-                for key in document if key not in TABLE_KEYS]
+    # the shape of every block (a mapping where one belongs, text, positive budgets; unknown keys refused) at
+    # its file:line; what the values mean is checked below, every bad one reported at once
+    keys = [field.name for field in attrs.fields(ShotTableBlock)]  # unknown keys: reported with every other
+    block = structure_document({key: value for key, value in document.items() if key in keys}, ShotTableBlock,
+                               file, lines)
+    units = block.units or {}
+    problems = [f"{file}:{line_of(lines, (key,))}: {key}: expected a key of a shot table ({', '.join(keys)})"
+                for key in document if key not in keys]
     problems += [f"{file}:{line_of(lines, ('units', key))}: units.{key}: expected a delivery or measured field "
                  f"({', '.join((*DELIVERY_FIELDS, *MEASURED_FIELDS))})"
                  for key in units if key not in DELIVERY_FIELDS and key not in MEASURED_FIELDS]
-    loft_at = document.get("loft_at", "contact")
+    loft_at = block.loft_at or "contact"
     if loft_at not in ("contact", "centre"):
         problems.append(f"{file}:{line_of(lines, ('loft_at',))}: loft_at: expected contact (the launch monitor's "
                         f"loft at the impact point) or centre (at the face centre), got {loft_at!r}")
     sigma_defaults = {}
-    for key, value in (document.get("sigma") or {}).items():
+    for key, value in (block.sigma or {}).items():
         if key not in MEASURED_FIELDS:
             problems.append(f"{file}:{line_of(lines, ('sigma', key))}: sigma.{key}: expected one of "
                             f"{', '.join(MEASURED_FIELDS)}")
@@ -279,14 +283,13 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
             sigma_defaults[key] = _convert(value, key, None, f"{file}: sigma.{key}")
         except FieldError as exc:
             problems.append(str(exc))
-    budgets = document.get("budgets") or {}
+    budgets = block.budgets or {}
     for model, entry in budgets.items():
-        if not isinstance(entry, dict) or not set(entry) <= set(ERROR_KEYS) \
-                or not all(isinstance(v, (int, float)) and v > 0 for v in entry.values()):
+        if not set(entry) <= set(ERROR_KEYS):
             problems.append(f"{file}:{line_of(lines, ('budgets', model))}: budgets.{model}: expected a mapping of "
                             f"error ({', '.join(repr(k) for k in ERROR_KEYS)}) to a positive RMS")
     rows = []
-    for index, item in enumerate(document["rows"] or []):
+    for index, item in enumerate(block.rows or []):
         line = line_of(lines, ("rows", index))
         where = f"{file}:{line}"
         if not isinstance(item, dict):
@@ -311,8 +314,8 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
         rows.append(row)
     if problems:
         raise StudyError(f"{file}: {len(problems)} problem(s): " + "; ".join(problems))
-    return _assemble(rows, str(document.get("name", Path(file).stem)), str(document.get("source", "")), file,
-                     dict(document.get("ball") or {}), sigma_defaults, loft_at, budgets)
+    return _assemble(rows, block.name if block.name is not None else Path(file).stem, block.source or "", file,
+                     dict(block.ball or {}), sigma_defaults, loft_at, budgets)
 
 
 def read_shots(path, include_flagged: bool = False) -> ShotTable:

@@ -230,16 +230,20 @@ class ImpactModel:
         """
         return self.compute_arrays(inputs, outputs).to_dataset()
 
-    def compute_arrays(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None) -> ModelResult:
+    def compute_arrays(self, inputs: Mapping[str, Any], outputs: Iterable[str] | None = None, *,
+                       plan: OutputPlan | None = None) -> ModelResult:
         """:meth:`compute` without the Dataset: the outputs as SI arrays in a light :class:`ModelResult`.
 
         For callers that evaluate a model many times (fits, executors): the same validation and derivation,
-        and no xarray object until one is asked for (:meth:`ModelResult.to_dataset`).
+        and no xarray object until one is asked for (:meth:`ModelResult.to_dataset`). ``plan``: this model's
+        :meth:`plan` of ``outputs`` for inputs of these names, when the caller has made it already (the runner
+        plans once per study, not per chunk).
         """
         batch = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)  # checked once per batch
         if outputs is None:
             outputs = list(EVERY_SCALAR_OUTPUT)
-        plan = self.plan(outputs, batch)
+        if plan is None:
+            plan = self.plan(outputs, batch)
         self._check_needed(batch, plan)
         n_cases = batch.n_cases
         raw = {}

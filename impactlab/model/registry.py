@@ -9,6 +9,7 @@ it never breaks the registry for the others.
 
 from __future__ import annotations
 
+import functools
 import warnings
 from importlib import metadata
 
@@ -17,13 +18,11 @@ from impactlab.model.base import ImpactModel
 
 ENTRY_POINT_GROUP = "impactlab.models"
 
-_cache: dict[str, type[ImpactModel]] | None = None
-
-
 def _entry_points():
     return metadata.entry_points(group=ENTRY_POINT_GROUP)
 
 
+@functools.cache  # discovered once; refresh() clears it (a failed discovery is not cached)
 def _discover() -> dict[str, type[ImpactModel]]:
     found: dict[str, type[ImpactModel]] = {}
     origin: dict[str, str] = {}
@@ -55,16 +54,12 @@ def _discover() -> dict[str, type[ImpactModel]]:
 
 def available() -> dict[str, type[ImpactModel]]:
     """Registered models by name (discovered on first use, then cached)."""
-    global _cache
-    if _cache is None:
-        _cache = _discover()
-    return dict(_cache)
+    return dict(_discover())
 
 
 def refresh() -> dict[str, type[ImpactModel]]:
     """Forget the cache and discover the plugins again."""
-    global _cache
-    _cache = None
+    _discover.cache_clear()
     return available()
 
 

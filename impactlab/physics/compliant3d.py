@@ -34,7 +34,8 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from . import _kernels, hertz
+from . import hertz
+from . import kernels as _kernels
 
 LAWS = {"mdr": 0, "linear": 1, "mindlin": 2}
 #: measured error constants of the 3-D kernel against min(mu J_n, m_t |V_x|) (benchmarks/bench_clubs.py and

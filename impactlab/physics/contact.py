@@ -105,27 +105,41 @@ def face_axes(dynamic_loft, face_angle):
     return tuple(np.einsum("nij,nj->ni", turn, v) for v in (toe, up, normal))
 
 
-def _head_inertia(inputs, n, toe, up, normal):
-    """Inverse inertia tensor of the head in the ground frame at impact (n, 3, 3) and the head's toe, up and
-    target axes at impact (columns, (n, 3, 3)), or (None, None) for a point mass."""
+def _head_axes(inputs, n, toe, up, normal):
+    """The head's toe, up and target axes at impact (columns, (n, 3, 3)), or None for a point mass."""
     if not all(name in inputs for name in INERTIA_INPUTS):
-        return None, None
+        return None
+    # head-frame axes at impact: toe stays the face's toe; up and target are the face's up and normal turned
+    # back by the static loft (the face normal is the target axis tilted up by the loft)
+    static = np.broadcast_to(np.asarray(inputs.get("club_loft", 0.0), float), (n,))[:, None]
+    target = np.cos(static) * normal - np.sin(static) * up
+    vertical = np.sin(static) * normal + np.cos(static) * up
+    return np.stack([toe, vertical, target], -1)  # columns: head axes in ground coordinates
+
+
+def _head_inverse_inertia(inputs, n, axes):
+    """Inverse inertia tensor of the head in the ground frame at impact (n, 3, 3), from its axes at impact."""
     c = {name: np.broadcast_to(np.asarray(inputs[name], float), (n,)) for name in INERTIA_INPUTS}
     tensor = np.stack([
         np.stack([c["club_inertia_toe"], c["club_inertia_toe_up"], c["club_inertia_toe_target"]], -1),
         np.stack([c["club_inertia_toe_up"], c["club_inertia_up"], c["club_inertia_up_target"]], -1),
         np.stack([c["club_inertia_toe_target"], c["club_inertia_up_target"], c["club_inertia_target"]], -1),
     ], -2)
-    # head-frame axes at impact: toe stays the face's toe; up and target are the face's up and normal turned
-    # back by the static loft (the face normal is the target axis tilted up by the loft)
-    static = np.broadcast_to(np.asarray(inputs.get("club_loft", 0.0), float), (n,))[:, None]
-    target = np.cos(static) * normal - np.sin(static) * up
-    vertical = np.sin(static) * normal + np.cos(static) * up
-    axes = np.stack([toe, vertical, target], -1)  # columns: head axes in ground coordinates
-    return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes)), axes
+    return np.linalg.inv(np.einsum("nia,nab,njb->nij", axes, tensor, axes))
 
 
-def contact_state(inputs: dict) -> dict:
+def approach_state(inputs: dict) -> dict:
+    """The contact frame and the approach velocities of each case, without the mobility (SI arrays).
+
+    The part of :func:`contact_state` that a ball's restitution law needs (``normal_speed``), without the
+    (n, 3, 3) mobility and head inertia that make up most of its cost; the same arithmetic, so the same bits.
+    Returns ``normal_speed``, ``slip_speed``, ``initial_velocity``, ``frame`` and the directions of
+    :func:`contact_state`.
+    """
+    return contact_state(inputs, mobility=False)
+
+
+def contact_state(inputs: dict, mobility: bool = True) -> dict:
     """Contact frame, approach velocity and mobility of each case, from model inputs (SI arrays).
 
     Returns
@@ -151,6 +165,8 @@ def contact_state(inputs: dict) -> dict:
     ``head_rotation_toe``, ``_up``, ``_target`` [rad/s] turn the head about its axes at impact (absent: 0);
     ``club_reference`` (0 centre of mass, absent; 1 face centre; 2 contact point) is the point whose
     velocity ``speed`` along the path and attack angle give, every other point moving by w x r from it.
+
+    With ``mobility=False`` only the frame and the approach velocities (:func:`approach_state`).
     """
     speed = np.atleast_1d(np.asarray(inputs["speed"], float))
     n = speed.size
@@ -181,11 +197,8 @@ def contact_state(inputs: dict) -> dict:
     sag = 0.5 * (strike_toe * tilt_toe + strike_high * tilt_high)
     point = strike_toe[:, None] * toe + strike_high[:, None] * up - sag[:, None] * flat_normal
 
-    eye = np.eye(3)
-    club_mass = value("club_mass", np.inf)
-    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
-    inverse_inertia, axes = _head_inertia(inputs, n, toe, up, flat_normal)
-    if inverse_inertia is not None:
+    axes = _head_axes(inputs, n, toe, up, flat_normal)
+    if axes is not None:
         center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
                   - value("club_cg_depth", 0.0)[:, None] * flat_normal)
         lever = point - center
@@ -222,16 +235,25 @@ def contact_state(inputs: dict) -> dict:
     ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
     ball_point_velocity = -radius[:, None] * _cross(ball_spin, normal)
 
-    ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
-        / ball_mass[:, None, None]
-    if inverse_inertia is not None:
-        skew = _skew(lever)
-        head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
     # head's contact point by w x lever (nothing for a point mass or a fixed face, which have no lever)
     head_spin = value("club_spin", 0.0)[:, None] * lateral_direction + rotation
     head_point_velocity = _cross(head_spin, lever)
     initial = np.einsum("nia,ni->na", frame, ball_point_velocity - club_velocity - head_point_velocity)
+    if not mobility:
+        return {"slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
+                "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
+                "slip_speed": initial[:, 0], "initial_velocity": initial, "frame": frame}
+
+    eye = np.eye(3)
+    ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
+        / ball_mass[:, None, None]
+    club_mass = value("club_mass", np.inf)
+    head_mobility = np.zeros((n, 3, 3)) + eye / club_mass[:, None, None]
+    inverse_inertia = _head_inverse_inertia(inputs, n, axes) if axes is not None else None
+    if inverse_inertia is not None:
+        skew = _skew(lever)
+        head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
     mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
     off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)

@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _kernels
+from . import kernels as _kernels
 from .hertz import ELASTIC, NormalLaw, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution
 

@@ -41,7 +41,7 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from . import _kernels
+from . import kernels as _kernels
 from .hertz import ELASTIC, NormalLaw, cached_grid
 
 #: dX''/dtau = -TANGENTIAL_GAIN * chi * integral u dxi

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _kernels
+from . import kernels as _kernels
 
 #: default steps over the normal impulse of the 3-D Coulomb integration
 STRONGE_STEPS = 2000

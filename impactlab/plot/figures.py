@@ -240,6 +240,10 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     rows = max(1, -(-len(names) // columns))
     size = (8.0, 5.2) if len(names) == 1 else (5.2 * columns, 3.8 * rows + 0.6)
     figure = Figure(figsize=size)
+    # one panel per output, not xarray's FacetGrid: its facets are the values of one dimension of one DataArray
+    # on shared axes, while these panels are different outputs (each its own units, scale and measured data),
+    # and the lines of a panel are told apart by the coincidence analysis below; FacetGrid also draws through
+    # pyplot, which would change the caller's backend and open figures
     axes = figure.subplots(rows, columns, squeeze=False)
     colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
     single_model = dataset.sizes[MODEL_DIM] == 1

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import attrs
 import numpy as np
+from tqdm import tqdm
 
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import EnvironmentFault, StudyError
@@ -58,7 +59,7 @@ class Chunk:
 
 
 #: layout of a saved chunk; a progress folder of another layout is started over, not misread
-CHUNK_FORMAT = 2
+CHUNK_FORMAT = 3
 
 
 def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
@@ -67,16 +68,24 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
             for entry in range(n_models) for start in range(0, n_cases, chunk_size)]
 
 
-def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
-    """Worker side: run ``model`` on the chunk's cases; plain arrays and the missing outputs' reasons come back."""
+def compute_chunk(model, inputs: dict, outputs, chunk: Chunk, plan=None, paths: bool = False) -> dict:
+    """Worker side: run ``model`` on the chunk's cases; plain arrays and the missing outputs' reasons come back.
+
+    ``plan`` is the model's plan for the study (:func:`impactlab.run.runner.plan_study`), made once, not per chunk.
+    ``paths``: also count the chunk's cases on one line (``one_line``, for the plan's sentence on the solver
+    paths) from the chunk's contact state, the one the model has built already.
+    """
     if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
         part = inputs.slice(chunk.start, chunk.stop)
     else:
-        part = _cases_of(inputs, chunk)
-    result = model.compute_arrays(part, outputs)  # arrays inside: no Dataset built per chunk
+        part = CaseInputs(_cases_of(inputs, chunk))
+    result = model.compute_arrays(part, outputs, plan=plan)  # arrays inside: no Dataset built per chunk
     # what assembly needs and nothing else: the values in the vocabulary's units, the time axis, the reasons
-    return {"data": {name: result.in_units(name) for name in result.values}, "time": result.time,
-            "missing": dict(result.missing)}
+    out = {"data": {name: result.in_units(name) for name in result.values}, "time": result.time,
+           "missing": dict(result.missing)}
+    if paths:
+        out["one_line"] = int(np.count_nonzero(part.contact_state()["one_dimensional"]))
+    return out
 
 
 def _cases_of(inputs: dict, chunk: Chunk) -> dict:
@@ -133,12 +142,13 @@ class _Pool:
                                             processes=True, dashboard_address=None)
                 self.client = Client(self.cluster)
 
-    def run(self, model, inputs, outputs, chunks) -> Iterator:
+    def run(self, model, inputs, outputs, chunks, plan=None, paths: bool = False) -> Iterator:
         if self.kind == "processes":
             # each task carries its own cases only: the whole inputs with every chunk pickled 320 MB per task
             # for 10^6 cases and made the pool 4x slower than one process
             futures = {self.pool.submit(compute_chunk, model, _cases_of(inputs, chunk), outputs,
-                                        attrs.evolve(chunk, start=0, stop=chunk.stop - chunk.start)): chunk
+                                        attrs.evolve(chunk, start=0, stop=chunk.stop - chunk.start), plan,
+                                        paths): chunk
                        for chunk in chunks}
             pending = set(futures)
             while pending:
@@ -151,7 +161,8 @@ class _Pool:
 
             if self.shared is None:  # the case inputs travel to every worker once, as one object
                 self.shared = self.client.scatter([inputs], broadcast=True, hash=False)[0]
-            futures = {self.client.submit(compute_chunk, model, self.shared, outputs, chunk, pure=False): chunk
+            futures = {self.client.submit(compute_chunk, model, self.shared, outputs, chunk, plan, paths,
+                                          pure=False): chunk
                        for chunk in chunks}
             for future in as_completed(list(futures)):
                 check_interrupt()
@@ -170,28 +181,39 @@ class _Pool:
 
 
 class Progress:
-    """One progress bar on stderr, fed by completed chunks whatever the executor."""
+    """One progress bar on stderr, fed by completed chunks whatever the executor.
+
+    On a terminal, a tqdm bar redrawn in place; where stderr is not a terminal (logs, CI) a line every tenth
+    (tqdm's own meter as text), never carriage returns; nothing when not ``enabled``.
+    """
 
     def __init__(self, total: int, enabled: bool, label: str = "cases"):
         self.total, self.done, self.enabled, self.label = total, 0, enabled, label
         self.start = time.perf_counter()
         self.tty = sys.stderr.isatty()
         self.last_tenth = -1
+        self.bar = tqdm(total=total, unit=f" {label}", file=sys.stderr, disable=not (enabled and self.tty),
+                        dynamic_ncols=True, leave=True)
 
     def advance(self, count: int) -> None:
         """Count ``count`` more cases done; redraw the bar (a line every tenth where stderr is not a terminal)."""
         self.done += count
         if not self.enabled:
             return
-        fraction = self.done / max(self.total, 1)
-        elapsed = time.perf_counter() - self.start
-        bar = "#" * int(30 * fraction)
-        text = f"[{bar:<30}] {self.done}/{self.total} {self.label} ({100 * fraction:.0f} %, {elapsed:.1f} s)"
         if self.tty:
-            print(f"\r{text}", end="" if self.done < self.total else "\n", file=sys.stderr, flush=True)
-        elif int(10 * fraction) > self.last_tenth:  # logs and CI: a line every tenth
+            self.bar.update(count)
+            if self.done >= self.total:
+                self.close()
+            return
+        fraction = self.done / max(self.total, 1)
+        if int(10 * fraction) > self.last_tenth:  # logs and CI: a line every tenth
             self.last_tenth = int(10 * fraction)
-            print(text, file=sys.stderr, flush=True)
+            meter = tqdm.format_meter(self.done, self.total, time.perf_counter() - self.start, unit=f" {self.label}")
+            print(meter, file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        """End the bar (its line stays on the terminal); idempotent."""
+        self.bar.close()
 
 
 class ProgressStore:
@@ -245,15 +267,21 @@ class ProgressStore:
                 data = {name: archive[name] for name in meta["names"]}
                 time_axis = archive["__time__"] if "__time__" in archive else None
                 missing = dict(meta["missing"])
+                one_line = meta.get("one_line")
         except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile) as exc:
             self.say(f"{path}: damaged ({type(exc).__name__}: {exc}); computing this chunk again")
             path.unlink(missing_ok=True)
             return None
-        return {"data": data, "time": time_axis, "missing": missing}
+        part = {"data": data, "time": time_axis, "missing": missing}
+        if one_line is not None:
+            part["one_line"] = int(one_line)
+        return part
 
     def save(self, chunk: Chunk, part: dict) -> None:
         """Save a finished chunk atomically (a full disk shows here, and no half-written chunk remains)."""
         meta = {"names": list(part["data"]), "missing": part["missing"]}
+        if "one_line" in part:
+            meta["one_line"] = part["one_line"]
         arrays = dict(part["data"])
         if part["time"] is not None:
             arrays["__time__"] = part["time"]
@@ -309,8 +337,11 @@ def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
 
 def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers: int | None = None,
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
-               show_progress: bool = False) -> list[dict]:
-    """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``)."""
+               show_progress: bool = False, plans=None) -> list[dict]:
+    """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``).
+
+    ``plans``: one :class:`~impactlab.model.planning.OutputPlan` per model entry, made once for the study
+    (default: each model plans its chunks itself)."""
     from impactlab.vocabulary import is_history
 
     n_cases = study.n_cases
@@ -336,7 +367,8 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
     pool = _Pool(kind, workers, scheduler) if todo and kind in ("processes", "dask") else None
     finished = False
     try:
-        for chunk, part in _stream(study, inputs, outputs, todo, pool):
+        paths = study.scene.club is not None  # the plan's sentence on the solver paths counts one-line cases
+        for chunk, part in _stream(study, inputs, outputs, todo, pool, plans or [None] * len(study.models), paths):
             if store is not None:
                 store.save(chunk, part)
             parts[chunk] = part
@@ -344,12 +376,13 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
             check_interrupt()  # the safe point: this chunk is saved, the next has not started
         finished = True
     finally:
+        progress.close()
         if pool is not None:
             pool.close(abort=not finished)
     return [_join([parts[chunk] for chunk in chunks if chunk.entry == index]) for index in range(len(study.models))]
 
 
-def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool) -> Iterator:
+def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool, plans, paths: bool = False) -> Iterator:
     """Finished chunks as they come.
 
     In this process the cases are checked once and the models run chunk by chunk, every model on a
@@ -359,17 +392,21 @@ def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool) -> Iterator:
     if pool is None:
         batch = CaseInputs(inputs, copy=False)  # the runner's own arrays, not changed during the run
         for chunk in sorted(todo, key=lambda chunk: (chunk.start, chunk.entry)):
-            yield chunk, compute_chunk(study.models[chunk.entry].model, batch, outputs, chunk)
+            yield chunk, compute_chunk(study.models[chunk.entry].model, batch, outputs, chunk, plans[chunk.entry],
+                                       paths and chunk.entry == 0)
         return
     for entry_index, entry in enumerate(study.models):
         mine = [chunk for chunk in todo if chunk.entry == entry_index]
         if mine:
-            yield from pool.run(entry.model, inputs, outputs, mine)
+            yield from pool.run(entry.model, inputs, outputs, mine, plans[entry_index], paths and entry_index == 0)
 
 
 def _join(parts: list[dict]) -> dict:
     """One model entry's chunks joined along the cases: arrays in the vocabulary's units, no Dataset yet."""
     first = parts[0]
-    return {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
-            "time": first["time"],
-            "missing": first["missing"]}
+    joined = {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
+              "time": first["time"],
+              "missing": first["missing"]}
+    if all("one_line" in part for part in parts):
+        joined["one_line"] = sum(part["one_line"] for part in parts)
+    return joined

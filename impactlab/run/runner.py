@@ -23,15 +23,31 @@ from impactlab.study.core import Study, load_study
 
 @attrs.frozen
 class StudyPlan:
-    """The work a study will do: one output plan per model entry, and the case count."""
+    """The work a study will do: one output plan per model entry, and the case count.
+
+    The model plans are made once per study, for the names of its case inputs (``inputs``), and are the ones
+    every chunk runs with; the sentence on the solver paths needs the contact state of every case, so it is
+    built only when the plan is described (``impactlab run --plan``), never on the way to a run.
+    """
 
     study: str
     n_cases: int
     models: tuple[tuple[str, OutputPlan], ...]
-    #: which solver path the cases take, and why (one paragraph; empty without a club head)
-    paths: str = ""
     #: the resources it will take (impactlab.study.limits.Estimate.describe)
     resources: str = ""
+    #: the names of the case inputs the models were planned for (:func:`case_input_names`)
+    inputs: frozenset[str] = frozenset()
+    source: Study | None = attrs.field(default=None, eq=False, repr=False)
+    #: cases on one line (1-D solvers), counted by the run from the chunks' contact states; None before a run
+    one_line: int | None = None
+
+    @property
+    def paths(self) -> str:
+        """Which solver path the cases take, and why (one paragraph; empty without a club head).
+
+        After a run, from the count its chunks made of their own contact states; before (``--plan``), from a
+        contact state of every case built here for the purpose."""
+        return describe_paths(self.source, self.one_line) if self.source is not None else ""
 
     def describe(self) -> str:
         """The plan in words: cases x models, the resource estimate, per model what is computed, derived and missing."""
@@ -39,18 +55,23 @@ class StudyPlan:
         if self.resources:
             lines.append(f"  {self.resources}")
         lines += [f"  [{entry_id}] {plan.describe()}" for entry_id, plan in self.models]
-        if self.paths:
-            lines.append(f"  contact: {self.paths}")
+        paths = self.paths
+        if paths:
+            lines.append(f"  contact: {paths}")
         return "\n".join(lines)
 
 
-def describe_paths(study: Study) -> str:
-    """How many cases lie on one line (the 1-D solvers) and how many need the 3-D ones, and why."""
+def describe_paths(study: Study, one_line: int | None = None) -> str:
+    """How many cases lie on one line (the 1-D solvers) and how many need the 3-D ones, and why.
+
+    ``one_line``: that count if known (a run counts it chunk by chunk); else it is computed from the contact
+    state of every case."""
     from impactlab.physics.contact import contact_state
 
     if study.scene.club is None:
         return ""
-    one_line = int(np.sum(contact_state(case_inputs(study))["one_dimensional"]))
+    if one_line is None:
+        one_line = int(np.sum(contact_state(case_inputs(study))["one_dimensional"]))
     coupled = study.n_cases - one_line
     text = (f"{one_line} case(s) on one line (the mobility matrix is diagonal in the contact frame: a strike on the "
             f"centre-of-mass line of a flat face) take the closed forms and the scaled 1-D solvers; {coupled} case(s) "
@@ -66,18 +87,41 @@ def plan_study(study: Study) -> StudyPlan:
     """Plan every model of the study; refuse a model that lacks a required input, naming model and input.
 
     A study that would need more cases or memory than :mod:`impactlab.study.limits` allows is refused here,
-    before its inputs are built.
+    before its inputs are built (the one place the limits are checked on the way to a run).
     """
     from impactlab.study.limits import check
 
     resources = check(study).describe()
-    given = set(study.scene.inputs())
+    given = case_input_names(study)
     plans = []
     for entry in study.models:
         plan = entry.model.plan(study.all_outputs, given)
         require_inputs(f"{study.file or study.name}: model {entry.id!r}", entry.model.requires, given, "the study")
         plans.append((entry.id, plan))
-    return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
+    return StudyPlan(study.name, study.n_cases, tuple(plans), resources, frozenset(given), study)
+
+
+def _ball_law_applies(study: Study) -> bool:
+    """Whether the restitution comes from the ball's law (the study's own or, swept, each preset's)."""
+    if study.scene.contact.restitution is not None or "contact.restitution" in {
+            field.path for axis in study.sweep for field in axis.fields}:
+        return False
+    swept = [axis.balls for axis in study.sweep if axis.balls is not None]
+    if swept:
+        return any(ball.restitution is not None for ball in swept[0])
+    return study.scene.ball.restitution is not None
+
+
+def case_input_names(study: Study) -> set[str]:
+    """The names of :func:`case_inputs` of ``study``, without building its arrays."""
+    from impactlab.physics.delivery import DELIVERY_INPUTS
+
+    names = set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
+    if all(name in names for name in DELIVERY_INPUTS):
+        names.add("angle")
+    if _ball_law_applies(study):
+        names.add("restitution")
+    return names
 
 
 def case_inputs(study: Study) -> dict[str, np.ndarray]:
@@ -89,19 +133,16 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
         for field in axis.fields:
             inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
     complete_inputs(inputs)
-    ball_axes = [(axis, grid) for axis, grid in zip(study.sweep, grids) if axis.balls is not None]
-    if study.scene.contact.restitution is None and "contact.restitution" not in {
-            field.path for axis in study.sweep for field in axis.fields}:
+    if _ball_law_applies(study):
+        ball_axes = [(axis, grid) for axis, grid in zip(study.sweep, grids) if axis.balls is not None]
         if ball_axes:  # a swept ball preset: each case's ball's own law at its own normal speed
             (axis, grid), = ball_axes
-            which = grid.reshape(-1)
             laws = [ball_restitution(ball, inputs) for ball in axis.balls]
-            if any(law is not None for law in laws):
-                if any(law is None for law in laws):
-                    raise FieldError("sweep.ball.preset", "balls that all have a restitution law, or a "
-                                     "contact.restitution for all", "a ball without one")
-                inputs["restitution"] = np.choose(which, laws)
-        elif study.scene.ball.restitution is not None:
+            if any(law is None for law in laws):
+                raise FieldError("sweep.ball.preset", "balls that all have a restitution law, or a "
+                                 "contact.restitution for all", "a ball without one")
+            inputs["restitution"] = np.choose(grid.reshape(-1), laws)
+        else:
             # the ball's restitution law at each case's own normal speed
             inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
     if np.any(inputs["angle"] >= np.pi / 2):
@@ -114,7 +155,7 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
 def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
               workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
               progress_folder: str | Path | None = None, show_progress: bool = False,
-              output: str | Path | None = None) -> xr.Dataset:
+              output: str | Path | None = None, plan: StudyPlan | None = None) -> xr.Dataset:
     """Run a study (path, YAML text, mapping or Study) and return its results as one dataset.
 
     Parameters
@@ -137,6 +178,9 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
     output : path, optional
         Also write the result file here (atomically); with a progress folder, the folder stays locked
         against another run until the file is written and the folder removed.
+    plan : StudyPlan, optional
+        The study's plan if the caller has made it (:func:`plan_study`: limits checked, models planned),
+        so that neither is done twice.
     """
     import contextlib
 
@@ -144,7 +188,8 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
     from impactlab.io.results import write_results
 
     study = load_study(source)
-    plan = plan_study(study)
+    if plan is None or plan.source is not study:
+        plan = plan_study(study)
     if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.data.sensitivity)
         from impactlab.data.sensitivity import run_sensitivity
 
@@ -153,6 +198,9 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
             write_results(dataset, output)
         return dataset
     inputs = case_inputs(study)
+    if set(inputs) != plan.inputs:  # the plans every chunk runs with were made for these very names
+        raise RuntimeError(f"case inputs {sorted(set(inputs) ^ plan.inputs)} differ from the plan's "
+                           "(case_input_names and case_inputs disagree)")
     outputs = study.all_outputs
     say = progress or (lambda text: None)
     with contextlib.ExitStack() as stack:
@@ -162,7 +210,10 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
                                                       output=output))
         say(f"running {len(study.models)} model(s) on {study.n_cases} case(s)")
         results = run_chunks(study, inputs, outputs, executor=executor, workers=workers, scheduler=scheduler,
-                             chunk_size=chunk_size, store=store, show_progress=show_progress)
+                             chunk_size=chunk_size, store=store, show_progress=show_progress,
+                             plans=[model_plan for _, model_plan in plan.models])
+        if results and "one_line" in results[0]:  # counted from the chunks' own contact states
+            plan = attrs.evolve(plan, one_line=results[0]["one_line"])
         dataset = assemble(study, plan, results)
         if output is not None:
             write_results(dataset, output)

@@ -290,9 +290,10 @@ def ball_restitution(ball, inputs: dict):
     The normal approach speed is that of the contact (club speed along the contact normal, so that a lofted,
     open or curved face meets the ball more slowly than its club speed).
     """
-    from impactlab.physics.contact import contact_state
+    from impactlab.physics.contact import approach_state
 
     if ball.restitution is None:
         return None
     gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)
-    return np.clip(ball.restitution(contact_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)
+    # the approach speeds only: the (n, 3, 3) mobility is built once per chunk, where the models need it
+    return np.clip(ball.restitution(approach_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)

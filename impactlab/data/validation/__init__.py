@@ -15,6 +15,8 @@ and Kharaz, Gorham & Salman's (2001) experiment, in :mod:`.benchmarks`
 
 from __future__ import annotations
 
+import math
+
 import os
 from importlib import resources
 from pathlib import Path
@@ -22,6 +24,7 @@ from pathlib import Path
 import attrs
 import numpy as np
 
+from impactlab.data.documents import MeasuredDataBlock, structure_document
 from impactlab.errors import FieldError
 from impactlab.run.runner import case_inputs
 from impactlab.study.core import Study, load_study
@@ -108,10 +111,6 @@ DATASETS: dict[str, MeasuredData] = {
 }
 
 
-DATA_KEYS = ("name", "source", "quantity", "study", "dimension", "points", "budgets", "note")
-POINT_KEYS = ("label", "value", "sigma")
-
-
 def get_dataset(name: str) -> MeasuredData:
     """A shipped dataset by name, or a measured-data file (.yaml) of the user's."""
     if str(name).endswith((".yaml", ".yml")) or os.path.sep in str(name):
@@ -148,51 +147,27 @@ def load_measured(path) -> MeasuredData:
     def fail(where, expected, given, choices=None):
         raise FieldError(where, expected, given, choices=choices, file=file, line=line_of(lines, parse_path(where)))
 
-    if not isinstance(document, dict):
-        fail("", "a mapping with keys " + ", ".join(DATA_KEYS), document)
-    for key in document:
-        if key not in DATA_KEYS:
-            fail(str(key), "a key of a measured-data file", key, DATA_KEYS)
-    for key in ("source", "quantity", "study", "dimension", "points"):
-        if key not in document:
-            fail(key, "a value (required)", None)
-    quantity = document["quantity"]
+    # the shape of every key (unknown keys refused, required ones present, numbers where numbers belong) at its
+    # file:line, structured like a study's blocks
+    block = structure_document(document, MeasuredDataBlock, file, lines)
+    quantity = block.quantity
     scalars = list(SCALAR_OUTPUTS)
     if quantity not in scalars:
         fail("quantity", "a scalar output of impactlab", quantity, scalars)
-    points = document["points"]
-    if not isinstance(points, list) or not points:
-        fail("points", "a list of {label, value, sigma}", points)
-    labels, values, sigmas = [], [], []
-    for index, point in enumerate(points):
-        where = f"points[{index}]"
-        if not isinstance(point, dict):
-            fail(where, "a mapping {label, value, sigma}", point)
-        for key in point:
-            if key not in POINT_KEYS:
-                fail(f"{where}.{key}", "a key of a point", key, POINT_KEYS)
-        if "label" not in point or "value" not in point:
-            fail(where, "a label and a value", point)
-        value = point["value"]
-        if not isinstance(value, (int, float)) or isinstance(value, bool) or not np.isfinite(value):
-            fail(f"{where}.value", "a finite number", value)
-        sigma = point.get("sigma")
-        if sigma is not None and (not isinstance(sigma, (int, float)) or isinstance(sigma, bool) or not sigma > 0):
-            fail(f"{where}.sigma", "a positive number (or leave it out)", sigma)
-        labels.append(str(point["label"]))
-        values.append(float(value))
-        sigmas.append(sigma)
+    if not block.points:
+        fail("points", "a list of {label, value, sigma}", [])
+    labels = [point.label for point in block.points]
+    values = [point.value for point in block.points]
+    sigmas = [point.sigma for point in block.points]
     given = [sigma is not None for sigma in sigmas]
     if any(given) and not all(given):
         fail("points", "a sigma for every point or for none", f"{sum(given)} of {len(given)}")
-    budgets = document.get("budgets") or {}
-    if not isinstance(budgets, dict) or not all(isinstance(v, (int, float)) and v > 0 for v in budgets.values()):
-        fail("budgets", "a mapping from model id to a positive RMS error", budgets)
+    budgets = block.budgets or {}
     data = MeasuredData(
-        name=str(document.get("name", path.stem)), source=str(document["source"]), quantity=quantity,
+        name=block.name if block.name is not None else path.stem, source=block.source, quantity=quantity,
         labels=tuple(labels), values=tuple(values), sigma=tuple(float(s) for s in sigmas) if all(given) else None,
-        study=str(document["study"]), dimension=str(document["dimension"]), budgets=dict(budgets),
-        note=str(document.get("note", "")), folder=str(path.parent))
+        study=block.study, dimension=block.dimension, budgets=dict(budgets),
+        note=block.note or "", folder=str(path.parent))
     study = data.load_study()
     axes = {axis.dim: axis for axis in study.sweep}
     if data.dimension not in axes or axes[data.dimension].labels is None:
@@ -227,10 +202,18 @@ def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
 
 
 def errors(data: MeasuredData, models=None) -> dict[str, dict]:
-    """Model id -> {rms, max, residuals} of prediction minus measurement."""
+    """Model id -> {rms, max, residuals, predicted, unused} of prediction minus measurement.
+
+    ``rms`` and ``max`` are over the points the model could predict; ``unused`` names the others (a non-finite
+    prediction), which are never folded silently into a NaN or left out unsaid.
+    """
     result = {}
     for model, predicted in predictions(data, models).items():
         residuals = predicted - data.measured
-        result[model] = {"rms": float(np.sqrt(np.mean(residuals**2))), "max": float(np.max(np.abs(residuals))),
-                         "residuals": residuals, "predicted": predicted}
+        finite = np.isfinite(residuals)
+        used = residuals[finite]
+        result[model] = {"rms": float(np.sqrt(np.mean(used**2))) if used.size else math.nan,
+                         "max": float(np.max(np.abs(used))) if used.size else math.nan,
+                         "residuals": residuals, "predicted": predicted,
+                         "unused": tuple(str(label) for label, ok in zip(data.labels, finite) if not ok)}
     return result

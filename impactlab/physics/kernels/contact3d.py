@@ -1,0 +1,251 @@
+"""Compiled compliant 3-D contact, normal and tangential coupled (:mod:`impactlab.physics.compliant3d`'s kernel)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._numba import HAVE_NUMBA, numba
+from ._numba import compiled as _compiled
+
+
+def _mdr_spring(u, i, move0, move1, cap, lag, v0, v1, ratio):
+    """One MDR spring's update over a step: the trial extension, the radial return to the Coulomb circle.
+
+    ``u[i]`` (the spring's stored extension, a 2-vector) is moved by the step's slip ``move`` (the part of it
+    after the spring entered the contact) and its dashpot's ``lag * v``; beyond the circle of radius ``cap``
+    the pair is brought back to it and the spring relaxes towards it (backward Euler of k u + c u' = cap, with
+    ``ratio`` = dt / relaxation); inside, the spring takes the whole extension. Returns the spring-dashpot's
+    force components (x0, x1) and whether it slips. Written once for both loops of :func:`_contact3d_cases`;
+    compiled inline into it, so the kernel keeps its speed and its fastmath flags.
+    """
+    x0 = u[i, 0] + move0 + lag * v0
+    x1 = u[i, 1] + move1 + lag * v1
+    squared = x0 * x0 + x1 * x1
+    if squared > cap * cap:  # back to the Coulomb circle (the square root only when needed)
+        shrink_to = cap / np.sqrt(squared)
+        x0 *= shrink_to
+        x1 *= shrink_to
+        # sliding: the spring-dashpot carries the cap and relaxes towards it; without a dashpot it sits on the
+        # circle
+        u[i, 0] = (u[i, 0] + ratio * x0) / (1.0 + ratio)
+        u[i, 1] = (u[i, 1] + ratio * x1) / (1.0 + ratio)
+        return x0, x1, True
+    u[i, 0] = x0 - lag * v0
+    u[i, 1] = x1 - lag * v1
+    return x0, x1, False
+
+
+if HAVE_NUMBA:  # inlined into the kernel's IR (the kernel looks its globals up when it compiles)
+    _mdr_spring = numba.njit(inline="always")(_mdr_spring)
+
+
+def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
+                     store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
+                     history_tangential, history_stick, out):
+    """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
+
+    Scaled state: approach h and its rate H = h' (1 at first touch), slip S (2-vector, units mu V_z/kappa),
+    and the tangential springs: MDR springs u_i (2-vectors on the Coulomb circle |u_i| <= (h - xi_i^2) L)
+    for law 0, one DEM spring for law 1 (linear) and 2 (Mindlin). With f = F_t/(mu F_max) along the slip
+    (f = 1.5 sum u_i w for MDR) and the mobility ratios a = W_tt/W_nn, b = W_tn/W_nn:
+
+        h'' = -(5/4) (h^1.5 L - mu b.f),      S' = -(5/4) kappa a f + (5/4) (kappa/mu) b h^1.5 L,
+
+    L = max(1 + c H, 0) the Hunt-Crossley load factor (c = 0: elastic). ``relaxation`` (per case, scaled time)
+    puts a dashpot beside every tangential spring (Kelvin-Voigt: force = k (u + relaxation u')) in series with the
+    Coulomb slider: stuck, the pair extends with the slip; sliding, it carries the cap and its spring relaxes
+    towards it (for the MDR springs; the DEM springs keep their codes' reset to the cap less the dashpot's part).
+    Velocity Verlet on a uniform grid;
+    the springs take the step's slip and return to their circle (a radial return map). Stops when the bodies
+    separate. Impulses are the trapezoid sums of the forces, the ones velocity Verlet applies, so momentum is
+    kept exactly; with mu = 0 the tangential problem is skipped (no force, no scale). ``out`` columns:
+    integral f_n, integral f_0, integral f_1 (d tau), tau_end, the time integrals of those running impulses,
+    the work of the contact forces on the relative motion [F_max delta_max], steps.
+    """
+    cases = psi.shape[0]
+    springs = xi2.size
+    u = np.zeros((springs, 2))
+    for case in range(cases):
+        mu = friction[case]
+        k = kappa[case]
+        c = damping[case]
+        lag = relaxation[case]
+        a00 = ratio_tt[case, 0, 0]
+        a01 = ratio_tt[case, 0, 1]
+        a10 = ratio_tt[case, 1, 0]
+        a11 = ratio_tt[case, 1, 1]
+        b0 = coupling[case, 0]
+        b1 = coupling[case, 1]
+        p0 = psi[case, 0]
+        p1 = psi[case, 1]
+        dt = dtau[case]
+        for i in range(springs):
+            u[i, 0] = 0.0
+            u[i, 1] = 0.0
+        spring0 = 0.0
+        spring1 = 0.0
+        h = 0.0
+        hh = 1.0
+        s0 = p0
+        s1 = p1
+        ah = 0.0
+        as0 = 0.0
+        as1 = 0.0
+        imp_n = 0.0
+        imp_0 = 0.0
+        imp_1 = 0.0
+        cum_n = 0.0
+        cum_0 = 0.0
+        cum_1 = 0.0
+        prev_n = 0.0
+        prev_0 = 0.0
+        prev_1 = 0.0
+        work = 0.0
+        tau = 0.0
+        chi_along = 0.5 * k * a00
+        steps = 0
+        for step in range(1, max_steps + 1):
+            h_half = hh + 0.5 * dt * ah
+            v0 = s0 + 0.5 * dt * as0
+            v1 = s1 + 0.5 * dt * as1
+            h_old = h
+            h = h + dt * h_half
+            # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
+            load = 1.0 + c * (h_half + 0.5 * dt * ah) if c > 0.0 else 1.0
+            if load < 0.0:
+                load = 0.0
+            hp = h if h > 0.0 else 0.0
+            normal = hp ** 1.5 * load
+            d0 = dt * v0
+            d1 = dt * v1
+            ratio = dt / lag if lag > 0.0 else 1e300  # step over the dashpot's relaxation time
+            f0 = 0.0
+            f1 = 0.0
+            stuck_to = 0.0
+            if law == 0:
+                reach_h = h if h > h_old else h_old
+                both_h = h if h < h_old else h_old
+                first_slip = springs
+                i = 0
+                # springs inside the contact for the whole step: the common case, kept free of the edge logic
+                while i < springs and xi2[i] < both_h:
+                    cap = (hp - xi2[i]) * load
+                    x0, x1, slips = _mdr_spring(u, i, d0, d1, cap, lag, v0, v1, ratio)
+                    if slips and record and first_slip == springs:
+                        first_slip = i
+                    f0 += x0
+                    f1 += x1
+                    i += 1
+                # springs entering or leaving during the step
+                while i < springs and xi2[i] < reach_h:
+                    cap = (hp - xi2[i]) * load
+                    if cap <= 0.0:
+                        u[i, 0] = 0.0
+                        u[i, 1] = 0.0
+                        i += 1
+                        continue
+                    # a spring that enters during the step slips with the contact only for the part after entry
+                    inside = (h - xi2[i]) / (h - h_old) if xi2[i] > h_old else 1.0
+                    x0, x1, slips = _mdr_spring(u, i, inside * d0, inside * d1, cap, lag, v0, v1, ratio)
+                    if slips and record and first_slip == springs:
+                        first_slip = i
+                    f0 += x0
+                    f1 += x1
+                    i += 1
+                f0 *= 1.5 * weight
+                f1 *= 1.5 * weight
+                radius = first_slip / springs
+                root = np.sqrt(hp)
+                stuck_to = radius if radius < root else root
+            else:
+                if law == 1:
+                    stiff = 1.5 * stiffness_factor
+                    stiff_mean = stiff
+                else:
+                    stiff = 1.5 * stiffness_factor * np.sqrt(hp)
+                    stiff_mean = 0.5 * (stiff + 1.5 * stiffness_factor * np.sqrt(h_old if h_old > 0.0 else 0.0))
+                shrink = 1.0
+                if rescale and h < h_old and h_old > 0.0:
+                    shrink = np.sqrt(np.sqrt(hp / h_old))
+                spring0 *= shrink
+                spring1 *= shrink
+                if store_force:
+                    spring0 += stiff_mean * d0
+                    spring1 += stiff_mean * d1
+                else:
+                    spring0 += d0
+                    spring1 += d1
+                spring0 *= shrink
+                spring1 *= shrink
+                e0 = spring0 if store_force else stiff * spring0
+                e1 = spring1 if store_force else stiff * spring1
+                visc = stiff * lag
+                if tangential_damping > 0.0 and chi_along > 0.0:
+                    visc += 2.0 * tangential_damping * np.sqrt(stiff / (2.5 * chi_along))
+                f0 = e0 + visc * v0
+                f1 = e1 + visc * v1
+                size = np.sqrt(f0 * f0 + f1 * f1)
+                if size > normal:
+                    scale = normal / size if size > 0.0 else 0.0
+                    f0 *= scale
+                    f1 *= scale
+                    r0 = f0 - visc * v0
+                    r1 = f1 - visc * v1
+                    if store_force:
+                        spring0 = r0
+                        spring1 = r1
+                    else:
+                        spring0 = r0 / stiff if stiff > 0.0 else 0.0
+                        spring1 = r1 / stiff if stiff > 0.0 else 0.0
+                else:
+                    stuck_to = np.sqrt(hp)
+            if mu == 0.0:
+                f0 = 0.0
+                f1 = 0.0
+            ah = -1.25 * (normal - mu * (b0 * f0 + b1 * f1))
+            if mu > 0.0:
+                as0 = -1.25 * k * (a00 * f0 + a01 * f1) + (1.25 * k / mu) * b0 * normal
+                as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * b1 * normal
+            h_new = h_half + 0.5 * dt * ah
+            n0 = v0 + 0.5 * dt * as0
+            n1 = v1 + 0.5 * dt * as1
+            work += dt * (-0.5 * (prev_n + normal) * h_half
+                          - (mu * mu / k) * 0.5 * ((prev_0 + f0) * v0 + (prev_1 + f1) * v1))
+            old_n = imp_n
+            old_0 = imp_0
+            old_1 = imp_1
+            imp_n += 0.5 * dt * (prev_n + normal)
+            imp_0 += 0.5 * dt * (prev_0 + f0)
+            imp_1 += 0.5 * dt * (prev_1 + f1)
+            cum_n += 0.5 * dt * (old_n + imp_n)
+            cum_0 += 0.5 * dt * (old_0 + imp_0)
+            cum_1 += 0.5 * dt * (old_1 + imp_1)
+            prev_n = normal
+            prev_0 = f0
+            prev_1 = f1
+            # work of the contact forces on the relative motion, in units of F_max delta_max
+            hh = h_new
+            s0 = n0
+            s1 = n1
+            tau += dt
+            steps = step
+            if record:
+                history_normal[case, step] = normal
+                history_tangential[case, step] = f0
+                history_stick[case, step] = stuck_to
+            if h <= 0.0 and hh < 0.0:
+                break
+            if load == 0.0 and hh < 0.0:  # a damped contact that stopped pushing: the bodies separate
+                break
+        out[case, 0] = imp_n
+        out[case, 1] = imp_0
+        out[case, 2] = imp_1
+        out[case, 3] = tau
+        out[case, 4] = cum_n
+        out[case, 5] = cum_0
+        out[case, 6] = cum_1
+        out[case, 7] = work
+        out[case, 8] = steps
+
+
+contact3d_cases = _compiled(_contact3d_cases, fastmath={"reassoc", "nsz", "arcp", "contract"})
