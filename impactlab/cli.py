@@ -97,13 +97,12 @@ def _check_scheduler(address: str) -> None:
 
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     """The standard pictures of a result: scalar outputs, and each history if there is one."""
+    from impactlab.plot.analysis import plot_sensitivity
     from impactlab.plot.figures import draw_declared, plot_histories, plot_results
     from impactlab.vocabulary import is_history
 
     png = png or output.with_suffix(".png")
     if dataset.attrs.get("study_type") == "sensitivity":
-        from impactlab.data.sensitivity import plot_sensitivity
-
         return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
         return draw_declared(dataset, png.parent, png.stem)
@@ -203,7 +202,8 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_convergence(args) -> int:
-    from impactlab.data.convergence import LADDER, plot_work_precision, work_precision
+    from impactlab.data.convergence import LADDER, work_precision
+    from impactlab.plot.analysis import plot_work_precision
     from impactlab.io.results import write_results
     from impactlab.study.core import load_study
 
@@ -347,7 +347,7 @@ def _cmd_validate(args) -> int:
 
 def _cmd_fit(args) -> int:
     from impactlab.data.fitting import describe, fit
-    from impactlab.data.validation import get_dataset
+    from impactlab.data.validation import get_dataset, load_dataset_study
 
     from impactlab.io.safe_output import check_output
     from impactlab.data.shot_report import fit_shots, shot_table
@@ -358,7 +358,7 @@ def _cmd_fit(args) -> int:
     if table is not None:
         return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
     data = get_dataset(args.dataset)
-    known = [entry.id for entry in data.load_study().models]
+    known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known
     for model in models:
         if model not in known:

@@ -16,8 +16,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from impactlab.errors import FieldError
-from impactlab.run.runner import case_inputs
-from impactlab.data.validation import MeasuredData, point_order
+from impactlab.study.arrays import case_inputs
+from impactlab.data.validation import MeasuredData, load_dataset_study, point_order
 
 #: fittable parameter -> (where it lives, bounds, start); "input" parameters replace a scene input for every
 #: case, "option" parameters a model option
@@ -68,7 +68,7 @@ def describe(result: FitResult) -> str:
 
 def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
     """Fit ``parameters`` of the study model ``model_id`` to ``data``."""
-    study = data.load_study()
+    study = load_dataset_study(data)
     entries = {entry.id: entry for entry in study.models}
     if model_id not in entries:
         raise FieldError("--model", "a model of the dataset's study", model_id, choices=sorted(entries))

@@ -15,9 +15,9 @@ import xarray as xr
 
 from impactlab.run.assemble import assemble
 from impactlab.model.diagnostics import warn as warn_validity
-from impactlab.errors import FieldError
 from impactlab.model.planning import OutputPlan, require_inputs
-from impactlab.scene.core import ball_restitution, complete_inputs
+from impactlab.run.sensitivity import run_sensitivity
+from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study, load_study
 
 
@@ -80,26 +80,6 @@ def plan_study(study: Study) -> StudyPlan:
     return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
 
 
-def case_inputs(study: Study) -> dict[str, np.ndarray]:
-    """Input arrays over the Cartesian product of the sweep, flattened in C order (first axis slowest)."""
-    base = study.scene.inputs()
-    grids = np.meshgrid(*[np.arange(axis.size) for axis in study.sweep], indexing="ij") if study.sweep else []
-    inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
-    for axis, grid in zip(study.sweep, grids):
-        for field in axis.fields:
-            inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
-    complete_inputs(inputs)
-    if study.scene.contact.restitution is None and study.scene.ball.restitution is not None \
-            and "contact.restitution" not in {field.path for axis in study.sweep for field in axis.fields}:
-        # the ball's restitution law at each case's own normal speed
-        inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
-    if np.any(inputs["angle"] >= np.pi / 2):
-        case = int(np.argmax(inputs["angle"] >= np.pi / 2))
-        raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",
-                         f"spin loft {np.degrees(inputs['angle'][case]):.1f} deg in case {case}")
-    return inputs
-
-
 def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
               workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
               progress_folder: str | Path | None = None, show_progress: bool = False,
@@ -134,9 +114,7 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
 
     study = load_study(source)
     plan = plan_study(study)
-    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.data.sensitivity)
-        from impactlab.data.sensitivity import run_sensitivity
-
+    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.run.sensitivity)
         dataset = run_sensitivity(study, progress=progress)
         if output is not None:
             write_results(dataset, output)

@@ -28,43 +28,15 @@ from impactlab.scene.core import Scene
 # the scene blocks live in study_scene; their builders stay importable from here
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike)
-from impactlab.study.schema import SI, PlotBlock, RangeBlock, StudyBlock, keys_of, lookup, structure
-from impactlab.units import to_si
-from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS,
-                                  SCALAR_OUTPUTS, check_output_names)
+from impactlab.study.datasets import DATASETS
+from impactlab.study.schema import PlotBlock, StudyBlock, keys_of, lookup, structure
+from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
+from impactlab.study.sweeps import SweepAxis, SweepField, build_sweep
+from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
+                                  check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
 TOP_LEVEL_KEYS = keys_of(StudyBlock)
-SWEEP_RANGE_KEYS = keys_of(RangeBlock)
-
-
-@attrs.frozen
-class SweepField:
-    """A field set by a sweep: its study path, the model input it sets, its SI values, and its coordinate name."""
-
-    path: str
-    input: str
-    values: tuple[float, ...]
-    coord: str
-
-
-@attrs.frozen
-class SweepAxis:
-    """One dimension of a study: one swept field, or several fields swept together (with optional labels)."""
-
-    dim: str
-    fields: tuple[SweepField, ...]
-    labels: tuple[str, ...] | None = None
-
-    @property
-    def size(self) -> int:
-        """Number of values along this dimension."""
-        return len(self.fields[0].values)
-
-    @property
-    def grouped(self) -> bool:
-        """Whether several fields change together (or labels name the values): a dimension of its own name."""
-        return len(self.fields) > 1 or self.labels is not None
 
 
 @attrs.frozen
@@ -96,7 +68,7 @@ class PlotSpec:
     kind: str = "lines"
     #: a zoomed view: [low, high] of the horizontal axis, in its display units (where the interesting region is small)
     xlim: tuple[float, float] | None = None
-    #: names of shipped measured datasets (impactlab.data.validation) drawn beside the curves, with their error bars
+    #: names of shipped measured datasets (impactlab.study.datasets) drawn beside the curves, with their error bars
     measured: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
@@ -132,8 +104,8 @@ class Study:
     source: str = attrs.field(repr=False)
     file: str | None = None
     plots: tuple[PlotSpec, ...] = ()
-    #: a sensitivity and model-form study (impactlab.data.sensitivity.SensitivitySpec), or None for a plain sweep
-    sensitivity: Any = None
+    #: a sensitivity and model-form study (run by impactlab.run.sensitivity), or None for a plain sweep
+    sensitivity: SensitivitySpec | None = None
 
     @property
     def all_outputs(self) -> tuple[str, ...]:
@@ -246,179 +218,6 @@ def _plain(value):
     return value
 
 
-def _sweep_values(path: str, spec, dimension: str) -> list[float]:
-    where = f"sweep.{path}"
-    if isinstance(spec, Mapping):
-        block = structure(spec, RangeBlock, where)
-        num = block.num
-        check_cases(num, f"{where}.num")  # before the values are generated
-        start = to_si(block.start, dimension, f"{where}.start")
-        stop = to_si(block.stop, dimension, f"{where}.stop")
-        if num > 1 and start == stop:
-            raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
-                             f"start = stop with num: {num}")
-        return list(np.linspace(start, stop, num))
-    if isinstance(spec, (list, tuple)):
-        if not spec:
-            raise FieldError(where, "a non-empty list of values", spec)
-        check_cases(len(spec), where)
-        return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
-    raise FieldError(where, "a list of values or {start, stop, num}", spec)
-
-
-def _refuse_repeats(where: str, rows: list, written: list) -> None:
-    """Two equal values of a dimension would make two cases with one coordinate value, silently."""
-    first: dict = {}
-    for index, row in enumerate(rows):
-        if row in first:
-            shown = written[index] if isinstance(written, list) and index < len(written) else row
-            raise FieldError(f"{where}[{index}]", f"distinct values (this one repeats [{first[row]}])", shown)
-        first[row] = index
-
-
-def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, list[float]]]) -> None:
-    """Every swept value (all fields of one index together) must make a valid scene, with the base's messages.
-
-    Each field's validity is an interval with the other fields held (every validator of the vocabulary is a
-    range check), so a scene is built only at the first index and at each field's smallest and largest value:
-    O(1) scenes instead of one per value (10^5 swept values load in well under a second). Where one of those
-    fails, or a value is not finite, every index is tried in order, so the message names the first bad index.
-    """
-    size = len(fields[0][1])
-    candidates = {0}
-    for _, values in fields:
-        array = np.asarray(values, dtype=float)
-        if not np.all(np.isfinite(array)):
-            candidates = range(size)
-            break
-        candidates |= {int(np.argmin(array)), int(np.argmax(array))}
-    try:
-        for index in sorted(candidates):
-            _build_swept_scene(document, fields, index)
-    except FieldError:
-        for index in range(size):
-            try:
-                _build_swept_scene(document, fields, index)
-            except FieldError as exc:
-                raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given,
-                                 exc.choices) from None
-        raise  # pragma: no cover - a value that failed above fails again here
-
-
-def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]], index: int) -> None:
-    trial = dict(document)
-    for path, values in fields:
-        section, key = path.split(".")
-        trial[section] = dict(trial.get(section) or {}, **{key: SI(values[index])})
-    build_scene(trial)
-
-
-def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
-    if path not in INPUT_BY_PATH:
-        raise FieldError(where, "a dotted path of a swept field", str(path), choices=INPUT_BY_PATH)
-    name = INPUT_BY_PATH[path]
-    return name, _sweep_values(path, spec, INPUTS[name].dimension)
-
-
-#: inputs a club preset sets (a sweep over ``club.preset`` sets them all together)
-CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_inertia_target", "club_inertia_toe_up",
-                      "club_inertia_toe_target", "club_inertia_up_target", "club_cg_toe", "club_cg_high",
-                      "club_cg_depth", "club_loft", "face_bulge_radius", "face_roll_radius", "face_youngs_modulus",
-                      "face_poisson_ratio", "club_restitution_gain")
-
-
-#: study path of a field set by a club preset sweep: "club.preset:" + the field's own path
-PRESET_MARK = "club.preset:"
-
-
-def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str, str, list[float]]]:
-    """The club inputs of each preset in ``names`` (with the study's other club keys applied), as sweep fields."""
-    if not isinstance(names, list) or not names or not all(isinstance(name, str) for name in names) \
-            or len(set(names)) != len(names):
-        raise FieldError(where, "a list of distinct club preset names", names)
-    if "club" not in document:
-        raise FieldError(where, "a club block in the study to sweep the preset of", "no club")
-    values = {name: [] for name in CLUB_PRESET_INPUTS}
-    for index, preset in enumerate(names):
-        trial = dict(document, club=dict(document.get("club") or {}, preset=preset))
-        try:
-            inputs = build_scene(trial).inputs()
-        except FieldError as exc:
-            raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
-        for name in CLUB_PRESET_INPUTS:
-            values[name].append(inputs[name])
-    return [(f"{PRESET_MARK}{INPUTS[name].path}", name, values[name]) for name in CLUB_PRESET_INPUTS]
-
-
-def _build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
-    sweep = document.get("sweep") or {}
-    if not isinstance(sweep, Mapping):
-        raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
-    raw_axes = []  # (dim or None, labels, [(path, input, values)])
-    for key, spec in sweep.items():
-        key = str(key)
-        if key == "club.preset":  # a dimension "club" labelled by preset, setting every input of the head
-            raw_axes.append(("club", tuple(spec) if isinstance(spec, list) else None,
-                             _club_preset_fields(document, spec, f"sweep.{key}")))
-            continue
-        if "." in key or not isinstance(spec, Mapping) or set(spec) <= set(SWEEP_RANGE_KEYS):
-            name, values = _sweep_field_values(key, spec, f"sweep.{key}")
-            _refuse_repeats(f"sweep.{key}", values, spec)
-            _check_sweep_values(document, f"sweep.{key}", [(key, values)])
-            raw_axes.append((None, None, [(key, name, values)]))
-            continue
-        # a named dimension along which several fields change together
-        if not key.isidentifier() or key in (MODEL_DIM, "time"):
-            raise FieldError(f"sweep.{key}", "a dimension name (letters, digits, _; not model or time)", key)
-        labels = spec.get("labels")
-        fields = [(path, *_sweep_field_values(path, values, f"sweep.{key}.{path}"))
-                  for path, values in spec.items() if path not in ("labels", "club.preset")]
-        if "club.preset" in spec:
-            fields += _club_preset_fields(document, spec["club.preset"], f"sweep.{key}.club.preset")
-            labels = labels if labels is not None else spec["club.preset"]
-        if not fields:
-            raise FieldError(f"sweep.{key}", "at least one dotted field path with its values", "none")
-        sizes = {len(values) for _, _, values in fields} | ({len(labels)} if isinstance(labels, list) else set())
-        if labels is not None and (not isinstance(labels, list) or not all(isinstance(x, str) for x in labels)
-                                   or len(set(labels)) != len(labels)):
-            raise FieldError(f"sweep.{key}.labels", "a list of distinct names, one per value", labels)
-        if len(sizes) != 1:
-            raise FieldError(f"sweep.{key}", "lists of one length for every field (and labels)", sorted(sizes))
-        if labels is None:  # fields changing together may repeat a value, but not a whole row
-            _refuse_repeats(f"sweep.{key}", list(zip(*[values for _, _, values in fields])), [])
-        _check_sweep_values(document, f"sweep.{key}", [(path, values) for path, _, values in fields
-                                                         if not path.startswith(PRESET_MARK)])
-        raw_axes.append((key, tuple(labels) if labels else None, fields))
-
-    paths = [path for _, _, fields in raw_axes for path, _, _ in fields]
-    repeated = sorted({path for path in paths if paths.count(path) > 1})
-    swept_inputs = [(name, path) for _, _, fields in raw_axes for path, name, _ in fields]
-    names = [name for name, _ in swept_inputs]
-    twice = [path for name, path in swept_inputs if names.count(name) > 1 and not path.startswith(PRESET_MARK)]
-    if twice and not repeated:
-        raise FieldError(f"sweep.{twice[0]}", "each field swept at most once (a swept club preset sets it)",
-                         "swept twice")
-    if repeated:
-        raise FieldError(f"sweep.{repeated[0]}", "each field swept at most once", "swept twice")
-    short = [path.split(".")[-1] for path in paths if not path.startswith(PRESET_MARK)]
-    taken = {dim for dim, _, _ in raw_axes if dim}
-
-    def name_of(path):
-        if path.startswith(PRESET_MARK):  # set by a club preset: named by its input, which never clashes
-            own = path[len(PRESET_MARK):]
-            return next(name for name in CLUB_PRESET_INPUTS if INPUTS[name].path == own)
-        last = path.split(".")[-1]
-        clash = short.count(last) > 1 or last in (MODEL_DIM, "time") or last in taken
-        return path.replace(".", "_") if clash else last
-
-    axes = []
-    for dim, labels, fields in raw_axes:
-        sweep_fields = tuple(SweepField(path, name, tuple(float(v) for v in values), name_of(path))
-                             for path, name, values in fields)
-        axes.append(SweepAxis(dim or sweep_fields[0].coord, sweep_fields, labels))
-    return tuple(axes)
-
-
 def _build_models(value) -> tuple[ModelEntry, ...]:
     if not isinstance(value, list) or not value:
         raise FieldError("models", "a non-empty list of models ({name: NAME, option: value})", value,
@@ -491,14 +290,12 @@ def _build_study(document, text: str, file: str | None) -> Study:
     if "models" not in document:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
     scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
-    sweep = _build_sweep(document)
+    sweep = build_sweep(document)
     check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
     models = _build_models(document["models"])
     sensitivity = None
     if "sensitivity" in document:
-        from impactlab.data.sensitivity import parse_sensitivity
-
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
                                         {field.input for axis in sweep for field in axis.fields})
     return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
@@ -553,8 +350,6 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
         measured = [measured] if isinstance(measured, str) else measured
         if not isinstance(measured, list):
             raise FieldError(f"{where}.measured", "a shipped measured dataset or a list of them", measured)
-        from impactlab.data.validation import DATASETS
-
         for position, data in enumerate(measured):
             if not isinstance(data, str) or data not in DATASETS or DATASETS[data].quantity not in wanted:
                 raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",

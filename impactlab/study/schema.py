@@ -249,7 +249,7 @@ class PlotBlock:
 
 @attrs.frozen
 class SensitivityBlock:
-    """The ``sensitivity`` block; its values are checked by :func:`impactlab.data.sensitivity.parse_sensitivity`,
+    """The ``sensitivity`` block; its values are checked by :func:`impactlab.study.sensitivity.parse_sensitivity`,
     which knows the study's models and scene."""
 
     _what = "the sensitivity block"
