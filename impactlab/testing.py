@@ -31,11 +31,13 @@ from collections.abc import Callable, Iterator
 import attrs
 import numpy as np
 
+from impactlab.errors import ModelContractError
 from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
 from impactlab.model.base import ImpactModel
 from impactlab.physics.mechanics import effective_mass
-from impactlab.scene.core import Contact, Impact, Scene
-from impactlab.vocabulary import INPUTS, OUTPUTS, SCALAR_OUTPUTS
+from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.core import Contact, Delivery, Impact, Scene, complete_inputs
+from impactlab.vocabulary import CASE_DIM, INPUTS, OUTPUTS, SCALAR_OUTPUTS, TIME_DIM, is_history
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -60,9 +62,6 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
     Strikes from heel to toe and sole to crown, square and open faces, frictions 0.1-0.6, e 0.8 and 1: the
     cases where the mobility couples the normal and tangential directions and the slip turns.
     """
-    from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
-    from impactlab.scene.core import Delivery
-
     symmetric = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, -0.003, 0.035),
                          loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material)
     scenes = []
@@ -81,8 +80,6 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
 
 
 def _complete(inputs: dict) -> dict:
-    from impactlab.scene.core import complete_inputs
-
     return complete_inputs(dict(inputs))
 
 
@@ -139,9 +136,6 @@ def check_capabilities(model) -> None:
     then the reference options are Options at the asked tolerance); ``provides_histories`` exactly when
     ``provides`` names a history, and then the histories come back on a ``time`` axis of ``history_length()``
     samples; ``solves_3d`` only with ``lateral_impulse``; ``expert_resolution`` None or two positive integers."""
-    from impactlab.errors import ModelContractError
-    from impactlab.vocabulary import CASE_DIM, TIME_DIM, is_history
-
     cls = type(model)
     assert isinstance(cls.has_tolerance, bool), "has_tolerance must be True or False"
     fields = {field.name for field in attrs.fields(cls.Options)}
@@ -375,6 +369,7 @@ def parametrize_with_checks(*models):
     ... def test_conformance(model, check):
     ...     check(model)
     """
+    # pytest is a test dependency, not one of impactlab's: imported only when a plugin's tests ask for this
     import pytest
 
     cases, ids = [], []

@@ -20,6 +20,7 @@ import attrs
 
 from impactlab.units import RAD_TO_DEG, RADS_TO_RPM
 from impactlab.validators import inside
+from impactlab.errors import FieldError
 
 SCALAR = "scalar"
 HISTORY = "history"
@@ -298,8 +299,6 @@ def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
     FieldError
         At ``path[i]`` for the first entry that is not an output name, with the vocabulary as choices.
     """
-    from impactlab.errors import FieldError
-
     names = tuple(names)
     for index, name in enumerate(names):
         if not isinstance(name, str) or name not in OUTPUTS:

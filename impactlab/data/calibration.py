@@ -31,6 +31,9 @@ from impactlab.scene.materials import RestitutionLaw
 from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, table_inputs,
 )
+from impactlab.physics.contact import contact_state
+from impactlab.scene.core import complete_inputs
+from impactlab.study.scene_blocks import build_ball
 
 #: parameter -> (bounds, start, what it is). A ball's restitution is bounded not to rise with the impact speed (its
 #: viscoelastic losses grow with the strain rate). The face gain's bound is wide on purpose: a fit that puts a
@@ -90,9 +93,6 @@ def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> di
     replace it. With ``loft_at="contact"`` a strike offset keeps the loft measured at the contact point (the face
     centre's loft moves instead, :func:`impactlab.data.shots.centre_delivery`).
     """
-    from impactlab.physics.contact import contact_state
-    from impactlab.scene.core import complete_inputs
-
     out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
     given = dict(zip(names, values))
     n = out["speed"].size
@@ -133,8 +133,6 @@ def _residuals(predicted: dict, table: ShotTable) -> np.ndarray:
 
 
 def _table_ball(table: ShotTable, ball_block: dict | None):
-    from impactlab.study.core import build_ball
-
     return build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
 
 

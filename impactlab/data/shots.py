@@ -19,6 +19,7 @@ import csv
 import io
 import math
 import re
+import warnings
 from pathlib import Path
 
 import attrs
@@ -26,6 +27,10 @@ import numpy as np
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import to_si
+from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_preset
+from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
+from impactlab.study.scene_blocks import build_ball
+from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 
 #: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
@@ -184,8 +189,6 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
-    from impactlab.scene.clubs import CLUB_PRESETS
-
     if "club" in row and row["club"] not in CLUB_PRESETS:
         problems.append(f"{where}: club: expected a club preset ({', '.join(CLUB_PRESETS)}), got {row['club']!r}")
     if row.get("handedness", "right") not in ("right", "left"):
@@ -230,8 +233,6 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
         raise StudyError(f"{file}: {len(problems)} bad cell(s): " + "; ".join(problems))
     table = _assemble(rows, name or Path(file).stem, source or f"read from {file}", file, {}, {})
     if unknown:
-        import warnings
-
         warnings.warn(f"{file}: columns not used (not a delivery or launch quantity): {', '.join(unknown)}",
                       stacklevel=2)
     return table
@@ -239,8 +240,6 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
 
 def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     """A shot table from YAML: ``name``, ``source``, optional ``ball``, ``units``, ``sigma``, and ``rows``."""
-    from impactlab.study.yaml_lines import line_of, load_yaml
-
     document, lines = load_yaml(text, file)
     if not isinstance(document, dict) or "rows" not in document:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
@@ -302,8 +301,6 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
 
 def read_shots(path) -> ShotTable:
     """A shot table from a .csv or .yaml/.yml file."""
-    from impactlab.study.yaml_lines import read_text_file
-
     path = Path(path)
     if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
@@ -322,10 +319,6 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: tour_urethane}``);
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
-    from impactlab.scene.clubs import Strike, club_preset
-    from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
-    from impactlab.study.core import build_ball
-
     ball = build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
     contact = Contact(**(contact or {}))
     scenes = []

@@ -24,14 +24,15 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import write_atomically
-from impactlab.units import MPH
+from impactlab.units import MPH, to_si
 from impactlab.vocabulary import MODEL_DIM
 
 #: outputs a GSPro shot needs
@@ -99,8 +100,6 @@ MAX_SMASH_FACTOR = 1.6
 
 def _club_speed(dataset: xr.Dataset) -> xr.DataArray | float | None:
     """Club speed of every case in m/s: a swept coordinate, or the base scene's."""
-    from impactlab.units import to_si
-
     for name in ("club_speed", "speed"):
         if name in dataset.coords:
             units = dataset[name].attrs.get("units", "m/s")
@@ -141,10 +140,6 @@ def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options) -> int:
 
     Physically implausible shots are written as computed, with a PlausibilityWarning for each kind.
     """
-    import warnings
-
-    from impactlab.errors import PlausibilityWarning
-
     shots = gspro_shots(dataset, **options)
     for text in implausible_shots(dataset, options.get("model")):
         warnings.warn(text, PlausibilityWarning, stacklevel=2)

@@ -19,6 +19,7 @@ import numpy as np
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.physics.contact import CONTACT_STATE_INPUTS, contact_state
 from impactlab.vocabulary import INPUTS
+from impactlab.scene.core import Scene
 
 
 class CaseInputs(Mapping):
@@ -125,8 +126,6 @@ class CaseInputs(Mapping):
 
 def _checked_arrays(values: Any, copy: bool = True) -> tuple[dict[str, np.ndarray], int]:
     """Read-only float arrays of one length from a mapping or scenes, every value in its input's range."""
-    from impactlab.scene.core import Scene
-
     if isinstance(values, Scene):
         values = [values]
     if not isinstance(values, Mapping):

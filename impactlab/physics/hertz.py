@@ -175,6 +175,8 @@ class DampedNormal(NormalLaw):
     """
 
     def __init__(self, damping: float):
+        # scipy's solvers are imported where they are used (all of this module's): scipy.optimize alone takes
+        # about 0.2 s to import, and a study of closed-form models never needs them
         from scipy.integrate import solve_ivp
 
         self.damping = float(damping)

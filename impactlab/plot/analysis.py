@@ -29,6 +29,7 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
 
     ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
     """
+    # matplotlib is imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
     import matplotlib.ticker
     # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
     from matplotlib.figure import Figure

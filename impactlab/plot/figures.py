@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import os
+import textwrap
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +13,7 @@ import xarray as xr
 
 from impactlab.units import MPH
 from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
+from impactlab.study.datasets import DATASETS
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -27,15 +31,11 @@ def _display(units: str) -> tuple[str, float]:
 
 
 def _axis_label(long_name: str, units: str, width: int = 42) -> str:
-    import textwrap
-
     return "\n".join(textwrap.wrap(f"{long_name} [{units}]", width))
 
 
 def conditions(dataset: xr.Dataset, skip=()) -> str:
     """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
-    import json
-
     try:
         scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
     except ValueError:
@@ -99,8 +99,6 @@ def audit(figure) -> list[str]:
 
 def _draw_measured(axis, output: str, names, xs) -> None:
     """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label."""
-    from impactlab.data.validation import DATASETS
-
     step = (xs.max() - xs.min()) / max(xs.size - 1, 1) if xs.size > 1 else 1.0
     for column, name in enumerate(names):
         data = DATASETS[name]
@@ -158,8 +156,6 @@ def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
 
 
 def _save(figure, path) -> Path:
-    import warnings
-
     problems = audit(figure)
     if problems:
         warnings.warn(f"{path}: " + "; ".join(problems), FigureWarning, stacklevel=3)
@@ -175,8 +171,6 @@ def _text(coordinate) -> str:
 
 def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
     """Draw every figure the study declared (``plots`` attribute) to FOLDER/STEM_NAME.png."""
-    import json
-
     pictures = []
     for spec in json.loads(dataset.attrs.get("plots", "[]") or "[]"):
         path = folder / f"{stem}_{spec['name']}.png"
@@ -213,10 +207,11 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     xlim : (float, float), optional
         A zoomed view of the horizontal axis; the vertical axis follows the data inside it.
     measured : sequence of str
-        Shipped measured datasets (:data:`impactlab.data.validation.DATASETS`) of a drawn output: their
+        Shipped measured datasets (:data:`impactlab.study.datasets.DATASETS`) of a drawn output: their
         values, with error bars where the source states them, beside the curves at the right.
     """
-    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures; matplotlib is
+    # imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
     import matplotlib
     from matplotlib.figure import Figure
 

@@ -6,6 +6,9 @@ import datetime as _dt
 import functools
 import json
 import platform
+import subprocess
+from importlib import metadata
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -112,8 +115,6 @@ def versions() -> dict[str, str]:
 
 @functools.cache
 def _versions() -> dict[str, str]:
-    from importlib import metadata
-
     found = {"impactlab_version": __version__, "python_version": platform.python_version()}
     for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
         try:
@@ -130,9 +131,6 @@ def git_commit() -> str:
     Asked once per process (two git calls cost ~5 ms): the code a process runs is what it imported,
     so the first answer is also the right one for a later edit of the checkout.
     """
-    import subprocess
-    from pathlib import Path
-
     here = Path(__file__).resolve().parent
     try:
         commit = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True,

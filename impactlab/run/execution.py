@@ -37,6 +37,8 @@ from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import EnvironmentFault, StudyError
 from impactlab.run.faults import check_interrupt
 from impactlab.io.safe_output import TEMPORARY_SUFFIX, write_atomically
+from impactlab._version import __version__
+from impactlab.vocabulary import is_history
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
 #: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
@@ -116,7 +118,7 @@ class _Pool:
             self.pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count(), initializer=_worker_start,
                                             initargs=(os.getpid(),))
         else:
-            try:
+            try:  # dask is optional (impactlab[dask]) and heavy: imported only for the dask executor
                 from dask.distributed import Client, LocalCluster
             except ImportError:
                 raise StudyError("the dask executor needs dask.distributed: pip install 'impactlab[dask]'") from None
@@ -290,8 +292,6 @@ def _lock_folder(folder: Path, output) -> int:
 
 def fingerprint(study, outputs, extra: str = "") -> str:
     """SHA-256 of what decides a run's chunks: study text, outputs, models with options, version."""
-    from impactlab._version import __version__
-
     text = json.dumps({"source": study.source, "outputs": list(outputs), "version": __version__,
                        "chunk_format": CHUNK_FORMAT,
                        "models": [[entry.id, entry.model.options_dict()] for entry in study.models],
@@ -311,8 +311,6 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
                show_progress: bool = False) -> list[dict]:
     """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``)."""
-    from impactlab.vocabulary import is_history
-
     n_cases = study.n_cases
     has_histories = any(is_history(name) for name in outputs)
     kind = choose_executor(executor, n_cases * len(study.models), has_histories)

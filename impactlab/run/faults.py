@@ -17,13 +17,16 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import select
 import signal
 import sys
 import threading
 import traceback
 import warnings
 
-from impactlab.errors import ImpactLabError
+from impactlab.errors import ImpactLabError, PlausibilityWarning, PluginWarning
+from impactlab.model.diagnostics import ValidityWarning
+from impactlab.io.safe_output import remove_temporaries
 
 EXIT_OK = 0
 EXIT_INTERNAL = 1
@@ -88,9 +91,6 @@ def show_warning(message, category, filename, lineno, file=None, line=None):
 
 
 def _own_warnings() -> tuple[type, ...]:
-    from impactlab.model.diagnostics import ValidityWarning
-    from impactlab.errors import PlausibilityWarning, PluginWarning
-
     return (ValidityWarning, PluginWarning, PlausibilityWarning)
 
 
@@ -113,8 +113,6 @@ def _request_stop(signum, frame):
 
 
 def _hard_exit() -> None:
-    from impactlab.io.safe_output import remove_temporaries
-
     remove_temporaries()  # a result being written when the process ends leaves no temporary file
     try:
         sys.stderr.write(f"\nimpactlab: interrupted; {_interrupt_hint[0]}\n")
@@ -185,7 +183,6 @@ def _stdout_closed() -> bool:
         except (OSError, ValueError):
             return False
         return False
-    import select
 
     poller = select.poll()
     poller.register(descriptor, select.POLLOUT)

@@ -6,6 +6,7 @@ before any model runs, so a study that cannot run fails at once and says why.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable
 from pathlib import Path
 
@@ -19,6 +20,10 @@ from impactlab.model.planning import OutputPlan, require_inputs
 from impactlab.run.sensitivity import run_sensitivity
 from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study, load_study
+from impactlab.physics.contact import contact_state
+from impactlab.study.limits import check
+from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
+from impactlab.io.results import write_results
 
 
 @attrs.frozen
@@ -46,8 +51,6 @@ class StudyPlan:
 
 def describe_paths(study: Study) -> str:
     """How many cases lie on one line (the 1-D solvers) and how many need the 3-D ones, and why."""
-    from impactlab.physics.contact import contact_state
-
     if study.scene.club is None:
         return ""
     one_line = int(np.sum(contact_state(case_inputs(study))["one_dimensional"]))
@@ -68,8 +71,6 @@ def plan_study(study: Study) -> StudyPlan:
     A study that would need more cases or memory than :mod:`impactlab.study.limits` allows is refused here,
     before its inputs are built.
     """
-    from impactlab.study.limits import check
-
     resources = check(study).describe()
     given = set(study.scene.inputs())
     plans = []
@@ -107,11 +108,6 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
         Also write the result file here (atomically); with a progress folder, the folder stays locked
         against another run until the file is written and the folder removed.
     """
-    import contextlib
-
-    from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
-    from impactlab.io.results import write_results
-
     study = load_study(source)
     plan = plan_study(study)
     if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.run.sensitivity)

@@ -11,6 +11,9 @@ from impactlab.validators import check, finite, in_range, positive, to_float
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import Ball, Face
+from impactlab.physics.contact import contact_state
+from impactlab.physics.delivery import DELIVERY_INPUTS, spin_loft
+from impactlab.vocabulary import INPUTS
 
 
 @attrs.frozen
@@ -117,8 +120,6 @@ class Delivery:
     @property
     def spin_loft(self) -> float:
         """Angle between face normal and club velocity [rad]."""
-        from impactlab.physics.delivery import spin_loft
-
         return float(spin_loft(self.path, self.face_angle, self.attack_angle, self.dynamic_loft, self.sign))
 
 
@@ -170,8 +171,6 @@ class Scene:
         friction given) are left out; which of them a model needs is
         decided per model.
         """
-        from impactlab.vocabulary import INPUTS
-
         values = {}
         for name, spec in INPUTS.items():
             value = spec.getter(self)
@@ -185,8 +184,6 @@ class Scene:
 
 def complete_inputs(inputs: dict) -> dict:
     """Fill inputs that follow from others: a delivery's spin loft is the impact angle (arrays, SI)."""
-    from impactlab.physics.delivery import DELIVERY_INPUTS, spin_loft
-
     if all(name in inputs for name in DELIVERY_INPUTS):
         inputs["angle"] = spin_loft(*(inputs[name] for name in DELIVERY_INPUTS))
     return inputs
@@ -198,8 +195,6 @@ def ball_restitution(ball, inputs: dict):
     The normal approach speed is that of the contact (club speed along the contact normal, so that a lofted,
     open or curved face meets the ball more slowly than its club speed).
     """
-    from impactlab.physics.contact import contact_state
-
     if ball.restitution is None:
         return None
     gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)

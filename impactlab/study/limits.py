@@ -27,6 +27,8 @@ import re
 import attrs
 
 from impactlab.errors import ResourceLimitError
+from impactlab.model.base import HISTORY_LENGTH
+from impactlab.vocabulary import INPUTS, is_history
 
 DEFAULT_MAX_CASES = 10_000_000
 DEFAULT_MAX_MEMORY = 4 * 2**30
@@ -142,9 +144,6 @@ GRID_ARRAYS = 4
 
 def estimate(study) -> Estimate:
     """Peak memory of running ``study``, from its sizes alone (nothing is allocated)."""
-    from impactlab.model.base import HISTORY_LENGTH
-    from impactlab.vocabulary import INPUTS, is_history
-
     cases = study.n_cases
     models = len(study.models)
     points = max([entry.model.history_length() for entry in study.models] or [HISTORY_LENGTH])

@@ -9,6 +9,7 @@ from typing import Any
 import yaml
 
 from impactlab.errors import ResourceLimitError, StudyError
+from impactlab.study.limits import max_yaml_nodes
 
 #: a study or table larger than this is not a hand-written text file
 MAX_TEXT_BYTES = 16 * 2**20
@@ -84,8 +85,6 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
     :func:`impactlab.study.limits.max_yaml_nodes` nodes: ten nested aliases of ten items each would
     otherwise make 10^10 nodes.
     """
-    from impactlab.study.limits import max_yaml_nodes
-
     loader = _LOADER(text)
     try:
         node = loader.get_single_node()

@@ -11,6 +11,7 @@ from impactlab.data.validation.benchmarks import (
     BENCHMARKS, MODELS, kharaz_quantities, make_model, read_reference, chung_ooi_5_quantities, chung_ooi_6_incidence,
     chung_ooi_6_quantities,
 )
+from impactlab.data.validation.benchmarks import _normal_cases
 
 
 def over_budget(errors: dict) -> list[str]:
@@ -113,7 +114,8 @@ def _save(figure, path: Path, written: list) -> None:
 
 def plot_figures(outdir, models=None) -> list[Path]:
     """Write the benchmark figures (PNG) into ``outdir``; returns their paths."""
-    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
+    # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
+    from matplotlib.figure import Figure
 
     models = list(models or MODELS)
     outdir = Path(outdir)
@@ -121,7 +123,6 @@ def plot_figures(outdir, models=None) -> list[Path]:
     written = []
 
     # tests 1 and 2: force against time, beside the published curves
-    from impactlab.data.validation.benchmarks import _normal_cases
 
     fig = Figure(figsize=(12, 4.5), layout="tight")
     axes = fig.subplots(1, 2)

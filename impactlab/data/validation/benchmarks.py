@@ -39,6 +39,10 @@ import attrs
 import numpy as np
 
 from impactlab.physics import hertz
+from impactlab.scene.clubs import ClubHead
+from impactlab.scene.materials import Ball, Material
+from impactlab.scene.core import Contact, Impact, Scene
+from impactlab.model.registry import get_model
 
 KRATOS = "KratosMultiphysics/Kratos, applications/DEMApplication"
 CHUNG_OOI = "C. J. Chung, J. Y. Ooi, Granular Matter 13 (2011) 643-656"
@@ -176,10 +180,6 @@ def two_sphere_inputs(sphere: Sphere, striker: Sphere, *, speed, angle=0.0, spin
     the line of centres, ``spin`` and ``club_spin`` [rad/s] the struck sphere's and the striker's, about the
     same axis and counted alike (:class:`impactlab.scene.core.Impact`).
     """
-    from impactlab.scene.clubs import ClubHead
-    from impactlab.scene.materials import Ball, Material
-    from impactlab.scene.core import Contact, Impact, Scene
-
     speed, angle, spin, club_spin = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, float)) for v in (speed, angle, spin, club_spin)))
     ball = Ball(sphere.radius, sphere.mass, 0.4, Material(sphere.youngs_modulus, sphere.poisson_ratio))
@@ -471,8 +471,6 @@ _add(Benchmark(
 
 def make_model(model_id: str):
     """A model instance of a benchmark model id (see :data:`MODELS`)."""
-    from impactlab.model.registry import get_model
-
     name, options = MODELS[model_id]
     return get_model(name)(**options)
 
