@@ -168,3 +168,33 @@ def test_no_module_over_500_lines():
     if set(long) == {"impactlab.physics._kernels"}:  # split into one module per kernel family on branch layout-core
         pytest.xfail("physics/_kernels.py is split one family per module by the layout-core branch")
     assert not long, long
+
+
+def test_the_public_names_import_from_impactlab():
+    """Every name of ``impactlab.__all__`` resolves, to the object its home module defines (lazy ones too)."""
+    import impactlab
+    from impactlab.data import calibration, fitting, shots
+    from impactlab.errors import ModelContractError
+    from impactlab.scene.clubs import ClubHead, Strike
+    from impactlab.scene.core import Delivery
+
+    for name in impactlab.__all__:
+        assert getattr(impactlab, name) is not None, name
+    assert (impactlab.Delivery, impactlab.ClubHead, impactlab.Strike) == (Delivery, ClubHead, Strike)
+    assert impactlab.ModelContractError is ModelContractError
+    assert impactlab.read_shots is shots.read_shots and impactlab.predict is shots.predict
+    assert impactlab.calibrate is calibration.calibrate and impactlab.fit is fitting.fit
+    assert set(impactlab.__all__) <= set(dir(impactlab))
+    with pytest.raises(AttributeError, match="no attribute 'read_shot'"):
+        impactlab.read_shot  # noqa: B018
+
+
+def test_import_impactlab_leaves_the_heavy_parts_for_later():
+    """``import impactlab`` loads neither the data layer (scipy.optimize), matplotlib nor SALib."""
+    import subprocess
+    import sys
+
+    code = ("import sys, impactlab; print(sorted(m for m in ('impactlab.data', 'impactlab.run', 'scipy.optimize', "
+            "'matplotlib', 'SALib', 'dask') if m in sys.modules))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
+    assert done.stdout.strip() == "[]", done.stdout
