@@ -157,7 +157,7 @@ def _cmd_show(args) -> int:
     print("variables:")
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
-        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(variable.dims)}){missing}")
+        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(map(str, variable.dims))}){missing}")
     if dataset.attrs.get("study_type") == "sensitivity":
         print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
               f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
@@ -169,10 +169,10 @@ def _cmd_show(args) -> int:
 
 def _cmd_plot(args) -> int:
     dataset = open_results(args.file)
-    histories = [name for name in dataset.data_vars if "time" in dataset[name].dims]
+    histories = [str(name) for name in dataset.data_vars if "time" in dataset[name].dims]
     if args.history and args.history not in histories:
         raise FieldError("--history", "a history held by the file", args.history, choices=histories)
-    scalars = [name for name in dataset.data_vars if is_scalar(name)]
+    scalars = [str(name) for name in dataset.data_vars if is_scalar(str(name))]
     for name in args.variables or []:  # an unknown name would draw an empty picture and say "wrote"
         if name not in scalars:
             raise FieldError("-v", "a scalar output held by the file", name, choices=scalars)
@@ -181,7 +181,7 @@ def _cmd_plot(args) -> int:
     if (args.variables or args.x or args.output) and not args.history and not drawable:
         raise FieldError("-v", "an output with at least one computed value", ", ".join(args.variables or scalars))
     if args.x is not None:
-        dims = [dim for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
+        dims = [str(dim) for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
         if args.x not in dims + scalars:
             raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x,
                              choices=dims + scalars)

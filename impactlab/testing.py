@@ -24,6 +24,7 @@ optional input not given is absent (rule 3): no spin, a fixed face.
 
 from __future__ import annotations
 
+import functools
 import json
 import keyword
 from collections.abc import Callable, Iterator
@@ -356,7 +357,7 @@ def iter_checks(model) -> Iterator[tuple[str, Callable[[], None]]]:
     """(name, zero-argument callable) for each conformance check of ``model`` (class or instance)."""
     instance = _model(model)
     for name, check in CHECKS.items():
-        yield name, (lambda check=check: check(instance))
+        yield name, functools.partial(check, instance)
 
 
 def parametrize_with_checks(*models):

@@ -126,7 +126,7 @@ def _delivery_value(attribute: str):
     return getter
 
 
-_HALF_TURN = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
+_HALF_TURN: dict[str, Any] = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
 INPUTS.update({
     "path": InputSpec("delivery.path", "rad", "angle", "club path, horizontal, in-to-out positive",
                       _delivery_value("path"), "deg", RAD_TO_DEG, **_HALF_TURN),

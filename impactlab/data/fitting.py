@@ -21,7 +21,7 @@ from impactlab.data.validation import MeasuredData, load_dataset_study, point_or
 
 #: fittable parameter -> (where it lives, bounds, start); "input" parameters replace a scene input for every
 #: case, "option" parameters a model option
-PARAMETERS = {
+PARAMETERS: dict[str, tuple[str, tuple[float, float], float]] = {
     "friction": ("input", (0.02, 1.5), 0.4),
     "tangential_restitution": ("option", (-1.0, 1.0), 0.1),
 }
@@ -110,7 +110,7 @@ def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
     solution = least_squares(residuals, start, bounds=(lower, upper), diff_step=1e-2, x_scale="jac")
     jacobian = solution.jac
     n, p = len(measured), len(parameters)
-    identified = np.linalg.norm(jacobian, axis=0) > 1e-6 * max(1.0, np.linalg.norm(jacobian))
+    identified = np.linalg.norm(jacobian, axis=0) > 1e-6 * max(1.0, float(np.linalg.norm(jacobian)))
     uncertainties = np.full(p, np.inf)
     if identified.any():
         block = jacobian[:, identified]

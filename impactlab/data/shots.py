@@ -21,6 +21,7 @@ import math
 import re
 import warnings
 from pathlib import Path
+from typing import Any
 
 import attrs
 import numpy as np
@@ -119,6 +120,7 @@ class ShotTable:
 def _field_of(header: str) -> tuple[str | None, str | None]:
     """(field, unit) of a column header like 'Club Speed [mph]', 'spin_rate (rpm)' or 'ball_speed_sigma [mph]'."""
     match = re.match(r"^\s*(.*?)\s*(?:[\[(]\s*(.*?)\s*[\])])?\s*$", header)
+    assert match is not None, "every part of the pattern is optional: it matches any header"
     name, unit = match.group(1), match.group(2)
     key = re.sub(r"\s+", " ", name.strip().lower())
     sigma = key.endswith("_sigma") or key.endswith(" sigma")
@@ -211,7 +213,7 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
         if len(cells) != len(header):
             problems.append(f"{file}:{line_number}: expected {len(header)} columns, got {len(cells)}")
             continue
-        row = {"_line": line_number}
+        row: dict[str, Any] = {"_line": line_number}
         for column, (cell, (field, unit)) in enumerate(zip(cells, columns), start=1):
             if field is None:
                 continue
@@ -276,7 +278,7 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
         if not isinstance(item, dict):
             problems.append(f"{where}: rows[{index}]: expected a mapping of fields")
             continue
-        row = {"_line": line}
+        row: dict[str, Any] = {"_line": line}
         for key, value in item.items():
             field, _ = _field_of(str(key))
             if field is None:
@@ -320,7 +322,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
     ball = build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
-    contact = Contact(**(contact or {}))
+    shared_contact = Contact(**(contact or {}))
     scenes = []
     for index in range(table.size):
         club = club_preset(table.clubs[index])
@@ -328,7 +330,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
                             handedness=table.handedness[index])
-        scenes.append(Scene.from_delivery(ball, Scene.face_of(club), contact, delivery, 0.0, club,
+        scenes.append(Scene.from_delivery(ball, Scene.face_of(club), shared_contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
@@ -336,7 +338,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     if table.loft_at == "contact":
         inputs = centre_delivery(inputs, inputs)
     inputs = complete_inputs(inputs)
-    if contact.restitution is None and ball.restitution is not None:
+    if shared_contact.restitution is None and ball.restitution is not None:
         inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the centred delivery
     return inputs
 

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Final
 
 import xarray as xr
 
 from impactlab.errors import StudyError
 from impactlab.io.safe_output import write_atomically
 
-ENGINE = "h5netcdf"
+ENGINE: Final = "h5netcdf"
 
 
 def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:

@@ -256,7 +256,7 @@ class ImpactModel:
                 values[name] = np.asarray(raw[name], dtype=float)
             else:
                 history = is_history(name) and time is not None
-                values[name] = np.full((n_cases, time.size) if history else (n_cases,), np.nan)
+                values[name] = np.full((n_cases, time.size) if history and time is not None else (n_cases,), np.nan)
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
 

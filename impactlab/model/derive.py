@@ -62,7 +62,7 @@ def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]
 def derive(names, raw, inputs) -> dict:
     """Compute the derived outputs ``names`` from the impulses in ``raw`` and the case ``inputs`` (SI)."""
     names = set(names)
-    out = {}
+    out: dict[str, np.ndarray] = {}
     if not names:
         return out
     inputs = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)

@@ -17,8 +17,7 @@ try:  # numba is a dependency, but impactlab stays usable (slower) where it cann
     import numba
 
     HAVE_NUMBA = os.environ.get("IMPACTLAB_KERNELS", "numba") != "numpy"
-except ImportError:  # pragma: no cover - depends on the platform
-    numba = None
+except ImportError:  # pragma: no cover - depends on the platform (numba is then never used: HAVE_NUMBA is False)
     HAVE_NUMBA = False
 
 

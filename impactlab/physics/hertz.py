@@ -14,7 +14,7 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press (1985), §4.2, §
 from __future__ import annotations
 
 import functools
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 from scipy import special
@@ -190,7 +190,8 @@ class DampedNormal(NormalLaw):
             h, v = y
             return min(h, 1.0 + c * v) if v < 0 else 1.0
 
-        unloaded.terminal, unloaded.direction = True, -1
+        event: Any = unloaded  # solve_ivp reads its flags from attributes of the event function
+        event.terminal, event.direction = True, -1
         solution = solve_ivp(rhs, (0.0, 4.0 * TAU_CONTACT), [0.0, 1.0], method="DOP853", rtol=1e-11, atol=1e-13,
                              dense_output=True, events=unloaded, first_step=1e-6)
         self._solution = solution.sol

@@ -100,14 +100,14 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
             values = dataset[total].isel(where).sel(model=model).transpose("parameter", "output").values
             with warnings.catch_warnings(), np.errstate(all="ignore"):  # an output that does not move: all NaN
                 warnings.simplefilter("ignore")
-                shown = values if total == "ST" else values / np.nanmax(np.abs(values), axis=0, keepdims=True)
-            image = axis.imshow(np.nan_to_num(shown, nan=0.0), vmin=0, vmax=1, cmap="Blues", aspect="auto")
+                scaled = values if total == "ST" else values / np.nanmax(np.abs(values), axis=0, keepdims=True)
+            image = axis.imshow(np.nan_to_num(scaled, nan=0.0), vmin=0, vmax=1, cmap="Blues", aspect="auto")
             for i in range(len(parameters)):
                 for j in range(len(outputs)):
                     value = values[i, j]
                     axis.text(j, i, "n/a" if not np.isfinite(value) else f"{value:.2f}" if total == "ST"
                               else f"{value:.3g}", ha="center", va="center", fontsize=7,
-                              color="white" if np.isfinite(shown[i, j]) and shown[i, j] > 0.6 else "black")
+                              color="white" if np.isfinite(scaled[i, j]) and scaled[i, j] > 0.6 else "black")
             axis.set_xticks(range(len(outputs)))
             labels = [f"{name} [{unit}]" for name, unit in zip(outputs, dataset.output_units.values)]
             axis.set_xticklabels(labels if row == len(analysed) - 1 else [], rotation=30, ha="right", fontsize=7)

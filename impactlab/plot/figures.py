@@ -215,9 +215,9 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     import matplotlib
     from matplotlib.figure import Figure
 
-    names = [name for name in (outputs or dataset.data_vars) if is_scalar(name)
+    names = [str(name) for name in (outputs or dataset.data_vars) if is_scalar(str(name))
              and not bool(np.all(np.isnan(dataset[name].values)))][:6]
-    sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
+    sweep_dims = [str(dim) for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
     along_output = x is not None and x in dataset.data_vars
     along = x
     if (x is None or along_output) and sweep_dims:
@@ -236,7 +236,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     for panel, (axis, name) in enumerate(zip(axes.flat, names)):
         variable = dataset[name]
         units, scale = _display(OUTPUTS[name].units)
-        drawn = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
+        drawn: list[tuple] = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
         span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
         line_index = 0
         for m_index, model in enumerate(dataset[MODEL_DIM].values):
@@ -252,7 +252,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
                     horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
                     xs = horizontal.isel(_line=l_index).values
                 else:
-                    xs = dataset[x].values if x else [0.0]
+                    xs = dataset[x].values if x else np.zeros(1)
                 # one model: a colour per line; several: a colour per model, a line style per other value
                 colour = colours[(l_index if single_model else m_index) % len(colours)]
                 style = "-" if single_model else _STYLES[l_index % len(_STYLES)]

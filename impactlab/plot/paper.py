@@ -26,6 +26,7 @@ def table1() -> dict[str, dict]:
     (fractions there, percent here).
     """
     wood, trackman = DATASETS["wood2018"], DATASETS["trackman"]
+    assert wood.sigma is not None, "Wood et al. state a standard deviation per club"
     return {label: {"trackman": 100.0 * trackman.values[trackman.labels.index(label)],
                     "wood": (100.0 * wood.values[index], 100.0 * wood.sigma[index])}
             for index, label in enumerate(wood.labels)}

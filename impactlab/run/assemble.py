@@ -33,7 +33,7 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
         spec = OUTPUTS[name]
         history = time is not None and is_history(name)
         stacked = np.stack([_on_time(result, name, time, history) for result in results])
-        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history else ()))
+        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
         attributes = {"units": spec.units, "long_name": spec.long_name}
         reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
                    if name in result["missing"]]
@@ -54,11 +54,11 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
             coords[axis.dim] = xr.Variable(axis.dim, labels, {
                 "long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"})
         for field in axis.fields:
-            spec = INPUTS[field.input]
+            input_spec = INPUTS[field.input]  # an input's display units, not the output spec above
             # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
-            values = [float(f"{value * spec.display_factor:.12g}") for value in field.values]
-            coords[field.coord] = xr.Variable(axis.dim, values, {"units": spec.display_unit or spec.unit,
-                                                                 "long_name": spec.description,
+            values = [float(f"{value * input_spec.display_factor:.12g}") for value in field.values]
+            coords[field.coord] = xr.Variable(axis.dim, values, {"units": input_spec.display_unit or input_spec.unit,
+                                                                 "long_name": input_spec.description,
                                                                  "study_path": field.path})
     if time is not None:
         coords[TIME_DIM] = xr.Variable(TIME_DIM, time, {"units": "s", "long_name": "time since first contact"})
@@ -80,6 +80,7 @@ def _on_time(result: dict, name: str, time: np.ndarray | None, history: bool) ->
     values = result["data"][name]
     if not history:
         return values
+    assert time is not None, "a history is placed on the study's time axis"
     if values.ndim == 1:  # a model without histories: NaN over the time axis of those that have them
         return np.full((values.shape[0], time.size), np.nan)
     own = np.asarray(result["time"], dtype=float)

@@ -26,13 +26,15 @@ import signal
 import sys
 import time
 import zipfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
 import attrs
 import numpy as np
 
+from impactlab.model.base import ImpactModel
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import EnvironmentFault, StudyError
 from impactlab.run.faults import check_interrupt
@@ -69,8 +71,9 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
             for entry in range(n_models) for start in range(0, n_cases, chunk_size)]
 
 
-def compute_chunk(model, inputs: dict, outputs, chunk: Chunk) -> dict:
+def compute_chunk(model: ImpactModel, inputs: dict | CaseInputs, outputs: Sequence[str], chunk: Chunk) -> dict:
     """Worker side: run ``model`` on the chunk's cases; plain arrays and the missing outputs' reasons come back."""
+    part: CaseInputs | dict
     if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
         part = inputs.slice(chunk.start, chunk.stop)
     else:
@@ -139,6 +142,7 @@ class _Pool:
         if self.kind == "processes":
             # each task carries its own cases only: the whole inputs with every chunk pickled 320 MB per task
             # for 10^6 cases and made the pool 4x slower than one process
+            futures: dict[Any, Chunk]  # concurrent.futures here, dask's futures below
             futures = {self.pool.submit(compute_chunk, model, _cases_of(inputs, chunk), outputs,
                                         attrs.evolve(chunk, start=0, stop=chunk.stop - chunk.start)): chunk
                        for chunk in chunks}
@@ -207,7 +211,7 @@ class ProgressStore:
     def __init__(self, folder: Path, fingerprint: str, say: Callable[[str], None], output=None):
         self.folder, self.fingerprint, self.say = Path(folder), fingerprint, say
         self.output = output or self.folder.with_suffix("")
-        self._lock = None
+        self._lock: int | None = None
 
     def __enter__(self) -> ProgressStore:
         self._lock = _lock_folder(self.folder, self.output)

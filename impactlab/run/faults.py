@@ -63,11 +63,11 @@ _ADVICE = {
 def describe_os_error(exc: OSError) -> str:
     """'PATH: what happened; what to do' for an OSError, without Python's repr."""
     where = exc.filename if exc.filename is not None else ""
-    advice = _ADVICE.get(exc.errno, exc.strerror or str(exc))
+    advice = _ADVICE[exc.errno] if exc.errno in _ADVICE else exc.strerror or str(exc)
     return f"{where}: {advice}" if where else advice
 
 
-def _caused_by_interrupt(exc: BaseException) -> bool:
+def _caused_by_interrupt(exc: BaseException | None) -> bool:
     """A SystemError that numba raises when Ctrl-C arrives inside a compiled kernel hides a KeyboardInterrupt."""
     seen = set()
     while exc is not None and id(exc) not in seen:

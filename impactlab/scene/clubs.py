@@ -22,6 +22,7 @@ right-handed one: the same numbers describe it in the same named axes.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import attrs
 import numpy as np
@@ -45,7 +46,7 @@ def _tensor(value) -> tuple[tuple[float, float, float], ...]:
         array = np.diag(array)
     if array.shape != (3, 3):
         return value
-    return tuple(tuple(float(x) for x in row) for row in array)
+    return tuple((float(row[0]), float(row[1]), float(row[2])) for row in array)
 
 
 def _check_inertia(instance, attribute, value):
@@ -218,7 +219,7 @@ MM = 1e-3
 #: the toe (y: the largest moment, 5679 g cm^2, as a driver's about its vertical axis is, near the USGA limit of
 #: 5900; x, y, z right-handed puts z at the toe of a right-handed head), and the tensor's axes parallel to the head
 #: frame at address. Those two readings are ours, not the paper's words.
-DRIVER_2020 = dict(mass=0.204, center=(1.0, 2.9, 42.3),
+DRIVER_2020: dict[str, Any] = dict(mass=0.204, center=(1.0, 2.9, 42.3),
                    tensor=[[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]])
 
 

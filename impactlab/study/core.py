@@ -163,14 +163,14 @@ def load_study(source: Any, *, file: str | None = None) -> Study:
     try:
         return _build_study(document, text, file)
     except FieldError as exc:
-        path = _document_path(exc.path)
-        written = lookup(document, path)
-        about_a_key = bool(path) and exc.given == path[-1]
+        at = _document_path(exc.path)
+        written = lookup(document, at)
+        about_a_key = bool(at) and exc.given == at[-1]
         if (not about_a_key and isinstance(written, (str, int, float)) and not isinstance(written, bool)
                 and written != exc.given):
             # show what the user wrote, not the SI number it became
             exc = FieldError(exc.path, exc.expected, written, exc.choices)
-        raise exc.at(file=file, line=line_of(lines, path)) from None
+        raise exc.at(file=file, line=line_of(lines, at)) from None
 
 
 def _models_as_given(source: Mapping) -> dict:
@@ -222,7 +222,8 @@ def _build_models(value) -> tuple[ModelEntry, ...]:
     if not isinstance(value, list) or not value:
         raise FieldError("models", "a non-empty list of models ({name: NAME, option: value})", value,
                          choices=available())
-    entries, seen = [], {}
+    entries: list[ModelEntry] = []
+    seen: dict[str, int] = {}  # entry id -> its index
     for index, item in enumerate(value):
         where = f"models[{index}]"
         if isinstance(item, str) or _is_model(item):
@@ -355,7 +356,7 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
                 raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",
                                  data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
         plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind,
-                              tuple(float(v) for v in xlim) if xlim else None, tuple(measured)))
+                              (float(xlim[0]), float(xlim[1])) if xlim else None, tuple(measured)))
     names = [plot.name for plot in plots]
     if len(set(names)) != len(names):
         raise FieldError("plots", "figures with distinct names", names)

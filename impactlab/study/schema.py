@@ -93,7 +93,7 @@ class RestitutionBlock:
     """A restitution law written as a mapping (``ball.restitution``); a bare number is a constant law."""
 
     _what = "a restitution law"
-    law: Name = "constant"
+    law: Name = Name("constant")
     value: Number | None = None
     reference_speed: Speed | None = None
     slope: InverseSpeed | None = None
@@ -197,7 +197,7 @@ class DeliveryBlock:
     face_angle: Angle | None = None
     attack_angle: Angle | None = None
     dynamic_loft: Angle | None = None
-    handedness: Name = "right"
+    handedness: Name = Name("right")
 
 
 @attrs.frozen
@@ -390,8 +390,10 @@ def _converter() -> Converter:
     converter = Converter()
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
-    for type_, hook in ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count), (Name, lambda v, _: v),
-                        (Restitution, _restitution), (InertiaSpec, _inertia_spec)):
+    hooks: tuple[tuple[Any, Any], ...] = ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count),
+                                          (Name, lambda v, _: v), (Restitution, _restitution),
+                                          (InertiaSpec, _inertia_spec))
+    for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
                                               lambda t: _list_hook(t, converter))

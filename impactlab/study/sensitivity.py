@@ -43,6 +43,7 @@ class Parameter:
         unit = "" if unit == "1" else f" {unit}"
         if self.spread is not None:
             return f"+-{self.spread * factor:g}{unit}"
+        assert self.low is not None and self.high is not None, "a parameter has a spread or low and high"
         return f"{self.low * factor:g} to {self.high * factor:g}{unit}"
 
 

@@ -90,13 +90,13 @@ def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, l
     fails, or a value is not finite, every index is tried in order, so the message names the first bad index.
     """
     size = len(fields[0][1])
-    candidates = {0}
+    candidates: set[int] | range = {0}
     for _, values in fields:
         array = np.asarray(values, dtype=float)
         if not np.all(np.isfinite(array)):
             candidates = range(size)
             break
-        candidates |= {int(np.argmin(array)), int(np.argmax(array))}
+        candidates = set(candidates) | {int(np.argmin(array)), int(np.argmax(array))}
     try:
         for index in sorted(candidates):
             _build_swept_scene(document, fields, index)
@@ -143,7 +143,7 @@ def _club_preset_fields(document: Mapping, names, where: str) -> list[tuple[str,
         raise FieldError(where, "a list of distinct club preset names", names)
     if "club" not in document:
         raise FieldError(where, "a club block in the study to sweep the preset of", "no club")
-    values = {name: [] for name in CLUB_PRESET_INPUTS}
+    values: dict[str, list[float]] = {name: [] for name in CLUB_PRESET_INPUTS}
     for index, preset in enumerate(names):
         trial = dict(document, club=dict(document.get("club") or {}, preset=preset))
         try:
@@ -160,7 +160,7 @@ def build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
         raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
-    raw_axes = []  # (dim or None, labels, [(path, input, values)])
+    raw_axes: list[tuple[str | None, tuple[str, ...] | None, list[tuple[str, str, list[float]]]]] = []
     for key, spec in sweep.items():
         key = str(key)
         if key == "club.preset":  # a dimension "club" labelled by preset, setting every input of the head

@@ -110,7 +110,8 @@ class _Budget:
     """Nodes left to expand, and the collection nodes on the way down (an alias to one of them is a cycle)."""
 
     def __init__(self, nodes: int, file):
-        self.left, self.limit, self.file, self.open = nodes, nodes, file or "<study>", set()
+        self.left, self.limit, self.file = nodes, nodes, file or "<study>"
+        self.open: set[int] = set()
 
     def enter(self, node, path: Path) -> None:
         if id(node) in self.open:
@@ -142,9 +143,9 @@ def _convert(loader, node, path: Path, lines: dict[Path, int], file, budget: _Bu
         return result
     if isinstance(node, yaml.SequenceNode):
         budget.open.add(id(node))
-        result = [_convert(loader, item, path + (index,), lines, file, budget) for index, item in enumerate(node.value)]
+        items = [_convert(loader, item, path + (index,), lines, file, budget) for index, item in enumerate(node.value)]
         budget.open.discard(id(node))
-        return result
+        return items
     return loader.construct_object(node, deep=True)
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import os
 from importlib import resources
 from pathlib import Path
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -85,7 +86,7 @@ def load_measured(path) -> MeasuredData:
     file = str(path)
     document, lines = load_yaml(path.read_text(), file)
 
-    def fail(where, expected, given, choices=None):
+    def fail(where: str, expected: str, given: Any, choices: Any = None) -> NoReturn:
         raise FieldError(where, expected, given, choices=choices, file=file, line=line_of(lines, parse_path(where)))
 
     if not isinstance(document, dict):
@@ -130,18 +131,19 @@ def load_measured(path) -> MeasuredData:
         fail("budgets", "a mapping from model id to a positive RMS error", budgets)
     data = MeasuredData(
         name=str(document.get("name", path.stem)), source=str(document["source"]), quantity=quantity,
-        labels=tuple(labels), values=tuple(values), sigma=tuple(float(s) for s in sigmas) if all(given) else None,
+        labels=tuple(labels), values=tuple(values),
+        sigma=tuple(float(s) for s in sigmas if s is not None) if all(given) else None,
         study=str(document["study"]), dimension=str(document["dimension"]), budgets=dict(budgets),
         note=str(document.get("note", "")), folder=str(path.parent))
     study = load_dataset_study(data)
     axes = {axis.dim: axis for axis in study.sweep}
-    if data.dimension not in axes or axes[data.dimension].labels is None:
+    swept_labels = axes[data.dimension].labels if data.dimension in axes else None
+    if swept_labels is None:
         fail("dimension", "a labelled sweep of the study", data.dimension,
              [dim for dim, axis in axes.items() if axis.labels is not None])
-    missing = [label for label in data.labels if label not in axes[data.dimension].labels]
+    missing = [label for label in data.labels if label not in swept_labels]
     if missing:
-        fail("points", f"labels of the study's sweep {data.dimension!r}", ", ".join(missing),
-             list(axes[data.dimension].labels))
+        fail("points", f"labels of the study's sweep {data.dimension!r}", ", ".join(missing), list(swept_labels))
     if len(study.sweep) != 1:
         fail("study", "a study with one sweep (the points' own)", [axis.dim for axis in study.sweep])
     return data
@@ -150,6 +152,7 @@ def load_measured(path) -> MeasuredData:
 def point_order(data: MeasuredData, study: Study) -> list[int]:
     """Case index of each measured point in the study's (one-axis) sweep."""
     labels = next(axis for axis in study.sweep if axis.dim == data.dimension).labels
+    assert labels is not None, "a measured dataset's sweep is labelled (load_measured checks it)"
     return [list(labels).index(label) for label in data.labels]
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -120,7 +121,7 @@ def plot_figures(outdir, models=None) -> list[Path]:
     models = list(models or MODELS)
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    written = []
+    written: list[Path] = []
 
     # tests 1 and 2: force against time, beside the published curves
 
@@ -128,7 +129,7 @@ def plot_figures(outdir, models=None) -> list[Path]:
     axes = fig.subplots(1, 2)
     for ax, test, file in ((axes[0], 1, "chung_ooi_test1_force.csv"), (axes[1], 2, "chung_ooi_test2_force.csv")):
         sphere, inputs = _normal_cases(test)[0][:2]
-        drawn = []
+        drawn: list[tuple] = []
         for model_id in models:
             model = make_model(model_id)
             if "normal_force" not in type(model).provides:
@@ -152,7 +153,8 @@ def plot_figures(outdir, models=None) -> list[Path]:
     angles = np.linspace(1.0, 88.0, 88)
     fig = Figure(figsize=(16, 4.8), layout="tight")
     axes = fig.subplots(1, 3)
-    panels = (("tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
+    panels: tuple[tuple[str, str, str, Callable | None], ...] = (
+              ("tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
                "tangential restitution of the centre v_t'/v_t [1]", None),
               ("spin", "chung_ooi_test4_spin.csv", "spin after impact [rad/s] (friction's sense positive)",
                lambda y: -y),

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 from importlib import resources
 
 import attrs
@@ -124,7 +125,9 @@ def read_reference(file: str) -> Reference:
     """Read ``impactlab/data/validation/reference/<file>``: ``#`` header lines, then ``# series: name | kind | note``
     blocks of ``x, y`` rows."""
     text = resources.files(__package__).joinpath("reference", file).read_text()
-    header, series, current = [], {}, None
+    header: list[str] = []
+    series: dict[str, dict[str, Any]] = {}
+    current: dict[str, Any] | None = None
     for raw in text.splitlines():
         line = raw.strip()
         if not line:
@@ -479,7 +482,7 @@ def benchmark_errors(keys=None, models=None) -> dict[str, dict[str, dict]]:
     """Benchmark key -> model id -> {rms, max, predicted, expected}; rms is NaN where the model does not give the
     quantity (the rigid models have no contact time or force history)."""
     instances = {model_id: make_model(model_id) for model_id in (models or MODELS)}
-    out = {}
+    out: dict[str, dict[str, dict]] = {}
     for key in keys or BENCHMARKS:
         bench = BENCHMARKS[key]
         expected = np.asarray(bench.expected(), float)
