@@ -2,7 +2,7 @@
 
 A model declares the outputs it *provides*. Most result variables follow
 from the two impulses by rigid-body bookkeeping
-(:func:`impactlab.physics.mechanics.after_impact`), so the framework derives
+(:func:`impactlab.physics.contact.after_impact`), so the framework derives
 them for any model that provides ``normal_impulse`` and
 ``tangential_impulse``. The plan is computed from declarations alone, so it
 can be shown (and stored) before anything runs.
