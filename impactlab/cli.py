@@ -10,6 +10,7 @@ import argparse
 import json
 import re
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -439,7 +440,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run one command; every failure ends as one message and an exit status (impactlab.run.faults)."""
     args = build_parser().parse_args(argv)
     # the limits and the warning hook (run_command) are the command's own: both are put back on return

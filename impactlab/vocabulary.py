@@ -13,7 +13,7 @@ up a lofted face) is positive.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import attrs
@@ -44,7 +44,7 @@ class InputSpec:
     low_open: bool = False
     high_open: bool = False
 
-    def out_of_range(self, values):
+    def out_of_range(self, values: Any) -> Any:
         """Boolean mask of the values outside the allowed range (NaN counts as outside)."""
         return ~inside(values, self.low, self.high, self.low_open, self.high_open)
 
@@ -291,7 +291,7 @@ def is_history(name: str) -> bool:
     return name in _HISTORIES
 
 
-def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
+def check_output_names(names: Iterable[str], path: str = "outputs") -> tuple[str, ...]:
     """``names`` as a tuple, each checked against the vocabulary (the one check of output names).
 
     Raises

@@ -104,7 +104,7 @@ class ImpactModel:
     optional_inputs: ClassVar[frozenset[str]] = frozenset()
     provides: ClassVar[frozenset[str]] = frozenset()
     not_provided: ClassVar[Mapping[str, str]] = {}
-    Options: ClassVar[type] = NoOptions
+    Options: ClassVar[type[Any]] = NoOptions
     #: rule 8: ``Options`` has a field ``tolerance`` that sets the numerical error (checked by the conformance suite)
     has_tolerance: ClassVar[bool] = False
     #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
@@ -126,7 +126,7 @@ class ImpactModel:
 
     # -- declarations -------------------------------------------------------------------------------------------
     @classmethod
-    def make_options(cls, values: Mapping[str, Any]):
+    def make_options(cls, values: Mapping[str, Any]) -> Any:
         """Validated options from a mapping; unknown keys and bad values raise FieldError naming the option."""
         known = [field.name for field in attrs.fields(cls.Options)]
         for key in values:
@@ -162,7 +162,7 @@ class ImpactModel:
                              "solves_3d": cls().solves_3d()},
         }
 
-    def reference_options(self, tolerance: float):
+    def reference_options(self, tolerance: float) -> Any:
         """Options of the converged reference run for a work-precision study (see impactlab.data.convergence).
 
         Only for a model that declares ``has_tolerance`` (rule 8); the default sets the ``tolerance`` option.

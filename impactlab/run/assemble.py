@@ -9,16 +9,21 @@ import platform
 import subprocess
 from importlib import metadata
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
 from impactlab.model.diagnostics import flag_attributes
+from impactlab.study.core import Study
 from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
+if TYPE_CHECKING:  # run.runner imports this module
+    from impactlab.run.runner import StudyPlan
 
-def assemble(study, plan, results: list[dict]) -> xr.Dataset:
+
+def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
     """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance.
 
     ``results`` holds, per model entry, its outputs over the flat cases as arrays in the vocabulary's
@@ -143,7 +148,7 @@ def git_commit() -> str:
     return f"{commit}-dirty" if dirty else commit
 
 
-def provenance(study, plan) -> dict[str, str | int]:
+def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:
     """What made this result: the study, its models with resolved options, versions, the plan."""
     models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
                "references": list(entry.model.references)} for entry in study.models]

@@ -7,8 +7,10 @@ before any model runs, so a study that cannot run fails at once and says why.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Callable
+import os
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import Any
 
 import attrs
 import numpy as np
@@ -81,7 +83,8 @@ def plan_study(study: Study) -> StudyPlan:
     return StudyPlan(study.name, study.n_cases, tuple(plans), describe_paths(study), resources)
 
 
-def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
+def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
+              progress: Callable[[str], None] | None = None, executor: str = "auto",
               workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
               progress_folder: str | Path | None = None, show_progress: bool = False,
               output: str | Path | None = None) -> xr.Dataset:

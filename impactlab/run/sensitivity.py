@@ -28,6 +28,7 @@ import datetime as _dt
 import json
 import platform
 import warnings
+from collections.abc import Callable
 from importlib.metadata import version
 
 import attrs
@@ -39,6 +40,7 @@ from impactlab.errors import FieldError
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.scene.core import ball_restitution, complete_inputs
 from impactlab.study.arrays import case_inputs
+from impactlab.study.core import Study
 from impactlab.study.sensitivity import SensitivitySpec
 from impactlab.vocabulary import INPUTS, OUTPUTS, is_scalar
 
@@ -126,7 +128,7 @@ def _run(model, inputs, outputs) -> tuple[np.ndarray, np.ndarray]:
     return values, np.nan_to_num(result["validity"]).astype(np.int64)
 
 
-def run_sensitivity(study, progress=None) -> xr.Dataset:
+def run_sensitivity(study: Study, progress: Callable[[str], None] | None = None) -> xr.Dataset:
     """Run a study's sensitivity block: indices, parameter spread, model-form range and numerical error.
 
     Returns
@@ -137,6 +139,8 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
     """
     say = progress or (lambda text: None)
     spec = study.sensitivity
+    if spec is None:
+        raise ValueError(f"study {study.name!r} has no sensitivity block to run")
     outputs = list(study.outputs)
     for name in outputs:
         if not is_scalar(name) or OUTPUTS[name].diagnostic:

@@ -154,7 +154,7 @@ class Scene:
 
     @classmethod
     def from_delivery(cls, ball: Ball, face: Face, contact: Contact, delivery: Delivery, spin: float = 0.0,
-                      club: ClubHead | None = None, strike: Strike = Strike()):
+                      club: ClubHead | None = None, strike: Strike = Strike()) -> Scene:
         """The scene of a golf delivery: impact speed = club speed, impact angle = spin loft."""
         return cls(ball, face, contact, Impact(delivery.club_speed, delivery.spin_loft, spin), delivery, club, strike)
 
@@ -189,13 +189,14 @@ def complete_inputs(inputs: dict) -> dict:
     return inputs
 
 
-def ball_restitution(ball, inputs: dict):
-    """The ball's restitution law at each case's normal approach speed (arrays, SI), or None without a law.
+def ball_restitution(ball: Ball, inputs: dict) -> np.ndarray:
+    """The ball's restitution law at each case's normal approach speed (arrays, SI) [1].
 
     The normal approach speed is that of the contact (club speed along the contact normal, so that a lofted,
-    open or curved face meets the ball more slowly than its club speed).
+    open or curved face meets the ball more slowly than its club speed). Callers ask only for a ball with a law
+    (``ball.restitution`` not None); asked for one without, it raises ValueError.
     """
     if ball.restitution is None:
-        return None
+        raise ValueError("ball_restitution: the ball has no restitution law")
     gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)
     return np.clip(ball.restitution(contact_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)

@@ -279,7 +279,7 @@ BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, Cent
           ContactBlock, ImpactBlock, DeliveryBlock, RangeBlock, PlotBlock, SensitivityBlock, ParameterRangeBlock)
 
 
-def keys_of(cls) -> tuple[str, ...]:
+def keys_of(cls: type) -> tuple[str, ...]:
     """The keys a block accepts, in the order the study format lists them.
 
     Parameters
@@ -408,7 +408,7 @@ def _hook(cls):
     return _converter().get_structure_hook(cls)
 
 
-def lookup(document, path: tuple):
+def lookup(document: Any, path: tuple) -> Any:
     """The node at ``path`` in a document, or None where there is none."""
     node = document
     for part in path:
@@ -419,7 +419,7 @@ def lookup(document, path: tuple):
     return node
 
 
-def structure(value, cls, path: str):
+def structure(value: Any, cls: Any, path: str) -> Any:
     """Structure one study block, or raise the FieldError a user should see.
 
     Parameters

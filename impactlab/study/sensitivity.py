@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import Any
 
 import attrs
 import numpy as np
@@ -72,7 +73,7 @@ def _whole(value, path: str, low: int) -> int:
     return value
 
 
-def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, float], swept: set[str],
+def parse_sensitivity(block: Any, model_ids: list[str], scene_inputs: Mapping[str, float], swept: set[str],
                       where: str = "sensitivity") -> SensitivitySpec:
     """Validate a study's ``sensitivity:`` block; every error names the field, what it takes and what it got."""
     if not isinstance(block, Mapping):
