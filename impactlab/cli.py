@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+import xarray as xr
 
 from impactlab._version import __version__
 from impactlab.data.convergence import LADDER, work_precision
@@ -218,7 +219,7 @@ def _cmd_convergence(args) -> int:
     return 0
 
 
-def work_precision_table(dataset) -> str:
+def work_precision_table(dataset: xr.Dataset) -> str:
     """Markdown table: per model entry and tolerance, wall time per impact and the error of each output."""
     outputs = list(dataset.output.values)
     lines = ["| model | tolerance | us per impact | " + " | ".join(f"{name} error" for name in outputs) + " |",

@@ -21,13 +21,16 @@ measure of what a calibration buys.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import Any
 
 import attrs
 import numpy as np
 from scipy.optimize import least_squares
 
 from impactlab.errors import FieldError
-from impactlab.scene.materials import RestitutionLaw
+from impactlab.model.base import ImpactModel
+from impactlab.scene.materials import Ball, RestitutionLaw
 from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, centre_delivery, predict, shot_errors, summary, table_inputs,
 )
@@ -86,7 +89,8 @@ class Calibration:
         return "; ".join(lines)
 
 
-def apply(inputs: dict, names, values, ball=None, loft_at: str = "centre") -> dict:
+def apply(inputs: dict, names: Sequence[str], values: Sequence[float], ball: Ball | None = None,
+          loft_at: str = "centre") -> dict:
     """The model inputs with the calibration parameters ``names`` set to ``values`` (SI arrays).
 
     ``ball`` (a :class:`~impactlab.scene.materials.Ball`) supplies the restitution law where the parameters do not
@@ -136,7 +140,8 @@ def _table_ball(table: ShotTable, ball_block: dict | None):
     return build_ball(ball_block or table.ball or {"preset": "tour_urethane"})
 
 
-def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
+def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
+              ball: dict | None = None,
               start: dict | None = None) -> Calibration:
     """Fit ``parameters`` of ``model`` (an ImpactModel instance) to every measured value of ``table``.
 
@@ -197,15 +202,15 @@ def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict
         errors_after=summary(shot_errors(predicted(solution.x), table)))
 
 
-def predict_with(model, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
+def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
     """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
     inputs = table_inputs(table, ball)
     return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball),
                                 table.loft_at))
 
 
-def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
-                   folds=None) -> dict:
+def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
+                   ball: dict | None = None, folds: Sequence[Any] | None = None) -> dict:
     """Fit on all rows but some, predict those; by default leave one row out at a time.
 
     Returns

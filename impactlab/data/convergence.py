@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable, Iterable
 
 import attrs
 import numpy as np
@@ -42,7 +43,8 @@ def _timed(model, inputs, outputs, repeats: int) -> tuple[xr.Dataset, float]:
     return result, float(np.median(times))
 
 
-def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=None) -> xr.Dataset:
+def work_precision(study: Study, tolerances: Iterable[float] | np.ndarray = LADDER, repeats: int = 3,
+                   progress: Callable[[str], None] | None = None) -> xr.Dataset:
     """Error and wall time per impact for every model entry of ``study`` along a ladder of tolerances."""
     inputs = case_inputs(study)
     n_cases = study.n_cases

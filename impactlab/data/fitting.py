@@ -11,6 +11,8 @@ constrain (its column of J vanishes) is reported as not identified.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import attrs
 import numpy as np
 from scipy.optimize import least_squares
@@ -26,7 +28,7 @@ PARAMETERS: dict[str, tuple[str, tuple[float, float], float]] = {
     "tangential_restitution": ("option", (-1.0, 1.0), 0.1),
 }
 #: what each model fits by default
-DEFAULT_PARAMETERS = {"restitution": ("friction", "tangential_restitution")}
+DEFAULT_PARAMETERS: dict[str, tuple[str, ...]] = {"restitution": ("friction", "tangential_restitution")}
 
 
 @attrs.frozen
@@ -66,7 +68,7 @@ def describe(result: FitResult) -> str:
     return "; ".join(lines)
 
 
-def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
+def fit(data: MeasuredData, model_id: str, parameters: Sequence[str] | None = None) -> FitResult:
     """Fit ``parameters`` of the study model ``model_id`` to ``data``."""
     study = load_dataset_study(data)
     entries = {entry.id: entry for entry in study.models}

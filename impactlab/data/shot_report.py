@@ -10,9 +10,12 @@ import io
 import json
 import math
 import re
+import os
 import sys
+from collections.abc import Iterable, Sequence
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +27,9 @@ from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.calibration import cross_validate as leave_one_out
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
+    from matplotlib.figure import Figure
 
 #: shot tables shipped with impactlab (impactlab/data/validation/NAME.yaml)
 SHOT_TABLES = ("trackman_tour",)
@@ -75,14 +81,14 @@ _PANELS = (("ball_speed", "ball speed [mph]", 1.0 / MPH), ("vertical_launch_angl
            ("spin_rate", "spin rate [rpm]", RADS_TO_RPM))
 
 
-def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
+def plot_shots(table: ShotTable, predictions: dict, path: str | os.PathLike[str]) -> Path:
     """Draw :func:`shots_figure` to the PNG ``path``."""
     buffer = io.BytesIO()
     shots_figure(table, predictions).savefig(buffer, format="png", dpi=110)
     return write_atomically(path, buffer.getvalue())
 
 
-def shots_figure(table: ShotTable, predictions: dict):
+def shots_figure(table: ShotTable, predictions: dict) -> Figure:
     """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
 
     ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Returns a matplotlib
@@ -112,7 +118,7 @@ def shots_figure(table: ShotTable, predictions: dict):
     return figure
 
 
-def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list[str]:
+def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None = None) -> list[str]:
     """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget."""
     print(f"{table.name}: {table.size} row(s) ({', '.join(table.labels)})")
     print(f"  source: {table.source}")
@@ -140,7 +146,8 @@ def print_shot_errors(table: ShotTable, models, plot: str | None = None) -> list
     return sorted(set(over))
 
 
-def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bool = False,
+def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
+              cross_validate: bool = False,
               json_path: str | None = None) -> int:
     """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
     results = []

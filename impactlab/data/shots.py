@@ -20,6 +20,7 @@ import io
 import math
 import re
 import warnings
+import os
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,7 @@ import numpy as np
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import to_si
+from impactlab.model.base import ImpactModel
 from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_preset
 from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
 from impactlab.study.scene_blocks import build_ball
@@ -105,7 +107,7 @@ class ShotTable:
         """Number of shots (rows)."""
         return len(self.labels)
 
-    def subset(self, rows) -> ShotTable:
+    def subset(self, rows: Any) -> ShotTable:
         """The table of rows ``rows`` (an index or mask): a fold of a cross-validation."""
         rows = np.asarray(rows)
         index = np.arange(self.size)[rows]
@@ -301,7 +303,7 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
                      dict(document.get("ball") or {}), sigma_defaults, loft_at, budgets)
 
 
-def read_shots(path) -> ShotTable:
+def read_shots(path: str | os.PathLike[str]) -> ShotTable:
     """A shot table from a .csv or .yaml/.yml file."""
     path = Path(path)
     if not path.exists():
@@ -358,7 +360,7 @@ def centre_delivery(inputs: dict, measured: dict) -> dict:
     return out
 
 
-def predict(model, inputs: dict) -> dict:
+def predict(model: ImpactModel, inputs: dict) -> dict:
     """The measured quantities as the model predicts them (SI arrays)."""
     result = model.compute_arrays(inputs, list(MEASURED_FIELDS))
     return {name: result[name] for name in MEASURED_FIELDS}

@@ -26,6 +26,7 @@ import json
 import os
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -135,7 +136,7 @@ def implausible_shots(dataset: xr.Dataset, model: str | None = None) -> list[str
     return found
 
 
-def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options) -> int:
+def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options: Any) -> int:
     """Write the shots as a JSON array to ``path`` (atomically); return how many.
 
     Physically implausible shots are written as computed, with a PlausibilityWarning for each kind.

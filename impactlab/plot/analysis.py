@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import warnings
 from pathlib import Path
 
@@ -24,7 +25,7 @@ def _case_labels(dataset: xr.Dataset) -> list[tuple[dict, str]]:
     return labels
 
 
-def plot_sensitivity(dataset: xr.Dataset, path) -> list:
+def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[Path]:
     """Two figures: the three error sources side by side per output and case, and the indices of each model.
 
     ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
@@ -126,7 +127,7 @@ def plot_sensitivity(dataset: xr.Dataset, path) -> list:
     return pictures
 
 
-def plot_work_precision(dataset: xr.Dataset, path) -> None:
+def plot_work_precision(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
     """Error against wall time per impact, log-log, one panel per output and one line per model entry."""
     # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
     from matplotlib.figure import Figure

@@ -6,7 +6,9 @@ import json
 import os
 import textwrap
 import warnings
+from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -34,7 +36,7 @@ def _axis_label(long_name: str, units: str, width: int = 42) -> str:
     return "\n".join(textwrap.wrap(f"{long_name} [{units}]", width))
 
 
-def conditions(dataset: xr.Dataset, skip=()) -> str:
+def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:
     """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
     try:
         scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
@@ -74,7 +76,7 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
     return ", ".join(words)
 
 
-def audit(figure) -> list[str]:
+def audit(figure: Any) -> list[str]:
     """What is wrong with a drawn figure: panels with nothing finite drawn, legend entries with nothing drawn."""
     problems = []
     for index, axis in enumerate(figure.axes):
@@ -188,8 +190,9 @@ def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
     return pictures
 
 
-def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: str | None = None,
-                 title: str = "", xlim=None, measured=()) -> Path:
+def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence[str] | None = None,
+                 x: str | None = None, title: str = "", xlim: Sequence[float] | None = None,
+                 measured: Sequence[str] = ()) -> Path:
     """Draw scalar outputs against one sweep dimension, one colour per model, one line style per other value.
 
     Parameters

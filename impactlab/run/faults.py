@@ -23,6 +23,8 @@ import sys
 import threading
 import traceback
 import warnings
+from collections.abc import Callable, Iterator
+from typing import Any
 
 from impactlab.errors import ImpactLabError, PlausibilityWarning, PluginWarning
 from impactlab.model.diagnostics import ValidityWarning
@@ -78,7 +80,8 @@ def _caused_by_interrupt(exc: BaseException | None) -> bool:
     return False
 
 
-def show_warning(message, category, filename, lineno, file=None, line=None):
+def show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int, file: Any = None,
+                 line: str | None = None) -> None:
     """Replacement for ``warnings.showwarning``: one line on stderr, never an exception."""
     if issubclass(category, _own_warnings()):
         text = f"impactlab: warning: {message}\n"
@@ -122,7 +125,7 @@ def _hard_exit() -> None:
 
 
 @contextlib.contextmanager
-def deferred_interrupts(grace: float = INTERRUPT_GRACE):
+def deferred_interrupts(grace: float = INTERRUPT_GRACE) -> Iterator[None]:
     """Ctrl-C and SIGTERM stop the command at its next safe point, or end the process after ``grace`` s.
 
     Raising KeyboardInterrupt wherever the main thread happens to be is not safe: inside a numba
@@ -189,7 +192,7 @@ def _stdout_closed() -> bool:
     return any(events & select.POLLERR for _, events in poller.poll(0))
 
 
-def run_command(call, *, debug: bool = False) -> int:
+def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
     """Run ``call()`` (a command returning its exit status) and turn every failure into message and status."""
     _interrupt_hint[0] = "no result file was written or changed"
 

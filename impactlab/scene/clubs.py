@@ -26,6 +26,7 @@ from typing import Any
 
 import attrs
 import numpy as np
+from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
@@ -182,7 +183,7 @@ class ClubHead:
                    source=source or "a free sphere (ClubHead.sphere)")
 
     @classmethod
-    def from_principal(cls, moments, axes, **fields) -> ClubHead:
+    def from_principal(cls, moments: ArrayLike, axes: ArrayLike, **fields: Any) -> ClubHead:
         """A head from principal moments [kg m^2] and their axes (rows: unit vectors in toe, up, target)."""
         axes = np.asarray(axes, dtype=float)
         if axes.shape != (3, 3) or not np.allclose(axes @ axes.T, np.eye(3), atol=1e-6):

@@ -18,6 +18,7 @@ from __future__ import annotations
 import os
 from importlib import resources
 from pathlib import Path
+from collections.abc import Iterable
 from typing import Any, NoReturn
 
 import numpy as np
@@ -63,7 +64,7 @@ def get_dataset(name: str) -> MeasuredData:
     return DATASETS[name]
 
 
-def load_measured(path) -> MeasuredData:
+def load_measured(path: str | os.PathLike[str]) -> MeasuredData:
     """Read measured data from YAML: your own launch data to validate against or fit to.
 
     ::
@@ -156,7 +157,7 @@ def point_order(data: MeasuredData, study: Study) -> list[int]:
     return [list(labels).index(label) for label in data.labels]
 
 
-def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
+def predictions(data: MeasuredData, models: Iterable[str] | None = None) -> dict[str, np.ndarray]:
     """Each model's prediction at the measured points: model id -> values (the quantity's units)."""
     study = load_dataset_study(data)
     inputs = case_inputs(study)
@@ -169,7 +170,7 @@ def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
     return out
 
 
-def errors(data: MeasuredData, models=None) -> dict[str, dict]:
+def errors(data: MeasuredData, models: Iterable[str] | None = None) -> dict[str, dict]:
     """Model id -> {rms, max, residuals} of prediction minus measurement."""
     result = {}
     for model, predicted in predictions(data, models).items():

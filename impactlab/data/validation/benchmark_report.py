@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+import os
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
@@ -113,7 +114,7 @@ def _save(figure, path: Path, written: list) -> None:
     written.append(path)
 
 
-def plot_figures(outdir, models=None) -> list[Path]:
+def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = None) -> list[Path]:
     """Write the benchmark figures (PNG) into ``outdir``; returns their paths."""
     # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
     from matplotlib.figure import Figure
