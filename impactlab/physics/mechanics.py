@@ -18,18 +18,20 @@ from __future__ import annotations
 
 import numpy as np
 
+from impactlab.physics import Values
 
-def effective_mass(ball_mass, club_mass):
+
+def effective_mass(ball_mass: Values, club_mass: Values) -> Values:
     """Normal effective mass m* = 1 / (1/m + 1/M) [kg] (M = inf: m* = m)."""
     return 1.0 / (1.0 / ball_mass + 1.0 / club_mass)
 
 
-def tangential_mass(ball_mass, inertia_factor, club_mass):
+def tangential_mass(ball_mass: Values, inertia_factor: Values, club_mass: Values) -> Values:
     """Effective mass of the contact point in tangential slip, 1/m_t = (1 + 1/K^2)/m + 1/M [kg]."""
     return 1.0 / ((1.0 + 1.0 / inertia_factor) / ball_mass + 1.0 / club_mass)
 
 
-def approach_velocities(speed, angle, spin, radius):
+def approach_velocities(speed: Values, angle: Values, spin: Values, radius: Values) -> tuple[Values, Values]:
     """Normal approach speed V_z = V cos(alpha) and contact-point slip V_x = V sin(alpha) - R omega0 [m/s]."""
     return speed * np.cos(angle), speed * np.sin(angle) - radius * spin
 
