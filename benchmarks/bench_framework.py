@@ -22,7 +22,7 @@ import numpy as np
 import impactlab
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.model.derive import derive
-from impactlab.run.runner import case_inputs
+from impactlab.study.arrays import case_inputs
 from impactlab.study.core import load_study
 
 STUDY = """

@@ -11,11 +11,38 @@ import contextlib
 import json
 import re
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
-from impactlab.io.safe_output import write_atomically
+import numpy as np
+import xarray as xr
+
+from impactlab._version import __version__
+from impactlab.data.convergence import LADDER, work_precision
+from impactlab.data.validation import DATASETS, get_dataset, load_dataset_study
+from impactlab.data.validation import errors as dataset_errors
+from impactlab.data.validation.benchmark_report import describe as describe_benchmark
+from impactlab.data.validation.benchmark_report import format_table, over_budget
+from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
+from impactlab.errors import FieldError, StudyError
+from impactlab.io.gspro_connect import parse_address, send_shots
+from impactlab.io.interchange import checked_shots, write_gspro
+from impactlab.io.results import open_results, write_results
+from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes, write_atomically
+from impactlab.model.registry import available
+from impactlab.plot.analysis import plot_sensitivity, plot_work_precision
+from impactlab.plot.figures import draw_declared, plot_histories, plot_results
+from impactlab.plot.paper import report
 from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
-from impactlab.vocabulary import OUTPUTS  # noqa: E402  (light: names and units only)
+from impactlab.run.faults import run_command, set_interrupt_hint
+from impactlab.run.runner import plan_study, run_study
+from impactlab.study import limits
+from impactlab.scene.clubs import user_clubs
+from impactlab.study.club_specs import read_club_spec
+from impactlab.study.core import load_study
+from impactlab.study.limits import check as check_limits
+from impactlab.study.limits import parse_size
+from impactlab.vocabulary import MODEL_DIM, OUTPUTS, is_history, is_scalar
 
 
 def _count(text: str) -> int:
@@ -30,8 +57,6 @@ def _count(text: str) -> int:
 
 
 def _size(text: str) -> int:
-    from impactlab.study.limits import parse_size
-
     try:
         return parse_size(text)
     except ValueError as exc:
@@ -39,12 +64,6 @@ def _size(text: str) -> int:
 
 
 def _cmd_run(args) -> int:
-    from impactlab.errors import StudyError
-    from impactlab.run.faults import set_interrupt_hint
-    from impactlab.run.runner import plan_study, run_study
-    from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
-    from impactlab.study.core import load_study
-
     if args.scheduler:
         _check_scheduler(args.scheduler)
         args.executor = "dask"
@@ -129,21 +148,14 @@ _SCHEDULER = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(?::\d+)?|[A
 
 
 def _check_scheduler(address: str) -> None:
-    from impactlab.errors import FieldError
-
     if not _SCHEDULER.match(address):
         raise FieldError("--scheduler", "a dask scheduler address such as tcp://HOST:8786 or HOST:8786", address)
 
 
 def _draw(dataset, output: Path, png: Path | None) -> list[Path]:
     """The standard pictures of a result: scalar outputs, and each history if there is one."""
-    from impactlab.plot.figures import draw_declared, plot_histories, plot_results
-    from impactlab.vocabulary import is_history
-
     png = png or output.with_suffix(".png")
     if dataset.attrs.get("study_type") == "sensitivity":
-        from impactlab.data.sensitivity import plot_sensitivity
-
         return plot_sensitivity(dataset, png)
     if dataset.attrs.get("plots", "[]") not in ("", "[]"):
         pictures = draw_declared(dataset, png.parent, png.stem)
@@ -168,8 +180,6 @@ def _has_flight(dataset) -> bool:
 
 
 def _cmd_models(args) -> int:
-    from impactlab.model.registry import available
-
     descriptions = [model.describe() for model in available().values()]
     if args.json:
         print(json.dumps(descriptions, indent=2))
@@ -193,8 +203,6 @@ def _cmd_models(args) -> int:
 
 
 def _cmd_show(args) -> int:
-    from impactlab.io.results import open_results
-
     dataset = open_results(args.file)
     print(f"{args.file}: study {dataset.attrs.get('study_name', '?')!r}, "
           f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
@@ -208,7 +216,7 @@ def _cmd_show(args) -> int:
     print("variables:")
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
-        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(variable.dims)}){missing}")
+        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(map(str, variable.dims))}){missing}")
     if dataset.attrs.get("study_type") == "sensitivity":
         print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
               f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
@@ -230,17 +238,11 @@ def _print_validity_notes(dataset) -> None:
 
 
 def _cmd_plot(args) -> int:
-    from impactlab.errors import FieldError
-    from impactlab.plot.figures import plot_histories, plot_results
-    from impactlab.io.results import open_results
-    from impactlab.io.safe_output import check_output
-    from impactlab.vocabulary import MODEL_DIM, is_scalar
-
     dataset = open_results(args.file)
-    histories = [name for name in dataset.data_vars if "time" in dataset[name].dims]
+    histories = [str(name) for name in dataset.data_vars if "time" in dataset[name].dims]
     if args.history and args.history not in histories:
         raise FieldError("--history", "a history held by the file", args.history, choices=histories)
-    scalars = [name for name in dataset.data_vars if is_scalar(name)]
+    scalars = [str(name) for name in dataset.data_vars if is_scalar(str(name))]
     for name in args.variables or []:  # an unknown name would draw an empty picture and say "wrote"
         if name not in scalars:
             raise FieldError("-v", "a scalar output held by the file", name, choices=scalars)
@@ -249,7 +251,7 @@ def _cmd_plot(args) -> int:
     if (args.variables or args.x or args.output) and not args.history and not drawable:
         raise FieldError("-v", "an output with at least one computed value", ", ".join(args.variables or scalars))
     if args.x is not None:
-        dims = [dim for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
+        dims = [str(dim) for dim in dataset.dims if dim not in (MODEL_DIM, "time")]
         if args.x not in dims + scalars:
             raise FieldError("--x", "a sweep dimension of the file (or a scalar output)", args.x,
                              choices=dims + scalars)
@@ -274,14 +276,6 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_convergence(args) -> int:
-    from impactlab.data.convergence import LADDER, plot_work_precision, work_precision
-    from impactlab.io.results import write_results
-    from impactlab.study.core import load_study
-
-    from impactlab.io.safe_output import check_output, name_in
-
-    from impactlab.study.limits import check as check_limits
-
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
@@ -300,10 +294,8 @@ def _cmd_convergence(args) -> int:
     return 0
 
 
-def work_precision_table(dataset) -> str:
+def work_precision_table(dataset: xr.Dataset) -> str:
     """Markdown table: per model entry and tolerance, wall time per impact and the error of each output."""
-    import numpy as np
-
     outputs = list(dataset.output.values)
     lines = ["| model | tolerance | us per impact | " + " | ".join(f"{name} error" for name in outputs) + " |",
              "|---|---|---|" + "---|" * len(outputs)]
@@ -323,11 +315,6 @@ def work_precision_table(dataset) -> str:
 
 
 def _cmd_paper(args) -> int:
-    from impactlab.errors import StudyError
-    from impactlab.plot.paper import report
-
-    from impactlab.io.safe_output import check_output
-
     results = Path(args.results)
     if not results.is_dir():
         raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
@@ -338,13 +325,7 @@ def _cmd_paper(args) -> int:
 
 
 def _cmd_export(args) -> int:
-    from impactlab.io.interchange import checked_shots, write_gspro
-    from impactlab.io.results import open_results
-    from impactlab.io.safe_output import check_output
-
     if args.gspro is not None:
-        from impactlab.io.gspro_connect import parse_address, send_shots
-
         host, port = parse_address(args.gspro)  # a bad address is said before the file is read
         shots = checked_shots(open_results(args.file), model=args.model, device_id=args.device_id)
         say = (lambda text: print(text, file=sys.stderr))
@@ -376,44 +357,35 @@ def _seconds(text: str) -> float:
 
 def _print_benchmarks(keys) -> list[str]:
     """Run the Chung & Ooi / Kharaz benchmarks for every model, print the table; return what is over budget."""
-    from impactlab.errors import FieldError
-    from impactlab.data.validation.benchmark_report import describe, format_table, over_budget
-    from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
-
     keys = None if not keys or "all" in keys else keys
     for key in keys or ():
         if key not in BENCHMARKS:
             raise FieldError("benchmark", "a benchmark of impactlab validate", key, choices=sorted(BENCHMARKS))
     errors = benchmark_errors(keys)
     if keys:
-        print("\n".join(describe(key) for key in keys))
+        print("\n".join(describe_benchmark(key) for key in keys))
     print(format_table(errors))
     print()
     return over_budget(errors)
 
 
 def _cmd_validate(args) -> int:
+    # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
     from impactlab.data.shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
-    from impactlab.data.validation import DATASETS, errors, get_dataset
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
-    from impactlab.io.safe_output import check_output
-
     if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png")
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
     over, rows = [], []
-    from impactlab.scene.clubs import user_clubs
 
     for name in names:
-        with user_clubs(args.club):
+        with user_clubs(read_club_spec(path) for path in args.club or ()):
             table = shot_table(name, args.include_flagged)
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 continue
-        import numpy as np
-
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
         print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
@@ -421,7 +393,7 @@ def _cmd_validate(args) -> int:
               + (f"   (+- {', '.join(f'{s:g}' for s in data.sigma)})" if data.sigma else ""))
         print(f"  source: {data.source}")
         print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
-        for model, error in errors(data).items():
+        for model, error in dataset_errors(data).items():
             budget = data.budgets.get(model)
             # two different statements: the data's own uncertainty says whether the model agrees with the
             # measurement; the budget only says the model has not got worse since it was set
@@ -461,27 +433,22 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_fit(args) -> int:
+    # scipy.optimize (about 0.2 s) is imported by the fits: only validate and fit pay for it
     from impactlab.data.fitting import describe, fit
-    from impactlab.data.validation import get_dataset
-
-    from impactlab.io.safe_output import check_output
     from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after
         check_output(args.json, what="--json file", suffix=".json")
-    from impactlab.scene.clubs import user_clubs
 
-    with user_clubs(args.club):
+    with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
     data = get_dataset(args.dataset)
-    known = [entry.id for entry in data.load_study().models]
+    known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known
     for model in models:
         if model not in known:
-            from impactlab.errors import FieldError
-
             raise FieldError("--model", "a model of the dataset's study", model, choices=known)
     results = []
     print(f"{data.name}: fitting {data.quantity} at {', '.join(data.labels)} "
@@ -504,10 +471,9 @@ def _cmd_shots(args) -> int:
 
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
-    from impactlab.scene.clubs import user_clubs
 
     session = read_session(args.file, args.vendor)
-    with user_clubs(args.club):
+    with user_clubs(read_club_spec(path) for path in args.club or ()):
         print(describe(session, args.include_flagged))
     if args.csv:
         write_normalised(session, args.csv)
@@ -520,8 +486,6 @@ CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the 
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
-    from impactlab._version import __version__
-
     parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
@@ -645,11 +609,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run one command; every failure ends as one message and an exit status (impactlab.run.faults)."""
-    from impactlab.study import limits
-    from impactlab.run.faults import run_command
-
     args = build_parser().parse_args(argv)
     # the limits and the warning hook (run_command) are the command's own: both are put back on return
     with limits.configured(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None)):

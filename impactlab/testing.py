@@ -24,18 +24,25 @@ optional input not given is absent (rule 3): no spin, a fixed face.
 
 from __future__ import annotations
 
+import functools
 import json
 import keyword
 from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING
 
 import attrs
 import numpy as np
 
+from impactlab.errors import ModelContractError
 from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
 from impactlab.model.base import ImpactModel
 from impactlab.physics.mechanics import effective_mass
-from impactlab.scene.core import Contact, Impact, Scene
-from impactlab.vocabulary import EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS
+from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.core import Contact, Delivery, Impact, Scene, complete_inputs
+from impactlab.vocabulary import CASE_DIM, EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS, TIME_DIM, is_history
+
+if TYPE_CHECKING:  # pytest is a test dependency: imported at run time only by parametrize_with_checks
+    import pytest
 
 #: relative round-off allowed in energy and impulse bounds
 RTOL = 1e-9
@@ -60,9 +67,6 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
     Strikes from heel to toe and sole to crown, square and open faces, frictions 0.1-0.6, e 0.8 and 1: the
     cases where the mobility couples the normal and tangential directions and the slip turns.
     """
-    from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
-    from impactlab.scene.core import Delivery
-
     symmetric = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, -0.003, 0.035),
                          loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material)
     scenes = []
@@ -81,12 +85,14 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
 
 
 def _complete(inputs: dict) -> dict:
-    from impactlab.scene.core import complete_inputs
-
     return complete_inputs(dict(inputs))
 
 
-def _model(model) -> ImpactModel:
+#: a model class (made with its default options) or a configured model
+ModelLike = ImpactModel | type[ImpactModel]
+
+
+def _model(model: ModelLike) -> ImpactModel:
     return model() if isinstance(model, type) else model
 
 
@@ -103,7 +109,7 @@ def _scalar_outputs(model, inputs) -> list[str]:
     return [name for name in wanted if name not in plan.missing]
 
 
-def check_declarations(model) -> None:
+def check_declarations(model: ImpactModel) -> None:
     """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the
     vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
     cls = type(model)
@@ -134,14 +140,11 @@ def check_declarations(model) -> None:
     assert model.__doc__ and "References" in model.__doc__, "the model docstring must cite its references"
 
 
-def check_capabilities(model) -> None:
+def check_capabilities(model: ImpactModel) -> None:
     """Declared capabilities (rule 8) hold: ``has_tolerance`` exactly when Options has a ``tolerance`` field (and
     then the reference options are Options at the asked tolerance); ``provides_histories`` exactly when
     ``provides`` names a history, and then the histories come back on a ``time`` axis of ``history_length()``
     samples; ``solves_3d`` only with ``lateral_impulse``; ``expert_resolution`` None or two positive integers."""
-    from impactlab.errors import ModelContractError
-    from impactlab.vocabulary import CASE_DIM, TIME_DIM, is_history
-
     cls = type(model)
     assert isinstance(cls.has_tolerance, bool), "has_tolerance must be True or False"
     fields = {field.name for field in attrs.fields(cls.Options)}
@@ -176,7 +179,7 @@ def check_capabilities(model) -> None:
         f"expert_resolution() must be None or (springs, steps), got {grid!r}"
 
 
-def check_runs_finite(model) -> None:
+def check_runs_finite(model: ImpactModel) -> None:
     """Every scalar output the model can give on the reference batch (fixed, point-mass and rigid faces, loft
     0-75 deg) is finite."""
     inputs = reference_inputs()
@@ -187,7 +190,7 @@ def check_runs_finite(model) -> None:
         assert np.all(np.isfinite(values)), f"{name} has non-finite values"
 
 
-def check_energy_never_increases(model) -> None:
+def check_energy_never_increases(model: ImpactModel) -> None:
     """Kinetic energy after impact never exceeds that before (``energy_loss`` >= 0 to round-off)."""
     inputs = reference_inputs()
     result = model.compute(inputs, ["energy_loss", "ball_speed"])
@@ -196,7 +199,7 @@ def check_energy_never_increases(model) -> None:
     assert np.all(loss >= -RTOL * kinetic * 10), f"energy rises: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
 
 
-def check_normal_impulse_bounds(model) -> None:
+def check_normal_impulse_bounds(model: ImpactModel) -> None:
     """The normal impulse lies in (0, 2 m_eff V_n]: positive, and at most that of an elastic impact."""
     inputs = reference_inputs()
     jn = model.compute(inputs, ["normal_impulse"])["normal_impulse"].values
@@ -205,7 +208,7 @@ def check_normal_impulse_bounds(model) -> None:
     assert np.all(jn <= elastic * (1 + 1e-6)), "normal impulse exceeds that of an elastic impact"
 
 
-def check_tangential_restitution_bounds(model) -> None:
+def check_tangential_restitution_bounds(model: ImpactModel) -> None:
     """Tangential restitution beta lies in [-1, 1] (it cannot reverse the contact slip faster than it came in)."""
     beta = model.compute(reference_inputs(), ["tangential_restitution"])["tangential_restitution"].values
     assert np.all((beta >= -1 - 1e-9) & (beta <= 1 + 1e-9)), f"beta outside [-1, 1]: {beta.min():.4g}..{beta.max():.4g}"
@@ -220,7 +223,7 @@ def _without_tangential_impulse(model, what: str, outputs: list[str], **changes)
     return result
 
 
-def check_frictionless(model) -> None:
+def check_frictionless(model: ImpactModel) -> None:
     """With mu = 0 there is no tangential impulse, no spin, and beta = -1 (the slip passes unchanged)."""
     result = _without_tangential_impulse(model, "frictionless", ["spin_rate", "tangential_restitution"],
                                          friction=0.0)
@@ -228,13 +231,13 @@ def check_frictionless(model) -> None:
     assert np.allclose(result["tangential_restitution"].values, -1.0), "frictionless impact must give beta = -1"
 
 
-def check_head_on(model) -> None:
+def check_head_on(model: ImpactModel) -> None:
     """A head-on impact (angle 0, no spin) gives no tangential impulse and launches along the path."""
     result = _without_tangential_impulse(model, "head-on", ["launch_angle"], angle=0.0)
     assert np.allclose(result["launch_angle"].values, 0.0, atol=1e-9), "head-on impact launches off the path"
 
 
-def check_mirror_symmetry(model) -> None:
+def check_mirror_symmetry(model: ImpactModel) -> None:
     """Mirroring the impact (angle and spin negated) keeps J_n and flips J_t and the launch angle."""
     inputs = reference_inputs()
     mirrored = _with(inputs, angle=-inputs["angle"], spin=-inputs["spin"])
@@ -246,7 +249,7 @@ def check_mirror_symmetry(model) -> None:
     assert np.allclose(a["launch_angle"], -b["launch_angle"], rtol=1e-12, atol=1e-12), "mirroring must flip theta"
 
 
-def check_batch_independence(model) -> None:
+def check_batch_independence(model: ImpactModel) -> None:
     """A case computed alone equals the same case inside a batch (rule 5), to 1e-12."""
     inputs = reference_inputs(n_angles=3)
     names = [name for name in ("normal_impulse", "tangential_impulse") if name in model.provides] or \
@@ -259,7 +262,7 @@ def check_batch_independence(model) -> None:
                 f"{name} of case {case} depends on the batch around it"
 
 
-def check_3d_energy_never_increases(model) -> None:
+def check_3d_energy_never_increases(model: ImpactModel) -> None:
     """On free club heads struck off-centre, no model may create kinetic energy (ball plus head, rotation included)."""
     if not model.solves_3d():
         return  # a model on one line: its derived outputs on a free head are NaN with the reason (plan)
@@ -272,7 +275,7 @@ def check_3d_energy_never_increases(model) -> None:
         f"3-D impact creates energy: min energy_loss/KE = {np.min(loss / kinetic):.3g}"
 
 
-def check_3d_heel_toe_mirror(model) -> None:
+def check_3d_heel_toe_mirror(model: ImpactModel) -> None:
     """A head symmetric heel-to-toe, square face, path along the target: heel and toe strikes are mirror images."""
     if not model.solves_3d():
         return
@@ -288,7 +291,7 @@ def check_3d_heel_toe_mirror(model) -> None:
             f"heel and toe strikes do not mirror in {name}"
 
 
-def check_3d_batch_independence(model) -> None:
+def check_3d_batch_independence(model: ImpactModel) -> None:
     """On free heads struck off-centre, a case computed alone equals the same case inside a batch."""
     if not model.solves_3d():
         return
@@ -302,7 +305,7 @@ def check_3d_batch_independence(model) -> None:
                 f"3-D {name} of case {case} depends on the batch around it"
 
 
-def check_inputs_untouched(model) -> None:
+def check_inputs_untouched(model: ImpactModel) -> None:
     """The model leaves its input arrays as it found them (rule 5)."""
     inputs = reference_inputs(n_angles=3)
     copies = {key: value.copy() for key, value in inputs.items()}
@@ -315,7 +318,7 @@ def check_inputs_untouched(model) -> None:
 NEUTRAL_WHEN_ABSENT = {"spin": 0.0, "club_mass": np.inf}
 
 
-def check_optional_inputs_absent(model) -> None:
+def check_optional_inputs_absent(model: ImpactModel) -> None:
     """Rule 3: an optional input that was not given is absent, and the model runs without it.
 
     Without ``spin`` and ``club_mass`` (where optional), results equal those with the ball given no spin and
@@ -358,14 +361,14 @@ CHECKS: dict[str, Callable[[ImpactModel], None]] = {
 }
 
 
-def iter_checks(model) -> Iterator[tuple[str, Callable[[], None]]]:
+def iter_checks(model: ModelLike) -> Iterator[tuple[str, Callable[[], None]]]:
     """(name, zero-argument callable) for each conformance check of ``model`` (class or instance)."""
     instance = _model(model)
     for name, check in CHECKS.items():
-        yield name, (lambda check=check: check(instance))
+        yield name, functools.partial(check, instance)
 
 
-def parametrize_with_checks(*models):
+def parametrize_with_checks(*models: ModelLike) -> pytest.MarkDecorator:
     """A ``pytest.mark.parametrize`` over every (model, check) pair, one test each, as scikit-learn's is.
 
     Examples
@@ -375,6 +378,7 @@ def parametrize_with_checks(*models):
     ... def test_conformance(model, check):
     ...     check(model)
     """
+    # pytest is a test dependency, not one of impactlab's: imported only when a plugin's tests ask for this
     import pytest
 
     cases, ids = [], []
@@ -386,7 +390,7 @@ def parametrize_with_checks(*models):
     return pytest.mark.parametrize(("model", "check"), cases, ids=ids)
 
 
-def check_model(model) -> None:
+def check_model(model: ModelLike) -> None:
     """Run every conformance check; raise AssertionError listing all that failed."""
     failures = []
     for name, run in iter_checks(model):

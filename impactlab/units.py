@@ -12,8 +12,12 @@ from __future__ import annotations
 import functools
 import math
 from numbers import Real
+from typing import TYPE_CHECKING, Any
 
 from impactlab.errors import FieldError
+
+if TYPE_CHECKING:  # pint itself is imported on first use (it is slow to load)
+    import pint
 
 #: Physical dimension name -> (SI unit as pint understands it, plain unit of
 #: bare numbers, words for messages).
@@ -31,13 +35,12 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
 
 
 @functools.cache
-def registry():
+def registry() -> pint.UnitRegistry:
     """The shared pint unit registry (created on first use: pint is slow to load)."""
     import pint
 
     # "15 degC" is a temperature, not 15 times an offset unit (which pint refuses as ambiguous)
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
-    return ureg
+    return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
 def to_si(value: object, dimension: str, path: str = "") -> float:
@@ -89,7 +92,7 @@ def _string_to_si(text: str, dimension: str) -> float | str:
     si_unit, plain_unit, _ = DIMENSIONS[dimension]
     ureg = registry()
     try:
-        quantity = ureg.Quantity(text)
+        quantity: Any = ureg.Quantity(text)
     except Exception:  # noqa: BLE001 - pint raises many kinds for text it cannot read; the message says what to write
         return ""
     if not isinstance(quantity, ureg.Quantity):  # a bare number written as a string

@@ -20,14 +20,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 from impactlab.errors import FieldError
 
 
-def check(predicate: Callable[[float], bool], expected: str, optional: bool = False):
+#: an attrs validator: called with the instance, the attribute and the value; raises to refuse the value
+Validator = Callable[[Any, Any, Any], None]
+
+
+def check(predicate: Callable[[Any], bool], expected: str, optional: bool = False) -> Validator:
     """An attrs validator: ``predicate(value)`` must hold, else FieldError(name, expected, value)."""
 
-    def validator(instance, attribute, value):
+    def validator(instance: Any, attribute: Any, value: Any) -> None:
         if value is None and optional:
             return
         try:
@@ -44,17 +49,17 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and not math.isnan(value)
 
 
-def positive(expected: str = "a positive, finite number", optional: bool = False):
+def positive(expected: str = "a positive, finite number", optional: bool = False) -> Validator:
     """An attrs validator: a number with 0 < value < inf (``None`` too when ``optional``)."""
     return check(lambda v: _is_number(v) and 0 < v < math.inf, expected, optional)
 
 
-def positive_or_inf(expected: str = "a positive number (or inf)", optional: bool = False):
+def positive_or_inf(expected: str = "a positive number (or inf)", optional: bool = False) -> Validator:
     """An attrs validator: a number with value > 0, ``inf`` allowed (a flat face's radius, a fixed face's mass)."""
     return check(lambda v: _is_number(v) and v > 0, expected, optional)
 
 
-def inside(values, low: float, high: float, low_open: bool = False, high_open: bool = False):
+def inside(values: Any, low: float, high: float, low_open: bool = False, high_open: bool = False) -> Any:
     """Whether ``values`` (a number or an array, elementwise) lie in [low, high], ends excluded when open.
 
     The one range test: option validators (:func:`in_range`) and the input arrays handed to a model
@@ -65,24 +70,25 @@ def inside(values, low: float, high: float, low_open: bool = False, high_open: b
     return above & below
 
 
-def in_range(low: float, high: float, expected: str, low_open=False, high_open=False, optional=False):
+def in_range(low: float, high: float, expected: str, low_open: bool = False, high_open: bool = False,
+             optional: bool = False) -> Validator:
     """An attrs validator: a number in [low, high], either end excluded when ``low_open``/``high_open``.
 
     ``expected`` is the message's expectation, in the user's words (e.g. "a friction coefficient >= 0").
     """
 
-    def predicate(v):
+    def predicate(v: Any) -> bool:
         return _is_number(v) and bool(inside(v, low, high, low_open, high_open))
 
     return check(predicate, expected, optional)
 
 
-def finite(expected: str = "a finite number", optional: bool = False):
+def finite(expected: str = "a finite number", optional: bool = False) -> Validator:
     """An attrs validator: a finite number (not NaN, not inf)."""
     return check(lambda v: _is_number(v) and math.isfinite(v), expected, optional)
 
 
-def to_float(value):
+def to_float(value: Any) -> Any:
     """attrs converter: ints become floats, other values pass through (validators judge them)."""
     if isinstance(value, int) and not isinstance(value, bool):
         return float(value)

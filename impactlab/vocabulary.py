@@ -13,13 +13,14 @@ up a lofted face) is positive.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import attrs
 
 from impactlab.units import RAD_TO_DEG, RADS_TO_RPM
 from impactlab.validators import inside
+from impactlab.errors import FieldError
 
 SCALAR = "scalar"
 HISTORY = "history"
@@ -43,7 +44,7 @@ class InputSpec:
     low_open: bool = False
     high_open: bool = False
 
-    def out_of_range(self, values):
+    def out_of_range(self, values: Any) -> Any:
         """Boolean mask of the values outside the allowed range (NaN counts as outside)."""
         return ~inside(values, self.low, self.high, self.low_open, self.high_open)
 
@@ -133,7 +134,7 @@ def _conditions_value(attribute: str):
     return getter
 
 
-_HALF_TURN = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
+_HALF_TURN: dict[str, Any] = dict(low=-math.pi / 2, high=math.pi / 2, low_open=True, high_open=True)
 INPUTS.update({
     "path": InputSpec("delivery.path", "rad", "angle", "club path, horizontal, in-to-out positive",
                       _delivery_value("path"), "degree", RAD_TO_DEG, **_HALF_TURN),
@@ -358,7 +359,7 @@ def is_history(name: str) -> bool:
     return name in _HISTORIES
 
 
-def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
+def check_output_names(names: Iterable[str], path: str = "outputs") -> tuple[str, ...]:
     """``names`` as a tuple, each checked against the vocabulary (the one check of output names).
 
     Raises
@@ -366,8 +367,6 @@ def check_output_names(names, path: str = "outputs") -> tuple[str, ...]:
     FieldError
         At ``path[i]`` for the first entry that is not an output name, with the vocabulary as choices.
     """
-    from impactlab.errors import FieldError
-
     names = tuple(names)
     for index, name in enumerate(names):
         if not isinstance(name, str) or name not in OUTPUTS:

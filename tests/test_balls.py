@@ -68,7 +68,7 @@ models: [rigid_coulomb]
 outputs: [normal_velocity, ball_speed]
 """
     from impactlab.scene.materials import ball_preset
-    from impactlab.run.runner import case_inputs
+    from impactlab.study.arrays import case_inputs
     ball = ball_preset("urethane_tour")
     assert ball.friction == 0.40  # the sled measurement (Henrikson et al. 2020)
     for preset, gain in (("driver", 0.083), ("6_iron", 0.0)):

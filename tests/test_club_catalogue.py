@@ -8,7 +8,8 @@ import pytest
 
 from impactlab.cli import main
 from impactlab.errors import FieldError
-from impactlab.scene.clubs import CLUB_CATALOGUE, club_from_spec, club_key, read_club_spec, user_clubs
+from impactlab.scene.clubs import CLUB_CATALOGUE, club_from_spec, club_key, user_clubs
+from impactlab.study.club_specs import read_club_spec
 
 SET = ("driver", "3_wood", "5_wood", "7_wood", "3_hybrid", "4_hybrid", "5_hybrid", "3_iron", "4_iron", "5_iron",
        "6_iron", "7_iron", "8_iron", "9_iron", "pitching_wedge", "gap_wedge", "sand_wedge", "lob_wedge")
@@ -109,7 +110,7 @@ def test_a_users_club_from_its_spec_sheet(tmp_path):
     assert names == ("Driver", "1w")
     assert head.mass == pytest.approx(0.203) and head.loft == pytest.approx(math.radians(10.5))
     assert head.inertia_components()["up"] == pytest.approx(5200e-7) and head.center_of_mass[2] == pytest.approx(0.038)
-    with user_clubs([path]):
+    with user_clubs([read_club_spec(path)]):
         assert club_key("Driver") == "user_1" and club_key("1W") == "user_1"
     assert club_key("Driver") == "driver"  # put back
     with pytest.raises(FieldError, match=r"driver.yaml:6: club.mass: expected a value with its unit \(e.g. 203 g\)"):

@@ -163,7 +163,8 @@ def test_library_plots_leave_the_callers_backend_alone(tmp_path):
         matplotlib.use("svg")
         import impactlab
         from impactlab.plot.figures import plot_histories, plot_results
-        from impactlab.data.convergence import plot_work_precision, work_precision
+        from impactlab.data.convergence import work_precision
+        from impactlab.plot.analysis import plot_work_precision
         study = {{"name": "p", "ball": {{"preset": "urethane_tour"}}, "face": {{"rigid": True}},
                  "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": 40, "angle": 20}},
                  "sweep": {{"impact.angle": [10, 30]}}, "models": ["maw", "rigid_coulomb"],

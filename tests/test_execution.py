@@ -128,6 +128,7 @@ def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_
     from impactlab.model import case_inputs as batch_module
     from impactlab.model.base import ImpactModel
     from impactlab.physics import contact
+    from impactlab.run import runner as runner_module
     from impactlab.run.runner import case_input_names, case_inputs
     from impactlab.study import limits
 
@@ -152,6 +153,7 @@ def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_
         return real_state(inputs, mobility)
 
     monkeypatch.setattr(limits, "check", check)
+    monkeypatch.setattr(runner_module, "check", check)  # the runner's own name for it (imported at its top)
     monkeypatch.setattr(ImpactModel, "plan", plan)
     monkeypatch.setattr(contact, "contact_state", state)
     monkeypatch.setattr(batch_module, "contact_state", state)

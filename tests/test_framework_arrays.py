@@ -56,7 +56,7 @@ def test_sharing_the_state_changes_no_result():
     shared = impactlab.run_study(STUDY, executor="serial", chunk_size=4)
     for entry_id in ("maw", "rigid_coulomb", "restitution"):
         model = get_model(entry_id)()
-        alone = model.compute(impactlab.run.runner.case_inputs(impactlab.load_study(STUDY)), ["launch_angle",
+        alone = model.compute(impactlab.study.arrays.case_inputs(impactlab.load_study(STUDY)), ["launch_angle",
                                                                                            "spin_rate"])
         assert np.array_equal(shared["launch_angle"].sel(model=entry_id).values, alone["launch_angle"].values)
         assert np.array_equal(shared["spin_rate"].sel(model=entry_id).values, alone["spin_rate"].values)

@@ -105,12 +105,16 @@ def reference_incremental_mindlin_psi2(chi, psi1, steps=200_000):
     return velocity
 
 
-# --- physics/mechanics.py ---------------------------------------------------------------------------------------
+# --- physics/mechanics.py and physics/contact.py (after_impact) ------------------------------------------------
 
 def test_rigid_body_bookkeeping_with_a_200g_head_rolls_conserves_and_keeps_energy():
     """Kills: club recoil dropped from the tangential velocity, spin sign, K^2 for 1/K^2, incoming-spin sign,
-    club kinetic energy without its 1/2 (physics/mechanics.py)."""
+    club kinetic energy without its 1/2 (physics/mechanics.py's helpers; physics/contact.py's after_impact, the
+    one every model's derived outputs come from)."""
     from impactlab.physics import mechanics
+    from impactlab.physics.contact import after_impact, contact_state, impulse_vector
+    from impactlab.scene.core import Contact, Impact, Scene, complete_inputs
+    from impactlab.scene.materials import Ball, Face
 
     m, radius, k2, club, speed, angle = 0.04593, 0.021335, 0.4, 0.2, 40.0, np.radians(20.0)
     vz, vx = speed * np.cos(angle), speed * np.sin(angle)
@@ -119,21 +123,32 @@ def test_rigid_body_bookkeeping_with_a_200g_head_rolls_conserves_and_keeps_energ
     m_t = 1.0 / ((1.0 + 1.0 / k2) / m + 1.0 / club)
     assert mechanics.effective_mass(m, club) == pytest.approx(m_star, rel=1e-14)
     assert mechanics.tangential_mass(m, k2, club) == pytest.approx(m_t, rel=1e-14)
-    jn, jt = 2.0 * m_star * vz, m_t * vx
-    out = mechanics.after_impact(jn, jt, ball_mass=m, ball_radius=radius, ball_inertia_factor=k2, speed=speed,
-                                 angle=angle, spin=0.0, club_mass=club)
-    # the contact point stops slipping: beta = 0, and the ball's surface moves with the recoiling club
-    assert out["tangential_restitution"] == pytest.approx(0.0, abs=1e-12)
-    # momentum: the ball's tangential velocity relative to the club is V sin(a) - J_t/m - J_t/M
-    assert out["tangential_velocity"] == pytest.approx(vx - jt / m - jt / club, rel=1e-12)
-    assert out["spin_rate"] * radius == pytest.approx(out["tangential_velocity"], rel=1e-12)  # rolling
-    assert out["spin_rate"] > 0.0  # friction up a lofted face gives backspin
-    # a frictionless elastic impact loses no energy, club included
-    elastic = mechanics.after_impact(jn, 0.0, ball_mass=m, ball_radius=radius, ball_inertia_factor=k2, speed=speed,
-                                     angle=angle, spin=0.0, club_mass=club)
-    assert elastic["energy_loss"] == pytest.approx(0.0, abs=1e-12 * m * speed**2)
     # incoming backspin omega0 reduces the contact point's slip by R omega0
     assert mechanics.approach_velocities(speed, angle, 100.0, radius)[1] == pytest.approx(vx - 100.0 * radius)
+
+    def state_of(spin):  # a 200 g head on the path, struck on its centre-of-mass line: the 1-D case
+        scene = Scene(Ball(radius=radius, mass=m, inertia_factor=k2), Face(rigid=True, mass=club),
+                      Contact(0.4, 1.0), Impact(speed, angle, spin))
+        inputs = complete_inputs({key: np.array([value]) for key, value in scene.inputs().items()})
+        return contact_state(inputs), inputs
+
+    state, inputs = state_of(0.0)
+    # the mobility in the contact frame (slip, lateral, normal) is diag(1/m_t, 1/m_t, 1/m*) here
+    np.testing.assert_allclose(np.diagonal(state["mobility"][0]), [1 / m_t, 1 / m_t, 1 / m_star], rtol=1e-13)
+    assert state_of(100.0)[0]["slip_speed"][0] == pytest.approx(vx - 100.0 * radius, rel=1e-13)
+    jn, jt = 2.0 * m_star * vz, m_t * vx
+    out = after_impact(state, impulse_vector(state, np.array([jn]), np.array([jt])), **inputs)
+    # the contact point stops slipping: beta = 0, and the ball's surface moves with the recoiling club
+    assert out["tangential_restitution"][0] == pytest.approx(0.0, abs=1e-12)
+    # momentum: the ball's tangential velocity relative to the club is V sin(a) - J_t/m - J_t/M
+    assert out["tangential_velocity"][0] == pytest.approx(vx - jt / m - jt / club, rel=1e-12)
+    assert out["spin_rate"][0] * radius == pytest.approx(out["tangential_velocity"][0], rel=1e-12)  # rolling
+    assert out["spin_rate"][0] > 0.0  # friction up a lofted face gives backspin
+    # a frictionless elastic impact loses no energy, club included
+    elastic = after_impact(state, impulse_vector(state, np.array([jn]), np.array([0.0])), **inputs)
+    assert elastic["energy_loss"][0] == pytest.approx(0.0, abs=1e-12 * m * speed**2)
+    # the rolling impact loses the slip's kinetic energy: m_t V_x^2 / 2 (Stronge ch. 5, rigid body, e = 1)
+    assert out["energy_loss"][0] == pytest.approx(0.5 * m_t * vx**2, rel=1e-12)
 
 
 # --- models/_compliant.py ---------------------------------------------------------------------------------------

@@ -1,4 +1,5 @@
-"""Sensitivity and model-form studies (impactlab.data.sensitivity): indices of analytic cases, ranges, bad input."""
+"""Sensitivity and model-form studies (impactlab.study.sensitivity, impactlab.run.sensitivity): indices of analytic
+cases, ranges, bad input."""
 
 from pathlib import Path
 

@@ -220,10 +220,12 @@ def test_grouped_sweep_errors_name_the_field():
 def test_a_large_sweep_is_validated_with_a_bounded_number_of_scenes(monkeypatch):
     # each field's validity is an interval: its ends and the first value decide, not one scene per value
     import impactlab.study.core as study_module
+    import impactlab.study.sweeps as sweeps_module
 
     built = []
     real = study_module.build_scene
-    monkeypatch.setattr(study_module, "build_scene", lambda document: built.append(1) or real(document))
+    for module in (study_module, sweeps_module):  # the base scene, and the scenes that check the sweep's values
+        monkeypatch.setattr(module, "build_scene", lambda document: built.append(1) or real(document))
     sweep = {"impact.angle": {"start": "1 deg", "stop": "60 deg", "num": 20000}}
     study = impactlab.load_study({**MINIMAL, "sweep": sweep})
     assert study.n_cases == 20000 and len(built) <= 5

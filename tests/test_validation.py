@@ -9,7 +9,7 @@ import pytest
 
 from impactlab.cli import main
 from impactlab.data.fitting import fit
-from impactlab.data.validation import DATASETS, errors, predictions
+from impactlab.data.validation import DATASETS, errors, load_dataset_study, predictions
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
 
@@ -38,7 +38,7 @@ def test_budgets_only_ever_tighten():
 def test_every_dataset_cites_a_source_and_matches_its_study():
     for data in DATASETS.values():
         assert "Henrikson" in data.source or "et al." in data.source
-        study = data.load_study()
+        study = load_dataset_study(data)
         axis = next(axis for axis in study.sweep if axis.dim == data.dimension)
         assert set(data.labels) <= set(axis.labels)
         assert data.sigma is None or len(data.sigma) == len(data.values)
@@ -59,9 +59,9 @@ def test_fit_recovers_a_known_friction_from_synthetic_data():
     template = DATASETS["wood2018"]
     study_truth = attrs.evolve(template, name="synthetic")
     # predictions of maw at mu = 0.25 play the measurements
-    from impactlab.run.runner import case_inputs
+    from impactlab.study.arrays import case_inputs
 
-    study = template.load_study()
+    study = load_dataset_study(template)
     inputs = case_inputs(study)
     inputs["friction"] = np.full_like(inputs["friction"], 0.25)
     maw = next(entry.model for entry in study.models if entry.id == "maw")
@@ -121,10 +121,10 @@ points:
 
 
 def test_your_own_measured_data_file_can_be_validated_and_fitted(tmp_path, capsys):
-    from impactlab.run.runner import case_inputs
+    from impactlab.study.arrays import case_inputs
     from impactlab.data.validation import get_dataset
 
-    study = DATASETS["wood2018"].load_study()
+    study = load_dataset_study(DATASETS["wood2018"])
     inputs = case_inputs(study)
     inputs["friction"] = np.full_like(inputs["friction"], 0.3)
     truth = next(e.model for e in study.models if e.id == "maw").compute(inputs, ["vertical_launch_ratio"])

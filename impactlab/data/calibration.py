@@ -22,16 +22,21 @@ measure of what a calibration buys.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import Any
 
 import attrs
 import numpy as np
 
 from impactlab.data import least_squares
 from impactlab.errors import FieldError
-from impactlab.scene.materials import RestitutionLaw
+from impactlab.model.base import ImpactModel
+from impactlab.scene.materials import Ball, RestitutionLaw
 from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, shot_errors, summary, table_inputs,
 )
+from impactlab.physics.contact import approach_state
+from impactlab.study.scene_blocks import build_ball
 
 #: parameter -> (bounds, start, what it is). A ball's restitution is bounded not to rise with the impact speed (its
 #: viscoelastic losses grow with the strain rate). The face gain's bound is wide on purpose: a fit that puts a
@@ -99,7 +104,7 @@ class Calibration:
         return "; ".join(lines)
 
 
-def apply(inputs: dict, names, values, ball=None) -> dict:
+def apply(inputs: dict, names: Sequence[str], values: Sequence[float], ball: Ball | None = None) -> dict:
     """The model inputs with the calibration parameters ``names`` set to ``values`` (SI arrays).
 
     ``ball`` (a :class:`~impactlab.scene.materials.Ball`) supplies the restitution law where the parameters do not
@@ -107,7 +112,6 @@ def apply(inputs: dict, names, values, ball=None) -> dict:
     (input ``loft_at_contact``, a table's ``loft_at: contact``) the contact point keeps the measured loft and the
     head turns instead; at the face centre the contact point's loft changes with the roll.
     """
-    from impactlab.physics.contact import approach_state
     out = {key: np.array(value, dtype=float) for key, value in inputs.items()}
     given = dict(zip(names, values))
     n = out["speed"].size
@@ -144,12 +148,11 @@ def _residuals(predicted: dict, table: ShotTable) -> np.ndarray:
 
 
 def _table_ball(table: ShotTable, ball_block: dict | None):
-    from impactlab.study.core import build_ball
-
     return build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
 
 
-def calibrate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
+def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
+              ball: dict | None = None,
               start: dict | None = None) -> Calibration:
     """Fit ``parameters`` of ``model`` (an ImpactModel instance) to every measured value of ``table``.
 
@@ -232,14 +235,14 @@ def _limits(ball) -> tuple:
                                         driver_cor, DRIVER_COR_LIMIT, "USGA/R&A Equipment Rules, Part 2, 5a"),)
 
 
-def predict_with(model, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
+def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
     """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
     inputs = table_inputs(table, ball)
     return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
 
 
-def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
-                   folds=None) -> dict:
+def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
+                   ball: dict | None = None, folds: Sequence[Any] | None = None) -> dict:
     """Fit on all rows but some, predict those; by default leave one row out at a time.
 
     Returns

@@ -19,13 +19,14 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable, Iterable
 
 import attrs
 import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
-from impactlab.run.runner import case_inputs
+from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study
 from impactlab.vocabulary import OUTPUTS, is_scalar
 
@@ -42,7 +43,8 @@ def _timed(model, inputs, outputs, repeats: int) -> tuple[xr.Dataset, float]:
     return result, float(np.median(times))
 
 
-def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=None) -> xr.Dataset:
+def work_precision(study: Study, tolerances: Iterable[float] | np.ndarray = LADDER, repeats: int = 3,
+                   progress: Callable[[str], None] | None = None) -> xr.Dataset:
     """Error and wall time per impact for every model entry of ``study`` along a ladder of tolerances."""
     inputs = case_inputs(study)
     n_cases = study.n_cases
@@ -108,51 +110,3 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
                "reference": json.dumps(notes), "impactlab_version": __version__,
                "method": __doc__.strip().split("\n\n")[1].replace("\n", " ")},
     )
-
-
-def plot_work_precision(dataset: xr.Dataset, path) -> None:
-    """Error against wall time per impact, log-log, one panel per output and one line per model entry."""
-    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
-    from matplotlib.figure import Figure
-
-    from impactlab.plot.figures import _axis_label
-
-    outputs = list(dataset.output.values)
-    columns = min(2, len(outputs))
-    rows = -(-len(outputs) // columns)
-    figure = Figure(figsize=(6.0 * columns, 4.2 * rows))
-    axes = figure.subplots(rows, columns, squeeze=False)
-    for axis, output in zip(axes.flat, outputs):
-        closed = 0
-        for model in dataset.model.values:
-            times = dataset.wall_time.sel(model=model).values * 1e6
-            errors = dataset.error.sel(model=model, output=output).values
-            keep = np.isfinite(times) & np.isfinite(errors)
-            if keep.any() and np.all(errors[keep] == 0):
-                # exact: no error to draw, only its cost (a vertical rule, named in the legend)
-                axis.axvline(np.nanmedian(times), linestyle=(0, (1, 2 + closed)), color=("0.2", "0.55")[closed % 2],
-                             label=f"{model} (closed form, exact)")
-                closed += 1
-                continue
-            line, = axis.plot(times[keep], errors[keep], "o-", label=str(model), markersize=3)
-            # tolerances label their points on alternate sides: the fast end of a rule bunches up in time
-            for index, (t, e, tol) in enumerate(zip(times[keep], errors[keep], dataset.tolerance.values[keep])):
-                right = index % 2 == 0
-                axis.annotate(f"{tol:g}", (t, e), fontsize=6, xytext=(4 if right else -4, 0),
-                              textcoords="offset points", ha="left" if right else "right", va="center",
-                              color=line.get_color())
-        axis.set_xscale("log")
-        axis.set_yscale("log")
-        axis.set_xlabel("wall time per impact [us] (one core, warm)")
-        axis.set_ylabel(_axis_label(f"error of {OUTPUTS[output].long_name} / its largest |value|", "1", 48),
-                        fontsize=8)
-        axis.grid(True, which="both", alpha=0.3)
-        axis.legend(fontsize=7)
-    for axis in list(axes.flat)[len(outputs):]:
-        axis.set_visible(False)
-    figure.suptitle(dataset.attrs.get("title", "") + f" ({int(dataset.attrs.get('cases', 0))} impacts; "
-                    "point labels: requested tolerance)", fontsize=10)
-    figure.tight_layout()
-    from impactlab.plot.figures import _save
-
-    _save(figure, path)

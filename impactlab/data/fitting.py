@@ -13,22 +13,24 @@ named.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import attrs
 import numpy as np
 
 from impactlab.data import least_squares
 from impactlab.errors import FieldError
-from impactlab.run.runner import case_inputs
-from impactlab.data.validation import MeasuredData, point_order
+from impactlab.study.arrays import case_inputs
+from impactlab.data.validation import MeasuredData, load_dataset_study, point_order
 
 #: fittable parameter -> (where it lives, bounds, start); "input" parameters replace a scene input for every
 #: case, "option" parameters a model option
-PARAMETERS = {
+PARAMETERS: dict[str, tuple[str, tuple[float, float], float]] = {
     "friction": ("input", (0.02, 1.5), 0.4),
     "tangential_restitution": ("option", (-1.0, 1.0), 0.1),
 }
 #: what each model fits by default
-DEFAULT_PARAMETERS = {"restitution": ("friction", "tangential_restitution")}
+DEFAULT_PARAMETERS: dict[str, tuple[str, ...]] = {"restitution": ("friction", "tangential_restitution")}
 
 
 @attrs.frozen
@@ -70,9 +72,9 @@ def describe(result: FitResult) -> str:
     return "; ".join(lines)
 
 
-def fit(data: MeasuredData, model_id: str, parameters=None) -> FitResult:
+def fit(data: MeasuredData, model_id: str, parameters: Sequence[str] | None = None) -> FitResult:
     """Fit ``parameters`` of the study model ``model_id`` to ``data``."""
-    study = data.load_study()
+    study = load_dataset_study(data)
     entries = {entry.id: entry for entry in study.models}
     if model_id not in entries:
         raise FieldError("--model", "a model of the dataset's study", model_id, choices=sorted(entries))

@@ -6,12 +6,16 @@ plain values and print the tables, so that Python users can call them too.
 
 from __future__ import annotations
 
+import io
 import json
 import math
 import re
+import os
 import sys
+from collections.abc import Iterable, Sequence
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,6 +23,13 @@ from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
 )
+from impactlab.io.safe_output import write_atomically
+from impactlab.model.registry import get_model
+from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.calibration import cross_validate as leave_one_out
+
+if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
+    from matplotlib.figure import Figure
 
 #: shot tables shipped with impactlab (impactlab/data/validation/NAME.yaml)
 SHOT_TABLES = ("trackman_tour",)
@@ -72,24 +83,21 @@ _PANELS = (("ball_speed", "ball speed [mph]", 1.0 / MPH), ("vertical_launch_angl
            ("spin_rate", "spin rate [rpm]", RADS_TO_RPM))
 
 
-def plot_shots(table: ShotTable, predictions: dict, path) -> Path:
+def plot_shots(table: ShotTable, predictions: dict, path: str | os.PathLike[str]) -> Path:
     """Draw :func:`shots_figure` to the PNG ``path``."""
-    import io
-
-    from impactlab.io.safe_output import write_atomically
-
     buffer = io.BytesIO()
     shots_figure(table, predictions).savefig(buffer, format="png", dpi=110)
     return write_atomically(path, buffer.getvalue())
 
 
-def shots_figure(table: ShotTable, predictions: dict):
+def shots_figure(table: ShotTable, predictions: dict) -> Figure:
     """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
 
     ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Returns a matplotlib
     ``Figure`` (no pyplot state is touched).
     """
-    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
+    # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
+    from matplotlib.figure import Figure
 
     panels = [entry for entry in _PANELS if np.isfinite(table.measured[entry[0]]).any()]
     figure = Figure(figsize=(4.2 * len(panels), 4.2), layout="constrained")
@@ -136,7 +144,8 @@ def skipped_text(table: ShotTable) -> list[str]:
     return out
 
 
-def print_shot_errors(table: ShotTable, models, plot: str | None = None, rows: list | None = None) -> list[str]:
+def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None = None,
+                      rows: list | None = None) -> list[str]:
     """Print each model's RMS error per measured quantity; return ``table/model`` entries over their budget.
 
     ``rows``, when given a list, receives the per-shot table (:func:`prediction_rows`) of every model.
@@ -238,13 +247,10 @@ def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
     return [label for label, ok in zip(table.labels, usable) if not ok]
 
 
-def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bool = False,
+def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
+              cross_validate: bool = False,
               json_path: str | None = None) -> int:
     """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
-    from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
-    from impactlab.data.calibration import cross_validate as leave_one_out
-    from impactlab.model.registry import get_model
-
     results = []
     for name in models or FIT_MODELS:
         model = get_model(name)()
@@ -275,8 +281,6 @@ def fit_shots(table: ShotTable, models=None, parameters=None, cross_validate: bo
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
-        from impactlab.io.safe_output import write_atomically
-
         write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
         print(f"wrote {json_path}", file=sys.stderr)
     return 0

@@ -17,13 +17,22 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
+import os
 from pathlib import Path
+from typing import Any
 
 import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import to_si
+from impactlab.model.base import ImpactModel
+from impactlab.physics.delivery import loft_for_spin_loft, spin_loft
+from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_key, club_preset
+from impactlab.scene.core import SPIN_LOFT_TOLERANCE, Contact, Delivery, Scene, ball_restitution, complete_inputs
+from impactlab.study.scene_blocks import build_ball
+from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 
 #: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
@@ -99,7 +108,7 @@ class ShotTable:
         """Number of shots (rows)."""
         return len(self.labels)
 
-    def subset(self, rows) -> ShotTable:
+    def subset(self, rows: Any) -> ShotTable:
         """The table of rows ``rows`` (an index or mask): a fold of a cross-validation."""
         rows = np.asarray(rows)
         index = np.arange(self.size)[rows]
@@ -114,6 +123,7 @@ class ShotTable:
 def _field_of(header: str) -> tuple[str | None, str | None]:
     """(field, unit) of a column header like 'Club Speed [mph]', 'spin_rate (rpm)' or 'ball_speed_sigma [mph]'."""
     match = re.match(r"^\s*(.*?)\s*(?:[\[(]\s*(.*?)\s*[\])])?\s*$", header)
+    assert match is not None, "every part of the pattern is optional: it matches any header"
     name, unit = match.group(1), match.group(2)
     key = re.sub(r"\s+", " ", name.strip().lower())
     sigma = key.endswith("_sigma") or key.endswith(" sigma")
@@ -188,9 +198,6 @@ def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]
     """Rows that give the face to path instead of the face angle, or the 3-D spin loft instead of the dynamic loft
     (TrackMan exports both, "Face To Path" and "Spin Loft"): the missing angle follows, in place; where both are
     given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). Returns the problems found."""
-    from impactlab.physics.delivery import loft_for_spin_loft, spin_loft
-    from impactlab.scene.core import SPIN_LOFT_TOLERANCE
-
     problems = []
     path = np.nan_to_num(delivery["path"])
     f2p, face = delivery["face_to_path"], delivery["face_angle"]
@@ -218,8 +225,6 @@ def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
-    from impactlab.scene.clubs import CLUB_PRESETS, club_key
-
     if "club" in row:
         key = club_key(row["club"])
         if key is None:
@@ -243,8 +248,6 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
     if name or source:
         table = attrs.evolve(table, name=name or table.name, source=source or table.source)
     if session.vendor is GENERIC and session.unused:
-        import warnings
-
         warnings.warn(f"{file}: columns not used (not a delivery or launch quantity): {', '.join(session.unused)}",
                       stacklevel=2)
     return table
@@ -252,9 +255,7 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
 
 def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     """A shot table from YAML: ``name``, ``source``, optional ``ball``, ``units``, ``sigma``, and ``rows``."""
-    from impactlab.data.documents import ShotTableBlock, structure_document
-    from impactlab.study.yaml_lines import line_of, load_yaml
-
+    from impactlab.data.documents import ShotTableBlock, structure_document  # documents imports this module
     document, lines = load_yaml(text, file)
     if not isinstance(document, dict) or "rows" not in document:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
@@ -295,7 +296,7 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
         if not isinstance(item, dict):
             problems.append(f"{where}: rows[{index}]: expected a mapping of fields")
             continue
-        row = {"_line": line}
+        row: dict[str, Any] = {"_line": line}
         for key, value in item.items():
             field, _ = _field_of(str(key))
             if field is None:
@@ -318,11 +319,9 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
                      dict(block.ball or {}), sigma_defaults, loft_at, budgets)
 
 
-def read_shots(path, include_flagged: bool = False) -> ShotTable:
+def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:
     """A shot table from a .csv file (a launch-monitor export as exported, or impactlab's layout) or a .yaml/.yml
     file; ``include_flagged`` keeps estimated and clamped values in the comparison."""
-    from impactlab.study.yaml_lines import read_text_file
-
     path = Path(path)
     if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
@@ -343,10 +342,6 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: urethane_tour}``);
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
-    from impactlab.scene.clubs import Strike, club_preset
-    from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
-    from impactlab.study.core import build_ball
-
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact = Contact(**(contact or {}))
     # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
@@ -368,7 +363,7 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     return inputs
 
 
-def predict(model, inputs: dict) -> dict:
+def predict(model: ImpactModel, inputs: dict) -> dict:
     """The measured quantities as the model predicts them (SI arrays)."""
     result = model.compute_arrays(inputs, list(MEASURED_FIELDS))
     return {name: result[name] for name in MEASURED_FIELDS}

@@ -47,14 +47,16 @@ from __future__ import annotations
 import json
 import math
 import os
+import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import write_atomically
-from impactlab.units import MPH
+from impactlab.units import MPH, to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, TIME_DIM
 
 #: outputs a GSPro shot needs
@@ -250,8 +252,6 @@ MAX_SMASH_FACTOR = 1.6
 
 def _club_speed(dataset: xr.Dataset) -> xr.DataArray | float | None:
     """Club speed of every case in m/s: a swept coordinate, or the base scene's."""
-    from impactlab.units import to_si
-
     for name in ("club_speed", "speed"):
         if name in dataset.coords:
             units = dataset[name].attrs.get("units", "m/s")
@@ -287,23 +287,19 @@ def implausible_shots(dataset: xr.Dataset, model: str | None = None) -> list[str
     return found
 
 
-def checked_shots(dataset: xr.Dataset, **options) -> list[dict]:
+def checked_shots(dataset: xr.Dataset, **options: Any) -> list[dict]:
     """:func:`gspro_shots`, with a PlausibilityWarning for each kind of shot no real club makes.
 
     Implausible shots are kept as computed: the warning says what they are, the simulator flies them.
     The one path from a result to messages, for the file and for the live connection alike.
     """
-    import warnings
-
-    from impactlab.errors import PlausibilityWarning
-
     shots = gspro_shots(dataset, **options)
     for text in implausible_shots(dataset, options.get("model")):
         warnings.warn(text, PlausibilityWarning, stacklevel=3)
     return shots
 
 
-def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options) -> int:
+def write_gspro(dataset: xr.Dataset, path: str | os.PathLike, **options: Any) -> int:
     """Write the shots as a JSON array to ``path`` (atomically); return how many.
 
     The messages are those :mod:`impactlab.io.gspro_connect` sends, each with its ``"impactlab"``

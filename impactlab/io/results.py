@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Final
 
 import xarray as xr
 
@@ -11,13 +12,13 @@ from impactlab.errors import StudyError
 from impactlab.io.safe_output import write_atomically
 from impactlab.vocabulary import TIME_DIM
 
-ENGINE = "h5netcdf"
+ENGINE: Final = "h5netcdf"
 #: the name of the time axis of histories in a file: CF keeps a coordinate called "time" for calendar time
 #: (units "s since EPOCH"), and this axis is the time elapsed since first contact (``time`` in memory)
-FILE_TIME_DIM = "time_since_contact"
-#: the version of the CF metadata conventions result files follow (cfconventions.org; checked in .ci/run by
-#: the IOOS compliance checker)
-CF_CONVENTIONS = "CF-1.8"
+FILE_TIME_DIM: Final = "time_since_contact"
+#: the version of the CF metadata conventions result files follow (cfconventions.org; checked in the tests
+#: by the IOOS compliance checker)
+CF_CONVENTIONS: Final = "CF-1.8"
 
 
 def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:

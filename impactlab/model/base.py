@@ -105,7 +105,7 @@ class ImpactModel:
     optional_inputs: ClassVar[frozenset[str]] = frozenset()
     provides: ClassVar[frozenset[str]] = frozenset()
     not_provided: ClassVar[Mapping[str, str]] = {}
-    Options: ClassVar[type] = NoOptions
+    Options: ClassVar[type[Any]] = NoOptions
     #: rule 8: ``Options`` has a field ``tolerance`` that sets the numerical error (checked by the conformance suite)
     has_tolerance: ClassVar[bool] = False
     #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
@@ -127,7 +127,7 @@ class ImpactModel:
 
     # -- declarations -------------------------------------------------------------------------------------------
     @classmethod
-    def make_options(cls, values: Mapping[str, Any]):
+    def make_options(cls, values: Mapping[str, Any]) -> Any:
         """Validated options from a mapping; unknown keys and bad values raise FieldError naming the option."""
         known = [field.name for field in attrs.fields(cls.Options)]
         for key in values:
@@ -163,7 +163,7 @@ class ImpactModel:
                              "solves_3d": cls().solves_3d()},
         }
 
-    def reference_options(self, tolerance: float):
+    def reference_options(self, tolerance: float) -> Any:
         """Options of the converged reference run for a work-precision study (see impactlab.data.convergence).
 
         Only for a model that declares ``has_tolerance`` (rule 8); the default sets the ``tolerance`` option.
@@ -262,7 +262,7 @@ class ImpactModel:
                 values[name] = np.asarray(raw[name], dtype=float)
             else:
                 history = is_history(name) and time is not None
-                values[name] = np.full((n_cases, time.size) if history else (n_cases,), np.nan)
+                values[name] = np.full((n_cases, time.size) if history and time is not None else (n_cases,), np.nan)
         return ModelResult(self, values, time, {name: plan.missing[name] for name in plan.requested
                                                  if name not in raw})
 

@@ -19,6 +19,7 @@ import numpy as np
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.physics.contact import CONTACT_STATE_INPUTS, contact_state
 from impactlab.vocabulary import INPUTS
+from impactlab.scene.core import Scene
 
 
 class CaseInputs(Mapping):
@@ -60,8 +61,9 @@ class CaseInputs(Mapping):
 
     def __init__(self, values: Any, *, copy: bool = True):
         self._arrays, self.n_cases = _checked_arrays(values, copy)
-        self._state = [None]  # a one-element cell, shared with the views (``only``) that see the same contact
-        self._last_slice = None
+        # a one-element cell, shared with the views (``only``) that see the same contact
+        self._state: list[Mapping[str, Any] | None] = [None]
+        self._last_slice: tuple[tuple[int, int], CaseInputs] | None = None
 
     @classmethod
     def _view(cls, arrays: dict, n_cases: int, state: list | None) -> CaseInputs:
@@ -90,13 +92,14 @@ class CaseInputs(Mapping):
         framework's derivation, so a change by one would be a wrong answer in another (and a different one
         with each executor, which gives each worker its own).
         """
-        if self._state[0] is None:
+        cached = self._state[0]
+        if cached is None:
             state = contact_state(self._arrays)
             for value in state.values():
                 if isinstance(value, np.ndarray):
                     value.setflags(write=False)
-            self._state[0] = types.MappingProxyType(state)
-        return self._state[0]
+            cached = self._state[0] = types.MappingProxyType(state)
+        return cached
 
     def only(self, names: Iterable[str]) -> CaseInputs:
         """The inputs among ``names`` (what a model declared).
@@ -125,8 +128,6 @@ class CaseInputs(Mapping):
 
 def _checked_arrays(values: Any, copy: bool = True) -> tuple[dict[str, np.ndarray], int]:
     """Read-only float arrays of one length from a mapping or scenes, every value in its input's range."""
-    from impactlab.scene.core import Scene
-
     if isinstance(values, Scene):
         values = [values]
     if not isinstance(values, Mapping):

@@ -10,6 +10,9 @@ code path serves a fixed face, a point-mass club and a free 3-D head.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
+from typing import Any
+
 import numpy as np
 
 from impactlab.model.case_inputs import CaseInputs
@@ -52,7 +55,8 @@ NO_LATERAL = ("the model gives impulses on one line (no lateral_impulse), and th
               "whose impact may turn the slip")
 
 
-def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]:
+def derivable(name: str, provides: Iterable[str],
+              given_inputs: Iterable[str] | None = None) -> tuple[bool, str | None]:
     """Whether ``name`` can be derived for a model that provides ``provides``; if not, why (None: not derivable)."""
     if not IMPULSES <= set(provides) or name not in FROM_IMPULSES | FROM_DELIVERY | FROM_MATERIALS | FROM_FLIGHT:
         return False, None
@@ -65,10 +69,10 @@ def derivable(name: str, provides, given_inputs=None) -> tuple[bool, str | None]
     return True, None
 
 
-def derive(names, raw, inputs) -> dict:
+def derive(names: Iterable[str], raw: dict[str, Any], inputs: Mapping[str, Any]) -> dict:
     """Compute the derived outputs ``names`` from the impulses in ``raw`` and the case ``inputs`` (SI)."""
     names = set(names)
-    out = {}
+    out: dict[str, np.ndarray] = {}
     if not names:
         return out
     inputs = inputs if isinstance(inputs, CaseInputs) else CaseInputs(inputs)
@@ -92,7 +96,7 @@ def derive(names, raw, inputs) -> dict:
     return out
 
 
-def normalised_slip(state: dict, basics: dict, inputs: dict) -> dict:
+def normalised_slip(state: Mapping[str, Any], basics: dict, inputs: Mapping[str, Any]) -> dict:
     """psi1 = kappa V_x/(mu V_z) and psi2 = kappa V_x'/(mu V_z') of Maw, Barber & Fawcett (NaN without friction).
 
     V_x, V_x' are the contact point's slip velocities before and after (V_x' = -beta V_x), V_z, V_z' the

@@ -10,6 +10,8 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike
 
 #: bit -> (short name, what it means)
 FLAGS: dict[int, tuple[str, str]] = {
@@ -35,7 +37,7 @@ FLAGS: dict[int, tuple[str, str]] = {
 LARGE_CONTACT_RATIO = 0.3
 
 
-def paraboloid_error(ratio):
+def paraboloid_error(ratio: ArrayLike) -> np.ndarray:
     """Relative shortfall of Hertz's paraboloid gap against the sphere's at the contact edge.
 
     Parameters
@@ -66,7 +68,7 @@ def flag_attributes() -> dict[str, object]:
             "flag_meanings": " ".join(FLAGS[bit][0] for bit in sorted(FLAGS))}
 
 
-def messages(dataset) -> list[str]:
+def messages(dataset: xr.Dataset) -> list[str]:
     """One sentence per flag that some case raised, naming the models and how many of their cases.
 
     One sentence per flag, not per flag and model: a golf study of five models would otherwise print the
@@ -96,7 +98,7 @@ def messages(dataset) -> list[str]:
     return found
 
 
-def warn(dataset) -> None:
+def warn(dataset: xr.Dataset) -> None:
     """Issue one :class:`ValidityWarning` per sentence of :func:`messages`."""
     for text in messages(dataset):
         warnings.warn(text, ValidityWarning, stacklevel=3)

@@ -2,7 +2,7 @@
 
 A model declares the outputs it *provides*. Most result variables follow
 from the two impulses by rigid-body bookkeeping
-(:func:`impactlab.physics.mechanics.after_impact`), so the framework derives
+(:func:`impactlab.physics.contact.after_impact`), so the framework derives
 them for any model that provides ``normal_impulse`` and
 ``tangential_impulse``. The plan is computed from declarations alone, so it
 can be shown (and stored) before anything runs.
@@ -10,12 +10,18 @@ can be shown (and stored) before anything runs.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
 import attrs
 
 from impactlab.model.derive import FROM_DELIVERY, FROM_FLIGHT, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from impactlab.model.derive import DERIVATION_OPTIONAL, FLIGHT_INPUTS
 from impactlab.errors import ModelInputError
 from impactlab.vocabulary import INPUTS
+
+if TYPE_CHECKING:  # model.base imports this module
+    from impactlab.model.base import ImpactModel
 
 
 @attrs.frozen
@@ -57,7 +63,7 @@ class OutputPlan:
         return "; ".join(parts)
 
 
-def require_inputs(who: str, needed, given, source: str = "the scene") -> None:
+def require_inputs(who: str, needed: Iterable[str], given: Iterable[str], source: str = "the scene") -> None:
     """Raise ModelInputError naming, with their paths and meanings, the inputs of ``needed`` not in ``given``.
 
     The one check and message of a missing input, before a study runs (:func:`impactlab.run.runner.plan_study`)
@@ -69,7 +75,8 @@ def require_inputs(who: str, needed, given, source: str = "the scene") -> None:
         raise ModelInputError(f"{who} needs {names}, which {source} does not give; add it or use another model")
 
 
-def plan_outputs(model_cls, requested, given_inputs=None) -> OutputPlan:
+def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
+                 given_inputs: Iterable[str] | None = None) -> OutputPlan:
     """Plan the outputs ``requested`` from a model class (set logic on declarations only).
 
     ``given_inputs``, when known, lets the plan tell outputs that need inputs

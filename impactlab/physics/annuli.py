@@ -144,8 +144,8 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
     velocity_change = np.zeros(cases)
     dissipation = np.zeros(cases)
     acceleration = np.zeros(cases)
-    force = np.zeros((cases, tau.size)) if record else None
-    stick = np.zeros((cases, tau.size)) if record else None
+    force = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))  # written only when recording
+    stick = np.zeros((cases, tau.size)) if record else np.zeros((1, 1))
 
     for k in range(1, tau.size):
         dt = tau[k] - tau[k - 1]
@@ -192,7 +192,8 @@ def solve_scaled(chi, psi1, *, rings: int = 40, steps: int = 400, record: bool =
             slipping = (mode == SLIP)
             first_slip = np.where(slipping.any(axis=1), slipping.argmax(axis=1), rings)
             stick[:, k] = np.where(first_slip >= inside[k], np.sqrt(h_nodes[k]), first_slip / rings)
-    return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation)
+    return TangentialSolution(velocity_change, tau if record else None, force if record else None,
+                              stick if record else None, tau.size - 1, dissipation)
 
 
 def resolution(tolerance: float) -> tuple[int, bool]:

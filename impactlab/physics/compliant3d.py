@@ -152,14 +152,15 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
     xi2 = ((np.arange(springs) + 0.5) / springs) ** 2
     out = np.zeros((n, 9))
     shape = (n, max_steps + 1) if record else (1, 1)
-    histories = [np.zeros(shape) for _ in range(3)]
+    history_normal, history_tangential, history_stick = (np.zeros(shape) for _ in range(3))
     kernel = _kernels.contact3d_cases if _kernels.HAVE_NUMBA else _kernels._contact3d_cases
     # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
     relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
     damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
     kernel(ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping, np.ascontiguousarray(dtau),
            max_steps, LAWS[law], float(stiffness_factor), bool(store_force), bool(rescale), float(tangential_damping),
-           np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), *histories, out)
+           np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), history_normal, history_tangential,
+           history_stick, out)
 
     approach = hertz.max_approach(m_normal, radius, modulus, normal_speed)
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
@@ -174,9 +175,9 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         nodes = np.arange(max_steps + 1)
         solution.update(
             time=nodes[None, :] * (dtau * time_unit)[:, None],
-            normal_force=histories[0] * peak[:, None],
-            tangential_force=histories[1] * (friction * peak)[:, None],
-            stick_radius=histories[2] * np.sqrt(radius * approach)[:, None])
+            normal_force=history_normal * peak[:, None],
+            tangential_force=history_tangential * (friction * peak)[:, None],
+            stick_radius=history_stick * np.sqrt(radius * approach)[:, None])
         beyond = nodes[None, :] > out[:, 8:9]
         for name in ("normal_force", "tangential_force", "stick_radius"):
             solution[name][beyond] = np.nan

@@ -298,9 +298,15 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
                  names=None, **_):
     """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
 
-    Returns the ground-frame vectors (right-handed golfer) and the 1-D face-frame quantities; see
-    :func:`impactlab.physics.mechanics.after_impact` for the latter's definitions, of which these are the
-    generalisation to a contact normal, a free head and a slip that may turn. ``names`` (default: all of
+    Returns the ground-frame vectors (right-handed golfer) and the face-frame quantities of the 1-D problem,
+    generalised to a contact normal, a free head and a slip that may turn: ``normal_velocity`` and
+    ``tangential_velocity`` (ball centre relative to the head's material point at the contact, along the normal
+    and the incoming slip) [m/s], ``spin_rate`` [rad/s] (positive: the backspin friction gives a ball sliding up
+    a lofted face), ``tangential_restitution`` beta (minus the contact point's slip after over before, NaN
+    without incoming slip), ``launch_angle`` [rad] and ``launch_ratio`` (NaN at a zero angle) in the plane of
+    the path and the normal, ``rebound_angle`` [rad], ``total_angle`` (incidence plus rebound, the plate
+    experiment's measure) [rad], ``ball_speed`` [m/s] (ground frame), ``smash_factor`` and ``energy_loss``
+    [J] (kinetic energy of ball and head lost; Stronge, *Impact Mechanics* (2000), ch. 5). ``names`` (default: all of
     :data:`AFTER_IMPACT_OUTPUTS`) limits the work to what is asked: the head's motion, the launch plane and
     the contact's relative velocity are computed only where an asked-for quantity needs them (the dict may
     hold more than asked, never less).

@@ -44,9 +44,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
-def dundurs_beta(youngs_1, poisson_1, youngs_2, poisson_2):
+def dundurs_beta(youngs_1: ArrayLike, poisson_1: ArrayLike, youngs_2: ArrayLike, poisson_2: ArrayLike) -> np.ndarray:
     """Dundurs' second constant beta_D of body 1 (the ball) against body 2 (the face).
 
     Parameters
@@ -75,7 +76,7 @@ def dundurs_beta(youngs_1, poisson_1, youngs_2, poisson_2):
     return numerator / denominator
 
 
-def coupling_ratio(beta, kappa, friction):
+def coupling_ratio(beta: ArrayLike, kappa: ArrayLike, friction: ArrayLike) -> np.ndarray:
     """r_c = (4 / (3 pi)) |beta_D| kappa / mu: the radial mismatch at the contact edge over the gross-slip
     tangential displacement [1] (module docstring, step 2); inf for mu = 0 and beta_D != 0."""
     beta, kappa, friction = (np.asarray(v, dtype=float) for v in (beta, kappa, friction))
@@ -84,7 +85,7 @@ def coupling_ratio(beta, kappa, friction):
     return np.where(np.abs(beta) == 0.0, 0.0, ratio)
 
 
-def coupling_estimate(beta, kappa, friction):
+def coupling_estimate(beta: ArrayLike, kappa: ArrayLike, friction: ArrayLike) -> np.ndarray:
     """Estimated change of the tangential impulse from the neglected coupling, relative to mu J_n [1].
 
     min(r_c^2 / 2, 1) (module docstring, step 4): 0 for identical materials; 2.3e-3 for a urethane ball

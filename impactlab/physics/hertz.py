@@ -14,10 +14,14 @@ K. L. Johnson, *Contact Mechanics*, Cambridge University Press (1985), §4.2, §
 from __future__ import annotations
 
 import functools
-from typing import Protocol, runtime_checkable
+from collections.abc import Callable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy import special
+
+from impactlab.physics import Values
 
 _A, _B = 0.4, 0.5
 #: scaled time at maximum compression, tau_m = (2/5) B(2/5, 1/2)
@@ -26,12 +30,12 @@ TAU_MAX_COMPRESSION = 0.4 * special.beta(_A, _B)
 TAU_CONTACT = 2.0 * TAU_MAX_COMPRESSION
 
 
-def effective_modulus(e1, nu1, e2, nu2):
+def effective_modulus(e1: Values, nu1: Values, e2: Values, nu2: Values) -> Values:
     """Hertz contact modulus E*, 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 [Pa] (E2 = inf: rigid face)."""
     return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)
 
 
-def tangential_modulus(e1, nu1, e2, nu2):
+def tangential_modulus(e1: Values, nu1: Values, e2: Values, nu2: Values) -> Values:
     """MDR tangential modulus G*, 1/G* = (2 - nu1)/(4 G1) + (2 - nu2)/(4 G2) [Pa].
 
     The Mindlin incremental tangential stiffness of a circular contact of
@@ -42,22 +46,22 @@ def tangential_modulus(e1, nu1, e2, nu2):
     return 1.0 / ((2.0 - nu1) / (4.0 * g1) + (2.0 - nu2) / (4.0 * g2))
 
 
-def max_approach(effective_mass, radius, modulus, normal_speed):
+def max_approach(effective_mass: Values, radius: Values, modulus: Values, normal_speed: Values) -> Values:
     """delta_max = (15 m* V^2 / (16 E* sqrt(R)))^(2/5) [m]."""
     return (15.0 * effective_mass * normal_speed**2 / (16.0 * modulus * np.sqrt(radius))) ** 0.4
 
 
-def contact_time(effective_mass, radius, modulus, normal_speed):
+def contact_time(effective_mass: Values, radius: Values, modulus: Values, normal_speed: Values) -> Values:
     """Elastic Hertz contact duration t_c = tau_c delta_max / V = 2.8682 (m*^2/(R E*^2 V))^(1/5) [s]."""
     return TAU_CONTACT * max_approach(effective_mass, radius, modulus, normal_speed) / normal_speed
 
 
-def peak_force(effective_mass, radius, modulus, normal_speed):
+def peak_force(effective_mass: Values, radius: Values, modulus: Values, normal_speed: Values) -> Values:
     """F_max = (4/3) E* sqrt(R) delta_max^(3/2) [N]."""
     return 4.0 / 3.0 * modulus * np.sqrt(radius) * max_approach(effective_mass, radius, modulus, normal_speed) ** 1.5
 
 
-def scaled_approach(tau):
+def scaled_approach(tau: ArrayLike) -> np.ndarray:
     """h(tau) = delta/delta_max of the elastic Hertz impact; 0 outside [0, tau_c]."""
     tau = np.asarray(tau, dtype=float)
     rising = np.clip(np.minimum(tau, TAU_CONTACT - tau), 0.0, TAU_MAX_COMPRESSION)
@@ -65,7 +69,7 @@ def scaled_approach(tau):
     return special.betaincinv(_A, _B, rising / TAU_MAX_COMPRESSION) ** 0.4
 
 
-def time_to_reach(h):
+def time_to_reach(h: ArrayLike) -> np.ndarray:
     """Scaled time at which the approach first reaches h delta_max (0 <= h <= 1)."""
     h = np.asarray(h, dtype=float)
     return TAU_MAX_COMPRESSION * special.betainc(_A, _B, np.clip(h, 0.0, 1.0) ** 2.5)
@@ -96,13 +100,13 @@ class NormalLaw(Protocol):
     restitution: float
     tau_end: float
 
-    def approach(self, tau) -> np.ndarray:
+    def approach(self, tau: ArrayLike) -> np.ndarray:
         """h(tau) = delta / delta_max, 0 outside the contact."""
 
-    def load_factor(self, tau) -> np.ndarray:
+    def load_factor(self, tau: ArrayLike) -> np.ndarray:
         """Normal force over the elastic force k delta^(3/2) at the same approach (1 for the elastic law)."""
 
-    def crossing_times(self, level) -> tuple[np.ndarray, np.ndarray]:
+    def crossing_times(self, level: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Scaled times at which h rises through and falls back through ``level`` (arrays)."""
 
 
@@ -113,13 +117,13 @@ class ElasticNormal(NormalLaw):
     restitution = 1.0
     tau_end = TAU_CONTACT
 
-    def approach(self, tau):
+    def approach(self, tau: ArrayLike) -> np.ndarray:
         return scaled_approach(tau)
 
-    def load_factor(self, tau):
+    def load_factor(self, tau: ArrayLike) -> np.ndarray:
         return np.ones_like(np.asarray(tau, dtype=float))
 
-    def crossing_times(self, level):
+    def crossing_times(self, level: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Scaled times at which h rises through and falls back through ``level`` (arrays)."""
         rise = time_to_reach(level)
         return rise, TAU_CONTACT - rise
@@ -133,7 +137,7 @@ _GRIDS: dict = {}
 _GRIDS_BYTES = 64 * 2**20
 
 
-def cached_grid(normal, key: tuple, build):
+def cached_grid(normal: NormalLaw, key: tuple, build: Callable[[], tuple]) -> tuple:
     """Arrays derived from a normal law (its time grid and samples), built once per law and key.
 
     The normal solution is shared by every case of a batch and every batch with the same law and
@@ -175,6 +179,8 @@ class DampedNormal(NormalLaw):
     """
 
     def __init__(self, damping: float):
+        # scipy's solvers are imported where they are used (all of this module's): scipy.optimize alone takes
+        # about 0.2 s to import, and a study of closed-form models never needs them
         from scipy.integrate import solve_ivp
 
         self.damping = float(damping)
@@ -188,7 +194,8 @@ class DampedNormal(NormalLaw):
             h, v = y
             return min(h, 1.0 + c * v) if v < 0 else 1.0
 
-        unloaded.terminal, unloaded.direction = True, -1
+        event: Any = unloaded  # solve_ivp reads its flags from attributes of the event function
+        event.terminal, event.direction = True, -1
         solution = solve_ivp(rhs, (0.0, 4.0 * TAU_CONTACT), [0.0, 1.0], method="DOP853", rtol=1e-11, atol=1e-13,
                              dense_output=True, events=unloaded, first_step=1e-6)
         self._solution = solution.sol
@@ -197,15 +204,15 @@ class DampedNormal(NormalLaw):
         self.restitution = float(-v_end)
         self._peak_time = float(_argmax_time(solution.sol, self.tau_end))
 
-    def approach(self, tau):
+    def approach(self, tau: ArrayLike) -> np.ndarray:
         tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
         return np.maximum(self._solution(tau)[0], 0.0)
 
-    def load_factor(self, tau):
+    def load_factor(self, tau: ArrayLike) -> np.ndarray:
         tau = np.clip(np.asarray(tau, dtype=float), 0.0, self.tau_end)
         return np.maximum(1.0 + self.damping * self._solution(tau)[1], 0.0)
 
-    def crossing_times(self, level):
+    def crossing_times(self, level: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         from scipy.optimize import brentq
 
         level = np.asarray(level, dtype=float)

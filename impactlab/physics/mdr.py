@@ -158,8 +158,8 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     velocity_change = np.zeros(chi.size)  # X' - psi1, kept apart so a huge psi1 loses no digits
     dissipation = np.zeros(chi.size)
     acceleration = np.zeros(chi.size)
-    history = np.zeros((chi.size, tau.size)) if record else None
-    stick = np.zeros((chi.size, tau.size)) if record else None
+    history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))  # written only when recording
+    stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
     for k in range(1, tau.size):
         dt = tau[k] - tau[k - 1]
         half = velocity_change + 0.5 * dt * acceleration
@@ -183,8 +183,8 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     if record:
         # F_t = mu * 2 E* a_max delta_max * integral u  and  F_max = (4/3) E* a_max delta_max
         force = 1.5 * history
-    return TangentialSolution(velocity_change, tau if record else None, force, stick, tau.size - 1, dissipation,
-                              interior if detect else None)
+    return TangentialSolution(velocity_change, tau if record else None, force, stick if record else None,
+                              tau.size - 1, dissipation, interior if detect else None)
 
 
 #: uniform time steps per spring: the cheapest split between time and spring error over the golf range (measured;

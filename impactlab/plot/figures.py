@@ -2,14 +2,20 @@
 
 from __future__ import annotations
 
+import json
 import os
+import textwrap
+import warnings
+from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from impactlab.units import MPH
 from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
+from impactlab.study.datasets import DATASETS
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -34,15 +40,11 @@ def _display(units: str, name: str | None = None) -> tuple[str, float]:
 
 
 def _axis_label(long_name: str, units: str, width: int = 42) -> str:
-    import textwrap
-
     return "\n".join(textwrap.wrap(f"{long_name} [{units}]", width))
 
 
-def conditions(dataset: xr.Dataset, skip=()) -> str:
+def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:
     """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
-    import json
-
     try:
         scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
     except ValueError:
@@ -81,7 +83,7 @@ def conditions(dataset: xr.Dataset, skip=()) -> str:
     return ", ".join(words)
 
 
-def audit(figure) -> list[str]:
+def audit(figure: Any) -> list[str]:
     """What is wrong with a drawn figure: panels with nothing finite drawn, legend entries with nothing drawn."""
     problems = []
     for index, axis in enumerate(figure.axes):
@@ -106,8 +108,6 @@ def audit(figure) -> list[str]:
 
 def _draw_measured(axis, output: str, names, xs) -> None:
     """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label."""
-    from impactlab.data.validation import DATASETS
-
     step = (xs.max() - xs.min()) / max(xs.size - 1, 1) if xs.size > 1 else 1.0
     for column, name in enumerate(names):
         data = DATASETS[name]
@@ -165,8 +165,6 @@ def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
 
 
 def _save(figure, path) -> Path:
-    import warnings
-
     problems = audit(figure)
     if problems:
         warnings.warn(f"{path}: " + "; ".join(problems), FigureWarning, stacklevel=3)
@@ -182,8 +180,6 @@ def _text(coordinate) -> str:
 
 def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
     """Draw every figure the study declared (``plots`` attribute) to FOLDER/STEM_NAME.png."""
-    import json
-
     pictures = []
     for spec in json.loads(dataset.attrs.get("plots", "[]") or "[]"):
         path = folder / f"{stem}_{spec['name']}.png"
@@ -201,8 +197,9 @@ def draw_declared(dataset: xr.Dataset, folder: Path, stem: str) -> list[Path]:
     return pictures
 
 
-def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: str | None = None,
-                 title: str = "", xlim=None, measured=()) -> Path:
+def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence[str] | None = None,
+                 x: str | None = None, title: str = "", xlim: Sequence[float] | None = None,
+                 measured: Sequence[str] = ()) -> Path:
     """Draw scalar outputs against one sweep dimension, one colour per model, one line style per other value.
 
     Parameters
@@ -220,16 +217,17 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     xlim : (float, float), optional
         A zoomed view of the horizontal axis; the vertical axis follows the data inside it.
     measured : sequence of str
-        Shipped measured datasets (:data:`impactlab.data.validation.DATASETS`) of a drawn output: their
+        Shipped measured datasets (:data:`impactlab.study.datasets.DATASETS`) of a drawn output: their
         values, with error bars where the source states them, beside the curves at the right.
     """
-    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
+    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures; matplotlib is
+    # imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
     import matplotlib
     from matplotlib.figure import Figure
 
-    names = [name for name in (outputs or dataset.data_vars) if is_scalar(name)
+    names = [str(name) for name in (outputs or dataset.data_vars) if is_scalar(str(name))
              and not bool(np.all(np.isnan(dataset[name].values)))][:6]
-    sweep_dims = [dim for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
+    sweep_dims = [str(dim) for dim in dataset[names[0]].dims if dim != MODEL_DIM] if names else []
     along_output = x is not None and x in dataset.data_vars
     along = x
     if (x is None or along_output) and sweep_dims:
@@ -252,7 +250,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
     for panel, (axis, name) in enumerate(zip(axes.flat, names)):
         variable = dataset[name]
         units, scale = _display(OUTPUTS[name].units, name)
-        drawn = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
+        drawn: list[tuple] = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
         span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
         line_index = 0
         for m_index, model in enumerate(dataset[MODEL_DIM].values):
@@ -268,7 +266,7 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs=None, x: 
                     horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
                     xs = horizontal.isel(_line=l_index).values
                 else:
-                    xs = dataset[x].values if x else [0.0]
+                    xs = dataset[x].values if x else np.zeros(1)
                 # one model: a colour per line; several: a colour per model, a line style per other value
                 colour = colours[(l_index if single_model else m_index) % len(colours)]
                 style = "-" if single_model else _STYLES[l_index % len(_STYLES)]

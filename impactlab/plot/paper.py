@@ -15,6 +15,8 @@ from pathlib import Path
 import attrs
 import numpy as np
 import xarray as xr
+from impactlab.study.datasets import DATASETS
+from impactlab.io.results import open_results
 
 
 def table1() -> dict[str, dict]:
@@ -23,9 +25,8 @@ def table1() -> dict[str, dict]:
     Read from the one stored copy, the ``trackman`` and ``wood2018`` datasets of :mod:`impactlab.data.validation`
     (fractions there, percent here).
     """
-    from impactlab.data.validation import DATASETS
-
     wood, trackman = DATASETS["wood2018"], DATASETS["trackman"]
+    assert wood.sigma is not None, "Wood et al. state a standard deviation per club"
     return {label: {"trackman": 100.0 * trackman.values[trackman.labels.index(label)],
                     "wood": (100.0 * wood.values[index], 100.0 * wood.sigma[index])}
             for index, label in enumerate(wood.labels)}
@@ -136,8 +137,6 @@ def _claims_table(claims: list[Claim]) -> str:
 
 def report(results: Path, output: Path, figures: Path) -> str:
     """Write the reproduction report (markdown) from the result files of ``studies/paper``."""
-    from impactlab.io.results import open_results
-
     def load(name):
         return open_results(results / f"{name}.h5")
 

@@ -6,6 +6,10 @@ import datetime as _dt
 import functools
 import json
 import platform
+import subprocess
+from importlib import metadata
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
@@ -13,10 +17,14 @@ import xarray as xr
 from impactlab._version import __version__
 from impactlab.io.results import CF_CONVENTIONS
 from impactlab.model.diagnostics import flag_attributes
+from impactlab.study.core import Study
 from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
+if TYPE_CHECKING:  # run.runner imports this module
+    from impactlab.run.runner import StudyPlan
 
-def assemble(study, plan, results: list[dict]) -> xr.Dataset:
+
+def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
     """One dataset for the whole study, with sweep coordinates, the model coordinate and provenance.
 
     ``results`` holds, per model entry, its outputs over the flat cases as arrays in the vocabulary's
@@ -31,7 +39,7 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
         spec = OUTPUTS[name]
         history = time is not None and is_history(name)
         stacked = np.stack([_on_time(result, name, time, history) for result in results])
-        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history else ()))
+        stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
         attributes = {"units": spec.units, "long_name": spec.long_name}
         reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
                    if name in result["missing"]]
@@ -52,11 +60,11 @@ def assemble(study, plan, results: list[dict]) -> xr.Dataset:
             coords[axis.dim] = xr.Variable(axis.dim, labels, {
                 "long_name": f"{axis.dim} (sets {', '.join(f.path for f in axis.fields)})"})
         for field in axis.fields:
-            spec = INPUTS[field.input]
+            input_spec = INPUTS[field.input]  # an input's display units, not the output spec above
             # 12 significant digits: 30 deg stays 30.0 after its round trip through radians
-            values = [float(f"{value * spec.display_factor:.12g}") for value in field.values]
-            coords[field.coord] = xr.Variable(axis.dim, values, {"units": spec.display_unit or spec.unit,
-                                                                 "long_name": spec.description,
+            values = [float(f"{value * input_spec.display_factor:.12g}") for value in field.values]
+            coords[field.coord] = xr.Variable(axis.dim, values, {"units": input_spec.display_unit or input_spec.unit,
+                                                                 "long_name": input_spec.description,
                                                                  "study_path": field.path})
     if time is not None:
         # no CF standard_name "time": CF gives it calendar units (s since an epoch); this is elapsed time
@@ -79,6 +87,7 @@ def _on_time(result: dict, name: str, time: np.ndarray | None, history: bool) ->
     values = result["data"][name]
     if not history:
         return values
+    assert time is not None, "a history is placed on the study's time axis"
     if values.ndim == 1:  # a model without histories: NaN over the time axis of those that have them
         return np.full((values.shape[0], time.size), np.nan)
     own = np.asarray(result["time"], dtype=float)
@@ -114,8 +123,6 @@ def versions() -> dict[str, str]:
 
 @functools.cache
 def _versions() -> dict[str, str]:
-    from importlib import metadata
-
     found = {"impactlab_version": __version__, "python_version": platform.python_version()}
     for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
         try:
@@ -132,9 +139,6 @@ def git_commit() -> str:
     Asked once per process (two git calls cost ~5 ms): the code a process runs is what it imported,
     so the first answer is also the right one for a later edit of the checkout.
     """
-    import subprocess
-    from pathlib import Path
-
     here = Path(__file__).resolve().parent
     try:
         commit = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True,
@@ -146,7 +150,7 @@ def git_commit() -> str:
     return f"{commit}-dirty" if dirty else commit
 
 
-def provenance(study, plan) -> dict[str, str | int]:
+def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:
     """What made this result: the study, its models with resolved options, versions, the plan."""
     models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
                "references": list(entry.model.references)} for entry in study.models]

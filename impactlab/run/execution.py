@@ -26,7 +26,8 @@ import signal
 import sys
 import time
 import zipfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
@@ -34,10 +35,13 @@ import attrs
 import numpy as np
 from tqdm import tqdm
 
+from impactlab.model.base import ImpactModel
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import EnvironmentFault, StudyError
 from impactlab.run.faults import check_interrupt
 from impactlab.io.safe_output import TEMPORARY_SUFFIX, write_atomically
+from impactlab._version import __version__
+from impactlab.vocabulary import is_history
 
 EXECUTORS = ("auto", "serial", "processes", "dask")
 #: below this many case-model evaluations, 'auto' runs in this process (starting workers costs more)
@@ -68,13 +72,15 @@ def plan_chunks(n_models: int, n_cases: int, chunk_size: int) -> list[Chunk]:
             for entry in range(n_models) for start in range(0, n_cases, chunk_size)]
 
 
-def compute_chunk(model, inputs: dict, outputs, chunk: Chunk, plan=None, paths: bool = False) -> dict:
+def compute_chunk(model: ImpactModel, inputs: dict | CaseInputs, outputs: Sequence[str], chunk: Chunk,
+                  plan: Any = None, paths: bool = False) -> dict:
     """Worker side: run ``model`` on the chunk's cases; plain arrays and the missing outputs' reasons come back.
 
     ``plan`` is the model's plan for the study (:func:`impactlab.run.runner.plan_study`), made once, not per chunk.
     ``paths``: also count the chunk's cases on one line (``one_line``, for the plan's sentence on the solver
     paths) from the chunk's contact state, the one the model has built already.
     """
+    part: CaseInputs
     if isinstance(inputs, CaseInputs):  # in this process: checked once, one contact state for all models
         part = inputs.slice(chunk.start, chunk.stop)
     else:
@@ -125,7 +131,7 @@ class _Pool:
             self.pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count(), initializer=_worker_start,
                                             initargs=(os.getpid(),))
         else:
-            try:
+            try:  # dask is optional (impactlab[dask]) and heavy: imported only for the dask executor
                 from dask.distributed import Client, LocalCluster
             except ImportError:
                 raise StudyError("the dask executor needs dask.distributed: pip install 'impactlab[dask]'") from None
@@ -146,6 +152,7 @@ class _Pool:
         if self.kind == "processes":
             # each task carries its own cases only: the whole inputs with every chunk pickled 320 MB per task
             # for 10^6 cases and made the pool 4x slower than one process
+            futures: dict[Any, Chunk]  # concurrent.futures here, dask's futures below
             futures = {self.pool.submit(compute_chunk, model, _cases_of(inputs, chunk), outputs,
                                         attrs.evolve(chunk, start=0, stop=chunk.stop - chunk.start), plan,
                                         paths): chunk
@@ -227,7 +234,7 @@ class ProgressStore:
     def __init__(self, folder: Path, fingerprint: str, say: Callable[[str], None], output=None):
         self.folder, self.fingerprint, self.say = Path(folder), fingerprint, say
         self.output = output or self.folder.with_suffix("")
-        self._lock = None
+        self._lock: int | None = None
 
     def __enter__(self) -> ProgressStore:
         self._lock = _lock_folder(self.folder, self.output)
@@ -318,8 +325,6 @@ def _lock_folder(folder: Path, output) -> int:
 
 def fingerprint(study, outputs, extra: str = "") -> str:
     """SHA-256 of what decides a run's chunks: study text, outputs, models with options, version."""
-    from impactlab._version import __version__
-
     text = json.dumps({"source": study.source, "outputs": list(outputs), "version": __version__,
                        "chunk_format": CHUNK_FORMAT,
                        "models": [[entry.id, entry.model.options_dict()] for entry in study.models],
@@ -337,13 +342,11 @@ def choose_executor(kind: str, n_work: int, has_histories: bool) -> str:
 
 def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers: int | None = None,
                scheduler: str | None = None, chunk_size: int | None = None, store: ProgressStore | None = None,
-               show_progress: bool = False, plans=None) -> list[dict]:
+               show_progress: bool = False, plans: Sequence[Any] | None = None) -> list[dict]:
     """Compute every model entry on every case; per entry, its outputs joined over the cases (see ``_join``).
 
     ``plans``: one :class:`~impactlab.model.planning.OutputPlan` per model entry, made once for the study
     (default: each model plans its chunks itself)."""
-    from impactlab.vocabulary import is_history
-
     n_cases = study.n_cases
     has_histories = any(is_history(name) for name in outputs)
     kind = choose_executor(executor, n_cases * len(study.models), has_histories)

@@ -17,13 +17,18 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import select
 import signal
 import sys
 import threading
 import traceback
 import warnings
+from collections.abc import Callable, Iterator
+from typing import Any
 
-from impactlab.errors import ImpactLabError
+from impactlab.errors import ImpactLabError, PlausibilityWarning, PluginWarning
+from impactlab.model.diagnostics import ValidityWarning
+from impactlab.io.safe_output import remove_temporaries
 
 EXIT_OK = 0
 EXIT_INTERNAL = 1
@@ -60,11 +65,11 @@ _ADVICE = {
 def describe_os_error(exc: OSError) -> str:
     """'PATH: what happened; what to do' for an OSError, without Python's repr."""
     where = exc.filename if exc.filename is not None else ""
-    advice = _ADVICE.get(exc.errno, exc.strerror or str(exc))
+    advice = _ADVICE[exc.errno] if exc.errno in _ADVICE else exc.strerror or str(exc)
     return f"{where}: {advice}" if where else advice
 
 
-def _caused_by_interrupt(exc: BaseException) -> bool:
+def _caused_by_interrupt(exc: BaseException | None) -> bool:
     """A SystemError that numba raises when Ctrl-C arrives inside a compiled kernel hides a KeyboardInterrupt."""
     seen = set()
     while exc is not None and id(exc) not in seen:
@@ -75,7 +80,8 @@ def _caused_by_interrupt(exc: BaseException) -> bool:
     return False
 
 
-def show_warning(message, category, filename, lineno, file=None, line=None):
+def show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int, file: Any = None,
+                 line: str | None = None) -> None:
     """Replacement for ``warnings.showwarning``: one line on stderr, never an exception."""
     if issubclass(category, _own_warnings()):
         text = f"impactlab: warning: {message}\n"
@@ -88,9 +94,6 @@ def show_warning(message, category, filename, lineno, file=None, line=None):
 
 
 def _own_warnings() -> tuple[type, ...]:
-    from impactlab.model.diagnostics import ValidityWarning
-    from impactlab.errors import PlausibilityWarning, PluginWarning
-
     return (ValidityWarning, PluginWarning, PlausibilityWarning)
 
 
@@ -113,8 +116,6 @@ def _request_stop(signum, frame):
 
 
 def _hard_exit() -> None:
-    from impactlab.io.safe_output import remove_temporaries
-
     remove_temporaries()  # a result being written when the process ends leaves no temporary file
     try:
         sys.stderr.write(f"\nimpactlab: interrupted; {_interrupt_hint[0]}\n")
@@ -124,7 +125,7 @@ def _hard_exit() -> None:
 
 
 @contextlib.contextmanager
-def deferred_interrupts(grace: float = INTERRUPT_GRACE):
+def deferred_interrupts(grace: float = INTERRUPT_GRACE) -> Iterator[None]:
     """Ctrl-C and SIGTERM stop the command at its next safe point, or end the process after ``grace`` s.
 
     Raising KeyboardInterrupt wherever the main thread happens to be is not safe: inside a numba
@@ -185,14 +186,13 @@ def _stdout_closed() -> bool:
         except (OSError, ValueError):
             return False
         return False
-    import select
 
     poller = select.poll()
     poller.register(descriptor, select.POLLOUT)
     return any(events & select.POLLERR for _, events in poller.poll(0))
 
 
-def run_command(call, *, debug: bool = False) -> int:
+def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
     """Run ``call()`` (a command returning its exit status) and turn every failure into message and status."""
     _interrupt_hint[0] = "no result file was written or changed"
 

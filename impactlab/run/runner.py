@@ -6,8 +6,11 @@ before any model runs, so a study that cannot run fails at once and says why.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+import os
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import Any
 
 import attrs
 import numpy as np
@@ -15,10 +18,14 @@ import xarray as xr
 
 from impactlab.run.assemble import assemble
 from impactlab.model.diagnostics import warn as warn_validity
-from impactlab.errors import FieldError
 from impactlab.model.planning import OutputPlan, require_inputs
-from impactlab.scene.core import ball_restitution, complete_inputs
+from impactlab.run.sensitivity import run_sensitivity
+from impactlab.study.arrays import ball_law_applies, case_inputs
 from impactlab.study.core import Study, load_study
+from impactlab.physics.contact import contact_state
+from impactlab.study.limits import check
+from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
+from impactlab.io.results import write_results
 
 
 @attrs.frozen
@@ -66,8 +73,6 @@ def describe_paths(study: Study, one_line: int | None = None) -> str:
 
     ``one_line``: that count if known (a run counts it chunk by chunk); else it is computed from the contact
     state of every case."""
-    from impactlab.physics.contact import contact_state
-
     if study.scene.club is None:
         return ""
     if one_line is None:
@@ -89,8 +94,6 @@ def plan_study(study: Study) -> StudyPlan:
     A study that would need more cases or memory than :mod:`impactlab.study.limits` allows is refused here,
     before its inputs are built (the one place the limits are checked on the way to a run).
     """
-    from impactlab.study.limits import check
-
     resources = check(study).describe()
     given = case_input_names(study)
     plans = []
@@ -101,17 +104,6 @@ def plan_study(study: Study) -> StudyPlan:
     return StudyPlan(study.name, study.n_cases, tuple(plans), resources, frozenset(given), study)
 
 
-def _ball_law_applies(study: Study) -> bool:
-    """Whether the restitution comes from the ball's law (the study's own or, swept, each preset's)."""
-    if study.scene.contact.restitution is not None or "contact.restitution" in {
-            field.path for axis in study.sweep for field in axis.fields}:
-        return False
-    swept = [axis.balls for axis in study.sweep if axis.balls is not None]
-    if swept:
-        return any(ball.restitution is not None for ball in swept[0])
-    return study.scene.ball.restitution is not None
-
-
 def case_input_names(study: Study) -> set[str]:
     """The names of :func:`case_inputs` of ``study``, without building its arrays."""
     from impactlab.physics.delivery import DELIVERY_INPUTS
@@ -119,40 +111,13 @@ def case_input_names(study: Study) -> set[str]:
     names = set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
     if all(name in names for name in DELIVERY_INPUTS):
         names.add("angle")
-    if _ball_law_applies(study):
+    if ball_law_applies(study):
         names.add("restitution")
     return names
 
 
-def case_inputs(study: Study) -> dict[str, np.ndarray]:
-    """Input arrays over the Cartesian product of the sweep, flattened in C order (first axis slowest)."""
-    base = study.scene.inputs()
-    grids = np.meshgrid(*[np.arange(axis.size) for axis in study.sweep], indexing="ij") if study.sweep else []
-    inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
-    for axis, grid in zip(study.sweep, grids):
-        for field in axis.fields:
-            inputs[field.input] = np.asarray(field.values, dtype=float)[grid.reshape(-1)]
-    complete_inputs(inputs)
-    if _ball_law_applies(study):
-        ball_axes = [(axis, grid) for axis, grid in zip(study.sweep, grids) if axis.balls is not None]
-        if ball_axes:  # a swept ball preset: each case's ball's own law at its own normal speed
-            (axis, grid), = ball_axes
-            laws = [ball_restitution(ball, inputs) for ball in axis.balls]
-            if any(law is None for law in laws):
-                raise FieldError("sweep.ball.preset", "balls that all have a restitution law, or a "
-                                 "contact.restitution for all", "a ball without one")
-            inputs["restitution"] = np.choose(grid.reshape(-1), laws)
-        else:
-            # the ball's restitution law at each case's own normal speed
-            inputs["restitution"] = ball_restitution(study.scene.ball, inputs)
-    if np.any(inputs["angle"] >= np.pi / 2):
-        case = int(np.argmax(inputs["angle"] >= np.pi / 2))
-        raise FieldError("sweep", "deliveries whose face meets the ball (spin loft below 90 deg)",
-                         f"spin loft {np.degrees(inputs['angle'][case]):.1f} deg in case {case}")
-    return inputs
-
-
-def run_study(source, *, progress: Callable[[str], None] | None = None, executor: str = "auto",
+def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
+              progress: Callable[[str], None] | None = None, executor: str = "auto",
               workers: int | None = None, scheduler: str | None = None, chunk_size: int | None = None,
               progress_folder: str | Path | None = None, show_progress: bool = False,
               output: str | Path | None = None, plan: StudyPlan | None = None) -> xr.Dataset:
@@ -182,17 +147,10 @@ def run_study(source, *, progress: Callable[[str], None] | None = None, executor
         The study's plan if the caller has made it (:func:`plan_study`: limits checked, models planned),
         so that neither is done twice.
     """
-    import contextlib
-
-    from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
-    from impactlab.io.results import write_results
-
     study = load_study(source)
     if plan is None or plan.source is not study:
         plan = plan_study(study)
-    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.data.sensitivity)
-        from impactlab.data.sensitivity import run_sensitivity
-
+    if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.run.sensitivity)
         dataset = run_sensitivity(study, progress=progress)
         if output is not None:
             write_results(dataset, output)

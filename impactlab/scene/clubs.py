@@ -23,9 +23,11 @@ from __future__ import annotations
 
 import math
 import re
+from typing import Any
 
 import attrs
 import numpy as np
+from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
@@ -46,7 +48,7 @@ def _tensor(value) -> tuple[tuple[float, float, float], ...]:
         array = np.diag(array)
     if array.shape != (3, 3):
         return value
-    return tuple(tuple(float(x) for x in row) for row in array)
+    return tuple((float(row[0]), float(row[1]), float(row[2])) for row in array)
 
 
 def _check_inertia(instance, attribute, value):
@@ -182,7 +184,7 @@ class ClubHead:
                    source=source or "a free sphere (ClubHead.sphere)")
 
     @classmethod
-    def from_principal(cls, moments, axes, **fields) -> ClubHead:
+    def from_principal(cls, moments: ArrayLike, axes: ArrayLike, **fields: Any) -> ClubHead:
         """A head from principal moments [kg m^2] and their axes (rows: unit vectors in toe, up, target)."""
         axes = np.asarray(axes, dtype=float)
         if axes.shape != (3, 3) or not np.allclose(axes @ axes.T, np.eye(3), atol=1e-6):
@@ -222,7 +224,7 @@ MM = 1e-3
 #: is, near the USGA limit of 5900), z towards the toe, parallel to the head frame at address. These readings are
 #: ours, not the paper's words; the address-frame reading (2.9 mm vertical) would put the CG 10.1 mm up the face and
 #: raise centred spin by 19 % (docs/clubs.md, benchmarks/measure_delivery.py).
-DRIVER_2020 = dict(mass=0.204, center=(1.0, 2.9, 42.3),
+DRIVER_2020: dict[str, Any] = dict(mass=0.204, center=(1.0, 2.9, 42.3),
                    tensor=[[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]])
 
 
@@ -529,37 +531,21 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
     return head, tuple(names)
 
 
-def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
-    """:func:`club_from_spec` of a YAML file (errors at file:line through the study loader's YAML reader)."""
-    from pathlib import Path
-
-    from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
-
-    path = Path(path)
-    document, lines = load_yaml(read_text_file(path, "club spec"), str(path))
-    try:
-        return club_from_spec(document, "club")
-    except FieldError as exc:
-        keys = tuple(exc.path.split(".")[1:])
-        line = line_of(lines, keys) if keys else None
-        raise FieldError(exc.path, exc.expected, exc.given, exc.choices, file=str(path), line=line) from None
-
-
 class user_clubs:
-    """Context manager: clubs from spec sheets (paths) answer to their launch-monitor names inside it.
+    """Context manager: clubs from spec sheets answer to their launch-monitor names inside it.
 
-    Each club is registered as ``user_N`` in :data:`CLUB_PRESETS` and its names go before the catalogue's in
-    :func:`club_key`; both are put back on exit.
+    ``specs``: (head, names) pairs, as :func:`club_from_spec` (or :func:`impactlab.study.club_specs.read_club_spec`
+    for a YAML file) gives them. Each club is registered as ``user_N`` in :data:`CLUB_PRESETS` and its names go
+    before the catalogue's in :func:`club_key`; both are put back on exit.
     """
 
-    def __init__(self, paths):
-        self.paths = list(paths or ())
+    def __init__(self, specs=None):
+        self.specs = list(specs or ())
         self.added: list[str] = []
         self.names: dict[str, str] = {}
 
     def __enter__(self):
-        for number, path in enumerate(self.paths, start=1):
-            head, names = read_club_spec(path)
+        for number, (head, names) in enumerate(self.specs, start=1):
             key = f"user_{number}"
             CLUB_PRESETS[key] = head
             self.added.append(key)

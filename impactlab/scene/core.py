@@ -8,11 +8,13 @@ from typing import Any
 import attrs
 import numpy as np
 
-from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.validators import check, finite, in_range, positive, to_float
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import Ball, Face
+from impactlab.physics.contact import CLUB_REFERENCES, approach_state
+from impactlab.physics.delivery import DELIVERY_INPUTS, spin_loft
+from impactlab.vocabulary import INPUTS
 
 
 @attrs.frozen
@@ -204,8 +206,6 @@ class Delivery:
     @property
     def spin_loft(self) -> float:
         """Angle between face normal and club velocity [rad]."""
-        from impactlab.physics.delivery import spin_loft
-
         return float(spin_loft(self.path, self.face_angle, self.attack_angle, self.dynamic_loft, self.sign))
 
 
@@ -245,7 +245,7 @@ class Scene:
 
     @classmethod
     def from_delivery(cls, ball: Ball, face: Face, contact: Contact, delivery: Delivery, spin: float = 0.0,
-                      club: ClubHead | None = None, strike: Strike = Strike()):
+                      club: ClubHead | None = None, strike: Strike = Strike()) -> Scene:
         """The scene of a golf delivery: impact speed = club speed, impact angle = spin loft."""
         return cls(ball, face, contact, Impact(delivery.club_speed, delivery.spin_loft, spin), delivery, club, strike)
 
@@ -262,8 +262,6 @@ class Scene:
         friction given) are left out; which of them a model needs is
         decided per model.
         """
-        from impactlab.vocabulary import INPUTS
-
         values = {}
         for name, spec in INPUTS.items():
             value = spec.getter(self)
@@ -277,23 +275,20 @@ class Scene:
 
 def complete_inputs(inputs: dict) -> dict:
     """Fill inputs that follow from others: a delivery's spin loft is the impact angle (arrays, SI)."""
-    from impactlab.physics.delivery import DELIVERY_INPUTS, spin_loft
-
     if all(name in inputs for name in DELIVERY_INPUTS):
         inputs["angle"] = spin_loft(*(inputs[name] for name in DELIVERY_INPUTS))
     return inputs
 
 
-def ball_restitution(ball, inputs: dict):
-    """The ball's restitution law at each case's normal approach speed (arrays, SI), or None without a law.
+def ball_restitution(ball: Ball, inputs: dict) -> np.ndarray:
+    """The ball's restitution law at each case's normal approach speed (arrays, SI) [1].
 
     The normal approach speed is that of the contact (club speed along the contact normal, so that a lofted,
-    open or curved face meets the ball more slowly than its club speed).
+    open or curved face meets the ball more slowly than its club speed). Callers ask only for a ball with a law
+    (``ball.restitution`` not None); asked for one without, it raises ValueError.
     """
-    from impactlab.physics.contact import approach_state
-
     if ball.restitution is None:
-        return None
+        raise ValueError("ball_restitution: the ball has no restitution law")
     gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)
     # the approach speeds only: the (n, 3, 3) mobility is built once per chunk, where the models need it
     return np.clip(ball.restitution(approach_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)

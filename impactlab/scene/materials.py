@@ -10,6 +10,7 @@ import math
 
 import attrs
 import numpy as np
+from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
@@ -100,7 +101,7 @@ class RestitutionLaw:
                 raise FieldError("restitution", "a table of at least two increasing speeds [m/s] and as many "
                                  "restitutions in [0, 1]", f"speeds {self.speeds}, values {self.values}")
 
-    def __call__(self, normal_speed):
+    def __call__(self, normal_speed: ArrayLike) -> np.ndarray:
         """e at the normal approach speed(s) [m/s]."""
         v = np.asarray(normal_speed, dtype=float)
         if self.kind == "constant":

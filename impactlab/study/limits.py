@@ -23,10 +23,17 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 import attrs
 
 from impactlab.errors import ResourceLimitError
+from impactlab.model.base import HISTORY_LENGTH
+from impactlab.vocabulary import INPUTS, is_history
+
+if TYPE_CHECKING:  # study.core imports this module
+    from impactlab.study.core import Study
 
 DEFAULT_MAX_CASES = 10_000_000
 DEFAULT_MAX_MEMORY = 4 * 2**30
@@ -67,7 +74,7 @@ def configure(**values: int | None) -> None:
 
 
 @contextlib.contextmanager
-def configured(**values: int | None):
+def configured(**values: int | None) -> Iterator[None]:
     """:func:`configure` for the length of a block; the overrides before it come back after it.
 
     ``impactlab.cli.main`` runs each command inside one, so a caller of ``main`` keeps its own limits.
@@ -140,11 +147,8 @@ RESULT_COPIES = 5
 GRID_ARRAYS = 4
 
 
-def estimate(study) -> Estimate:
+def estimate(study: Study) -> Estimate:
     """Peak memory of running ``study``, from its sizes alone (nothing is allocated)."""
-    from impactlab.model.base import HISTORY_LENGTH
-    from impactlab.vocabulary import INPUTS, is_history
-
     cases = study.n_cases
     models = len(study.models)
     points = max([entry.model.history_length() for entry in study.models] or [HISTORY_LENGTH])
@@ -161,7 +165,7 @@ def estimate(study) -> Estimate:
     return Estimate(cases, cases * models, memory + kernel, kernel)
 
 
-def check(study) -> Estimate:
+def check(study: Study) -> Estimate:
     """The estimate of ``study``, or ResourceLimitError if it needs more than the limits allow."""
     found = estimate(study)
     check_cases(found.cases, f"study {study.name!r}")

@@ -10,6 +10,7 @@ field path.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 
 import attrs
 
@@ -69,7 +70,7 @@ def _given(block, base, keys: tuple[str, ...], defaults: Mapping) -> dict:
     return fields
 
 
-def build_ball(value, path: str = "ball") -> Ball:
+def build_ball(value: Any, path: str = "ball") -> Ball:
     """A ball from a study block: a preset, its keys overridden, or every key given."""
     block = structure(value, BallBlock, path)
     base = _preset(block, path, ball_preset, None)
@@ -97,7 +98,7 @@ def _restitution_law(law, path: str) -> RestitutionLaw:
     return _construct(RestitutionLaw, path, kind=law.law, source="given in the study", **fields)
 
 
-def build_face(value, path: str = "face") -> Face:
+def build_face(value: Any, path: str = "face") -> Face:
     """A face from a study block: a preset, rigid, or a material, with an optional head mass."""
     block = structure(value, FaceBlock, path)
     base = _preset(block, path, face_preset, Face())
@@ -155,7 +156,7 @@ def _center_of_mass(center: CenterBlock | None, path: str, base) -> tuple:
     return fields["toe"], fields["high"], fields["depth"]
 
 
-def build_club(value, path: str = "club") -> ClubHead:
+def build_club(value: Any, path: str = "club") -> ClubHead:
     """A club head from a study block: a preset, its keys overridden, or every key given."""
     block = structure(value, ClubBlock, path)
     base = _preset(block, path, club_preset, None)
@@ -178,19 +179,19 @@ def build_club(value, path: str = "club") -> ClubHead:
                       source=base.source if base else "", **fields)
 
 
-def build_strike(value, path: str = "strike") -> Strike:
+def build_strike(value: Any, path: str = "strike") -> Strike:
     """Where on the club face the ball lands: toe and high from the face centre (0 where left out)."""
     block = structure(value, StrikeBlock, path)
     return _construct(Strike, path, **_given(block, None, ("toe", "high"), {}))
 
 
-def build_contact(value, path: str = "contact") -> Contact:
+def build_contact(value: Any, path: str = "contact") -> Contact:
     """The pair's friction and restitution, each None where left out (the ball's then apply)."""
     block = structure(value, ContactBlock, path)
     return _construct(Contact, path, friction=block.friction, restitution=block.restitution)
 
 
-def build_impact(value, path: str = "impact") -> Impact:
+def build_impact(value: Any, path: str = "impact") -> Impact:
     """Speed and angle of the face relative to the ball (both required), and the incoming spin."""
     block = structure(value, ImpactBlock, path)
     for key in ("speed", "angle"):
@@ -199,7 +200,7 @@ def build_impact(value, path: str = "impact") -> Impact:
     return _construct(Impact, path, speed=block.speed, angle=block.angle, spin=block.spin or 0.0)
 
 
-def build_delivery(value, path: str = "delivery") -> Delivery:
+def build_delivery(value: Any, path: str = "delivery") -> Delivery:
     """A golf delivery: club speed (required), path, face, attack and loft angles (or the spin loft, with the
     face to path), handedness, where the loft is the face's, the head's reference point and its rotation."""
     block = structure(value, DeliveryBlock, path)

@@ -122,7 +122,7 @@ class RestitutionBlock:
     """A restitution law written as a mapping (``ball.restitution``); a bare number is a constant law."""
 
     _what = "a restitution law"
-    law: Name = "constant"
+    law: Name = Name("constant")
     value: Number | None = None
     reference_speed: Speed | None = None
     slope: InverseSpeed | None = None
@@ -236,9 +236,9 @@ class DeliveryBlock:
     face_angle: Angle | None = None
     attack_angle: Angle | None = None
     dynamic_loft: Angle | None = None
-    handedness: Name = "right"
-    loft_at: Name = "contact"
-    club_reference: Name = "centre_of_mass"
+    handedness: Name = Name("right")
+    loft_at: Name = Name("contact")
+    club_reference: Name = Name("centre_of_mass")
     spin_loft: Angle | None = None
     face_to_path: Angle | None = None
     head_rotation: HeadRotationBlock | None = None
@@ -311,7 +311,7 @@ class PlotBlock:
 
 @attrs.frozen
 class SensitivityBlock:
-    """The ``sensitivity`` block; its values are checked by :func:`impactlab.data.sensitivity.parse_sensitivity`,
+    """The ``sensitivity`` block; its values are checked by :func:`impactlab.study.sensitivity.parse_sensitivity`,
     which knows the study's models and scene."""
 
     _what = "the sensitivity block"
@@ -342,7 +342,7 @@ BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, Cent
           ParameterRangeBlock)
 
 
-def keys_of(cls) -> tuple[str, ...]:
+def keys_of(cls: type) -> tuple[str, ...]:
     """The keys a block accepts, in the order the study format lists them.
 
     Parameters
@@ -472,9 +472,10 @@ def _converter() -> Converter:
         converter.register_structure_hook(type_, _quantity_hook(dimension))
     for type_, dimension in _WITH_UNIT.items():
         converter.register_structure_hook(type_, _unit_required_hook(dimension))
-    for type_, hook in ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count), (Name, lambda v, _: v),
-                        (Restitution, _restitution), (InertiaSpec, _inertia_spec),
-                        (Rate, lambda v, _: rate_with_unit(v))):
+    hooks: tuple[tuple[Any, Any], ...] = ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count),
+                                          (Name, lambda v, _: v), (Restitution, _restitution),
+                                          (InertiaSpec, _inertia_spec), (Rate, lambda v, _: rate_with_unit(v)))
+    for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
                                               lambda t: _list_hook(t, converter))
@@ -489,7 +490,7 @@ def _hook(cls):
     return _converter().get_structure_hook(cls)
 
 
-def lookup(document, path: tuple):
+def lookup(document: Any, path: tuple) -> Any:
     """The node at ``path`` in a document, or None where there is none."""
     node = document
     for part in path:
@@ -500,7 +501,7 @@ def lookup(document, path: tuple):
     return node
 
 
-def structure(value, cls, path: str):
+def structure(value: Any, cls: Any, path: str) -> Any:
     """Structure one study block, or raise the FieldError a user should see.
 
     Parameters

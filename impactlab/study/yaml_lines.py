@@ -9,6 +9,7 @@ from typing import Any
 import yaml
 
 from impactlab.errors import ResourceLimitError, StudyError
+from impactlab.study.limits import max_yaml_nodes
 
 #: a study or table larger than this is not a hand-written text file
 MAX_TEXT_BYTES = 16 * 2**20
@@ -84,8 +85,6 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
     :func:`impactlab.study.limits.max_yaml_nodes` nodes: ten nested aliases of ten items each would
     otherwise make 10^10 nodes.
     """
-    from impactlab.study.limits import max_yaml_nodes
-
     loader = _LOADER(text)
     try:
         node = loader.get_single_node()
@@ -111,7 +110,8 @@ class _Budget:
     """Nodes left to expand, and the collection nodes on the way down (an alias to one of them is a cycle)."""
 
     def __init__(self, nodes: int, file):
-        self.left, self.limit, self.file, self.open = nodes, nodes, file or "<study>", set()
+        self.left, self.limit, self.file = nodes, nodes, file or "<study>"
+        self.open: set[int] = set()
 
     def enter(self, node, path: Path) -> None:
         if id(node) in self.open:
@@ -143,9 +143,9 @@ def _convert(loader, node, path: Path, lines: dict[Path, int], file, budget: _Bu
         return result
     if isinstance(node, yaml.SequenceNode):
         budget.open.add(id(node))
-        result = [_convert(loader, item, path + (index,), lines, file, budget) for index, item in enumerate(node.value)]
+        items = [_convert(loader, item, path + (index,), lines, file, budget) for index, item in enumerate(node.value)]
         budget.open.discard(id(node))
-        return result
+        return items
     return loader.construct_object(node, deep=True)
 
 

@@ -20,95 +20,37 @@ import math
 import os
 from importlib import resources
 from pathlib import Path
+from collections.abc import Iterable
+from typing import Any, NoReturn
 
-import attrs
 import numpy as np
 
 from impactlab.data.documents import MeasuredDataBlock, structure_document
 from impactlab.errors import FieldError
-from impactlab.run.runner import case_inputs
+from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study, load_study
+from impactlab.study.datasets import DATASETS, TABLE1, MeasuredData
 from impactlab.vocabulary import SCALAR_OUTPUTS
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path
 
 
-@attrs.frozen
-class MeasuredData:
-    """A citable measurement and how impactlab reproduces it.
+def load_dataset_study(data: MeasuredData) -> Study:
+    """The study that computes a dataset's quantity under its conditions.
 
-    Attributes
+    Parameters
     ----------
-    name : str
-    source : str
-        The citation.
-    quantity : str
-        Output name in impactlab's vocabulary (its units).
-    labels : tuple of str
-        One per point, matching the study's sweep labels.
-    values : tuple of float
-        Measured values, in the output's units.
-    sigma : tuple of float or None
-        Stated uncertainty of each point (None: the source gives none).
-    study : str
-        File name of the study (in impactlab/validation) that reproduces the points.
-    dimension : str
-        The study's sweep dimension along which the points lie.
-    budgets : dict
-        Model id -> largest allowed RMS error over the points.
-    note : str
+    data : MeasuredData
+        A shipped dataset (its study read from this package) or one read by :func:`load_measured` (its study
+        read from ``data.folder``).
+
+    Returns
+    -------
+    Study
     """
-
-    name: str
-    source: str
-    quantity: str
-    labels: tuple[str, ...]
-    values: tuple[float, ...]
-    sigma: tuple[float, ...] | None
-    study: str
-    dimension: str
-    budgets: dict = attrs.field(factory=dict)
-    note: str = ""
-    folder: str | None = None  # where ``study`` lives; None: shipped with impactlab
-
-    def load_study(self) -> Study:
-        """The study that computes this dataset's quantity under its conditions."""
-        if self.folder is not None:
-            return load_study(Path(self.folder) / self.study)
-        text = resources.files(__package__).joinpath(self.study).read_text()
-        return load_study(text, file=f"impactlab/data/validation/{self.study}")
-
-    @property
-    def measured(self) -> np.ndarray:
-        """The measured values as an array, in the dataset's units."""
-        return np.asarray(self.values, dtype=float)
-
-
-TABLE1 = ("E. Henrikson, P. Wood, C. Broadie, T. Nuttall, The role of friction and tangential compliance on the "
-          "resultant launch angle of a golf ball, Proceedings 49 (2020) 27, Table 1")
-
-DATASETS: dict[str, MeasuredData] = {
-    "wood2018": MeasuredData(
-        name="wood2018",
-        source=f"{TABLE1}; measured by P. Wood et al. (2018): 157 golfers, Vicon club kinematics and a GC2 launch "
-               "monitor (731 driver, 745 7-iron, 99 wedge shots); mean +- SD",
-        quantity="vertical_launch_ratio", labels=("driver", "7-iron", "pitching wedge"),
-        values=(0.83, 0.81, 0.72), sigma=(0.08, 0.05, 0.06),
-        study="table1_clubs.yaml", dimension="club",
-        budgets={"maw": 0.035, "hertz_mindlin": 0.035, "dem_linear": 0.12, "rigid_coulomb": 0.06,
-                 "restitution": 0.05},
-        note="the paper's text says the wedge shots were hit with a 58 deg wedge; its table says pitching wedge",
-    ),
-    "trackman": MeasuredData(
-        name="trackman",
-        source=f"{TABLE1}; TrackMan values published by D. Dewhurst, The Golf Club: Engineering and Physics "
-               "(2018); no uncertainty stated",
-        quantity="vertical_launch_ratio", labels=("driver", "7-iron", "pitching wedge"),
-        values=(0.87, 0.75, 0.70), sigma=None,
-        study="table1_clubs.yaml", dimension="club",
-        budgets={"maw": 0.045, "hertz_mindlin": 0.06, "dem_linear": 0.115, "rigid_coulomb": 0.085,
-                 "restitution": 0.075},
-    ),
-}
+    if data.folder is not None:
+        return load_study(Path(data.folder) / data.study)
+    text = resources.files(__package__).joinpath(data.study).read_text()
+    return load_study(text, file=f"impactlab/data/validation/{data.study}")
 
 
 def get_dataset(name: str) -> MeasuredData:
@@ -121,7 +63,7 @@ def get_dataset(name: str) -> MeasuredData:
     return DATASETS[name]
 
 
-def load_measured(path) -> MeasuredData:
+def load_measured(path: str | os.PathLike[str]) -> MeasuredData:
     """Read measured data from YAML: your own launch data to validate against or fit to.
 
     ::
@@ -144,7 +86,7 @@ def load_measured(path) -> MeasuredData:
     file = str(path)
     document, lines = load_yaml(path.read_text(), file)
 
-    def fail(where, expected, given, choices=None):
+    def fail(where: str, expected: str, given: Any, choices: Any = None) -> NoReturn:
         raise FieldError(where, expected, given, choices=choices, file=file, line=line_of(lines, parse_path(where)))
 
     # the shape of every key (unknown keys refused, required ones present, numbers where numbers belong) at its
@@ -168,15 +110,15 @@ def load_measured(path) -> MeasuredData:
         labels=tuple(labels), values=tuple(values), sigma=tuple(float(s) for s in sigmas) if all(given) else None,
         study=block.study, dimension=block.dimension, budgets=dict(budgets),
         note=block.note or "", folder=str(path.parent))
-    study = data.load_study()
+    study = load_dataset_study(data)
     axes = {axis.dim: axis for axis in study.sweep}
-    if data.dimension not in axes or axes[data.dimension].labels is None:
+    swept_labels = axes[data.dimension].labels if data.dimension in axes else None
+    if swept_labels is None:
         fail("dimension", "a labelled sweep of the study", data.dimension,
              [dim for dim, axis in axes.items() if axis.labels is not None])
-    missing = [label for label in data.labels if label not in axes[data.dimension].labels]
+    missing = [label for label in data.labels if label not in swept_labels]
     if missing:
-        fail("points", f"labels of the study's sweep {data.dimension!r}", ", ".join(missing),
-             list(axes[data.dimension].labels))
+        fail("points", f"labels of the study's sweep {data.dimension!r}", ", ".join(missing), list(swept_labels))
     if len(study.sweep) != 1:
         fail("study", "a study with one sweep (the points' own)", [axis.dim for axis in study.sweep])
     return data
@@ -185,12 +127,13 @@ def load_measured(path) -> MeasuredData:
 def point_order(data: MeasuredData, study: Study) -> list[int]:
     """Case index of each measured point in the study's (one-axis) sweep."""
     labels = next(axis for axis in study.sweep if axis.dim == data.dimension).labels
+    assert labels is not None, "a measured dataset's sweep is labelled (load_measured checks it)"
     return [list(labels).index(label) for label in data.labels]
 
 
-def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
+def predictions(data: MeasuredData, models: Iterable[str] | None = None) -> dict[str, np.ndarray]:
     """Each model's prediction at the measured points: model id -> values (the quantity's units)."""
-    study = data.load_study()
+    study = load_dataset_study(data)
     inputs = case_inputs(study)
     order = point_order(data, study)
     out = {}
@@ -201,7 +144,7 @@ def predictions(data: MeasuredData, models=None) -> dict[str, np.ndarray]:
     return out
 
 
-def errors(data: MeasuredData, models=None) -> dict[str, dict]:
+def errors(data: MeasuredData, models: Iterable[str] | None = None) -> dict[str, dict]:
     """Model id -> {rms, max, residuals, predicted, unused} of prediction minus measurement.
 
     ``rms`` and ``max`` are over the points the model could predict; ``unused`` names the others (a non-finite
@@ -217,3 +160,7 @@ def errors(data: MeasuredData, models=None) -> dict[str, dict]:
                          "residuals": residuals, "predicted": predicted,
                          "unused": tuple(str(label) for label, ok in zip(data.labels, finite) if not ok)}
     return result
+
+
+__all__ = ["DATASETS", "TABLE1", "MeasuredData", "errors", "get_dataset", "load_dataset_study", "load_measured",
+           "point_order", "predictions"]

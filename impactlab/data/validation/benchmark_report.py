@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import os
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +13,7 @@ from impactlab.data.validation.benchmarks import (
     BENCHMARKS, MODELS, kharaz_quantities, make_model, read_reference, chung_ooi_5_quantities, chung_ooi_6_incidence,
     chung_ooi_6_quantities,
 )
+from impactlab.data.validation.benchmarks import _normal_cases
 
 
 def over_budget(errors: dict) -> list[str]:
@@ -111,23 +114,23 @@ def _save(figure, path: Path, written: list) -> None:
     written.append(path)
 
 
-def plot_figures(outdir, models=None) -> list[Path]:
+def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = None) -> list[Path]:
     """Write the benchmark figures (PNG) into ``outdir``; returns their paths."""
-    from matplotlib.figure import Figure  # no pyplot: the caller's backend and figures stay untouched
+    # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
+    from matplotlib.figure import Figure
 
     models = list(models or MODELS)
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    written = []
+    written: list[Path] = []
 
     # tests 1 and 2: force against time, beside the published curves
-    from impactlab.data.validation.benchmarks import _normal_cases
 
     fig = Figure(figsize=(12, 4.5), layout="tight")
     axes = fig.subplots(1, 2)
     for ax, test, file in ((axes[0], 1, "chung_ooi_test1_force.csv"), (axes[1], 2, "chung_ooi_test2_force.csv")):
         sphere, inputs = _normal_cases(test)[0][:2]
-        drawn = []
+        drawn: list[tuple] = []
         for model_id in models:
             model = make_model(model_id)
             if "normal_force" not in type(model).provides:
@@ -151,7 +154,8 @@ def plot_figures(outdir, models=None) -> list[Path]:
     angles = np.linspace(1.0, 88.0, 88)
     fig = Figure(figsize=(16, 4.8), layout="tight")
     axes = fig.subplots(1, 3)
-    panels = (("tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
+    panels: tuple[tuple[str, str, str, Callable | None], ...] = (
+              ("tangential_restitution", "chung_ooi_test4_tangential_restitution.csv",
                "tangential restitution of the centre v_t'/v_t [1]", None),
               ("spin", "chung_ooi_test4_spin.csv", "spin after impact [rad/s] (friction's sense positive)",
                lambda y: -y),

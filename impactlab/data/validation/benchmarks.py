@@ -33,12 +33,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 from importlib import resources
 
 import attrs
 import numpy as np
 
 from impactlab.physics import hertz
+from impactlab.scene.clubs import ClubHead
+from impactlab.scene.materials import Ball, Material
+from impactlab.scene.core import Contact, Impact, Scene
+from impactlab.model.registry import get_model
 
 KRATOS = "KratosMultiphysics/Kratos, applications/DEMApplication"
 CHUNG_OOI = "C. J. Chung, J. Y. Ooi, Granular Matter 13 (2011) 643-656"
@@ -120,7 +125,9 @@ def read_reference(file: str) -> Reference:
     """Read ``impactlab/data/validation/reference/<file>``: ``#`` header lines, then ``# series: name | kind | note``
     blocks of ``x, y`` rows."""
     text = resources.files(__package__).joinpath("reference", file).read_text()
-    header, series, current = [], {}, None
+    header: list[str] = []
+    series: dict[str, dict[str, Any]] = {}
+    current: dict[str, Any] | None = None
     for raw in text.splitlines():
         line = raw.strip()
         if not line:
@@ -176,10 +183,6 @@ def two_sphere_inputs(sphere: Sphere, striker: Sphere, *, speed, angle=0.0, spin
     the line of centres, ``spin`` and ``club_spin`` [rad/s] the struck sphere's and the striker's, about the
     same axis and counted alike (:class:`impactlab.scene.core.Impact`).
     """
-    from impactlab.scene.clubs import ClubHead
-    from impactlab.scene.materials import Ball, Material
-    from impactlab.scene.core import Contact, Impact, Scene
-
     speed, angle, spin, club_spin = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, float)) for v in (speed, angle, spin, club_spin)))
     ball = Ball(sphere.radius, sphere.mass, 0.4, Material(sphere.youngs_modulus, sphere.poisson_ratio))
@@ -471,8 +474,6 @@ _add(Benchmark(
 
 def make_model(model_id: str):
     """A model instance of a benchmark model id (see :data:`MODELS`)."""
-    from impactlab.model.registry import get_model
-
     name, options = MODELS[model_id]
     return get_model(name)(**options)
 
@@ -481,7 +482,7 @@ def benchmark_errors(keys=None, models=None) -> dict[str, dict[str, dict]]:
     """Benchmark key -> model id -> {rms, max, predicted, expected}; rms is NaN where the model does not give the
     quantity (the rigid models have no contact time or force history)."""
     instances = {model_id: make_model(model_id) for model_id in (models or MODELS)}
-    out = {}
+    out: dict[str, dict[str, dict]] = {}
     for key in keys or BENCHMARKS:
         bench = BENCHMARKS[key]
         expected = np.asarray(bench.expected(), float)

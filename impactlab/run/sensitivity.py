@@ -26,10 +26,10 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
-import math
 import platform
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable
+from importlib.metadata import version
 
 import attrs
 import numpy as np
@@ -37,142 +37,15 @@ import xarray as xr
 
 from impactlab._version import __version__
 from impactlab.errors import FieldError
-from impactlab.units import to_si
-from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, OUTPUTS, is_scalar
+from impactlab.model.diagnostics import flag_attributes
+from impactlab.scene.core import ball_restitution, complete_inputs
+from impactlab.study.arrays import case_inputs
+from impactlab.study.core import Study
+from impactlab.study.sensitivity import SensitivitySpec
+from impactlab.vocabulary import INPUTS, OUTPUTS, is_scalar
 
-METHODS = ("sobol", "morris")
 #: the percentiles whose distance is the parameter spread
 SPREAD_PERCENTILES = (5.0, 95.0)
-
-
-@attrs.frozen
-class Parameter:
-    """An uncertain input: study path, input name, and its range (absolute, or +- ``spread`` around each case)."""
-
-    path: str
-    input: str
-    low: float | None = None
-    high: float | None = None
-    spread: float | None = None
-
-    def bounds(self, nominal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(low, high) per case [SI]."""
-        if self.spread is not None:
-            return nominal - self.spread, nominal + self.spread
-        return np.full(nominal.shape, self.low), np.full(nominal.shape, self.high)
-
-    def describe(self) -> str:
-        """The parameter and its range in display units, in words."""
-        spec = INPUTS[self.input]
-        factor, unit = spec.display_factor, spec.display_unit or spec.unit
-        unit = "" if unit == "1" else f" {unit}"
-        if self.spread is not None:
-            return f"+-{self.spread * factor:g}{unit}"
-        return f"{self.low * factor:g} to {self.high * factor:g}{unit}"
-
-
-@attrs.frozen
-class SensitivitySpec:
-    """A validated ``sensitivity:`` block."""
-
-    method: str
-    samples: int
-    seed: int
-    parameters: tuple[Parameter, ...]
-    choices: tuple[tuple[str, tuple[str, ...]], ...]
-    models: tuple[str, ...]
-    levels: int = 4
-
-    def as_dict(self) -> dict:
-        """The specification as plain data (stored with the results as provenance)."""
-        return {"method": self.method, "samples": self.samples, "seed": self.seed, "levels": self.levels,
-                "parameters": {p.path: p.describe() for p in self.parameters},
-                "choices": {name: list(ids) for name, ids in self.choices}, "models": list(self.models)}
-
-
-def _whole(value, path: str, low: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        raise FieldError(path, f"a whole number >= {low}", value)
-    return value
-
-
-def parse_sensitivity(block, model_ids: list[str], scene_inputs: Mapping[str, float], swept: set[str],
-                      where: str = "sensitivity") -> SensitivitySpec:
-    """Validate a study's ``sensitivity:`` block; every error names the field, what it takes and what it got."""
-    from impactlab.study.schema import ParameterRangeBlock, SensitivityBlock, keys_of, structure
-
-    if not isinstance(block, Mapping):
-        raise FieldError(where, f"a mapping with keys from: {', '.join(keys_of(SensitivityBlock))}", block)
-    given = structure(block, SensitivityBlock, where)  # unknown keys refused, as in every block
-    method = "sobol" if given.method is None else given.method
-    if method not in METHODS:
-        raise FieldError(f"{where}.method", "a sensitivity method", method, choices=METHODS)
-    samples = _whole(64 if given.samples is None else given.samples, f"{where}.samples", 2)
-    if method == "sobol" and samples & (samples - 1):
-        raise FieldError(f"{where}.samples", "a power of 2 (Sobol sequences lose their balance otherwise)", samples)
-    seed = _whole(1 if given.seed is None else given.seed, f"{where}.seed", 0)
-    levels = _whole(4 if given.levels is None else given.levels, f"{where}.levels", 2)
-    if levels % 2:
-        raise FieldError(f"{where}.levels", "an even number of Morris grid levels", levels)
-    raw = given.parameters
-    if not isinstance(raw, Mapping) or not raw:
-        raise FieldError(f"{where}.parameters", "a mapping from study paths to {low, high} or {spread}", raw,
-                         choices=INPUT_BY_PATH)
-    parameters = []
-    for path, spec in raw.items():
-        at = f"{where}.parameters.{path}"
-        if path not in INPUT_BY_PATH:
-            raise FieldError(at, "a dotted path of an input field", str(path), choices=INPUT_BY_PATH)
-        name = INPUT_BY_PATH[path]
-        if name not in scene_inputs:
-            raise FieldError(at, "a field the study's scene gives (add it to the scene first)", str(path))
-        if not isinstance(spec, Mapping):
-            raise FieldError(at, "{low: VALUE, high: VALUE} or {spread: VALUE} (+- around each case)", spec)
-        structure(spec, ParameterRangeBlock, at)  # its keys; the values take the parameter's dimension below
-        spec = {key: value for key, value in spec.items() if value is not None}  # a key without a value: left out
-        if name in swept and "spread" not in spec:
-            raise FieldError(at, "a spread around each case's value (the sweep sets this field; an absolute range "
-                                 "would override the sweep)", dict(spec))
-        dimension = INPUTS[name].dimension
-        input_spec = INPUTS[name]
-        if "spread" in spec:
-            if set(spec) != {"spread"}:
-                raise FieldError(at, "either spread or low and high, not both", sorted(spec))
-            spread = to_si(spec["spread"], dimension, f"{at}.spread")
-            if not spread > 0 or not math.isfinite(spread):
-                raise FieldError(f"{at}.spread", "a positive, finite spread", spec["spread"])
-            parameters.append(Parameter(path, name, spread=spread))
-            continue
-        if set(spec) != {"low", "high"}:
-            raise FieldError(at, "both low and high (or a spread)", sorted(spec))
-        low, high = (to_si(spec[key], dimension, f"{at}.{key}") for key in ("low", "high"))
-        for key, value in (("low", low), ("high", high)):
-            if input_spec.out_of_range(np.array([value]))[0]:
-                raise FieldError(f"{at}.{key}", input_spec.range_text(), spec[key])
-        if not low < high:
-            raise FieldError(at, "low below high", f"low {spec['low']}, high {spec['high']}")
-        parameters.append(Parameter(path, name, low=low, high=high))
-    if len({p.input for p in parameters}) != len(parameters):
-        raise FieldError(f"{where}.parameters", "each input once", [p.path for p in parameters])
-    choices = []
-    if given.choices is not None and not isinstance(given.choices, Mapping):
-        raise FieldError(f"{where}.choices", "a mapping from a choice's name to model ids of the study",
-                         given.choices, choices=model_ids)
-    for name, ids in (given.choices or {}).items():
-        at = f"{where}.choices.{name}"
-        if not isinstance(ids, list) or len(ids) < 2 or len(set(ids)) != len(ids):
-            raise FieldError(at, "a list of at least two distinct model ids of the study", ids, choices=model_ids)
-        for index, entry in enumerate(ids):
-            if entry not in model_ids:
-                raise FieldError(f"{at}[{index}]", "a model id of the study", entry, choices=model_ids)
-        choices.append((str(name), tuple(ids)))
-    models = model_ids if given.models is None else given.models
-    if not isinstance(models, list) or not models:
-        raise FieldError(f"{where}.models", "a list of model ids of the study", models, choices=model_ids)
-    for index, entry in enumerate(models):
-        if entry not in model_ids:
-            raise FieldError(f"{where}.models[{index}]", "a model id of the study", entry, choices=model_ids)
-    return SensitivitySpec(method, samples, seed, tuple(parameters), tuple(choices), tuple(models), levels)
 
 
 def problem(spec: SensitivitySpec) -> dict:
@@ -183,6 +56,7 @@ def problem(spec: SensitivitySpec) -> dict:
 
 def unit_sample(spec: SensitivitySpec) -> np.ndarray:
     """The sample on [0, 1]^D from SALib: Saltelli's scheme (N (D + 2) rows) or Morris trajectories (N (D + 1))."""
+    # SALib is imported where it is used: it is heavy (scipy, pandas) and only sensitivity studies need it
     if spec.method == "sobol":
         from SALib.sample import sobol
 
@@ -220,8 +94,6 @@ def indices(spec: SensitivitySpec, unit: np.ndarray, values: np.ndarray) -> dict
 
 def _sampled_inputs(study, spec: SensitivitySpec, base: dict[str, np.ndarray], unit: np.ndarray):
     """Inputs for every (case, sample): the case's inputs with the sampled parameters set (SI, flat, case-major)."""
-    from impactlab.scene.core import ball_restitution, complete_inputs
-
     n_cases, n_samples = study.n_cases, unit.shape[0]
     inputs = {name: np.repeat(np.asarray(values, dtype=float), n_samples) for name, values in base.items()}
     for column, parameter in enumerate(spec.parameters):
@@ -256,7 +128,7 @@ def _run(model, inputs, outputs) -> tuple[np.ndarray, np.ndarray]:
     return values, np.nan_to_num(result["validity"]).astype(np.int64)
 
 
-def run_sensitivity(study, progress=None) -> xr.Dataset:
+def run_sensitivity(study: Study, progress: Callable[[str], None] | None = None) -> xr.Dataset:
     """Run a study's sensitivity block: indices, parameter spread, model-form range and numerical error.
 
     Returns
@@ -265,10 +137,10 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
         Dimensions ``model``, the study's sweep dimensions, ``parameter``, ``output``, ``choice`` and
         ``sample``; every variable in the units of its output (``output_units``), with provenance.
     """
-    from impactlab.run.runner import case_inputs
-
     say = progress or (lambda text: None)
     spec = study.sensitivity
+    if spec is None:
+        raise ValueError(f"study {study.name!r} has no sensitivity block to run")
     outputs = list(study.outputs)
     for name in outputs:
         if not is_scalar(name) or OUTPUTS[name].diagnostic:
@@ -324,8 +196,6 @@ def run_sensitivity(study, progress=None) -> xr.Dataset:
         say(f"{entry_id}: {n_cases * n_samples} sampled impacts done")
     dataset = _dataset(study, spec, ids, outputs, choices, unit, nominal, numerical, form, found, sampled, spread,
                        deviation)
-    from impactlab.model.diagnostics import flag_attributes
-
     dims = ("model",) + tuple(axis.dim for axis in study.sweep)
     dataset["validity"] = (dims, validity.reshape((len(ids),) + tuple(study.shape)),
                            {"units": "1", "long_name": "validity flags of the nominal runs (docs/accuracy.md)",
@@ -414,122 +284,4 @@ def _dataset(study, spec, ids, outputs, choices, unit, nominal, numerical, form,
 
 
 def _salib_version() -> str:
-    from importlib.metadata import version
-
     return version("SALib")
-
-
-def _case_labels(dataset: xr.Dataset) -> list[tuple[dict, str]]:
-    dims = [dim for dim in dataset["nominal"].dims if dim not in ("model", "output")]
-    if not dims:
-        return [({}, "")]
-    grids = np.meshgrid(*[np.arange(dataset.sizes[d]) for d in dims], indexing="ij")
-    labels = []
-    for flat in range(grids[0].size):
-        where = {d: int(g.reshape(-1)[flat]) for d, g in zip(dims, grids)}
-        text = ", ".join(str(dataset[d].values[i]) for d, i in where.items())
-        labels.append((where, text))
-    return labels
-
-
-def plot_sensitivity(dataset: xr.Dataset, path) -> list:
-    """Two figures: the three error sources side by side per output and case, and the indices of each model.
-
-    ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
-    """
-    from pathlib import Path
-
-    import matplotlib.ticker
-    # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
-    from matplotlib.figure import Figure
-
-    path = Path(path)
-    outputs = list(dataset.output.values)
-    cases = _case_labels(dataset)
-    analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
-    figure = Figure(figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)))
-    axes = figure.subplots(len(outputs), len(cases), squeeze=False)
-    colours = {"numerical": "tab:grey", "parameter": "tab:blue", "form": "tab:red"}
-    for row, output in enumerate(outputs):
-        unit = str(dataset.output_units.sel(output=output).values)
-        for column, (where, label) in enumerate(cases):
-            axis = axes[row, column]
-            bars = []
-            error = dataset["numerical_error"].isel(where).sel(output=output)
-            for model in dataset.model.values:
-                value = float(error.sel(model=model))
-                bars.append((f"numerical: {model}", value, "numerical"))
-            for model in analysed:
-                bars.append((f"parameters: {model}", float(dataset["spread"].isel(where).sel(model=model,
-                                                                                          output=output)), "parameter"))
-            for choice in dataset.choice.values:
-                bars.append((f"model form: {choice}", float(dataset["model_form_range"].isel(where).sel(
-                    choice=choice, output=output)), "form"))
-            positives = [value for _, value, _ in bars if np.isfinite(value) and value > 0]
-            floor = (min(positives) if positives else 1.0) / 30.0
-            for position, (_, value, kind) in enumerate(bars):
-                shown = value if np.isfinite(value) and value > 0 else floor
-                axis.barh(position, shown, color=colours[kind], alpha=1.0 if np.isfinite(value) and value > 0
-                          else 0.25)
-                if not (np.isfinite(value) and value > 0):
-                    words = {"numerical": " exact (closed form)", "parameter": " 0 (does not move)",
-                             "form": " 0 (the models agree)"}[kind] if value == 0 \
-                        else " not measured (tolerance not met)"
-                    axis.text(shown, position, words, va="center", fontsize=6)
-            axis.set_yticks(range(len(bars)))
-            axis.set_yticklabels([text for text, _, _ in bars] if column == 0 else [], fontsize=6)
-            axis.invert_yaxis()
-            axis.set_xscale("log")
-            axis.grid(True, axis="x", which="major", alpha=0.3)
-            axis.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
-            axis.tick_params(axis="x", labelsize=7)
-            axis.set_xlabel(f"{output} [{unit}]", fontsize=8)
-            if row == 0:
-                axis.set_title(label, fontsize=9)
-    from matplotlib.patches import Patch
-
-    figure.legend(handles=[Patch(color=colours["numerical"], label="numerical error (|tolerance - tolerance/10|)"),
-                           Patch(color=colours["parameter"], label="parameter uncertainty (5-95 % range over the "
-                                                                    "sampled inputs)"),
-                           Patch(color=colours["form"], label="model form (max - min over the choice's models)")],
-                  loc="lower center", ncol=3 if len(cases) > 2 else 1, fontsize=8, frameon=False)
-    figure.suptitle(f"{dataset.attrs.get('study_name', '')}: numerical error, parameter uncertainty and model form "
-                    "(log scale)", fontsize=10)
-    figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
-    figure.savefig(path, dpi=110)
-    pictures = [path]
-
-    total = "ST" if "ST" in dataset else "mu_star"
-    parameters = list(dataset.parameter.values)
-    figure = Figure(figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters) * len(analysed) + 0.6 * len(analysed)))
-    axes = figure.subplots(len(analysed), len(cases), squeeze=False)
-    for row, model in enumerate(analysed):
-        for column, (where, label) in enumerate(cases):
-            axis = axes[row, column]
-            values = dataset[total].isel(where).sel(model=model).transpose("parameter", "output").values
-            with warnings.catch_warnings(), np.errstate(all="ignore"):  # an output that does not move: all NaN
-                warnings.simplefilter("ignore")
-                shown = values if total == "ST" else values / np.nanmax(np.abs(values), axis=0, keepdims=True)
-            image = axis.imshow(np.nan_to_num(shown, nan=0.0), vmin=0, vmax=1, cmap="Blues", aspect="auto")
-            for i in range(len(parameters)):
-                for j in range(len(outputs)):
-                    value = values[i, j]
-                    axis.text(j, i, "n/a" if not np.isfinite(value) else f"{value:.2f}" if total == "ST"
-                              else f"{value:.3g}", ha="center", va="center", fontsize=7,
-                              color="white" if np.isfinite(shown[i, j]) and shown[i, j] > 0.6 else "black")
-            axis.set_xticks(range(len(outputs)))
-            labels = [f"{name} [{unit}]" for name, unit in zip(outputs, dataset.output_units.values)]
-            axis.set_xticklabels(labels if row == len(analysed) - 1 else [], rotation=30, ha="right", fontsize=7)
-            axis.set_yticks(range(len(parameters)))
-            axis.set_yticklabels(parameters if column == 0 else [], fontsize=7)
-            axis.set_title(f"{model}, {label}" if label else str(model), fontsize=8)
-    figure.colorbar(image, ax=axes, shrink=0.6, label="Sobol total index ST [1]" if total == "ST"
-                    else "Morris mu* / largest mu* of the output [1]")
-    figure.suptitle(f"{dataset.attrs.get('study_name', '')}: "
-                    + ("Sobol total indices (share of each output's variance involving each input)" if total == "ST"
-                       else "Morris mu* (output units; shading relative per output)")
-                    + "; n/a: the output does not move over the sample", fontsize=10)
-    second = path.with_name(f"{path.stem}_indices.png")
-    figure.savefig(second, dpi=110, bbox_inches="tight")
-    pictures.append(second)
-    return pictures
