@@ -1,0 +1,70 @@
+"""Ball laws (issue 21 item 3) and the energy and continuity fixes of item 5.
+
+Oracles are written apart from the code under test: kinetic energies summed from the ball's and the head's
+velocities (not the models' energy_loss), hand-integrated rigid impacts, and exact reductions to today's models.
+"""
+
+import os
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from impactlab.model.registry import get_model
+from impactlab.physics.contact import after_impact, contact_state, impulse_vector
+from impactlab.testing import _complete, _with, reference_inputs_3d
+
+settings.register_profile("ci", max_examples=12, deadline=None, derandomize=True,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+DRIVER_CASES = _complete(reference_inputs_3d())
+
+
+def kinetic_energy(inputs, result=None):
+    """Kinetic energy of ball and head [J], before impact (result None) or after, from the velocities themselves."""
+    state = contact_state(inputs)
+    m, r, k2 = inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"]
+    inertia = k2 * m * r**2
+    club = inputs["club_mass"]
+    inverse = state["head_inverse_inertia"]
+    if result is None:
+        head_v = inputs["speed"][:, None] * state["club_direction"]
+        head_w = state["head_spin"]
+        ball = 0.5 * inertia * inputs.get("spin", 0.0) ** 2
+    else:
+        impulse = impulse_vector(state, result["normal_impulse"].values, result["tangential_impulse"].values,
+                                 result["lateral_impulse"].values)
+        after = after_impact(state, impulse, **inputs)
+        head_v, head_w = after["club_velocity"], after["club_spin"]
+        ball = 0.5 * m * np.sum(after["ball_velocity"] ** 2, -1) + 0.5 * inertia * np.sum(
+            after["ball_spin_vector"] ** 2, -1)
+    head = 0.5 * club * np.sum(head_v**2, -1) + 0.5 * np.einsum("ni,nij,nj->n", head_w, np.linalg.inv(inverse), head_w)
+    return ball + head
+
+
+@given(beta=st.floats(-1.0, 1.0), friction=st.floats(0.05, 1.0), seed=st.integers(0, 2**16))
+def test_restitution_at_e_one_creates_no_energy_on_a_coupled_head(beta, friction, seed):
+    """Issue 21 item 5: Newton's kinematic e with a coupled mobility created up to 0.2 J; the cap removes it."""
+    rng = np.random.default_rng(seed)
+    n = DRIVER_CASES["speed"].size
+    inputs = _with(DRIVER_CASES, restitution=1.0, friction=friction, strike_toe=rng.uniform(-0.04, 0.04, n),
+                   strike_high=rng.uniform(-0.03, 0.03, n), dynamic_loft=rng.uniform(0.0, 1.0, n),
+                   face_angle=rng.uniform(-0.2, 0.2, n), speed=rng.uniform(20.0, 60.0, n))
+    result = get_model("restitution")(tangential_restitution=beta).compute(
+        inputs, ["normal_impulse", "tangential_impulse", "lateral_impulse", "validity"])
+    before, after = kinetic_energy(inputs), kinetic_energy(inputs, result)
+    assert np.all(after <= before * (1.0 + 1e-12)), np.max(after - before)
+
+
+def test_restitution_cap_leaves_the_one_dimensional_model_unchanged(golf_inputs=None):
+    """A fixed face (W diagonal): the kinematic coefficients never create energy, so the cap never acts."""
+    from impactlab.physics.rigid import restitution_impulses
+
+    initial = np.array([[3.0, 0.0, -40.0], [-5.0, 0.0, -20.0]])
+    mobility = np.stack([np.diag([1 / 0.02, 1 / 0.02, 1 / 0.045])] * 2)
+    impulse, capped, energy_capped = restitution_impulses(initial, mobility, 1.0, 1.0)
+    assert not np.any(energy_capped)
+    np.testing.assert_allclose(impulse[:, 2], 2 * 40.0 * 0.045 * np.array([1, 0.5]), rtol=1e-14)
+    np.testing.assert_allclose(impulse[:, 0], -2 * initial[:, 0] * 0.02, rtol=1e-14)
