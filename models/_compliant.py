@@ -154,6 +154,7 @@ class HertzTangentialModel(ImpactModel):
         springs_3d, steps_3d, capped_3d = self.options.resolution_3d()
         resolution[three_d], capped[three_d] = springs_3d, capped_3d
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
+        limit_broken = np.zeros(slip.size, dtype=bool)  # MDR broke the 3-D Coulomb limit (a damped law)
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
                 members = line & sliding & (law_of_case == index) & (resolution == count)
@@ -163,6 +164,8 @@ class HertzTangentialModel(ImpactModel):
                 slip_change[members] = solved.slip_change
                 if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
                     capped[members] |= solved.capped
+                if getattr(solved, "breaks_3d_limit", None) is not None:
+                    limit_broken[members] |= solved.breaks_3d_limit
                 residual[members] = solved.energy_residual(chi[members], psi1[members])
                 steps[members] = solved.steps
                 for row, case in enumerate(np.nonzero(members)[0]):
@@ -204,6 +207,26 @@ class HertzTangentialModel(ImpactModel):
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
                            record, result, solution_of_case, initial_energy, loss)
+            # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
+            # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
+            # answer is one continuous function of the strike position (issue 21, item 5)
+            damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
+            if damped:
+                correct = three_d & sliding & (loss == 0.0)
+                if isinstance(laws[0], hertz.CaseNormals):
+                    levels, level_of_case = np.unique(restitution, return_inverse=True)
+                    groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
+                              for k, level in enumerate(levels)]
+                else:
+                    groups = [(laws[index], correct & (law_of_case == index)) for index in damped]
+                for law, members in groups:
+                    if not np.any(members):
+                        continue
+                    change, broken = self._limit_correction(chi[members], psi1[members], law)
+                    result["tangential_impulse"][members] += -np.sign(slip[members]) * m_tangential[members] \
+                        * change * velocity_unit[members]
+                    limit_broken[members] |= broken
+        result["validity"] = (result["validity"].astype(int) | np.where(limit_broken, 64, 0)).astype(float)
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
             scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
@@ -260,6 +283,14 @@ class HertzTangentialModel(ImpactModel):
     @functools.lru_cache(maxsize=64)
     def _damped_law(restitution: float):
         return hertz.DampedNormal(hertz.damping_for_restitution(float(restitution)))
+
+    def _limit_correction(self, chi, psi1, normal) -> tuple[np.ndarray, np.ndarray]:
+        """(change of the scaled slip change, 3-D limit broken) that the 1-D solver applies to MDR under ``normal``.
+
+        A model whose 1-D solver corrects MDR where a damped law breaks the 3-D Coulomb limit returns that
+        correction for the decoupled equivalents (chi, psi1) of 3-D cases; the default: none.
+        """
+        return np.zeros_like(chi), np.zeros(chi.size, dtype=bool)
 
     def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
         """Solve the scaled tangential problem of the cases (chi, psi1) under ``normal``; kappa = k_t/k_n."""

@@ -197,6 +197,34 @@ class MawModel(HertzTangentialModel):
                                                 chi, psi1, record, normal)
         return solved
 
+    def _limit_correction(self, chi, psi1, normal):
+        """Annuli minus MDR of the decoupled equivalent (chi, psi1), where MDR breaks the 3-D limit (method mdr).
+
+        The 3-D kernel solves a coupled contact with MDR springs; where the same springs of its decoupled
+        equivalent break the 3-D Coulomb limit, the 1-D solver replaces them by annular strips. Adding that
+        difference to the 3-D result makes both paths give one answer at a centred strike and the answer
+        continuous in strike position; off the line it is a first-order correction (the coupling's effect on the
+        correction itself is neglected). Returns (change of the scaled slip change, limit broken).
+        """
+        change, broken = np.zeros_like(chi), np.zeros(chi.size, dtype=bool)
+        if self.options.method != "mdr":
+            return change, broken
+        for value in np.unique(chi):
+            group = np.nonzero(chi == value)[0]
+            counts, _ = self.options.resolution(float(value), psi1[group])
+            for count in np.unique(counts):
+                rows = group[counts == count]
+                steps = self.options.resolution_steps(int(count))
+                plain = mdr.solve_scaled(chi[rows], psi1[rows], springs=int(count), steps=steps, record=False,
+                                         normal=normal)
+                if plain.breaks_3d_limit is None or not np.any(plain.breaks_3d_limit):
+                    continue
+                fixed = self._annuli_where_mdr_fails(plain, plain.breaks_3d_limit, chi[rows], psi1[rows], False,
+                                                     normal)
+                change[rows] = fixed.slip_change - plain.slip_change
+                broken[rows] = plain.breaks_3d_limit
+        return change, broken
+
     def _annuli_where_mdr_fails(self, solved, interior, chi, psi1, record, normal):
         """Re-solve by annular strips the cases where a damped law made an MDR spring slip inside a stuck one.
 

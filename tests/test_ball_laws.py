@@ -68,3 +68,47 @@ def test_restitution_cap_leaves_the_one_dimensional_model_unchanged(golf_inputs=
     assert not np.any(energy_capped)
     np.testing.assert_allclose(impulse[:, 2], 2 * 40.0 * 0.045 * np.array([1, 0.5]), rtol=1e-14)
     np.testing.assert_allclose(impulse[:, 0], -2 * initial[:, 0] * 0.02, rtol=1e-14)
+
+
+def _centred_head_cases(offsets, loft_deg=20.0, friction=0.15, restitutions=(0.7,)):
+    from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+    from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs
+    from impactlab.scene.materials import BALL_PRESETS
+
+    head = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, 0.0, 0.035),
+                    loft=np.radians(10.0), bulge_radius=np.inf, roll_radius=np.inf,
+                    material=CLUB_PRESETS["driver"].material)
+    delivery = Delivery(45.0, path=0.0, face_angle=0.0, attack_angle=0.0, dynamic_loft=np.radians(loft_deg))
+    scenes = [Scene.from_delivery(BALL_PRESETS["urethane_tour"], Scene.face_of(head), Contact(friction, e), delivery,
+                                  0.0, head, Strike(toe, 0.0)) for e in restitutions for toe in offsets]
+    keys = scenes[0].inputs().keys()
+    return complete_inputs({key: np.array([scene.inputs()[key] for scene in scenes]) for key in keys})
+
+
+def test_maw_hysteretic_is_continuous_across_the_centred_strike():
+    """Issue 21 item 5: the centred strike (1-D path, annular strips where MDR breaks the 3-D limit) and strikes
+    1 micrometre off it (3-D kernel) gave spins 52 rpm apart; they must agree to well under 1 rpm, and both carry
+    the friction_limit_3d flag (64) since MDR breaks the limit there."""
+    from impactlab.physics.contact import contact_state
+
+    inputs = _centred_head_cases([0.0, 1e-6, -1e-6])
+    assert list(contact_state(inputs)["one_dimensional"]) == [True, False, False]
+    result = get_model("maw")(inelastic="hysteretic").compute(inputs, ["spin_rate", "validity"])
+    spin = result["spin_rate"].values
+    assert np.max(np.abs(spin - spin[0])) < 0.5, spin
+    assert np.all(result["validity"].values.astype(int) & 64)
+
+
+@pytest.mark.slow
+def test_maw_hysteretic_3d_limit_checked_with_a_restitution_per_case():
+    """With more restitution values than MAX_DAMPED_LAWS every case takes the 3-D kernel; the 3-D limit is still
+    checked and corrected, so a case's answer does not depend on how many restitutions the batch holds."""
+    from models._compliant import MAX_DAMPED_LAWS
+
+    few = _centred_head_cases([1e-6], restitutions=(0.7,))
+    many = _centred_head_cases([1e-6], restitutions=tuple(np.linspace(0.6, 0.8, MAX_DAMPED_LAWS + 1)) + (0.7,))
+    model = get_model("maw")(inelastic="hysteretic")
+    alone = model.compute(few, ["spin_rate", "validity"])
+    batch = model.compute(many, ["spin_rate", "validity"])
+    assert abs(batch["spin_rate"].values[-1] - alone["spin_rate"].values[0]) < 2.0
+    assert int(batch["validity"].values[-1]) & 64
