@@ -13,7 +13,10 @@ from impactlab.errors import ModelContractError
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz
 
-from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
+from impactlab.physics import ball_laws
+from impactlab.physics.contact import couple_mobility
+
+from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS, rolling_on
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -82,7 +85,7 @@ class HertzTangentialModel(ImpactModel):
     optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
                               "contact_radius_ratio", "coupling_estimate", "steps", "energy_error", "validity",
-                              "face_rotation"}
+                              "face_rotation"} | ROLLING_OUTPUTS
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
     _3d_depends_on_kappa = False
     has_tolerance = True
@@ -135,6 +138,12 @@ class HertzTangentialModel(ImpactModel):
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        # rolling resistance (ball_laws): a couple the 1-D solvers do not carry, so those cases take the 3-D kernel
+        hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
+        arm_factor = np.zeros(slip.size)
+        if rolling_on(hysteresis):
+            arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(hysteresis, restitution)
+            three_d |= (arm_factor > 0.0) & (friction > 0.0)
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)
         turning_head = state["head_inverse_inertia"] is not None
@@ -197,6 +206,8 @@ class HertzTangentialModel(ImpactModel):
             "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
             "lateral_impulse": np.zeros_like(slip),
             "face_rotation": np.zeros_like(slip),
+            "rolling_moment": np.zeros_like(slip),
+            "rolling_moment_slip": np.zeros_like(slip),
             "contact_time": duration,
             "contact_radius_ratio": contact_ratio,
             "coupling_estimate": np.where(sliding, coupled, 0.0),
@@ -206,7 +217,8 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss)
+                           record, result, solution_of_case, initial_energy, loss,
+                           self._rolling_inputs(p, state, arm_factor))
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
             # answer is one continuous function of the strike position (issue 21, item 5)
@@ -242,8 +254,17 @@ class HertzTangentialModel(ImpactModel):
         """Keyword arguments of :func:`impactlab.physics.compliant3d.solve` for this model's tangential law."""
         raise NotImplementedError
 
+    @staticmethod
+    def _rolling_inputs(inputs, state, arm_factor):
+        """(B, D, rolling rate, arm factor) of every case for the 3-D kernel's couple, or None without one."""
+        if not np.any(arm_factor > 0.0):
+            return None
+        coupling, rotation, rate = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
+                                                   inputs["ball_inertia_factor"])
+        return coupling, rotation, rate, arm_factor
+
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy, loss):
+                  result, solution_of_case, initial_energy, loss, rolling=None):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -259,6 +280,7 @@ class HertzTangentialModel(ImpactModel):
                                        friction=friction[rows], kappa=kappa[rows], modulus=modulus[rows],
                                        radius=state["contact_radius"][rows], normal=normal,
                                        springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
+                                       rolling=None if rolling is None else tuple(part[rows] for part in rolling),
                                        **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]
@@ -270,7 +292,16 @@ class HertzTangentialModel(ImpactModel):
             # energy balance of the solved (scaled-speed) problem: kinetic energy change = work of the forces
             initial = np.stack([state["slip_speed"][rows], np.zeros(impulse.shape[0]), -scale_speed[rows]], -1)
             mean = initial + 0.5 * np.einsum("nij,nj->ni", state["mobility"][rows], impulse)
-            result["energy_error"][rows] = (np.sum(impulse * mean, -1) - solved.work) / initial_energy[rows]
+            kinetic = np.sum(impulse * mean, -1)
+            if rolling is not None:  # the couple's work on the mean relative rolling rate
+                coupling, rotation, rate, _ = (part[rows] for part in rolling)
+                moment = solved.moment
+                result["rolling_moment"][rows], result["rolling_moment_slip"][rows] = moment[:, 1], moment[:, 0]
+                rate_after = rate + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum("nij,nj->ni", rotation,
+                                                                                            moment)
+                mean = mean + 0.5 * np.einsum("nij,nj->ni", coupling, moment)
+                kinetic = np.sum(impulse * mean, -1) + np.sum(moment * 0.5 * (rate + rate_after), -1)
+            result["energy_error"][rows] = (kinetic - solved.work) / initial_energy[rows]
             if state["head_inverse_inertia"] is not None:
                 moment = np.einsum("nij,nj->ni", state["frame"][rows], solved.impulse_time)
                 turn = np.einsum("nij,nj->ni", state["head_inverse_inertia"][rows],

@@ -10,6 +10,7 @@ from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
+from ._common import ROLLING_HYSTERESIS
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -58,6 +59,13 @@ class MawOptions(CompliantOptions):
         ``"hysteretic"``: Hertz contact with Hunt-Crossley damping chosen to
         rebound at e, solved at the real approach speed; the Coulomb limit
         follows the damped normal force.
+    rolling_hysteresis : float or str
+        Rolling resistance of the viscoelastic cover (:mod:`impactlab.physics.ball_laws`): the normal force
+        acts d = (3/16) alpha a(t) ahead of the contact centre, a(t) the Hertz contact radius at each instant
+        (Greenwood & Tabor; Johnson 1985, ch. 8), a couple d F_n opposing the relative rolling of ball and
+        face. alpha is a number in [0, 1] or ``"restitution"`` for 1 - e^2 (the normal impact is the cover's
+        loading-unloading cycle: no free parameter). Cases with a couple take the 3-D kernel. Default 0: no
+        couple, the paper's model unchanged.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -69,6 +77,7 @@ class MawOptions(CompliantOptions):
     history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
+    rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
 
     @tolerance.default
     def _default_tolerance(self):

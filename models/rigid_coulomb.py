@@ -79,25 +79,33 @@ class RigidCoulombModel(ImpactModel):
         restitution = np.broadcast_to(inputs["restitution"], (n,))
         impulse = np.zeros((n, 3))
         diagnostics = closed_form_diagnostics(n)
+        zero = np.zeros(n)
+        rolling = {"rolling_moment": zero.copy(), "rolling_moment_slip": zero.copy()}
+        todo = np.ones(n, dtype=bool)
         if rolling_on(self.options.rolling_hysteresis):
-            return self._rolling(inputs, state, friction, restitution)
-        line = state["one_dimensional"]
+            # cases with a positive offset take the integrator with the couple; the others (alpha = 0, no
+            # friction to roll the ball) stay exactly today's model
+            todo = self._rolling(inputs, state, friction, restitution, impulse, diagnostics, rolling)
+        line = state["one_dimensional"] & todo
         if np.any(line):
             w = state["mobility"][line]
             jn, jt, _ = coulomb_impulses_1d(state["normal_speed"][line], state["slip_speed"][line],
                                             1.0 / w[:, 2, 2], 1.0 / w[:, 0, 0], friction[line], restitution[line])
             impulse[line, 0], impulse[line, 2] = -jt, jn
-        if not np.all(line):
-            solved, flags = stronge_impulses(state["initial_velocity"][~line], state["mobility"][~line],
-                                             friction[~line], restitution[~line], self.options.steps)
-            impulse[~line] = solved
-            diagnostics["steps"][~line] = self.options.steps
-            diagnostics["validity"][~line] = np.where(flags & 1, 4.0, 0.0)
-        zero = np.zeros(n)
-        return {**impulse_outputs(impulse), **diagnostics, "rolling_moment": zero, "rolling_moment_slip": zero}
+        coupled = todo & ~line
+        if np.any(coupled):
+            solved, flags = stronge_impulses(state["initial_velocity"][coupled], state["mobility"][coupled],
+                                             friction[coupled], restitution[coupled], self.options.steps)
+            impulse[coupled] = solved
+            diagnostics["steps"][coupled] = self.options.steps
+            diagnostics["validity"][coupled] = np.where(flags & 1, 4.0, 0.0)
+        return {**impulse_outputs(impulse), **diagnostics, **rolling}
 
-    def _rolling(self, inputs, state, friction, restitution):
-        """Every case through the integrator over the normal impulse with the rolling couple (ball_laws)."""
+    def _rolling(self, inputs, state, friction, restitution, impulse, diagnostics, rolling):
+        """Cases with a rolling offset d > 0 and friction through the integrator with the couple (ball_laws).
+
+        Fills their rows of ``impulse``, ``diagnostics`` and ``rolling``; returns the cases left to solve.
+        """
         missing = sorted(MATERIAL_OPTIONAL - set(inputs))
         if missing:
             raise ModelInputError(
@@ -110,13 +118,16 @@ class RigidCoulombModel(ImpactModel):
         alpha = ball_laws.hysteresis_fraction(self.options.rolling_hysteresis, restitution)
         arm = ball_laws.mean_rolling_arm(alpha, state["contact_radius"], 1.0 / mobility[:, 2, 2], modulus,
                                          state["normal_speed"])
-        coupling, rotation, rolling = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
-                                                      inputs["ball_inertia_factor"])
-        impulse, moment, flags = ball_laws.rolling_impulses(state["initial_velocity"], mobility, coupling, rotation,
-                                                            rolling, friction, restitution, arm, self.options.steps)
-        n = impulse.shape[0]
-        diagnostics = closed_form_diagnostics(n)
-        diagnostics["steps"][:] = self.options.steps
-        diagnostics["validity"] = np.where(flags & 1, 8.0, 0.0)
-        return {**impulse_outputs(impulse), **diagnostics, "rolling_moment": moment[:, 1],
-                "rolling_moment_slip": moment[:, 0]}
+        # a couple needs friction to roll the ball, or a ball already rolling relative to the face
+        coupling, rotation, rates = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
+                                                    inputs["ball_inertia_factor"])
+        rows = (arm > 0.0) & ((friction > 0.0) | np.any(rates != 0.0, axis=-1))
+        if np.any(rows):
+            solved, moment, flags = ball_laws.rolling_impulses(
+                state["initial_velocity"][rows], mobility[rows], coupling[rows], rotation[rows], rates[rows],
+                friction[rows], restitution[rows], arm[rows], self.options.steps)
+            impulse[rows] = solved
+            diagnostics["steps"][rows] = self.options.steps
+            diagnostics["validity"][rows] = np.where(flags & 1, 8.0, 0.0)
+            rolling["rolling_moment"][rows], rolling["rolling_moment_slip"][rows] = moment[:, 1], moment[:, 0]
+        return ~rows
