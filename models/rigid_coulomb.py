@@ -125,9 +125,9 @@ class RigidCoulombModel(ImpactModel):
         if np.any(rows):
             solved, moment, flags = ball_laws.rolling_impulses(
                 state["initial_velocity"][rows], mobility[rows], coupling[rows], rotation[rows], rates[rows],
-                friction[rows], restitution[rows], arm[rows], self.options.steps)
+                friction[rows], restitution[rows], arm[rows])
             impulse[rows] = solved
-            diagnostics["steps"][rows] = self.options.steps
+            diagnostics["steps"][rows] = 3 * ball_laws.ROLLING_STEPS
             diagnostics["validity"][rows] = np.where(flags & 1, 8.0, 0.0)
             rolling["rolling_moment"][rows], rolling["rolling_moment_slip"][rows] = moment[:, 1], moment[:, 0]
         return ~rows

@@ -52,12 +52,12 @@ import functools
 
 import numpy as np
 
-from . import hertz
+from . import _kernels, hertz
 
 #: d / (alpha a) for a sphere (Greenwood-Tabor hysteresis estimate; Johnson 1985, ch. 8)
 SPHERE_FACTOR = 3.0 / 16.0
-#: default steps over the normal impulse of :func:`rolling_impulses`
-ROLLING_STEPS = 2000
+#: default steps over the normal impulse of :func:`rolling_impulses` (run at N and 2N and extrapolated)
+ROLLING_STEPS = 200
 #: sweeps of the projected block Gauss-Seidel that splits each step's impulse between friction and the couple
 SWEEPS = 6
 
@@ -123,7 +123,37 @@ def _project(vector, limit):
 
 
 def rolling_impulses(initial, mobility, coupling, rotation, rolling, friction, restitution, arm,
-                     steps: int = ROLLING_STEPS):
+                     steps: int = ROLLING_STEPS, extrapolate: bool = True):
+    """The rolling impact of each case (:func:`rolling_impulses_numpy` has the method and the parameters).
+
+    Runs the compiled kernel (``_kernels.rolling_cases``; numpy where numba is off, to round-off the same) at
+    ``steps`` and ``2 steps`` and extrapolates, 2 J(2N) - J(N): measured on the conformance suite's driver
+    cases against 32000 steps, the plain error falls as 0.1 / steps of mu J_n (the slip direction is frozen
+    within a step); extrapolated at 200 it is 1.3e-5 on the driver cases and 5e-5 on the plate cases (where
+    the compression ends inside a step; benchmarks/bench_ball_laws.py). Returns
+    (impulse (n, 3), moment (n, 2), flags (n,)).
+    """
+    arguments = (initial, mobility, coupling, rotation, rolling, friction, restitution, arm)
+    if extrapolate:  # Richardson: the error is first order in 1/steps where the slip turns
+        coarse, fine = rolling_impulses(*arguments, steps, False), rolling_impulses(*arguments, 2 * steps, False)
+        return 2.0 * fine[0] - coarse[0], 2.0 * fine[1] - coarse[1], fine[2] | coarse[2]
+    if not _kernels.HAVE_NUMBA:
+        return rolling_impulses_numpy(*arguments, steps)
+    n = initial.shape[0]
+    impulse, moment, flags = np.zeros((n, 3)), np.zeros((n, 2)), np.zeros(n, dtype=np.int64)
+
+    def column(value):
+        return np.broadcast_to(np.asarray(value, float), (n,)).copy()
+
+    _kernels.rolling_cases(np.ascontiguousarray(initial, float), np.ascontiguousarray(mobility, float),
+                           np.ascontiguousarray(coupling, float), np.ascontiguousarray(rotation, float),
+                           np.ascontiguousarray(rolling, float), column(friction), column(restitution), column(arm),
+                           int(steps), SWEEPS, impulse, moment, flags)
+    return impulse, moment, flags
+
+
+def rolling_impulses_numpy(initial, mobility, coupling, rotation, rolling, friction, restitution, arm,
+                           steps: int = ROLLING_STEPS):
     """Rigid impact with Coulomb friction, a rolling-resistance couple and Stronge's energetic restitution.
 
     Integrates over the normal impulse P in ``steps`` equal steps of (1 + e) V_n / W_nn (more if the contact
