@@ -55,8 +55,9 @@ ROLLING_HYSTERESIS_DOC = """rolling_hysteresis : float or str
         Rolling resistance of the viscoelastic cover (impactlab.physics.ball_laws): the normal force acts
         d = (3/16) alpha a ahead of the contact centre (Greenwood & Tabor; Johnson 1985, ch. 8), a couple
         d F_n opposing the relative rolling of ball and face. alpha, the fraction of a loading-unloading
-        cycle's energy the cover loses, is a number in [0, 1] or ``"restitution"`` for 1 - e^2 (the normal
-        impact is that cycle; no free parameter). Default 0: no couple, the paper's model unchanged."""
+        cycle's energy the cover loses, is a number in [0, 1] or ``"restitution"`` for 1 - e_ball^2 (the normal
+        impact is that cycle; no free parameter; e_ball = e - club_restitution_gain, the ball's own e against a
+        rigid face). Default 0: no couple, the paper's model unchanged."""
 
 
 def rolling_on(value) -> bool:

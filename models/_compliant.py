@@ -82,7 +82,7 @@ class HertzTangentialModel(ImpactModel):
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
-    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss"}
+    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss", "club_restitution_gain"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
                               "contact_radius_ratio", "coupling_estimate", "steps", "energy_error", "validity",
                               "face_rotation"} | ROLLING_OUTPUTS
@@ -142,7 +142,8 @@ class HertzTangentialModel(ImpactModel):
         hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
         arm_factor = np.zeros(slip.size)
         if rolling_on(hysteresis):
-            arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(hysteresis, restitution)
+            arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
+                hysteresis, restitution, p.get("club_restitution_gain", 0.0))
             three_d |= (arm_factor > 0.0) & (friction > 0.0)
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)

@@ -63,8 +63,9 @@ class MawOptions(CompliantOptions):
         Rolling resistance of the viscoelastic cover (:mod:`impactlab.physics.ball_laws`): the normal force
         acts d = (3/16) alpha a(t) ahead of the contact centre, a(t) the Hertz contact radius at each instant
         (Greenwood & Tabor; Johnson 1985, ch. 8), a couple d F_n opposing the relative rolling of ball and
-        face. alpha is a number in [0, 1] or ``"restitution"`` for 1 - e^2 (the normal impact is the cover's
-        loading-unloading cycle: no free parameter). Cases with a couple take the 3-D kernel. Default 0: no
+        face. alpha is a number in [0, 1] or ``"restitution"`` for 1 - e_ball^2 (the normal impact is the cover's
+        loading-unloading cycle: no free parameter; e_ball = e - club_restitution_gain). Cases with a couple
+        take the 3-D kernel. Default 0: no
         couple, the paper's model unchanged.
     """
 

@@ -32,8 +32,9 @@ class RigidCoulombOptions:
         couple d F_n opposing the relative rolling of ball and face; this rigid model uses the impulse-weighted
         mean offset of the Hertz history (0.896 a_max), so it reads the ball's and face's elastic constants.
         alpha, the fraction of a loading-unloading cycle's energy the cover loses, is a number in [0, 1] or
-        ``"restitution"`` for 1 - e^2 (the normal impact is that cycle: no free parameter). Default 0: no
-        couple, the model unchanged.
+        ``"restitution"`` for 1 - e_ball^2 (the normal impact is that cycle: no free parameter; e_ball = e -
+        club_restitution_gain, the ball's own e against a rigid face, without a wood face's spring-like gain).
+        Default 0: no couple, the model unchanged.
     """
 
     steps: int = attrs.field(default=STRONGE_STEPS, validator=attrs.validators.and_(
@@ -67,7 +68,7 @@ class RigidCoulombModel(ImpactModel):
     label = "rigid body, Coulomb friction"
     references = (STRONGE, "R. M. Brach, Mechanical Impact Dynamics, Wiley (1991)")
     requires = RIGID_BODY_INPUTS | {"friction", "restitution"}
-    optional_inputs = RIGID_BODY_OPTIONAL | MATERIAL_OPTIONAL
+    optional_inputs = RIGID_BODY_OPTIONAL | MATERIAL_OPTIONAL | {"club_restitution_gain"}
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS | ROLLING_OUTPUTS
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
@@ -115,7 +116,8 @@ class RigidCoulombModel(ImpactModel):
                                             "face_poisson_ratio")]
         modulus = hertz.effective_modulus(*moduli)
         mobility = state["mobility"]
-        alpha = ball_laws.hysteresis_fraction(self.options.rolling_hysteresis, restitution)
+        alpha = ball_laws.hysteresis_fraction(self.options.rolling_hysteresis, restitution,
+                                              inputs.get("club_restitution_gain", 0.0))
         arm = ball_laws.mean_rolling_arm(alpha, state["contact_radius"], 1.0 / mobility[:, 2, 2], modulus,
                                          state["normal_speed"])
         # a couple needs friction to roll the ball, or a ball already rolling relative to the face

@@ -62,11 +62,17 @@ ROLLING_STEPS = 200
 SWEEPS = 6
 
 
-def hysteresis_fraction(value, restitution):
-    """alpha per case: a number in [0, 1], or ``"restitution"`` for 1 - e^2 (module docstring) [1]."""
+def hysteresis_fraction(value, restitution, face_gain=0.0):
+    """alpha per case: a number in [0, 1], or ``"restitution"`` for 1 - e_ball^2 (module docstring) [1].
+
+    e_ball = e - face_gain is the ball's own restitution against a rigid face: a thin wood face's spring-like
+    rise of e (input ``club_restitution_gain``) returns energy the face stored, not energy the cover kept, so
+    it does not enter the cover's hysteresis.
+    """
     e = np.asarray(restitution, float)
     if isinstance(value, str):
-        return np.clip(1.0 - e**2, 0.0, 1.0)
+        ball = e - np.asarray(face_gain, float)
+        return np.clip(1.0 - ball**2, 0.0, 1.0)
     return np.broadcast_to(np.asarray(value, float), e.shape).copy()
 
 
