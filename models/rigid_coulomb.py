@@ -83,7 +83,9 @@ class RigidCoulombModel(ImpactModel):
         zero = np.zeros(n)
         rolling = {"rolling_moment": zero.copy(), "rolling_moment_slip": zero.copy()}
         todo = np.ones(n, dtype=bool)
-        if rolling_on(self.options.rolling_hysteresis):
+        # a subclass's Options may leave the law out (getattr): then the model is today's
+        hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
+        if rolling_on(hysteresis):
             # cases with a positive offset take the integrator with the couple; the others (alpha = 0, no
             # friction to roll the ball) stay exactly today's model
             todo = self._rolling(inputs, state, friction, restitution, impulse, diagnostics, rolling)
