@@ -109,6 +109,7 @@ class HertzTangentialModel(ImpactModel):
         modulus = hertz.effective_modulus(*moduli)
         kappa = hertz.tangential_modulus(*moduli) / modulus
         state = p.contact_state()
+        kappa = self._construction_kappa(kappa, moduli, modulus, state)
         mobility = state["mobility"]
         # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
         m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
@@ -254,6 +255,22 @@ class HertzTangentialModel(ImpactModel):
     def _law_3d(self, kappa: float) -> dict:
         """Keyword arguments of :func:`impactlab.physics.compliant3d.solve` for this model's tangential law."""
         raise NotImplementedError
+
+    def _construction_kappa(self, kappa, moduli, modulus, state):
+        """kappa of a ball with a cover (options ``cover_thickness``, ``cover_modulus``; ball_laws.layered_kappa)."""
+        thickness = getattr(self.options, "cover_thickness", 0.0)
+        if not thickness:
+            return kappa
+        ball_modulus, ball_poisson = moduli[0], moduli[1]
+        cover = getattr(self.options, "cover_modulus", None) or ball_modulus
+        mobility = state["mobility"]
+        # the contact radius at which the layer is taken: the Hertz impulse-weighted mean, 0.896 a_max
+        approach = hertz.max_approach(1.0 / mobility[:, 2, 2], state["contact_radius"], modulus,
+                                      state["normal_speed"])
+        radius = ball_laws.mean_radius_ratio() * np.sqrt(state["contact_radius"] * approach)
+        shear = 1.0 / (2.0 * (1.0 + ball_poisson))
+        return ball_laws.layered_kappa(kappa, kappa * modulus, ball_modulus * shear, radius, thickness,
+                                       cover * shear)
 
     @staticmethod
     def _rolling_inputs(inputs, state, arm_factor):

@@ -6,7 +6,7 @@ import attrs
 import numpy as np
 
 from impactlab.model import HISTORY_LENGTH
-from impactlab.validators import check, in_range
+from impactlab.validators import check, in_range, to_float
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
@@ -67,6 +67,11 @@ class MawOptions(CompliantOptions):
         loading-unloading cycle: no free parameter; e_ball = e - club_restitution_gain). Cases with a couple
         take the 3-D kernel. Default 0: no
         couple, the paper's model unchanged.
+    cover_thickness, cover_modulus : float
+        The ball's construction in the tangential compliance (:func:`impactlab.physics.ball_laws.layered_kappa`):
+        a cover of thickness t [m] and Young's modulus E_c [Pa] (the ball's Poisson ratio) over a core of the
+        ball's equivalent material, a shear spring in series with Mindlin's; it changes kappa and with it the
+        grip. Default t = 0 (and E_c the ball's): the paper's homogeneous ball.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -79,6 +84,10 @@ class MawOptions(CompliantOptions):
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    cover_thickness: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        0.0, 0.005, "a cover thickness in m between 0 and 0.005 (5 mm)"))
+    cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
 
     @tolerance.default
     def _default_tolerance(self):

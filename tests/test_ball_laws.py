@@ -223,7 +223,8 @@ WITH_LAWS = [get_model("rigid_coulomb")(rolling_hysteresis="restitution"),
              get_model("maw")(rolling_hysteresis=0.3, tolerance=1e-3),
              get_model("maw")(rolling_hysteresis="restitution", inelastic="hysteretic", tolerance=1e-3),
              get_model("hertz_mindlin")(rolling_hysteresis=0.3, tolerance=1e-3),
-             get_model("dem_linear")(rolling_hysteresis=0.3, tolerance=1e-3)]
+             get_model("dem_linear")(rolling_hysteresis=0.3, tolerance=1e-3),
+             get_model("maw")(cover_thickness=0.001, cover_modulus=40e6, rolling_hysteresis=0.3, tolerance=1e-3)]
 
 
 @pytest.mark.slow
@@ -248,3 +249,27 @@ def test_rolling_kernel_equals_its_numpy_reference():
     reference = ball_laws.rolling_impulses_numpy(*args, steps=100)
     np.testing.assert_allclose(compiled[0], reference[0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(compiled[1], reference[1], rtol=0, atol=1e-15)
+
+
+# -- the ball's construction: a cover in the tangential compliance -------------------------------------------------
+
+def test_layered_kappa_is_two_shear_springs_in_series():
+    """Hand case: a = 10 mm, G* = 100 MPa, G_b = 50 MPa, t = 1 mm, G_c = 25 MPa: k_t = 2 a G* = 2e6 N/m; the cover
+    adds t/(pi a^2) (1/G_c - 1/G_b) = 1e-3/(pi 1e-4) (4e-8 - 2e-8) = 6.366e-8 m/N to 1/k_t = 5e-7."""
+    kappa = ball_laws.layered_kappa(0.7, 100e6, 50e6, 0.01, 0.001, 25e6)
+    assert kappa == pytest.approx(0.7 * 5e-7 / (5e-7 + 0.001 / (np.pi * 1e-4) * (1 / 25e6 - 1 / 50e6)), rel=1e-12)
+    assert ball_laws.layered_kappa(0.7, 100e6, 50e6, 0.01, 0.001, 50e6) == pytest.approx(0.7, rel=1e-15)
+    assert ball_laws.layered_kappa(0.7, 100e6, 50e6, 0.01, 0.001, 100e6) > 0.7  # a stiffer cover stiffens
+
+
+def test_cover_of_the_balls_own_modulus_changes_nothing_and_a_soft_cover_grips_more():
+    names = ["spin_rate"]
+    inputs = _with(REFERENCE_1D, spin=0.0)
+    keep = (inputs["angle"] > 0.2) & (inputs["angle"] < 0.6) & (inputs["friction"] == 0.4)
+    inputs = {key: value[keep] for key, value in inputs.items()}
+    today = get_model("maw")(tolerance=1e-3).compute(inputs, names)["spin_rate"].values
+    own = get_model("maw")(tolerance=1e-3, cover_thickness=0.001,
+                           cover_modulus=float(inputs["ball_youngs_modulus"][0])).compute(inputs, names)
+    np.testing.assert_allclose(own["spin_rate"].values, today, rtol=1e-12)
+    soft = get_model("maw")(tolerance=1e-3, cover_thickness=0.001, cover_modulus=40e6).compute(inputs, names)
+    assert np.all(soft["spin_rate"].values > today)  # measured: kappa down, the reversal of the springs up
