@@ -290,6 +290,10 @@ OUTPUTS: dict[str, OutputSpec] = {
     "tangential_impulse": OutputSpec("N s", "tangential impulse on the ball, positive opposing the incoming slip"),
     "lateral_impulse": OutputSpec("N s", "tangential impulse on the ball across the incoming slip, along n x s "
                                   "(0 when the slip stays on one line)"),
+    "rolling_moment": OutputSpec("N m s", "angular impulse on the ball of the rolling-resistance couple about "
+                                 "n x s, the backspin axis (0 without a rolling law; the head takes the opposite)"),
+    "rolling_moment_slip": OutputSpec("N m s", "angular impulse on the ball of the rolling-resistance couple about "
+                                      "the incoming slip direction s (0 without a rolling law or off one line)"),
     "contact_time": OutputSpec("s", "contact duration"),
     "energy_loss": OutputSpec("J", "kinetic energy lost in the impact (ball and club)"),
     "normal_force": OutputSpec("N", "normal contact force", kind=HISTORY),

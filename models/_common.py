@@ -2,6 +2,8 @@
 
 import numpy as np
 
+from impactlab.validators import check
+
 from impactlab.physics.contact import GEOMETRY_INPUTS
 from impactlab.physics.delivery import DELIVERY_INPUTS
 
@@ -32,3 +34,32 @@ def closed_form_diagnostics(size: int) -> dict:
 def impulse_outputs(impulse) -> dict:
     """The models' impulse outputs from a contact-frame impulse (s, l, n) on the ball (tangential: opposing slip)."""
     return {"normal_impulse": impulse[:, 2], "tangential_impulse": -impulse[:, 0], "lateral_impulse": impulse[:, 1]}
+
+
+#: inputs a ball law reads when it is switched on (the rolling arm needs the Hertz contact radius)
+MATERIAL_OPTIONAL = frozenset({"ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
+                               "face_poisson_ratio"})
+#: what a model with a rolling law gives besides its impulses
+ROLLING_OUTPUTS = frozenset({"rolling_moment", "rolling_moment_slip"})
+
+
+def _hysteresis(value) -> bool:
+    if isinstance(value, str):
+        return value == "restitution"
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and 0.0 <= float(value) <= 1.0
+
+
+#: validator of the option ``rolling_hysteresis`` (impactlab.physics.ball_laws)
+ROLLING_HYSTERESIS = check(_hysteresis, "a hysteresis fraction 0 <= alpha <= 1, or 'restitution' (alpha = 1 - e^2)")
+ROLLING_HYSTERESIS_DOC = """rolling_hysteresis : float or str
+        Rolling resistance of the viscoelastic cover (impactlab.physics.ball_laws): the normal force acts
+        d = (3/16) alpha a ahead of the contact centre (Greenwood & Tabor; Johnson 1985, ch. 8), a couple
+        d F_n opposing the relative rolling of ball and face. alpha, the fraction of a loading-unloading
+        cycle's energy the cover loses, is a number in [0, 1] or ``"restitution"`` for 1 - e_ball^2 (the normal
+        impact is that cycle; no free parameter; e_ball = e - club_restitution_gain, the ball's own e against a
+        rigid face). Default 0: no couple, the paper's model unchanged."""
+
+
+def rolling_on(value) -> bool:
+    """Whether a ``rolling_hysteresis`` option switches the rolling law on."""
+    return isinstance(value, str) or float(value) > 0.0

@@ -13,7 +13,10 @@ from impactlab.errors import ModelContractError
 from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz
 
-from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL
+from impactlab.physics import ball_laws
+from impactlab.physics.contact import couple_mobility
+
+from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS, rolling_on
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -79,10 +82,10 @@ class HertzTangentialModel(ImpactModel):
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
-    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss"}
+    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss", "club_restitution_gain"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
                               "contact_radius_ratio", "coupling_estimate", "steps", "energy_error", "validity",
-                              "face_rotation"}
+                              "face_rotation"} | ROLLING_OUTPUTS
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
     _3d_depends_on_kappa = False
     has_tolerance = True
@@ -106,6 +109,7 @@ class HertzTangentialModel(ImpactModel):
         modulus = hertz.effective_modulus(*moduli)
         kappa = hertz.tangential_modulus(*moduli) / modulus
         state = p.contact_state()
+        kappa = self._construction_kappa(kappa, moduli, modulus, state)
         mobility = state["mobility"]
         # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
         m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
@@ -135,6 +139,13 @@ class HertzTangentialModel(ImpactModel):
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        # rolling resistance (ball_laws): a couple the 1-D solvers do not carry, so those cases take the 3-D kernel
+        hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
+        arm_factor = np.zeros(slip.size)
+        if rolling_on(hysteresis):
+            arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
+                hysteresis, restitution, p.get("club_restitution_gain", 0.0))
+            three_d |= (arm_factor > 0.0) & (friction > 0.0)
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)
         turning_head = state["head_inverse_inertia"] is not None
@@ -154,6 +165,7 @@ class HertzTangentialModel(ImpactModel):
         springs_3d, steps_3d, capped_3d = self.options.resolution_3d()
         resolution[three_d], capped[three_d] = springs_3d, capped_3d
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
+        limit_broken = np.zeros(slip.size, dtype=bool)  # MDR broke the 3-D Coulomb limit (a damped law)
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
                 members = line & sliding & (law_of_case == index) & (resolution == count)
@@ -163,6 +175,8 @@ class HertzTangentialModel(ImpactModel):
                 slip_change[members] = solved.slip_change
                 if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
                     capped[members] |= solved.capped
+                if getattr(solved, "breaks_3d_limit", None) is not None:
+                    limit_broken[members] |= solved.breaks_3d_limit
                 residual[members] = solved.energy_residual(chi[members], psi1[members])
                 steps[members] = solved.steps
                 for row, case in enumerate(np.nonzero(members)[0]):
@@ -194,6 +208,8 @@ class HertzTangentialModel(ImpactModel):
             "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
             "lateral_impulse": np.zeros_like(slip),
             "face_rotation": np.zeros_like(slip),
+            "rolling_moment": np.zeros_like(slip),
+            "rolling_moment_slip": np.zeros_like(slip),
             "contact_time": duration,
             "contact_radius_ratio": contact_ratio,
             "coupling_estimate": np.where(sliding, coupled, 0.0),
@@ -203,7 +219,28 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss)
+                           record, result, solution_of_case, initial_energy, loss,
+                           self._rolling_inputs(p, state, arm_factor))
+            # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
+            # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
+            # answer is one continuous function of the strike position (issue 21, item 5)
+            damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
+            if damped:
+                correct = three_d & sliding & (loss == 0.0)
+                if isinstance(laws[0], hertz.CaseNormals):
+                    levels, level_of_case = np.unique(restitution, return_inverse=True)
+                    groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
+                              for k, level in enumerate(levels)]
+                else:
+                    groups = [(laws[index], correct & (law_of_case == index)) for index in damped]
+                for law, members in groups:
+                    if not np.any(members):
+                        continue
+                    change, broken = self._limit_correction(chi[members], psi1[members], law)
+                    result["tangential_impulse"][members] += -np.sign(slip[members]) * m_tangential[members] \
+                        * change * velocity_unit[members]
+                    limit_broken[members] |= broken
+        result["validity"] = (result["validity"].astype(int) | np.where(limit_broken, 64, 0)).astype(float)
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
             scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
@@ -219,8 +256,33 @@ class HertzTangentialModel(ImpactModel):
         """Keyword arguments of :func:`impactlab.physics.compliant3d.solve` for this model's tangential law."""
         raise NotImplementedError
 
+    def _construction_kappa(self, kappa, moduli, modulus, state):
+        """kappa of a ball with a cover (options ``cover_thickness``, ``cover_modulus``; ball_laws.layered_kappa)."""
+        thickness = getattr(self.options, "cover_thickness", 0.0)
+        if not thickness:
+            return kappa
+        ball_modulus, ball_poisson = moduli[0], moduli[1]
+        cover = getattr(self.options, "cover_modulus", None) or ball_modulus
+        mobility = state["mobility"]
+        # the contact radius at which the layer is taken: the Hertz impulse-weighted mean, 0.896 a_max
+        approach = hertz.max_approach(1.0 / mobility[:, 2, 2], state["contact_radius"], modulus,
+                                      state["normal_speed"])
+        radius = ball_laws.mean_radius_ratio() * np.sqrt(state["contact_radius"] * approach)
+        shear = 1.0 / (2.0 * (1.0 + ball_poisson))
+        return ball_laws.layered_kappa(kappa, kappa * modulus, ball_modulus * shear, radius, thickness,
+                                       cover * shear)
+
+    @staticmethod
+    def _rolling_inputs(inputs, state, arm_factor):
+        """(B, D, rolling rate, arm factor) of every case for the 3-D kernel's couple, or None without one."""
+        if not np.any(arm_factor > 0.0):
+            return None
+        coupling, rotation, rate = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
+                                                   inputs["ball_inertia_factor"])
+        return coupling, rotation, rate, arm_factor
+
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy, loss):
+                  result, solution_of_case, initial_energy, loss, rolling=None):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -236,6 +298,7 @@ class HertzTangentialModel(ImpactModel):
                                        friction=friction[rows], kappa=kappa[rows], modulus=modulus[rows],
                                        radius=state["contact_radius"][rows], normal=normal,
                                        springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
+                                       rolling=None if rolling is None else tuple(part[rows] for part in rolling),
                                        **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]
@@ -247,7 +310,16 @@ class HertzTangentialModel(ImpactModel):
             # energy balance of the solved (scaled-speed) problem: kinetic energy change = work of the forces
             initial = np.stack([state["slip_speed"][rows], np.zeros(impulse.shape[0]), -scale_speed[rows]], -1)
             mean = initial + 0.5 * np.einsum("nij,nj->ni", state["mobility"][rows], impulse)
-            result["energy_error"][rows] = (np.sum(impulse * mean, -1) - solved.work) / initial_energy[rows]
+            kinetic = np.sum(impulse * mean, -1)
+            if rolling is not None:  # the couple's work on the mean relative rolling rate
+                coupling, rotation, rate, _ = (part[rows] for part in rolling)
+                moment = solved.moment
+                result["rolling_moment"][rows], result["rolling_moment_slip"][rows] = moment[:, 1], moment[:, 0]
+                rate_after = rate + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum("nij,nj->ni", rotation,
+                                                                                            moment)
+                mean = mean + 0.5 * np.einsum("nij,nj->ni", coupling, moment)
+                kinetic = np.sum(impulse * mean, -1) + np.sum(moment * 0.5 * (rate + rate_after), -1)
+            result["energy_error"][rows] = (kinetic - solved.work) / initial_energy[rows]
             if state["head_inverse_inertia"] is not None:
                 moment = np.einsum("nij,nj->ni", state["frame"][rows], solved.impulse_time)
                 turn = np.einsum("nij,nj->ni", state["head_inverse_inertia"][rows],
@@ -260,6 +332,14 @@ class HertzTangentialModel(ImpactModel):
     @functools.lru_cache(maxsize=64)
     def _damped_law(restitution: float):
         return hertz.DampedNormal(hertz.damping_for_restitution(float(restitution)))
+
+    def _limit_correction(self, chi, psi1, normal) -> tuple[np.ndarray, np.ndarray]:
+        """(change of the scaled slip change, 3-D limit broken) that the 1-D solver applies to MDR under ``normal``.
+
+        A model whose 1-D solver corrects MDR where a damped law breaks the 3-D Coulomb limit returns that
+        correction for the decoupled equivalents (chi, psi1) of 3-D cases; the default: none.
+        """
+        return np.zeros_like(chi), np.zeros(chi.size, dtype=bool)
 
     def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
         """Solve the scaled tangential problem of the cases (chi, psi1) under ``normal``; kappa = k_t/k_n."""

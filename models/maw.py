@@ -6,10 +6,11 @@ import attrs
 import numpy as np
 
 from impactlab.model import HISTORY_LENGTH
-from impactlab.validators import check, in_range
+from impactlab.validators import check, in_range, to_float
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
+from ._common import ROLLING_HYSTERESIS
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -58,6 +59,19 @@ class MawOptions(CompliantOptions):
         ``"hysteretic"``: Hertz contact with Hunt-Crossley damping chosen to
         rebound at e, solved at the real approach speed; the Coulomb limit
         follows the damped normal force.
+    rolling_hysteresis : float or str
+        Rolling resistance of the viscoelastic cover (:mod:`impactlab.physics.ball_laws`): the normal force
+        acts d = (3/16) alpha a(t) ahead of the contact centre, a(t) the Hertz contact radius at each instant
+        (Greenwood & Tabor; Johnson 1985, ch. 8), a couple d F_n opposing the relative rolling of ball and
+        face. alpha is a number in [0, 1] or ``"restitution"`` for 1 - e_ball^2 (the normal impact is the cover's
+        loading-unloading cycle: no free parameter; e_ball = e - club_restitution_gain). Cases with a couple
+        take the 3-D kernel. Default 0: no
+        couple, the paper's model unchanged.
+    cover_thickness, cover_modulus : float
+        The ball's construction in the tangential compliance (:func:`impactlab.physics.ball_laws.layered_kappa`):
+        a cover of thickness t [m] and Young's modulus E_c [Pa] (the ball's Poisson ratio) over a core of the
+        ball's equivalent material, a shear spring in series with Mindlin's; it changes kappa and with it the
+        grip. Default t = 0 (and E_c the ball's): the paper's homogeneous ball.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -69,6 +83,11 @@ class MawOptions(CompliantOptions):
     history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
+    rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    cover_thickness: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        0.0, 0.005, "a cover thickness in m between 0 and 0.005 (5 mm)"))
+    cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
 
     @tolerance.default
     def _default_tolerance(self):
@@ -196,6 +215,34 @@ class MawModel(HertzTangentialModel):
             return self._annuli_where_mdr_fails(solved, np.concatenate([part.breaks_3d_limit for part in parts]),
                                                 chi, psi1, record, normal)
         return solved
+
+    def _limit_correction(self, chi, psi1, normal):
+        """Annuli minus MDR of the decoupled equivalent (chi, psi1), where MDR breaks the 3-D limit (method mdr).
+
+        The 3-D kernel solves a coupled contact with MDR springs; where the same springs of its decoupled
+        equivalent break the 3-D Coulomb limit, the 1-D solver replaces them by annular strips. Adding that
+        difference to the 3-D result makes both paths give one answer at a centred strike and the answer
+        continuous in strike position; off the line it is a first-order correction (the coupling's effect on the
+        correction itself is neglected). Returns (change of the scaled slip change, limit broken).
+        """
+        change, broken = np.zeros_like(chi), np.zeros(chi.size, dtype=bool)
+        if self.options.method != "mdr":
+            return change, broken
+        for value in np.unique(chi):
+            group = np.nonzero(chi == value)[0]
+            counts, _ = self.options.resolution(float(value), psi1[group])
+            for count in np.unique(counts):
+                rows = group[counts == count]
+                steps = self.options.resolution_steps(int(count))
+                plain = mdr.solve_scaled(chi[rows], psi1[rows], springs=int(count), steps=steps, record=False,
+                                         normal=normal)
+                if plain.breaks_3d_limit is None or not np.any(plain.breaks_3d_limit):
+                    continue
+                fixed = self._annuli_where_mdr_fails(plain, plain.breaks_3d_limit, chi[rows], psi1[rows], False,
+                                                     normal)
+                change[rows] = fixed.slip_change - plain.slip_change
+                broken[rows] = plain.breaks_3d_limit
+        return change, broken
 
     def _annuli_where_mdr_fails(self, solved, interior, chi, psi1, record, normal):
         """Re-solve by annular strips the cases where a damped law made an MDR spring slip inside a stuck one.

@@ -47,7 +47,12 @@ class RestitutionModel(ImpactModel):
     in the contact frame (slip reversed and scaled by beta, no lateral slip,
     normal velocity reversed and scaled by e); a tangential impulse outside
     the Coulomb cone is put on the cone in its direction, with the normal
-    impulse that keeps e.
+    impulse that keeps e. Kinematic coefficients with a coupled W can ask for
+    an impulse that creates kinetic energy (0.2 J at e = 1 on a driver struck
+    30 mm off centre); such an impulse is capped: scaled down along its own
+    direction to the largest that creates none
+    (:func:`impactlab.physics.rigid.energy_cap`; the 1-D cases never need it).
+    The cap is reported as validity flag 32 (``energy_capped``).
 
     References
     ----------
@@ -67,6 +72,9 @@ class RestitutionModel(ImpactModel):
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()
-        impulse, _ = restitution_impulses(state["initial_velocity"], state["mobility"], inputs["restitution"],
-                                          self.options.tangential_restitution, inputs.get("friction", np.inf))
-        return {**impulse_outputs(impulse), **closed_form_diagnostics(impulse.shape[0])}
+        impulse, _, energy_capped = restitution_impulses(
+            state["initial_velocity"], state["mobility"], inputs["restitution"], self.options.tangential_restitution,
+            inputs.get("friction", np.inf))
+        diagnostics = closed_form_diagnostics(impulse.shape[0])
+        diagnostics["validity"] = np.where(energy_capped, 32.0, 0.0)
+        return {**impulse_outputs(impulse), **diagnostics}

@@ -83,7 +83,12 @@ def derive(names: Iterable[str], raw: dict[str, Any], inputs: Mapping[str, Any])
         needed |= {"tangential_restitution", "normal_velocity"}  # what normalised_slip reads
     if names & FROM_FLIGHT:
         needed |= {"ball_speed"}
-    basics = after_impact(state, impulse, names=needed, **inputs)
+    moment = None
+    if "rolling_moment" in raw or "rolling_moment_slip" in raw:  # a rolling-resistance couple on the ball
+        zero = np.zeros_like(impulse[:, 0])
+        moment = np.stack([np.asarray(raw.get("rolling_moment_slip", zero), float),
+                           np.asarray(raw.get("rolling_moment", zero), float)], -1)
+    basics = after_impact(state, impulse, names=needed, moment=moment, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})
     if names & (FROM_DELIVERY | FROM_FLIGHT):
         golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})

@@ -26,6 +26,13 @@ FLAGS: dict[int, tuple[str, str]] = {
     16: ("dundurs_coupling", "the normal-tangential coupling the model neglects (ball and face differ in Dundurs' "
                              "beta) is estimated to change the tangential impulse by more than the tolerance asked "
                              "for (output coupling_estimate; docs/models.md)"),
+    32: ("energy_capped", "the kinematic restitution coefficients asked for an impulse that creates kinetic energy "
+                          "(a coupled mobility); the impulse was scaled down along its direction to the largest "
+                          "that creates none (impactlab.physics.rigid.energy_cap)"),
+    64: ("friction_limit_3d", "the compliant solution breaks the 3-D Coulomb limit of the contact (MDR springs "
+                              "carrying more than mu p(r) where the damped law's pressure falls fastest, at the "
+                              "centre) by more than the tolerance; J_t carries the annular strips' correction (exact "
+                              "on one line, first order off it; models/maw.py)"),
 }
 #: a_max / R above which ``large_contact`` is raised. Hertz's theory replaces the sphere's gap R - sqrt(R^2 - r^2)
 #: by the paraboloid r^2 / (2 R) and the ball by a half-space; both need a << R (Johnson, Contact Mechanics, 1985,

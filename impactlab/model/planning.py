@@ -92,7 +92,7 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
         possible, reason = derivable(name, provides, given_inputs)
         if possible:
             derived.add(name)
-            from_model |= IMPULSES | (provides & {"lateral_impulse"})
+            from_model |= IMPULSES | (provides & {"lateral_impulse", "rolling_moment", "rolling_moment_slip"})
         else:
             missing[name] = reason or model_cls.why_not_provided(name)
     inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))

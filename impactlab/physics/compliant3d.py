@@ -67,6 +67,8 @@ class Contact3DSolution:
     impulse_time : ndarray (n, 3)
         Time integral of the running impulse over the contact [N s^2] (the head's rotation follows from it).
     contact_time : ndarray (n,) [s]
+    moment : ndarray (n, 2)
+        Angular impulse on the ball of the rolling-resistance couple along (s, l) [N m s] (zeros without one).
     work : ndarray (n,)
         Work of the contact forces on the relative motion [J].
     steps : ndarray (n,)
@@ -82,6 +84,7 @@ class Contact3DSolution:
     work: np.ndarray
     steps: np.ndarray
     unfinished: np.ndarray
+    moment: np.ndarray | None = None
     time: np.ndarray | None = None
     normal_force: np.ndarray | None = None
     tangential_force: np.ndarray | None = None
@@ -91,7 +94,7 @@ class Contact3DSolution:
 def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
           steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
           rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0, record: bool = False,
-          extrapolate: bool = True) -> Contact3DSolution:
+          extrapolate: bool = True, rolling=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case; by default at ``steps`` and ``2 steps``, extrapolated.
 
     Richardson extrapolation 2 J(2N) - J(N) of the impulses, their time integrals and the work removes the
@@ -100,12 +103,13 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
     """
     arguments = dict(friction=friction, kappa=kappa, modulus=modulus, radius=radius, normal=normal, springs=springs,
                      law=law, stiffness_factor=stiffness_factor, store_force=store_force, rescale=rescale,
-                     tangential_damping=tangential_damping, tangential_loss=tangential_loss)
+                     tangential_damping=tangential_damping, tangential_loss=tangential_loss, rolling=rolling)
     fine = solve_once(mobility, normal_speed, slip_speed, steps=2 * steps, record=record, **arguments)
     if not extrapolate:
         return fine
     coarse = solve_once(mobility, normal_speed, slip_speed, steps=steps, record=False, **arguments)
     return attrs.evolve(fine, impulse=2.0 * fine.impulse - coarse.impulse,
+                        moment=2.0 * fine.moment - coarse.moment,
                         impulse_time=2.0 * fine.impulse_time - coarse.impulse_time,
                         work=2.0 * fine.work - coarse.work, steps=fine.steps + coarse.steps,
                         unfinished=fine.unfinished | coarse.unfinished)
@@ -114,7 +118,7 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
 def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
                steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
                rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0,
-               record: bool = False) -> Contact3DSolution:
+               record: bool = False, rolling=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case.
 
     Parameters
@@ -137,6 +141,10 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         Loss factor eta (tan delta) of the ball's cover in shear, per case: a dashpot beside each tangential
         spring with relaxation time eta / omega, omega = pi / t_c the frequency of the contact's half-sine
         pulse (a Kelvin-Voigt solid whose loss factor at omega is eta). 0: elastic springs.
+    rolling : tuple, optional
+        Rolling resistance (:mod:`.ball_laws`): (coupling B (n, 3, 2), rotation D (n, 2, 2), relative rolling rate
+        (n, 2), arm factor (n,)) with B, D and the rate of :func:`impactlab.physics.contact.couple_mobility` and the
+        arm factor d / a = (3/16) alpha; None (default): no couple.
     """
     n = normal_speed.size
     m_normal = 1.0 / mobility[:, 2, 2]
@@ -150,19 +158,30 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
     dtau = np.broadcast_to(np.asarray(normal.tau_end, float), (n,)) / steps
     max_steps = STEP_ALLOWANCE * steps
     xi2 = ((np.arange(springs) + 0.5) / springs) ** 2
-    out = np.zeros((n, 9))
     shape = (n, max_steps + 1) if record else (1, 1)
     history_normal, history_tangential, history_stick = (np.zeros(shape) for _ in range(3))
     kernel = _kernels.contact3d_cases if _kernels.HAVE_NUMBA else _kernels._contact3d_cases
+    approach = hertz.max_approach(m_normal, radius, modulus, normal_speed)
+    reach = np.sqrt(radius * approach)  # a_max
+    if rolling is None:
+        couple_n, couple_t = np.zeros((n, 2)), np.zeros((n, 2, 2))
+        couple_rr, rolling0, arm = np.broadcast_to(np.eye(2), (n, 2, 2)).copy(), np.zeros((n, 2)), np.zeros(n)
+    else:
+        b, d, rate, factor = rolling
+        couple_n = np.ascontiguousarray(b[:, 2, :] * (m_normal * reach)[:, None])
+        couple_t = np.ascontiguousarray(b[:, :2, :] * (m_normal * reach)[:, None, None])
+        couple_rr = np.ascontiguousarray(d * (m_normal * reach**2)[:, None, None])
+        rolling0 = np.ascontiguousarray(rate * (reach / normal_speed)[:, None])
+        arm = np.broadcast_to(np.asarray(factor, float), (n,)).copy()
+    out = np.zeros((n, 11))
     # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
     relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
     damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
     kernel(ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping, np.ascontiguousarray(dtau),
            max_steps, LAWS[law], float(stiffness_factor), bool(store_force), bool(rescale), float(tangential_damping),
            np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), history_normal, history_tangential,
-           history_stick, out)
+           history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm)
 
-    approach = hertz.max_approach(m_normal, radius, modulus, normal_speed)
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
     time_unit = approach / normal_speed
     impulse_unit = peak * time_unit
@@ -170,7 +189,8 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
     impulse_time = np.stack([-friction * out[:, 5], -friction * out[:, 6], out[:, 4]], -1) \
         * (impulse_unit * time_unit)[:, None]
     solution = dict(impulse=impulse, impulse_time=impulse_time, contact_time=out[:, 3] * time_unit,
-                    work=out[:, 7] * peak * approach, steps=out[:, 8], unfinished=out[:, 8] >= max_steps)
+                    work=out[:, 7] * peak * approach, steps=out[:, 8], unfinished=out[:, 8] >= max_steps,
+                    moment=out[:, 9:11] * (peak * reach * time_unit)[:, None])
     if record:
         nodes = np.arange(max_steps + 1)
         solution.update(

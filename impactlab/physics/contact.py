@@ -294,8 +294,60 @@ _NEEDS_HEAD = frozenset({"club_velocity", "club_spin", "normal_velocity", "tange
 _NEEDS_PLANE = frozenset({"launch_angle", "launch_ratio", "total_angle"})
 
 
+def couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor):
+    """How a couple on the ball (the opposite on the head) moves the contact, and the relative rolling rate.
+
+    A couple C in the tangent plane (components along s and l, the head taking -C) turns the ball by C / I_b and
+    the head by -I_c^-1 C; the contact points then move relative to each other, and the relative angular velocity
+    Omega = omega_ball - omega_head changes. With the contact impulse J this is one symmetric generalised
+    mobility (Stronge 2000, ch. 5, extended by the couple's two coordinates):
+
+        d(v, Omega_t) = [[W, B], [B^T, D]] d(J, C),
+        B = -[r_b]x / I_b - [r_c]x I_c^-1,   D = 1 / I_b + I_c^-1   (tangent-plane components),
+
+    r_b = -R n the ball's lever, r_c the head's (from its centre of mass). A point-mass club or a fixed face
+    takes no rotation (I_c^-1 = 0).
+
+    Parameters
+    ----------
+    state : dict
+        :func:`contact_state`.
+    ball_mass, ball_radius, ball_inertia_factor : array_like
+        m [kg], R [m], K^2 [1].
+
+    Returns
+    -------
+    coupling : ndarray (n, 3, 2)
+        B in the contact frame: rows (s, l, n), columns the couple along (s, l) [1/(kg m)].
+    rotation : ndarray (n, 2, 2)
+        D on (s, l) [1/(kg m^2)].
+    rolling : ndarray (n, 2)
+        The relative angular velocity before impact along (s, l) [rad/s].
+    """
+    n = state["normal"].shape[0]
+    m = np.broadcast_to(np.asarray(ball_mass, float), (n,))
+    radius = np.broadcast_to(np.asarray(ball_radius, float), (n,))
+    inverse_ball = 1.0 / (np.broadcast_to(np.asarray(ball_inertia_factor, float), (n,)) * m * radius**2)
+    eye = np.eye(3)
+    inverse_head = state["head_inverse_inertia"]
+    if inverse_head is None:
+        inverse_head = np.zeros((n, 3, 3))
+    lever_ball = -radius[:, None] * state["normal"]
+    ground = -_skew(lever_ball) * inverse_ball[:, None, None] - np.einsum("nij,njk->nik", _skew(state["lever"]),
+                                                                        inverse_head)
+    rotation_ground = inverse_ball[:, None, None] * eye + inverse_head
+    frame = state["frame"]
+    tangent = frame[:, :, :2]  # columns s, l
+    coupling = np.einsum("nia,nij,njb->nab", frame, ground, tangent)
+    rotation = np.einsum("nia,nij,njb->nab", tangent, rotation_ground, tangent)
+    rotation = 0.5 * (rotation + np.swapaxes(rotation, 1, 2))
+    relative = state["ball_spin"] - state["head_spin"]
+    rolling = np.einsum("nia,ni->na", tangent, relative)
+    return coupling, rotation, rolling
+
+
 def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf,
-                 names=None, **_):
+                 names=None, moment=None, **_):
     """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
 
     Returns the ground-frame vectors (right-handed golfer) and the face-frame quantities of the 1-D problem,
@@ -309,7 +361,8 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     [J] (kinetic energy of ball and head lost; Stronge, *Impact Mechanics* (2000), ch. 5). ``names`` (default: all of
     :data:`AFTER_IMPACT_OUTPUTS`) limits the work to what is asked: the head's motion, the launch plane and
     the contact's relative velocity are computed only where an asked-for quantity needs them (the dict may
-    hold more than asked, never less).
+    hold more than asked, never less). ``moment`` (n, 2), optional: the angular impulse of a couple on the ball
+    along (s, l) [N m s] (a rolling-resistance law), the head taking the opposite; see :func:`couple_mobility`.
     """
     names = AFTER_IMPACT_OUTPUTS if names is None else frozenset(names)
     n = impulse.shape[0]
@@ -324,6 +377,11 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     # dw = I^-1 (-R n) x J = (R/I) J x n; in the contact frame J x n = (J_l, -J_s, 0) (exactly 0 for a normal J)
     torque_arm = impulse[:, 1:2] * state["slip_direction"] - impulse[:, 0:1] * state["lateral_direction"]
     ball_spin = state["ball_spin"] + (radius / inertia)[:, None] * torque_arm
+    has_moment = moment is not None and np.any(moment != 0.0)
+    if has_moment:
+        moment = np.asarray(moment, float)
+        moment_ground = moment[:, 0:1] * state["slip_direction"] + moment[:, 1:2] * state["lateral_direction"]
+        ball_spin = ball_spin + moment_ground / inertia[:, None]
     out = {"ball_velocity": ball_velocity, "ball_spin_vector": ball_spin}
     if "spin_rate" in names:
         spin_sense = np.sign(np.sum(ball_spin * state["lateral_direction"], -1))
@@ -333,6 +391,11 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         out["smash_factor"] = out["ball_speed"] / speed
     if names & {"tangential_restitution", "energy_loss"}:
         relative_after = state["initial_velocity"] + np.einsum("nij,nj->ni", state["mobility"], impulse)
+        if has_moment:
+            coupling, rotation, rolling = couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor)
+            relative_after = relative_after + np.einsum("nij,nj->ni", coupling, moment)
+            rolling_after = rolling + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum(
+                "nij,nj->ni", rotation, moment)
         slip = state["slip_speed"]
         with np.errstate(divide="ignore", invalid="ignore"):
             out["tangential_restitution"] = np.where(
@@ -340,6 +403,8 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
         out["energy_loss"] = -np.sum(
             impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
+        if has_moment:  # and the couple's work on the mean relative rolling rate
+            out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
     if names & _NEEDS_HEAD:
         club = np.broadcast_to(np.asarray(club_mass, float), (n,))
         club_velocity = state["club_velocity"] - np.where(
@@ -347,6 +412,8 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         if state["head_inverse_inertia"] is not None:
             club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
                                                        _cross(state["lever"], impulse_ground))
+            if has_moment:
+                club_spin = club_spin - np.einsum("nij,nj->ni", state["head_inverse_inertia"], moment_ground)
         else:
             club_spin = np.zeros((n, 3))
         # the ball centre relative to the head's material point at the contact

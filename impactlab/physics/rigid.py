@@ -78,7 +78,8 @@ def restitution_impulses(initial, mobility, restitution, tangential_restitution,
     with J_n chosen so that the normal restitution still holds. On one line this is J_n = (1 + e) m* V_z,
     J_t = min((1 + beta) m_t |V_x|, mu J_n).
 
-    Returns (impulse (n, 3) in (s, l, n), capped (n,) bool).
+    Returns (impulse (n, 3) in (s, l, n), capped on the friction cone (n,) bool, scaled by :func:`energy_cap`
+    (n,) bool).
     """
     n = initial.shape[0]
     e = np.broadcast_to(np.asarray(restitution, float), (n,))
@@ -94,4 +95,53 @@ def restitution_impulses(initial, mobility, restitution, tangential_restitution,
         normal_rate = w[:, 2, 2] + mu[capped] * np.einsum("ni,ni->n", w[:, 2, :2], direction)
         jn = (1.0 + e[capped]) * (-initial[capped, 2]) / normal_rate
         impulse[capped] = np.concatenate([mu[capped, None] * jn[:, None] * direction, jn[:, None]], -1)
-    return impulse, capped
+    capped_impulse = energy_cap(initial, mobility, impulse)
+    return capped_impulse, capped, np.any(capped_impulse != impulse, axis=-1)
+
+
+def energy_cap(initial, mobility, impulse):
+    """The impulse scaled down along its own direction where it would create kinetic energy (a documented cap).
+
+    The kinetic energy of ball and head changes by dT = J . v0 + J . W J / 2 (the work of the impulse on the mean
+    relative contact velocity; Stronge 2000, ch. 5). Newton's kinematic coefficients (v1 = (-beta v_s, 0, -e v_n))
+    fix the velocity after impact, not the work: where W couples the normal and tangential directions (a free
+    head struck off its centre-of-mass line, a curved face) they can ask for dT > 0, e.g. 0.2 J at e = 1 on a
+    driver struck 30 mm off centre. There the impulse is replaced by lambda J with
+    lambda = -2 J . v0 / (J . W J) in (0, 1), the largest multiple of J that creates no energy (dT = 0: an
+    elastic impact along the asked direction). If J . v0 >= 0 (no positive multiple of J does work against the
+    approach) the impulse is the frictionless elastic one, (0, 0, -2 v_n / W_nn). Elsewhere J is unchanged, so
+    every 1-D case (W diagonal: dT <= 0 for 0 <= e, beta <= 1) is exactly the kinematic model.
+
+    Parameters
+    ----------
+    initial : ndarray (n, 3)
+        Relative contact velocity before impact in (s, l, n) [m/s].
+    mobility : ndarray (n, 3, 3)
+        W in the same frame [1/kg].
+    impulse : ndarray (n, 3)
+        The impulse on the ball [N s].
+
+    Returns
+    -------
+    ndarray (n, 3)
+        The impulse, capped where it would create energy [N s].
+
+    References
+    ----------
+    W. J. Stronge, *Impact Mechanics*, Cambridge University Press (2000), ch. 5 (energy inconsistency of
+    Newton's kinematic restitution with coupled mobilities).
+    """
+    work = np.einsum("ni,ni->n", impulse, initial)
+    quadratic = np.einsum("ni,nij,nj->n", impulse, mobility, impulse)
+    rises = work + 0.5 * quadratic > 0.0
+    if not np.any(rises):
+        return impulse
+    impulse = impulse.copy()
+    scalable = rises & (work < 0.0)
+    scale = -2.0 * work[scalable] / quadratic[scalable]
+    impulse[scalable] *= scale[:, None]
+    elastic = rises & ~scalable
+    if np.any(elastic):
+        impulse[elastic] = 0.0
+        impulse[elastic, 2] = -2.0 * initial[elastic, 2] / mobility[elastic, 2, 2]
+    return impulse

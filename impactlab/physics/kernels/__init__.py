@@ -17,6 +17,8 @@ from .contact3d import _contact3d_cases, contact3d_cases
 from .dem import _dem_cases, dem_cases
 from .mdr import _mdr_cases, mdr_cases
 from .rigid import _stronge_cases, stronge_cases
+from .rolling import _rolling_cases, rolling_cases
 
-__all__ = ["HAVE_NUMBA", "annuli_cases", "contact3d_cases", "dem_cases", "mdr_cases", "stronge_cases",
-           "_annuli_cases", "_contact3d_cases", "_dem_cases", "_mdr_cases", "_stronge_cases"]
+__all__ = ["HAVE_NUMBA", "annuli_cases", "contact3d_cases", "dem_cases", "mdr_cases", "stronge_cases", "rolling_cases",
+           "_annuli_cases", "_contact3d_cases", "_dem_cases", "_mdr_cases", "_stronge_cases",
+           "_rolling_cases"]

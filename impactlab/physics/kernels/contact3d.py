@@ -41,7 +41,7 @@ if HAVE_NUMBA:  # inlined into the kernel's IR (the kernel looks its globals up 
 
 def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
                      store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
-                     history_tangential, history_stick, out):
+                     history_tangential, history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm):
     """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
 
     Scaled state: approach h and its rate H = h' (1 at first touch), slip S (2-vector, units mu V_z/kappa),
@@ -60,7 +60,19 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     separate. Impulses are the trapezoid sums of the forces, the ones velocity Verlet applies, so momentum is
     kept exactly; with mu = 0 the tangential problem is skipped (no force, no scale). ``out`` columns:
     integral f_n, integral f_0, integral f_1 (d tau), tau_end, the time integrals of those running impulses,
-    the work of the contact forces on the relative motion [F_max delta_max], steps.
+    the work of the contact forces on the relative motion [F_max delta_max], steps, and the couple's angular
+    impulse along (s, l) [integral c d tau].
+
+    Rolling resistance (``arm`` > 0, :mod:`impactlab.physics.ball_laws`): a couple C on the ball, scaled
+    c = C / (F_max a_max), of size at most arm h^0.5 f_n (d = arm a_max h^0.5), opposing the scaled relative
+    rolling rate w = Omega a_max / V_z (start ``rolling0``); with couple_n = m* a_max B_n, couple_t = m* a_max B_t
+    and couple_rr = m* a_max^2 D (:func:`impactlab.physics.contact.couple_mobility`):
+
+        h'' += -(5/4) couple_n.c,   S' += (5/4)(kappa/mu) couple_t c,
+        w' = (5/4) (couple_n f_n - mu couple_t^T f + couple_rr c).
+
+    Each step the couple that stops the rolling by the step's end is taken if it lies within its limit, else
+    that couple put on the limit (the rolling analogue of Coulomb's law); the couple acts only with friction.
     """
     cases = psi.shape[0]
     springs = xi2.size
@@ -104,6 +116,28 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         tau = 0.0
         chi_along = 0.5 * k * a00
         steps = 0
+        rho = arm[case] if mu > 0.0 else 0.0
+        cn0 = couple_n[case, 0]
+        cn1 = couple_n[case, 1]
+        ct00 = couple_t[case, 0, 0]
+        ct01 = couple_t[case, 0, 1]
+        ct10 = couple_t[case, 1, 0]
+        ct11 = couple_t[case, 1, 1]
+        r00 = couple_rr[case, 0, 0]
+        r01 = couple_rr[case, 0, 1]
+        r10 = couple_rr[case, 1, 0]
+        r11 = couple_rr[case, 1, 1]
+        det = r00 * r11 - r01 * r10
+        w0 = rolling0[case, 0]
+        w1 = rolling0[case, 1]
+        aw0 = 0.0
+        aw1 = 0.0
+        c0 = 0.0
+        c1 = 0.0
+        prev_c0 = 0.0
+        prev_c1 = 0.0
+        mom0 = 0.0
+        mom1 = 0.0
         for step in range(1, max_steps + 1):
             h_half = hh + 0.5 * dt * ah
             v0 = s0 + 0.5 * dt * as0
@@ -202,10 +236,40 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             if mu == 0.0:
                 f0 = 0.0
                 f1 = 0.0
-            ah = -1.25 * (normal - mu * (b0 * f0 + b1 * f1))
+            c0 = 0.0
+            c1 = 0.0
+            g0 = 0.0
+            g1 = 0.0
+            if rho > 0.0:
+                # rolling rate at the half step; the couple that stops it by the step's end, put on its limit
+                wm0 = w0 + 0.5 * dt * aw0
+                wm1 = w1 + 0.5 * dt * aw1
+                g0 = cn0 * normal - mu * (ct00 * f0 + ct10 * f1)
+                g1 = cn1 * normal - mu * (ct01 * f0 + ct11 * f1)
+                q0 = -(wm0 / (0.625 * dt) + g0)
+                q1 = -(wm1 / (0.625 * dt) + g1)
+                c0 = (r11 * q0 - r01 * q1) / det
+                c1 = (-r10 * q0 + r00 * q1) / det
+                limit = rho * np.sqrt(hp) * normal
+                size = np.sqrt(c0 * c0 + c1 * c1)
+                if size > limit:
+                    c0 *= limit / size
+                    c1 *= limit / size
+            ah = -1.25 * (normal - mu * (b0 * f0 + b1 * f1) + cn0 * c0 + cn1 * c1)
             if mu > 0.0:
-                as0 = -1.25 * k * (a00 * f0 + a01 * f1) + (1.25 * k / mu) * b0 * normal
-                as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * b1 * normal
+                as0 = -1.25 * k * (a00 * f0 + a01 * f1) + (1.25 * k / mu) * (b0 * normal + ct00 * c0 + ct01 * c1)
+                as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * (b1 * normal + ct10 * c0 + ct11 * c1)
+            if rho > 0.0:
+                aw0 = 1.25 * (g0 + r00 * c0 + r01 * c1)
+                aw1 = 1.25 * (g1 + r10 * c0 + r11 * c1)
+                w0 = wm0 + 0.5 * dt * aw0
+                w1 = wm1 + 0.5 * dt * aw1
+                # the couple's work on the half-step rolling rate, as the forces' work below [F_max delta_max]
+                work += dt * 0.5 * ((prev_c0 + c0) * wm0 + (prev_c1 + c1) * wm1)
+                mom0 += 0.5 * dt * (prev_c0 + c0)
+                mom1 += 0.5 * dt * (prev_c1 + c1)
+                prev_c0 = c0
+                prev_c1 = c1
             h_new = h_half + 0.5 * dt * ah
             n0 = v0 + 0.5 * dt * as0
             n1 = v1 + 0.5 * dt * as1
@@ -246,6 +310,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         out[case, 6] = cum_1
         out[case, 7] = work
         out[case, 8] = steps
+        out[case, 9] = mom0
+        out[case, 10] = mom1
 
 
 contact3d_cases = _compiled(_contact3d_cases, fastmath={"reassoc", "nsz", "arcp", "contract"})
