@@ -37,6 +37,8 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, StudyError
+from impactlab.data.shot_table import (DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _field_of,
+                                       _resolve_spin_loft)
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
 #: impactlab.vocabulary (inputs: club_speed is the delivery's speed; outputs: ball_speed, back_spin...) and the ball
@@ -306,7 +308,6 @@ class Session:
         without face angle or club path keeps its ball speed, launch angle and spin but not its launch direction
         and spin axis (a square face would be a guess). Raises StudyError when no row is usable, with the reasons.
         """
-        from impactlab.data.shots import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
         from impactlab.scene.clubs import club_key
 
         keep, skipped = self.usable(include_flagged)
@@ -668,8 +669,6 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
 
 def _generic_field(header: str) -> tuple[str | None, str | None]:
     """(field, unit) of a column of impactlab's own layout (vocabulary names and the usual aliases)."""
-    from impactlab.data.shots import _field_of
-
     field, unit = _field_of(header)
     if field is None:
         name, unit = split_header(header)
