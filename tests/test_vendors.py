@@ -253,7 +253,7 @@ def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused(
 
 
 def test_every_shipped_layout_loads_and_a_broken_one_is_named():
-    from impactlab.data.session import _vendor_from_document, vendor_maps
+    from impactlab.data.session_layouts import _vendor_from_document, vendor_maps
 
     maps = vendor_maps()
     assert {"trackman_tps", "garmin_golf", "foresight_fsx", "rapsodo_mlm2pro", "flightscope_cloud",
