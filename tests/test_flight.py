@@ -483,12 +483,13 @@ def test_study_conditions_block_refuses_with_its_path(conditions, words):
 # --------------------------------------------------------------------------
 def test_trajectory_figure_lands_where_the_result_says(tmp_path, monkeypatch):
     import impactlab
-    from impactlab.plot import figures
+    from impactlab.plot import trajectories
 
     result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions={"temperature": "10 degC"}))
     captured = []
-    monkeypatch.setattr(figures, "_save", lambda figure, path: captured.append(figure) or path)
-    figures.plot_trajectories(result, tmp_path / "t.png")
+    # the name plot_trajectories calls (its module's): a stub elsewhere would not reach it
+    monkeypatch.setattr(trajectories, "_save", lambda figure, path: captured.append(figure) or path)
+    trajectories.plot_trajectories(result, tmp_path / "t.png")
     side, top = captured[0].axes[:2]
     ends = np.array([[line.get_xdata()[-1], line.get_ydata()[-1]] for line in top.get_lines()
                      if len(line.get_xdata()) > 2])
