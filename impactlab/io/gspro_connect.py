@@ -30,6 +30,7 @@ from collections.abc import Callable, Sequence
 import attrs
 
 from impactlab.errors import EnvironmentFault, FieldError
+from impactlab.io.interchange import wire_message
 
 #: GSPro Connect's port (the vendor writes "0921")
 DEFAULT_PORT = 921
@@ -336,8 +337,6 @@ def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0
     GSProConnectError
         The first failure, saying which shot it stopped at and how many were accepted before it.
     """
-    from impactlab.io.interchange import wire_message
-
     accepted: list[Reply] = []
     client = OpenConnectClient(host, port, timeout, on_notice=progress)
     with client:  # a failure to connect is said as it is

@@ -22,8 +22,9 @@ import numpy as np
 from impactlab.errors import FieldError
 from impactlab.physics import aerodynamics, atmosphere
 from impactlab.physics import flight as physics
-from impactlab.units import to_si
+from impactlab.units import DIMENSIONS, to_si
 from impactlab.validators import in_range, to_float
+from impactlab.vocabulary import OUTPUTS
 
 #: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
 STANDARD_TEMPERATURE = 288.15
@@ -150,8 +151,6 @@ _EXAMPLE = {"speed": "mph", "angle": "deg", "angular_speed": "rpm", "temperature
 
 
 def _words(dimension: str) -> str:
-    from impactlab.units import DIMENSIONS
-
     si_unit = DIMENSIONS[dimension][0]
     if dimension == "dimensionless":
         return "a number (or a string with a unit such as '50 %')"
@@ -244,8 +243,6 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     249
     """
     import xarray as xr
-
-    from impactlab.vocabulary import OUTPUTS
 
     values = {
         "ball_speed": quantity_array(ball_speed, "speed", "ball_speed"),
