@@ -103,7 +103,7 @@ class Session:
         measured launch quantity that is not flagged (unless ``include_flagged``).
         """
         keep = np.ones(self.size, bool)
-        reasons = [[] for _ in range(self.size)]
+        reasons: list[list[str]] = [[] for _ in range(self.size)]
         keys = {name: club_key(name) if name else None for name in set(self.text["club"])}  # once per name
         clubs = [keys[name] for name in self.text["club"]]
         for index, (name, key) in enumerate(zip(self.text["club"], clubs)):
@@ -111,7 +111,7 @@ class Session:
                 reasons[index].append("no club named")
             elif key is None:
                 reasons[index].append(f"club {name!r} is not in the club catalogue")
-        for index in np.flatnonzero(self.flags.get(("row", "excluded"), np.zeros(self.size, bool))):
+        for index in np.flatnonzero(self.flags.get(("row", "excluded"), np.zeros(self.size, bool))).tolist():
             reasons[index].append("marked not to use in the file" + (
                 f" ({self.vendor.excluded['column']} = {', '.join(map(str, self.vendor.excluded['values']))})"
                 if self.vendor.excluded else ""))
@@ -119,7 +119,7 @@ class Session:
             given = np.isfinite(self.values[field])
             if field == "dynamic_loft" and "spin_loft" in self.values:  # the spin loft gives the dynamic loft
                 given |= np.isfinite(self.values["spin_loft"])
-            for index in np.flatnonzero(~given):
+            for index in np.flatnonzero(~given).tolist():
                 reasons[index].append(f"no {DESCRIPTIONS[field]}")
         measured = np.zeros(self.size, bool)
         for field in PREDICTED:
@@ -127,7 +127,7 @@ class Session:
             if not include_flagged:
                 ok &= ~self.flagged(field)
             measured |= ok
-        for index in np.flatnonzero(~measured):
+        for index in np.flatnonzero(~measured).tolist():
             reasons[index].append("no measured launch quantity that is not flagged")
         out = []
         for index, why in enumerate(reasons):
@@ -177,7 +177,8 @@ class Session:
                                  f"{given[np.flatnonzero(bad)[0]]:g}")
             sigma[key] = np.where(np.isfinite(given), given, DEFAULT_SIGMA[key])
         labels = tuple(self.text["label"][i] or f"line {self.lines[i]}" for i in index)
-        keys = {name: club_key(name) for name in {self.text["club"][i] for i in index}}
+        # every kept row's club is in the catalogue (usable() refuses the others)
+        keys = {name: known for name in {self.text["club"][i] for i in index} if (known := club_key(name)) is not None}
         source = f"read from {self.file} ({self.vendor.name})"
         if self.vendor.club_reference_point != "unknown":
             source += f"; club data at the head's {self.vendor.club_reference_point.replace('_', ' ')}"
@@ -231,7 +232,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
 
     # columns: which field, which unit, which sign
     problems = []
-    plan, unused, by_field = [], [], {}
+    plan, unused = [], []
+    by_field: dict[str, int] = {}
     for column, cell in enumerate(header):
         if not cell:
             continue
@@ -334,6 +336,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             if sentinel.any():
                 flags[(field, "no data")] = sentinel
                 numbers = np.where(sentinel, np.nan, numbers)
+        assert factor is not None, "every numeric column of the plan has its unit's factor"
         values[field] = sign * factor * numbers
         used.append((cell, field, unit or "", sign))
     bar.close()

@@ -173,6 +173,8 @@ GENERIC = VendorMap(id="impactlab", name="impactlab shot table (vocabulary or us
 def split_header(header: str) -> tuple[str, str | None]:
     """(name, unit) of a header cell: ``Club Speed [mph]``, ``Ball Speed (m/s)``, ``AOA (°)`` (unit None: none)."""
     match = re.match(r"^\s*(.*?)\s*(?:[\[(]\s*([^\[\]()]*?)\s*[\])])?\s*$", str(header))
+    if match is None:  # a cell holding a line break (a quoted CSV cell may): refused, never a traceback
+        raise StudyError(f"header {header!r}: expected a column name on one line")
     return match.group(1), match.group(2)
 
 

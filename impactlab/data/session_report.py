@@ -39,9 +39,9 @@ def write_normalised(session: Session, path) -> Path:
     for field in present:
         dimension = FIELDS[field]
         scale[field] = 1.0 if dimension == "dimensionless" else 1.0 / _factor(units[field], DIMENSIONS[dimension][0])
-    flag_text = [[] for _ in range(session.size)]
+    flag_text: list[list[str]] = [[] for _ in range(session.size)]
     for (field, kind), rows in session.flags.items():
-        for index in np.flatnonzero(rows):
+        for index in np.flatnonzero(rows).tolist():
             flag_text[index].append(f"{field}:{kind}")
     for index in range(session.size):
         cells = [str(session.lines[index]), *(session.text[field][index] for field in texts)]

@@ -78,7 +78,7 @@ def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str
             widths = [len(next(csv.reader([line], delimiter=candidate))) for line in sample] or [1]
             widest = max(widths)
             scores[candidate] = (widest, sum(width == widest for width in widths), candidate == ",")
-        delimiter = max(scores, key=scores.get)
+        delimiter = max(scores, key=lambda candidate: scores[candidate])
         if scores[delimiter][0] <= 1:
             delimiter = ","
         if delimiter != ",":
@@ -144,7 +144,7 @@ def _to_numbers(raw, layout: VendorMap, decimal: str):
         side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
         has = side[1].notna()
         cleaned = cleaned.where(~has, side[0])
-        signs = np.where(has & side[1].str.upper().eq("L"), -1.0, 1.0)
+        signs: np.ndarray | float = np.where(has & side[1].str.upper().eq("L"), -1.0, 1.0)
     else:
         signs = 1.0
     if decimal == ",":

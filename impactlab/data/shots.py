@@ -210,9 +210,9 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
     """
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
-    contact = Contact(**(contact or {}))
+    contact_law = Contact(**(contact or {}))
     # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
-    scene_ball = attrs.evolve(ball, restitution=None) if contact.restitution is None else ball
+    scene_ball = attrs.evolve(ball, restitution=None) if contact_law.restitution is None else ball
     scenes = []
     for index in range(table.size):
         club = club_preset(table.clubs[index])
@@ -220,12 +220,12 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
                             handedness=table.handedness[index], loft_at=table.loft_at)
-        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact, delivery, 0.0, club,
+        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact_law, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
     inputs = complete_inputs({key: np.array([values[key] for values in per_scene]) for key in sorted(keys)})
-    if contact.restitution is None and ball.restitution is not None:
+    if contact_law.restitution is None and ball.restitution is not None:
         inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the contact
     return inputs
 

@@ -91,7 +91,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
                             spin[finite], np.radians(row["spin_axis"].values[finite]),
                             np.radians(row["horizontal_launch_angle"].values[finite]), ball_mass=mass,
                             ball_radius=radius, return_trajectories=True, **air)
-        labels = [_case_label(row, index) for index in np.nonzero(finite)[0]]
+        labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
         for k in range(result["x"].shape[0]):
             style = _STYLES[k % len(_STYLES)]
             label = f"{model}" + (f", {labels[k]}" if labels[k] else "")
