@@ -53,12 +53,12 @@ class GSProConnectError(EnvironmentFault):
 class NotJsonError(ValueError):
     """Bytes in the reply stream that are not a JSON object; ``text`` holds them (shortened)."""
 
-    def __init__(self, data: bytes, why: str):
+    def __init__(self, data: bytes | bytearray, why: str):
         self.text = _show(data)
         super().__init__(f"{why}: {self.text}")
 
 
-def _show(data: bytes, limit: int = 80) -> str:
+def _show(data: bytes | bytearray, limit: int = 80) -> str:
     text = repr(bytes(data[:limit]))
     return text + (f" ... ({len(data)} bytes)" if len(data) > limit else "")
 
@@ -276,6 +276,7 @@ class OpenConnectClient:
             remaining = deadline - time.monotonic()
             if remaining <= 0:
                 raise self._timeout(what)
+            assert self._socket is not None, "connected before a reply is awaited"
             self._socket.settimeout(remaining)
             try:
                 data = self._socket.recv(4096)
