@@ -28,6 +28,7 @@ import numpy as np
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
+from impactlab.units import converter
 from impactlab.scene.materials import MATERIAL_PRESETS, Material
 
 #: the order of the six independent tensor components as inputs and in :meth:`ClubHead.inertia_components`
@@ -89,6 +90,9 @@ def _vector3(value):
 class ClubHead:
     """A club head: a free rigid body with a (possibly curved) face.
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     mass : float
@@ -120,16 +124,16 @@ class ClubHead:
     name, source : str
     """
 
-    mass: float = attrs.field(converter=to_float, validator=positive("a positive, finite head mass in kg"))
+    mass: float = attrs.field(converter=converter("mass"), validator=positive("a positive, finite head mass in kg"))
     inertia: tuple = attrs.field(converter=_tensor, validator=_check_inertia)
     center_of_mass: tuple = attrs.field(converter=_vector3, validator=_check_center)
-    loft: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    loft: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         0.0, math.pi / 2, "a static loft between 0 and 90 deg", high_open=True))
-    lie: float = attrs.field(default=math.radians(60.0), converter=to_float, validator=in_range(
+    lie: float = attrs.field(default=math.radians(60.0), converter=converter("angle"), validator=in_range(
         0.0, math.pi / 2, "a lie angle between 0 and 90 deg", high_open=True))
-    bulge_radius: float = attrs.field(default=math.inf, converter=to_float,
+    bulge_radius: float = attrs.field(default=math.inf, converter=converter("length"),
                                       validator=positive_or_inf("a bulge radius > 0 m (inf: flat)"))
-    roll_radius: float = attrs.field(default=math.inf, converter=to_float,
+    roll_radius: float = attrs.field(default=math.inf, converter=converter("length"),
                                      validator=positive_or_inf("a roll radius > 0 m (inf: flat)"))
     material: Material | None = None
     name: str = ""
@@ -195,6 +199,9 @@ class ClubHead:
 class Strike:
     """Where the ball meets the face, from the face centre along the face axes [m].
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     toe : float
@@ -203,9 +210,9 @@ class Strike:
         Up the face (negative: towards the sole) [m].
     """
 
-    toe: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    toe: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
-    high: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    high: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
 
 
