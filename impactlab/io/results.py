@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 
@@ -11,6 +12,9 @@ from impactlab.errors import StudyError
 from impactlab.io.safe_output import write_atomically
 
 ENGINE = "h5netcdf"
+#: the layout of result files this impactlab writes and reads; a file carries it as the attribute
+#: ``impactlab_format`` (files written before it was introduced carry ``impactlab_version`` only: format 1)
+RESULT_FORMAT = 1
 
 
 def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
@@ -22,6 +26,8 @@ def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
     """
     # HDF5 is built in memory and written by Python: the HDF5 library, handed a full disk, fails in ways
     # (a RuntimeError, then a crash when the half-closed file is collected) that plain file writes do not
+    dataset = dataset.copy(deep=False)
+    dataset.attrs = {**dataset.attrs, "impactlab_format": RESULT_FORMAT}
     payload = dataset.to_netcdf(engine=ENGINE, invalid_netcdf=False)
     return write_atomically(path, payload)
 
@@ -36,6 +42,69 @@ def open_results(path: str | os.PathLike) -> xr.Dataset:
                          f"{path}: is not a regular file, not a result file")
     try:
         with xr.open_dataset(path, engine=ENGINE) as dataset:
-            return dataset.load()
+            dataset = dataset.load()
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise StudyError(f"{path}: not an impactlab result file ({type(exc).__name__}: {exc})") from None
+    check_result(dataset, path)
+    return dataset
+
+
+#: attributes held as JSON, and the Python type each decodes to
+_JSON_ATTRIBUTES = {"models": list, "plots": list, "base_scene_si": dict, "sensitivity": dict}
+#: attributes a sensitivity result must have (``impactlab show`` and ``plot`` read them)
+_SENSITIVITY_ATTRIBUTES = ("sensitivity", "sampler", "analyser", "salib_version")
+
+
+def check_result(dataset: xr.Dataset, path: str | os.PathLike = "<dataset>") -> None:
+    """Refuse a dataset impactlab did not write, one from a newer format, or one whose attributes were altered.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A dataset read from ``path``.
+    path : str or path-like
+        The file, for messages.
+
+    Raises
+    ------
+    StudyError
+        "not an impactlab result" (no ``impactlab_version`` attribute: an HDF5 or netCDF file of another
+        program), "written by a newer impactlab" (an ``impactlab_format`` above :data:`RESULT_FORMAT`), or the
+        attribute whose shape is not what impactlab writes (a ``models`` attribute that is not a JSON list, a
+        sensitivity result without its ``sampler``...).
+    """
+    from impactlab._version import __version__
+
+    attributes = dataset.attrs
+    if "impactlab_version" not in attributes:
+        raise StudyError(f"{path}: not an impactlab result (an HDF5/netCDF file without the impactlab_version "
+                         "attribute every impactlab result carries); give a file written by impactlab run")
+    written = attributes.get("impactlab_format", 1)
+    try:
+        written = int(written)
+    except (TypeError, ValueError):
+        raise StudyError(f"{path}: not an impactlab result (impactlab_format {written!r} is not a format "
+                         "number)") from None
+    if written > RESULT_FORMAT:
+        raise StudyError(f"{path}: written by a newer impactlab ({attributes['impactlab_version']}, result format "
+                         f"{written}); this is impactlab {__version__}, which reads formats up to {RESULT_FORMAT}: "
+                         "upgrade impactlab to read it")
+    for name, kind in _JSON_ATTRIBUTES.items():
+        if name not in attributes:
+            continue
+        try:
+            value = json.loads(attributes[name]) if attributes[name] != "" else kind()
+        except (TypeError, ValueError):
+            value = None
+        if not isinstance(value, kind) or (name == "models" and not all(
+                isinstance(entry, dict) and isinstance(entry.get("id"), str) and isinstance(entry.get("name"), str)
+                and isinstance(entry.get("options", {}), dict) for entry in value)):
+            shape = "JSON list of models, each with id, name and options" if name == "models" else \
+                f"JSON {'list' if kind is list else 'mapping'}"
+            raise StudyError(f"{path}: not an impactlab result as written: its {name!r} attribute is not the "
+                             f"{shape} impactlab writes (got {str(attributes[name])[:60]!r}); the file was altered")
+    if attributes.get("study_type") == "sensitivity":
+        missing = [name for name in _SENSITIVITY_ATTRIBUTES if not isinstance(attributes.get(name), str)]
+        if missing:
+            raise StudyError(f"{path}: a sensitivity result without its {', '.join(missing)} attribute(s), which "
+                             "impactlab writes in every sensitivity result; the file was altered")
