@@ -50,6 +50,8 @@ def _example(value: float, dimension: str) -> str:
     si_unit = DIMENSIONS[dimension][0]
     if unit == si_unit:
         return f"{value:g} {unit}"
+    if size < 1.0 and 0.0 < abs(value) < 1.0 and dimension != "angle":  # 0.021335 as a radius: metres, likely
+        return f"{value:g} {si_unit} or {value / size:.6g} {unit}"
     return f"{value:g} {unit} or {value * size:.6g} {si_unit}"
 
 

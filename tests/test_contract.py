@@ -117,8 +117,8 @@ def test_reference_options_need_a_declared_tolerance():
 
 
 STUDY = {"name": "wp", "ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
-         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": [10, 30]}, "outputs": ["tangential_impulse"]}
+         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": ["10 deg", "30 deg"]}, "outputs": ["tangential_impulse"]}
 
 
 def test_convergence_sweeps_exactly_the_models_that_declare_a_tolerance():
@@ -165,8 +165,8 @@ def test_library_plots_leave_the_callers_backend_alone(tmp_path):
         from impactlab.plot.figures import plot_histories, plot_results
         from impactlab.data.convergence import plot_work_precision, work_precision
         study = {{"name": "p", "ball": {{"preset": "urethane_tour"}}, "face": {{"rigid": True}},
-                 "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": 40, "angle": 20}},
-                 "sweep": {{"impact.angle": [10, 30]}}, "models": ["maw", "rigid_coulomb"],
+                 "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": "40 m/s", "angle": "20 deg"}},
+                 "sweep": {{"impact.angle": ["10 deg", "30 deg"]}}, "models": ["maw", "rigid_coulomb"],
                  "outputs": ["launch_angle", "tangential_force"]}}
         ds = impactlab.run_study(study)
         plot_results(ds, r"{tmp_path / 'a.png'}")

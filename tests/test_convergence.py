@@ -7,8 +7,8 @@ from impactlab.cli import main
 from impactlab.data.convergence import work_precision
 
 STUDY = {"name": "wp", "ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
-         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": [8, 20, 40]},
+         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": ["8 deg", "20 deg", "40 deg"]},
          "models": ["maw", {"name": "maw", "id": "annuli", "method": "annuli"}, "rigid_coulomb"],
          "outputs": ["launch_ratio", "tangential_impulse"]}
 

@@ -14,8 +14,8 @@ import xarray as xr
 import impactlab
 
 STUDY = {"name": "exec", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
-         "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": {"start": 2, "stop": 60, "num": 30}, "contact.friction": [0.1, 0.3, 0.5],
+         "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": {"start": "2 deg", "stop": "60 deg", "num": 30}, "contact.friction": [0.1, 0.3, 0.5],
                    "ball.inertia_factor": [0.1, 0.4]},
          "models": ["maw", {"name": "maw", "id": "hyst", "inelastic": "hysteretic"}, "rigid_coulomb"],
          "outputs": ["launch_ratio", "spin_rate", "tangential_restitution"]}
@@ -74,7 +74,7 @@ BIG = """name: resumable
 ball: {preset: urethane_tour}
 face: {preset: steel}
 contact: {friction: 0.4, restitution: 0.8}
-impact: {speed: 40, angle: 20}
+impact: {speed: 40 m/s, angle: 20 deg}
 sweep:
   impact.angle: {start: 1 deg, stop: 60 deg, num: 200}
   contact.friction: {start: 0.1, stop: 0.5, num: 20}

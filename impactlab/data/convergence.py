@@ -25,6 +25,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
+from impactlab.io.results import RESULT_FORMAT
 from impactlab.run.runner import case_inputs
 from impactlab.study.core import Study
 from impactlab.vocabulary import OUTPUTS, is_scalar
@@ -105,7 +106,7 @@ def work_precision(study: Study, tolerances=LADDER, repeats: int = 3, progress=N
                 "output_units": ("output", [OUTPUTS[name].units for name in outputs])},
         attrs={"title": f"work-precision of study {study.name}", "study_name": study.name,
                "study_source": study.source, "cases": n_cases, "repeats": repeats,
-               "reference": json.dumps(notes), "impactlab_version": __version__,
+               "reference": json.dumps(notes), "impactlab_version": __version__, "impactlab_format": RESULT_FORMAT,
                "method": __doc__.strip().split("\n\n")[1].replace("\n", " ")},
     )
 

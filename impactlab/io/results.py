@@ -12,8 +12,10 @@ from impactlab.errors import StudyError
 from impactlab.io.safe_output import write_atomically
 
 ENGINE = "h5netcdf"
-#: the layout of result files this impactlab writes and reads; a file carries it as the attribute
-#: ``impactlab_format`` (files written before it was introduced carry ``impactlab_version`` only: format 1)
+#: the layout of the result datasets (and files) this impactlab makes and reads, carried as the attribute
+#: ``impactlab_format`` (files written before it was introduced carry ``impactlab_version`` only: format 1);
+#: raised when a change would make an older impactlab misread a newer file, which then refuses it ("written by
+#: a newer impactlab")
 RESULT_FORMAT = 1
 
 
@@ -26,8 +28,6 @@ def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
     """
     # HDF5 is built in memory and written by Python: the HDF5 library, handed a full disk, fails in ways
     # (a RuntimeError, then a crash when the half-closed file is collected) that plain file writes do not
-    dataset = dataset.copy(deep=False)
-    dataset.attrs = {**dataset.attrs, "impactlab_format": RESULT_FORMAT}
     payload = dataset.to_netcdf(engine=ENGINE, invalid_netcdf=False)
     return write_atomically(path, payload)
 

@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
+from impactlab.io.results import RESULT_FORMAT
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
@@ -101,7 +102,7 @@ def _integer_flags(variable: xr.Variable) -> xr.Variable:
     return variable
 
 
-def versions() -> dict[str, str]:
+def versions() -> dict[str, str | int]:
     """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage.
 
     Read once per process (reading package metadata costs ~10 ms, more than a small study's physics);
@@ -111,10 +112,11 @@ def versions() -> dict[str, str]:
 
 
 @functools.cache
-def _versions() -> dict[str, str]:
+def _versions() -> dict[str, str | int]:
     from importlib import metadata
 
-    found = {"impactlab_version": __version__, "python_version": platform.python_version()}
+    found = {"impactlab_version": __version__, "impactlab_format": RESULT_FORMAT,
+             "python_version": platform.python_version()}
     for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
         try:
             found[f"{package}_version"] = metadata.version(package)
