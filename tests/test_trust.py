@@ -194,3 +194,94 @@ def test_open_results_in_python_says_the_same(tmp_path):
     xr.Dataset({"a": ("x", [1.0])}).to_netcdf(tmp_path / "f.h5", engine="h5netcdf")
     with pytest.raises(StudyError, match="not an impactlab result"):
         impactlab.open_results(tmp_path / "f.h5")
+
+
+# --- 2. plausibility by role -----------------------------------------------------------------------------------
+
+GOLF = {"name": "g", "ball": {"preset": "urethane_tour"}, "club": {"preset": "6_iron"},
+        "contact": {"friction": 0.4, "restitution": 0.8},
+        "delivery": {"club_speed": "94 mph", "attack_angle": "-3.7 deg", "dynamic_loft": "20.2 deg"},
+        "models": ["rigid_coulomb"]}
+
+
+def _golf(**blocks):
+    document = json.loads(json.dumps(GOLF))
+    for block, values in blocks.items():
+        document[block] = {**document.get(block, {}), **values}
+    return document
+
+
+@pytest.mark.parametrize("blocks, words", [
+    # the absurd inputs, each run before and returned numbers
+    ({"strike": {"toe": "99 mm"}}, "strike.toe: expected a strike on the club's face between -37.5 and 37.5 mm"),
+    ({"strike": {"high": "-30 mm"}}, "strike.high: expected a strike on the club's face between -22.5 and 22.5 mm"),
+    ({"club": {"preset": "driver", "center_of_mass": {"depth": "3 m"}}},
+     "club.center_of_mass.depth: expected a centre of mass inside the head between 0 and 127 mm"),
+    ({"club": {"preset": "driver", "center_of_mass": {"toe": "80 mm", "depth": "40 mm"}}},
+     "club.center_of_mass.toe: expected a centre of mass inside the head between -63.5 and 63.5 mm"),
+    ({"club": {"preset": "driver", "bulge_radius": "1 mm"}},
+     "club.bulge_radius: expected a bulge radius no smaller than half the face's width at least 55 mm"),
+    ({"club": {"preset": "driver", "roll_radius": "20 mm"}},
+     "club.roll_radius: expected a roll radius no smaller than half the face's height at least 30 mm"),
+    ({"delivery": {"attack_angle": "89 deg", "dynamic_loft": "10 deg"}},
+     "delivery.attack_angle: expected an attack angle between -30 and 30 deg"),
+    ({"delivery": {"club_speed": "1000000 m/s"}}, "delivery.club_speed: expected a club speed between 1 and 200 mph"),
+    ({"impact": {"spin": "1e9 rpm"}}, "impact.spin: expected an incoming ball spin between -20000 and 20000 rpm"),
+    ({"club": {"preset": "6_iron", "mass": "200 kg"}}, "club.mass: expected a club-head mass between 50 and 1000 g"),
+])
+def test_values_no_golf_shot_can_have_are_refused_with_range_and_why(blocks, words):
+    message = _refused(_golf(**blocks))
+    assert words in message and "(" in message.split(words)[1]  # the reason follows the range
+
+
+def test_the_strike_limit_is_the_clubs_own_face():
+    # 40 mm towards the toe is on a driver's face (110 mm wide) and off a 6-iron's (75 mm)
+    impactlab.load_study(_golf(club={"preset": "driver"}, strike={"toe": "40 mm"}))
+    assert "between -37.5 and 37.5 mm" in _refused(_golf(strike={"toe": "40 mm"}))
+    # a user's head of given face size
+    head = {"preset": "6_iron", "face_width": "60 mm"}
+    assert "between -30 and 30 mm" in _refused(_golf(club=head, strike={"toe": "31 mm"}))
+
+
+def test_a_refused_sweep_value_is_named_by_its_index():
+    document = _golf(sweep={"strike.toe": ["0 mm", "10 mm", "60 mm"]})
+    message = _refused(document)
+    assert "sweep.strike.toe[2]" in message and "a strike on the club's face" in message
+
+
+def test_unusual_values_are_warned_once_and_computed(recwarn):
+    from impactlab.errors import PlausibilityWarning
+    document = _golf(delivery={"attack_angle": "-14 deg"}, sweep={"contact.friction": [0.3, 0.4]})
+    ds = impactlab.run_study(document)
+    assert np.isfinite(ds.ball_speed.values).all()
+    ours = [w for w in recwarn.list if issubclass(w.category, PlausibilityWarning)]
+    assert len(ours) == 1 and "delivery.attack_angle: -14 deg is unusual for golf" in str(ours[0].message)
+    impactlab.load_study(document)  # again: not warned twice in one process
+    assert len([w for w in recwarn.list if issubclass(w.category, PlausibilityWarning)]) == 1
+
+
+def test_general_contact_scenes_keep_their_wide_ranges():
+    # a 0.1 m/s sphere-on-plate impact and a 1 m steel sphere on a sphere (Chung & Ooi style): not golf
+    from impactlab.scene.core import Contact, Scene
+    from impactlab.scene.plausibility import scene_kind
+    plate = impactlab.load_study({"name": "p", "ball": {"radius": "0.1 m", "mass": "8 kg", "youngs_modulus": "200 GPa",
+                                                        "poisson_ratio": 0.3},
+                                  "face": {"rigid": True}, "contact": {"friction": 0.1, "restitution": 0.9},
+                                  "impact": {"speed": "0.1 m/s", "angle": "60 deg", "spin": "100000 rpm"},
+                                  "models": ["rigid_coulomb"]})
+    assert scene_kind(plate.scene) == "contact"
+    sphere = ClubHead.sphere(radius=1.0, mass=30000.0)
+    scene = Scene(plate.scene.ball, Scene.face_of(sphere), Contact(friction=0.1, restitution=0.9),
+                  Impact(speed="0.2 m/s", angle="30 deg", spin="100000 rpm"), club=sphere)
+    assert scene_kind(scene) == "contact"  # the sphere's "CG" 1 m behind its face and its 1 m "bulge" are fine
+
+
+def test_measured_magnitudes_below_zero_are_refused(tmp_path):
+    from impactlab.data.shots import read_csv
+    text = ("label,club,Club Speed [mph],Attack Angle [deg],Dynamic Loft [deg],Ball Speed [mph],Spin Rate [rpm]\n"
+            "a,driver,110,-1,12,-160,2500\nb,driver,110,-1,12,160,-2500\n")
+    with pytest.raises(StudyError) as info:
+        read_csv(text, file="t.csv")
+    message = str(info.value)
+    assert "ball_speed: expected a value >= 0 (a ball speed is a magnitude" in message
+    assert "spin_rate: expected a value >= 0 (the total spin is a magnitude" in message

@@ -155,6 +155,9 @@ class Scene:
                              f"mass {self.face.mass:g} kg")
         if self.club is None and self.strike != Strike():
             raise FieldError("strike", "a club head to strike off centre (a club block)", "no club")
+        from impactlab.scene.plausibility import check_scene
+
+        check_scene(self)  # values no golf shot can have (a golf scene's limits by role)
         if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
                                           or self.impact.speed != self.delivery.club_speed):
             raise FieldError("impact", "the club speed and spin loft of the delivery (use Scene.from_delivery)",

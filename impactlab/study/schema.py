@@ -157,6 +157,8 @@ class ClubBlock:
     youngs_modulus: Pressure | None = None
     poisson_ratio: Number | None = None
     restitution_gain: Number | None = None
+    face_width: Length | None = None
+    face_height: Length | None = None
 
 
 @attrs.frozen
