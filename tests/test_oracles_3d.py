@@ -232,7 +232,6 @@ def _random_head(rng):
     return base, tensor, centre
 
 
-@pytest.mark.slow
 def test_rigid_coulomb_equals_the_independent_solver_on_random_off_centre_strikes():
     rng = np.random.default_rng(23)
     scenes, expected = [], []
