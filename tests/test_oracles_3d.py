@@ -133,8 +133,11 @@ def _head_axes(loft):
     return toe, up, normal
 
 
-def independent_impact(head: ClubHead, strike: Strike, loft: float, speed: float, mu: float, e: float):
-    """Ball velocity and spin (ground frame) of a flat-faced head whose static loft equals the dynamic loft."""
+def independent_impact(head: ClubHead, strike: Strike, loft: float, speed: float, mu: float, e: float,
+                       spin: float = 0.0):
+    """Ball velocity and spin (ground frame) of a flat-faced head whose static loft equals the dynamic loft;
+    ``spin`` [rad/s] is the ball's incoming backspin (docs/conventions.md: positive as friction spins a ball
+    sliding up a lofted face, i.e. about -Y, the golfer's right, for a ball going towards +X)."""
     toe, up, normal = _head_axes(loft)
     m, radius, k2 = BALL.mass, BALL.radius, BALL.inertia_factor
     # head frame at address (toe, vertical, target) in ground axes: with static loft = dynamic loft the head
@@ -150,11 +153,13 @@ def independent_impact(head: ClubHead, strike: Strike, loft: float, speed: float
     w_ball = (np.eye(3) + (np.eye(3) - nn) / k2) / m
     w_head = np.eye(3) / head.mass + skew.T @ np.linalg.inv(inertia) @ skew
     mobility = [tuple(row) for row in (w_ball + w_head)]
-    v0 = (-speed, 0.0, 0.0)  # ball at rest minus the head's contact point moving along X
+    spin_before = np.array([0.0, -spin, 0.0])
+    # the ball's contact point (at -R n from its centre) minus the head's contact point moving along X
+    v0 = tuple(np.cross(spin_before, -radius * np.array(normal)) - np.array([speed, 0.0, 0.0]))
     impulse = np.array(stronge(v0, mobility, normal, mu, e))
     velocity = impulse / m
-    spin = np.cross(-radius * np.array(normal), impulse) / (k2 * m * radius**2)
-    return velocity, spin, impulse, mobility
+    spin_after = spin_before + np.cross(-radius * np.array(normal), impulse) / (k2 * m * radius**2)
+    return velocity, spin_after, impulse, mobility
 
 
 def golf_terms(velocity, spin):
@@ -172,9 +177,9 @@ def golf_terms(velocity, spin):
             "side_spin": -float(spin @ up_axis) * rpm}
 
 
-def _scene(head, strike, loft, speed, mu, e, handedness="right", face_angle=0.0):
+def _scene(head, strike, loft, speed, mu, e, handedness="right", face_angle=0.0, spin=0.0):
     delivery = Delivery(speed, dynamic_loft=loft, face_angle=face_angle, handedness=handedness)
-    return Scene.from_delivery(BALL, Scene.face_of(head), Contact(mu, e), delivery, 0.0, head, strike)
+    return Scene.from_delivery(BALL, Scene.face_of(head), Contact(mu, e), delivery, spin, head, strike)
 
 
 def _run(model, scenes, outputs, **options):
@@ -242,8 +247,9 @@ def test_rigid_coulomb_equals_the_independent_solver_on_random_off_centre_strike
                         face_width=base.face_width, face_height=base.face_height)
         strike = Strike(toe=rng.uniform(-0.02, 0.02), high=rng.uniform(-0.01, 0.01))
         speed, mu, e = rng.uniform(35.0, 50.0), rng.uniform(0.15, 0.6), rng.uniform(0.6, 0.9)
-        scenes.append(_scene(head, strike, loft, speed, mu, e))
-        velocity, spin, _, _ = independent_impact(head, strike, loft, speed, mu, e)
+        spin_in = rng.uniform(-300.0, 300.0)  # incoming spin, rad/s (about +-2900 rpm)
+        scenes.append(_scene(head, strike, loft, speed, mu, e, spin=spin_in))
+        velocity, spin, _, _ = independent_impact(head, strike, loft, speed, mu, e, spin_in)
         expected.append(golf_terms(velocity, spin))
     names = ["ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin"]
     inputs, result = _run("rigid_coulomb", scenes, names, steps=40000)
@@ -254,6 +260,28 @@ def test_rigid_coulomb_equals_the_independent_solver_on_random_off_centre_strike
         scale = {"ball_speed": 0.2, "vertical_launch_angle": 0.01, "horizontal_launch_angle": 0.01,
                  "back_spin": 2.0, "side_spin": 2.0}[name]  # m/s, deg, rpm: 1e-3 to 1e-4 of the values
         np.testing.assert_allclose(got, want, rtol=0, atol=scale, err_msg=name)
+
+
+def test_the_contact_time_on_a_curved_face_is_hertz_with_the_equivalent_radius():
+    """A centred, frictionless, elastic strike on the measured driver's bulged and rolled face: the contact
+    time is Hertz's, t_c = 2.8682 (m*^2 / (R_e E*^2 V_n))^(1/5) (physics brief section 2), with the equivalent
+    radius of two convex bodies, 1/R' = 1/R + 1/R_bulge and 1/R'' = 1/R + 1/R_roll, R_e = sqrt(R' R'')
+    (Johnson, Contact Mechanics, 1985, section 4.2): a convex face shortens the radius, a flat one keeps R."""
+    driver = CLUB_PRESETS["driver"]
+    head = ClubHead(mass=driver.mass, inertia=(3e-4, 5e-4, 4e-4), center_of_mass=(0.0, 0.0, 0.04),
+                    loft=math.radians(10.0), bulge_radius=driver.bulge_radius, roll_radius=driver.roll_radius,
+                    material=driver.material)
+    speed, loft = 45.0, math.radians(10.0)
+    scene = _scene(head, Strike(), loft, speed, 0.0, 1.0)
+    _, result = _run("maw", [scene], ["contact_time"], tolerance=1e-6)
+    ball, face = BALL.material, driver.material
+    modulus = 1.0 / ((1 - ball.poisson_ratio**2) / ball.youngs_modulus + (1 - face.poisson_ratio**2)
+                     / face.youngs_modulus)
+    radius = BALL.radius
+    r1, r2 = 1.0 / (1.0 / radius + 1.0 / driver.bulge_radius), 1.0 / (1.0 / radius + 1.0 / driver.roll_radius)
+    mass = 1.0 / (1.0 / BALL.mass + 1.0 / head.mass)
+    expected = 2.8682 * (mass**2 / (math.sqrt(r1 * r2) * modulus**2 * speed * math.cos(loft))) ** 0.2
+    assert result["contact_time"].values[0] == pytest.approx(expected, rel=2e-3)
 
 
 # --- the 1-D/3-D path: a head whose only coupling is vertical ---------------------------------------------------
