@@ -284,6 +284,27 @@ def test_the_contact_time_on_a_curved_face_is_hertz_with_the_equivalent_radius()
     assert result["contact_time"].values[0] == pytest.approx(expected, rel=2e-3)
 
 
+@pytest.mark.parametrize("model", ["maw", "hertz_mindlin", "dem_linear", "rigid_coulomb"])
+def test_the_tangential_law_is_isotropic_in_the_face_plane(model):
+    """Head-on (no incoming slip, unlofted face), a head whose moments about the toe and vertical axes are equal:
+    a strike b towards the toe is the strike b up the face turned by 90 deg about the normal. The coupling makes
+    the slip grow along the offset, and the friction impulse it gets must be the same whichever tangential
+    axis of the contact frame it falls on (the frame's slip axis s is up the face here, its lateral axis l the
+    toe): a law that weighs its two tangential components differently breaks this symmetry."""
+    head = ClubHead(mass=0.2, inertia=(3.0e-4, 3.0e-4, 4.5e-4), center_of_mass=(0.0, 0.0, 0.03), loft=0.0,
+                    material=MATERIAL_PRESETS["titanium"])
+    scenes = [_scene(head, Strike(toe=0.015), 0.0, 45.0, 0.3, 0.8), _scene(head, Strike(high=0.015), 0.0, 45.0,
+                                                                          0.3, 0.8)]
+    _, result = _run(model, scenes, ["normal_impulse", "tangential_impulse", "lateral_impulse", "spin_rate"])
+    normal, tangential, lateral = (result[name].values for name in ("normal_impulse", "tangential_impulse",
+                                                                    "lateral_impulse"))
+    assert normal[0] == pytest.approx(normal[1], rel=1e-9)
+    assert abs(lateral[0]) > 0.01 * normal[0]  # friction acts: the test is not empty
+    assert abs(lateral[0]) == pytest.approx(abs(tangential[1]), rel=1e-6)
+    assert abs(tangential[0]) < 1e-9 * normal[0] and abs(lateral[1]) < 1e-9 * normal[0]
+    assert abs(result["spin_rate"].values[0]) == pytest.approx(abs(result["spin_rate"].values[1]), rel=1e-6)
+
+
 # --- the 1-D/3-D path: a head whose only coupling is vertical ---------------------------------------------------
 
 def _vertical_only_head():
