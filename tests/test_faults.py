@@ -85,7 +85,7 @@ def test_alias_bomb_is_refused_quickly_even_under_an_unknown_key(tmp_path, capsy
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "expands (through its aliases) to more than 100,000 nodes" in err
-    assert time.perf_counter() - start < 5
+    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
 
 
 @pytest.mark.parametrize("kind", ["txt", "upper", "folder", "devnull"])
@@ -133,7 +133,7 @@ def test_a_billion_cases_are_refused_before_any_value_is_made(tmp_path, capsys):
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "1,000,000,000 cases, above the limit of 10,000,000" in err and "--max-cases" in err
-    assert time.perf_counter() - start < 5
+    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
 
 
 def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, capsys):
@@ -144,7 +144,8 @@ def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, ca
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "16,000,000 cases, above the limit" in err
-    assert time.perf_counter() - start < 10  # ranges are checked at their ends, not value by value
+    # ranges are checked at their ends, not value by value (16 million scenes would take hours); generous for load
+    assert time.perf_counter() - start < 30
     small = write_study(tmp_path, "small.yaml")
     code, err = cli(capsys, "run", small, "--plan", "--max-cases", "5")
     assert code == 2 and "12 cases, above the limit of 5" in err
