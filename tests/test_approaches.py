@@ -57,6 +57,7 @@ def small(path: Path, **changes) -> dict:
     return text
 
 
+@pytest.mark.slow
 def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_path, drawn_figures):
     study = impactlab.load_study(small(STUDIES / "approaches.yaml",
                                        sweep={"impact.angle": {"start": "1 deg", "stop": "70 deg", "num": 12}}))

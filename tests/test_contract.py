@@ -155,6 +155,7 @@ def test_the_memory_estimate_counts_declared_expert_resolutions():
     assert estimate(small).kernel_memory == 0 < estimate(big).kernel_memory
 
 
+@pytest.mark.slow
 def test_library_plots_leave_the_callers_backend_alone(tmp_path):
     # a fresh interpreter: the test session's own backend cannot hide a library call that switches it
     script = textwrap.dedent(f"""

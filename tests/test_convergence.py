@@ -1,6 +1,7 @@
 """The work-precision command: error falls with the tolerance, closed forms are exact, files and plot appear."""
 
 import numpy as np
+import pytest
 
 import impactlab
 from impactlab.cli import main
@@ -25,6 +26,7 @@ def test_errors_fall_with_the_tolerance_and_closed_forms_are_exact():
     assert np.all(np.diff(ds.steps.sel(model="maw").values) >= 0)  # tighter tolerance, more steps
 
 
+@pytest.mark.slow
 def test_convergence_command_writes_results_and_a_figure(tmp_path, capsys, drawn_figures):
     path = tmp_path / "study.yaml"
     import yaml

@@ -31,10 +31,12 @@ def serial():
     return impactlab.run_study(STUDY, executor="serial", chunk_size=10_000)
 
 
+@pytest.mark.slow
 def test_small_chunks_join_to_the_same_result(serial):
     same(impactlab.run_study(STUDY, executor="serial", chunk_size=7), serial)
 
 
+@pytest.mark.slow
 def test_processes_give_identical_results(serial):
     same(impactlab.run_study(STUDY, executor="processes", workers=2, chunk_size=40), serial)
 
@@ -45,6 +47,7 @@ def test_dask_local_cluster_gives_identical_results(serial):
     same(impactlab.run_study(STUDY, executor="dask", workers=2, chunk_size=50), serial)
 
 
+@pytest.mark.slow
 def test_saved_chunks_are_reused(tmp_path, serial, monkeypatch):
     folder = tmp_path / "progress"
     impactlab.run_study(STUDY, executor="serial", chunk_size=20, progress_folder=folder)
@@ -59,6 +62,7 @@ def test_saved_chunks_are_reused(tmp_path, serial, monkeypatch):
     same(impactlab.run_study(STUDY, executor="serial", chunk_size=20, progress_folder=folder), serial)
 
 
+@pytest.mark.slow
 def test_progress_of_another_study_is_discarded(tmp_path):
     folder = tmp_path / "progress"
     impactlab.run_study(STUDY, executor="serial", chunk_size=60, progress_folder=folder)

@@ -177,8 +177,8 @@ def golf_terms(velocity, spin):
             "side_spin": -float(spin @ up_axis) * rpm}
 
 
-def _scene(head, strike, loft, speed, mu, e, handedness="right", face_angle=0.0, spin=0.0):
-    delivery = Delivery(speed, dynamic_loft=loft, face_angle=face_angle, handedness=handedness)
+def _scene(head, strike, loft, speed, mu, e, handedness="right", face_angle=0.0, spin=0.0, path=0.0):
+    delivery = Delivery(speed, dynamic_loft=loft, face_angle=face_angle, handedness=handedness, path=path)
     return Scene.from_delivery(BALL, Scene.face_of(head), Contact(mu, e), delivery, spin, head, strike)
 
 
@@ -386,12 +386,13 @@ def test_the_energy_loss_output_is_the_kinetic_energy_the_bodies_lose():
 @pytest.mark.parametrize("model", ["rigid_coulomb", "maw"])
 def test_a_left_handed_golfer_is_the_mirror_image_on_a_free_head(model):
     head, loft = CLUB_PRESETS["driver"], math.radians(12.0)
-    names = ["horizontal_launch_angle", "spin_axis", "side_spin", "vertical_launch_angle", "back_spin", "ball_speed"]
-    cases = [(0.015, 0.004, math.radians(3.0)), (-0.01, -0.005, math.radians(-2.0))]
-    right = _run(model, [_scene(head, Strike(toe, high), loft, 50.0, 0.4, 0.8, "right", face) for toe, high, face
-                         in cases], names)[1]
-    left = _run(model, [_scene(head, Strike(toe, high), loft, 50.0, 0.4, 0.8, "left", face) for toe, high, face
-                        in cases], names)[1]
+    names = ["horizontal_launch_angle", "spin_axis", "side_spin", "vertical_launch_angle", "back_spin", "ball_speed",
+             "spin_loft"]
+    cases = [(0.015, 0.004, math.radians(3.0), 0.0), (-0.01, -0.005, math.radians(-2.0), math.radians(4.0))]
+    right = _run(model, [_scene(head, Strike(toe, high), loft, 50.0, 0.4, 0.8, "right", face, path=path)
+                         for toe, high, face, path in cases], names)[1]
+    left = _run(model, [_scene(head, Strike(toe, high), loft, 50.0, 0.4, 0.8, "left", face, path=path)
+                        for toe, high, face, path in cases], names)[1]
     for name in names[:3]:  # lateral: mirrored (positive right, whoever swings)
         np.testing.assert_allclose(left[name].values, -right[name].values, rtol=1e-9, atol=1e-9, err_msg=name)
     for name in names[3:]:
