@@ -180,10 +180,13 @@ def _string_to_si(text: str, dimension: str) -> float | str | object:
         quantity = ureg.Quantity(text)
     except Exception:  # noqa: BLE001 - pint raises many kinds for text it cannot read; the message says what to write
         return ""
-    if not isinstance(quantity, ureg.Quantity) or quantity.unitless:  # a bare number written as a string
-        if dimension == "dimensionless":
-            return float(quantity.magnitude if isinstance(quantity, ureg.Quantity) else quantity)
-        return _BARE
+    if not isinstance(quantity, ureg.Quantity) or quantity.unitless:
+        try:
+            number = float(text)
+        except ValueError:  # a unit pint counts as none ("50 %"): judged below like any other
+            number = None
+        if number is not None:  # a bare number written as a string
+            return number if dimension == "dimensionless" else _BARE
     # pint counts radians as dimensionless, so "50 %" would pass as 0.5 rad, "30 deg" as a friction of
     # 0.52, and "50 Hz" as 50 rad/s: whether an angle unit is written decides instead
     angular = _has_angle(quantity)
