@@ -166,8 +166,8 @@ def main():
 
     print("\n3. Fig. 6 sweep (540 scenes: 5 frictions x 108 lofts, maw only, warm)")
     study = {"name": "fig6", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
-             "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": 10},
-             "sweep": {"impact.angle": {"start": 1, "stop": 60, "num": 108},
+             "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": "10 deg"},
+             "sweep": {"impact.angle": {"start": "1 deg", "stop": "60 deg", "num": 108},
                        "contact.friction": [0.1, 0.2, 0.3, 0.4, 0.5]},
              "models": ["maw"], "outputs": ["launch_ratio"]}
     loaded = impactlab.load_study(study)

@@ -39,6 +39,9 @@ T_CORE = ["tests/test_maw.py", "tests/test_rigid_models.py", "tests/test_units_a
           "tests/test_mutation_oracles.py", "tests/test_properties.py"]
 T_GSPRO = ["tests/test_gspro.py", "tests/test_interchange.py"]
 T_CLUB = ["tests/test_clubs.py", "tests/test_delivery.py", "tests/test_mutation_oracles.py"]
+#: the 3-D contact, club data, the 3-D kernel, derivation and deliveries (issue 23): with the oracles written
+#: independently of that code (tests/test_oracles_3d.py)
+T_3D = T_CLUB + ["tests/test_oracles_3d.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
 MUTANTS = [
@@ -189,6 +192,69 @@ MUTANTS = [
     ("dem-linear-ratio-inverted", "models/dem.py",
      '"stiffness_factor": self.options.stiffness_ratio / float(kappa)}', '"stiffness_factor": float(kappa) / self.options.stiffness_ratio}',
      T_DEM, "dem_linear stiffness factor r/kappa inverted"),
+    # --- issue 23: new mutants over the 3-D contact, club data, the 3-D kernel, derivation and deliveries
+    ("contact-path-ignores-vertical-coupling", "impactlab/physics/contact.py",
+     "off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)",
+     "off = np.abs(mobility[:, [0, 1], [1, 2]]).max(axis=1)",
+     T_3D, "1-D/3-D path test ignores the normal-slip (vertical) coupling: a high strike loses its gear effect"),
+    ("contact-cg-in-front", "impactlab/physics/contact.py",
+     '- value("club_cg_depth", 0.0)[:, None] * flat_normal)', '+ value("club_cg_depth", 0.0)[:, None] * flat_normal)',
+     T_3D, "centre of mass put in front of the face instead of behind it"),
+    ("contact-roll-uses-bulge", "impactlab/physics/contact.py",
+     "tilt_toe, tilt_high = strike_toe / bulge, strike_high / roll",
+     "tilt_toe, tilt_high = strike_toe / bulge, strike_high / bulge",
+     T_3D, "the face's roll tilt computed with the bulge radius"),
+    ("contact-static-loft-sign", "impactlab/physics/contact.py",
+     "target = np.cos(static) * normal - np.sin(static) * up", "target = np.cos(static) * normal + np.sin(static) * up",
+     T_3D, "head frame turned the wrong way by the static loft (inertia tensor misplaced)"),
+    ("contact-curved-radius-sign", "impactlab/physics/contact.py",
+     "contact_radius = np.sqrt(1.0 / ((1.0 / radius + 1.0 / bulge) * (1.0 / radius + 1.0 / roll)))",
+     "contact_radius = np.sqrt(1.0 / ((1.0 / radius - 1.0 / bulge) * (1.0 / radius - 1.0 / roll)))",
+     T_3D, "a convex face's curvature subtracted from the ball's (a concave face)"),
+    ("contact-incoming-spin-sign", "impactlab/physics/contact.py",
+     "ball_spin = spin[:, None] * lateral_direction", "ball_spin = -spin[:, None] * lateral_direction",
+     T_3D, "incoming ball spin counted the other way in 3-D"),
+    ("contact-handedness-launch-direction", "impactlab/physics/contact.py",
+     "horizontal, side_spin = sign * horizontal_rh, sign * side_spin_rh",
+     "horizontal, side_spin = horizontal_rh, sign * side_spin_rh",
+     T_3D, "handedness sign dropped from the launch direction"),
+    ("compliant3d-lateral-force-factor", "impactlab/physics/_kernels.py",
+     "f1 *= 1.5 * weight", "f1 *= weight",
+     T_3D, "3-D kernel: the lateral spring force without its factor 1.5"),
+    ("compliant3d-loss-time-pi2", "impactlab/physics/compliant3d.py",
+     "normal.tau_end / np.pi", "normal.tau_end / np.pi**3",
+     T_3D + ["tests/test_balls.py"], "tangential-loss relaxation time off by pi^2"),
+    ("compliant3d-coupling-sign", "impactlab/physics/compliant3d.py",
+     "coupling = np.ascontiguousarray(mobility[:, :2, 2] / mobility[:, 2, 2, None])",
+     "coupling = np.ascontiguousarray(-mobility[:, :2, 2] / mobility[:, 2, 2, None])",
+     T_3D, "3-D kernel: the normal-tangential coupling b = W_tn/W_nn with the wrong sign"),
+    ("compliant3d-lateral-impulse-sign", "impactlab/physics/compliant3d.py",
+     "impulse = np.stack([-friction * out[:, 1], -friction * out[:, 2], out[:, 0]], -1)",
+     "impulse = np.stack([-friction * out[:, 1], friction * out[:, 2], out[:, 0]], -1)",
+     T_3D, "3-D kernel: lateral impulse returned with the wrong sign"),
+    ("clubs-driver-cg-toe-high-swapped", "impactlab/scene/clubs.py",
+     'center_of_mass=tuple(c * MM for c in DRIVER_2020["center"])',
+     'center_of_mass=tuple(c * MM for c in (2.9, 1.0, 42.3))',
+     T_3D, "the measured driver's centre-of-mass toe and height offsets swapped"),
+    ("clubs-iron-loft-lie-swapped", "impactlab/scene/clubs.py",
+     "loft=math.radians(loft), lie=math.radians(lie)", "loft=math.radians(lie), lie=math.radians(loft)",
+     T_3D, "iron presets built with loft and lie swapped"),
+    ("clubs-driver-axes-not-mapped", "impactlab/scene/clubs.py", "order = [2, 1, 0]", "order = [0, 1, 2]",
+     T_3D, "the published tensor's x, y, z taken as toe, up, target without remapping"),
+    ("clubs-driver-gain-dropped", "impactlab/scene/clubs.py",
+     'restitution_gain=0.083, **_face("driver")', 'restitution_gain=0.0, **_face("driver")',
+     T_3D + ["tests/test_validation.py"], "the driver's fitted face restitution gain dropped"),
+    ("derive-lateral-impulse-ignored", "impactlab/model/derive.py",
+     'raw["tangential_impulse"], raw.get("lateral_impulse"))', 'raw["tangential_impulse"], None)',
+     T_3D, "derived launch and spin ignore the lateral impulse (the slip that turns)"),
+    ("delivery-backspin-axis-sign", "impactlab/physics/delivery.py",
+     "backspin_axis = np.stack([np.sin(horizontal), -np.cos(horizontal)",
+     "backspin_axis = np.stack([np.sin(horizontal), np.cos(horizontal)",
+     T_3D, "1-D launch: backspin axis to the right of the launch instead of the left (spin axis wrong)"),
+    ("delivery-handedness-path", "impactlab/physics/delivery.py",
+     "return _unit(path, attack_angle, sign), _unit(face_angle, dynamic_loft, sign)",
+     "return _unit(path, attack_angle, 1.0), _unit(face_angle, dynamic_loft, sign)",
+     T_3D, "a left-hander's club path not mirrored"),
     # --- glue outside physics/models that the issue names
     ("study-poisson-override", "impactlab/study/scene_blocks.py",
      "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",
@@ -215,6 +281,9 @@ MUTANTS = [
 
 #: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out
 EQUIVALENT: dict[str, str] = {
+    "delivery-backspin-axis-sign": "on no path: physics/delivery.launch (the 1-D launch of the first golf outputs) "
+                                   "has no caller since derived outputs went through contact.ground_outputs; it "
+                                   "changes no result impactlab computes",
     "maw-annuli-steps": "equivalent to the contract: the annular method's error is set by its ring count; 200 "
                         "steps instead of 10 per annulus stay within its tolerance (measured against an "
                         "independent MDR: 0.83 of the bound at 40 and 85 annuli, against 0.82 unmutated)",

@@ -1,10 +1,15 @@
 """Quantities written by users, turned into SI floats.
 
-A quantity in a study is either a plain number, read in the field's *plain
-unit* (SI, except angles in degrees and spin in rpm, as the study format
-promises), or a string with a unit that pint understands (``"80 mph"``,
-``"21.335 mm"``, ``"136 MPa"``). Inside impactlab everything is SI with angles
-in radians and spin in rad/s.
+No unit is ever guessed. A dimensional quantity in a study (a YAML file or a mapping given in Python) is a
+string with a unit that pint understands (``"80 mph"``, ``"21.335 mm"``, ``"136 MPa"``, ``"20 deg"``) or a
+pint quantity; a bare number there is refused with the field, the quantity and an example
+(``club.mass: expected a mass with its unit, e.g. 200 g or 0.2 kg ..., got 200``), as shot tables refuse one:
+``115`` could be mph or m/s, ``200`` g or kg, ``20`` degrees or radians. Dimensionless quantities (friction,
+restitution, inertia factor, Poisson ratio) stay bare numbers.
+
+Python value objects (``Ball(mass=...)``, ``Delivery(club_speed=...)``) take a bare number as SI (angles in
+radians, spin in rad/s), or a string with a unit, or a pint quantity: :func:`converter` makes their attrs
+converters. Inside impactlab everything is SI with angles in radians and spin in rad/s.
 """
 
 from __future__ import annotations
@@ -19,8 +24,8 @@ from impactlab.errors import FieldError
 if TYPE_CHECKING:  # pint itself is imported on first use (it is slow to load)
     import pint
 
-#: Physical dimension name -> (SI unit as pint understands it, plain unit of
-#: bare numbers, words for messages).
+#: Physical dimension name -> (SI unit as pint understands it, the unit results and messages speak, words for
+#: messages).
 DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "length": ("m", "m", "a length"),
     "mass": ("kg", "kg", "a mass"),
@@ -30,8 +35,43 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "angular_speed": ("rad/s", "rpm", "a spin rate"),
     "time": ("s", "s", "a time"),
     "inertia": ("kg*m**2", "kg*m**2", "a moment of inertia"),
+    "inverse_speed": ("s/m", "s/m", "a slope per speed"),
     "dimensionless": ("dimensionless", "dimensionless", "a number"),
 }
+
+#: Per dimension, the unit people write it in and that unit's size in SI: the example a refused bare number is
+#: shown with (``200`` as a mass: "200 g or 0.2 kg").
+EXAMPLE_UNITS: dict[str, tuple[str, float]] = {
+    "length": ("mm", 1e-3), "mass": ("g", 1e-3), "pressure": ("MPa", 1e6), "speed": ("mph", 0.44704),
+    "angle": ("deg", math.pi / 180.0), "angular_speed": ("rpm", math.pi / 30.0), "time": ("ms", 1e-3),
+    "inertia": ("g*cm**2", 1e-7), "inverse_speed": ("s/m", 1.0),
+    # kelvin, not degC: the example multiplies, and an offset unit does not scale
+    "temperature": ("K", 1.0),
+}
+
+
+@functools.lru_cache(maxsize=64)
+def unit_factor(unit: str, si_unit: str) -> float:
+    """SI per ``unit``: how many ``si_unit`` one ``unit`` is (``unit_factor("mph", "m/s")`` = 0.44704)."""
+    return 1.0 if unit == si_unit else float(registry().Quantity(1.0, unit).to(si_unit).magnitude)
+
+
+def _example(value: float, dimension: str) -> str:
+    """``200`` as a mass -> "200 g or 0.2 kg": the number in the usual unit, and what that is in SI."""
+    unit, size = EXAMPLE_UNITS[dimension]
+    si_unit = DIMENSIONS[dimension][0]
+    if unit == si_unit:
+        return f"{value:g} {unit}"
+    if size < 1.0 and 0.0 < abs(value) < 1.0 and dimension != "angle":  # 0.021335 as a radius: metres, likely
+        return f"{value:g} {si_unit} or {value / size:.6g} {unit}"
+    return f"{value:g} {unit} or {value * size:.6g} {si_unit}"
+
+
+def unit_missing(value: float, dimension: str) -> str:
+    """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed)."""
+    words = DIMENSIONS[dimension][2]
+    return (f"{words} with its unit, e.g. {_example(float(value), dimension)} (a bare number's unit is never "
+            "guessed)")
 
 
 @functools.cache
@@ -43,60 +83,122 @@ def registry() -> pint.UnitRegistry:
     return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
-def to_si(value: object, dimension: str, path: str = "") -> float:
-    """Convert a user quantity to an SI float.
+def to_si(value: object, dimension: str, path: str = "", bare: str | None = None) -> float:
+    """Convert a user quantity to an SI float; a bare number of a dimensional quantity is refused.
 
     Parameters
     ----------
-    value : float or str
-        A bare number (read in the plain unit of ``dimension``) or a string
-        such as ``"80 mph"``.
+    value : float, str or pint.Quantity
+        A string with a unit such as ``"80 mph"``, or a pint quantity; for a dimensionless quantity (friction,
+        restitution...) a plain number.
     dimension : str
         A key of :data:`DIMENSIONS`.
     path : str
         Field path for error messages.
+    bare : {None, "si"}
+        What a bare number of a dimensional quantity is: None (a study, a shot table): refused, its unit is not
+        guessed; ``"si"`` (a Python value object's argument): SI, angles in radians, spin in rad/s.
+
+    Returns
+    -------
+    float
+        The value in SI (angles in rad, spin in rad/s).
 
     Raises
     ------
     FieldError
-        When the value is not a number or quantity of that dimension.
+        When the value is not a quantity of that dimension, or a bare number whose unit would be guessed.
     """
-    si_unit, plain_unit, words = DIMENSIONS[dimension]
-    expected = f"{words} (a number in {plain_unit} or a string with a unit)" if dimension != "dimensionless" \
-        else "a number"
+    si_unit, _, words = DIMENSIONS[dimension]
+    expected = f"{words} (a string with a unit, e.g. {_example(1.0, dimension)})" \
+        if dimension != "dimensionless" else "a number"
     if isinstance(value, bool) or value is None:
         raise FieldError(path, expected, value)
     if isinstance(value, Real):
-        return float(value) * _factor(plain_unit, si_unit)
+        if dimension == "dimensionless" or bare == "si":
+            return float(value)
+        raise FieldError(path, unit_missing(float(value), dimension), value)
+    if _is_pint(value):
+        return _quantity_to_si(value, dimension, path, expected)
     if not isinstance(value, str):
         raise FieldError(path, expected, value)
     converted = _string_to_si(value.strip(), dimension)
+    if converted is _BARE:  # a bare number written as text: its unit would be guessed as well (in Python too)
+        raise FieldError(path, unit_missing(float(value), dimension), value)
     if isinstance(converted, str):  # why the text is not a quantity of this dimension
         raise FieldError(path, f"{expected}{converted}", value)
     return converted
 
 
-@functools.lru_cache(maxsize=64)
-def _factor(unit: str, si_unit: str) -> float:
-    """SI per ``unit`` (a bare number in a study is read in its field's plain unit)."""
-    return 1.0 if unit == si_unit else float(registry().Quantity(1.0, unit).to(si_unit).magnitude)
+def _is_pint(value) -> bool:
+    return hasattr(value, "magnitude") and hasattr(value, "units") and hasattr(value, "to")
+
+
+def _quantity_to_si(value, dimension: str, path: str, expected: str) -> float:
+    """A pint quantity (of any registry) in SI, judged like its text (angles must carry an angle unit)."""
+    try:
+        text = f"{float(value.magnitude)!r} {value.units}"
+    except (TypeError, ValueError):
+        raise FieldError(path, f"{expected}; one value, not an array", str(value)) from None
+    converted = _string_to_si(text, dimension)
+    if converted is _BARE:
+        return float(value.magnitude) if dimension == "dimensionless" else to_si(float(value.magnitude), dimension,
+                                                                                  path)
+    if isinstance(converted, str):
+        raise FieldError(path, f"{expected}{converted}", str(value))
+    return converted
+
+
+def converter(dimension: str):
+    """An attrs converter for a value object's field of ``dimension``: a bare number is SI (as the object's
+    docstring says), a string with a unit or a pint quantity is converted, anything else passes to the
+    validators (which say what was expected).
+
+    Parameters
+    ----------
+    dimension : str
+        A key of :data:`DIMENSIONS`.
+
+    Returns
+    -------
+    callable
+    """
+    def convert(value):
+        if isinstance(value, bool) or value is None:
+            return value
+        if isinstance(value, int):
+            return float(value)
+        if isinstance(value, str) or _is_pint(value):
+            return to_si(value, dimension, bare="si")
+        return value
+    convert.__doc__ = f"attrs converter: {DIMENSIONS[dimension][2]} as SI float (bare numbers are SI)."
+    return convert
+
+
+#: what :func:`_string_to_si` answers for text that is a bare number
+_BARE = object()
 
 
 @functools.lru_cache(maxsize=4096)
-def _string_to_si(text: str, dimension: str) -> float | str:
+def _string_to_si(text: str, dimension: str) -> float | str | object:
     """The SI value of a quantity written as text, or the reason (a suffix of the message) it is not one.
 
     Memoised: pint parses a quantity in about 0.3 ms, and a study names the same few ("80 mph", "20 deg")
     in its base scene and again in every scene its sweep checks; the answer depends on the text alone.
     """
-    si_unit, plain_unit, _ = DIMENSIONS[dimension]
+    si_unit = DIMENSIONS[dimension][0]
     ureg = registry()
     try:
         quantity: Any = ureg.Quantity(text)
     except Exception:  # noqa: BLE001 - pint raises many kinds for text it cannot read; the message says what to write
         return ""
-    if not isinstance(quantity, ureg.Quantity):  # a bare number written as a string
-        return float(quantity) * _factor(plain_unit, si_unit)
+    if not isinstance(quantity, ureg.Quantity) or quantity.unitless:
+        try:
+            number = float(text)
+        except ValueError:  # a unit pint counts as none ("50 %"): judged below like any other
+            number = None
+        if number is not None:  # a bare number written as a string
+            return number if dimension == "dimensionless" else _BARE
     # pint counts radians as dimensionless, so "50 %" would pass as 0.5 rad, "30 deg" as a friction of
     # 0.52, and "50 Hz" as 50 rad/s: whether an angle unit is written decides instead
     angular = _has_angle(quantity)

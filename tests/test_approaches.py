@@ -57,6 +57,7 @@ def small(path: Path, **changes) -> dict:
     return text
 
 
+@pytest.mark.slow
 def test_approaches_study_runs_every_approach_and_draws_psi2_against_psi1(tmp_path, drawn_figures):
     study = impactlab.load_study(small(STUDIES / "approaches.yaml",
                                        sweep={"impact.angle": {"start": "1 deg", "stop": "70 deg", "num": 12}}))
@@ -96,7 +97,8 @@ def test_a_plot_along_an_output_must_name_one_the_study_computes():
 
 def test_without_elastic_constants_the_normalised_variables_are_nan_and_say_why():
     study = {"ball": {"radius": "21 mm", "mass": "46 g"}, "contact": {"friction": 0.3, "restitution": 0.8},
-             "impact": {"speed": 40, "angle": 20}, "sweep": {"impact.angle": [5, 10]}, "models": ["rigid_coulomb"],
+             "impact": {"speed": "40 m/s", "angle": "20 deg"}, "sweep": {"impact.angle": ["5 deg", "10 deg"]},
+             "models": ["rigid_coulomb"],
              "outputs": ["normalised_incidence", "launch_ratio"]}
     result = impactlab.run_study(study, executor="serial")
     assert np.isnan(result.normalised_incidence.values).all()

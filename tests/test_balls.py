@@ -30,8 +30,8 @@ STUDY = """
 ball: {preset: urethane_tour, friction: 0.3, restitution: {law: power, value: 0.8, reference_speed: 40 m/s,
        exponent: 0.15}}
 face: {preset: steel}
-impact: {speed: 40, angle: 20 deg}
-sweep: {impact.speed: [20, 35, 50, 65]}
+impact: {speed: 40 m/s, angle: 20 deg}
+sweep: {impact.speed: [20 m/s, 35 m/s, 50 m/s, 65 m/s]}
 models: [rigid_coulomb, restitution]
 outputs: [normal_impulse, normal_velocity]
 """

@@ -26,6 +26,7 @@ def errors():
     return benchmark_errors()
 
 
+@pytest.mark.slow
 def test_every_model_stays_inside_its_benchmark_budget(errors):
     assert over_budget(errors) == []
     for key, per_model in errors.items():

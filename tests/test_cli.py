@@ -28,6 +28,7 @@ def small_study(tmp_path, **replace):
     return path
 
 
+@pytest.mark.slow
 def test_run_show_and_plot(tmp_path, capsys, drawn_figures):
     study = small_study(tmp_path)
     out, png = tmp_path / "r.h5", tmp_path / "r.png"
@@ -86,6 +87,7 @@ def test_missing_file_and_unwritable_output(tmp_path, capsys):
     assert "does not exist" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_the_installed_entry_point_reports_bad_input_without_a_traceback(tmp_path):
     # the one check that needs a real process: python -m impactlab, its exit status and its stderr
     result = run_cli("run", tmp_path / "nope.yaml")

@@ -282,7 +282,8 @@ def test_the_issue_study_runs_exactly_as_written():
 
 
 def test_club_block_errors_have_paths():
-    base = "ball: {preset: urethane_tour}\ndelivery: {club_speed: 40, dynamic_loft: 12}\nmodels: [rigid_coulomb]\n" \
+    base = "ball: {preset: urethane_tour}\ndelivery: {club_speed: 40 m/s, dynamic_loft: 12 deg}\n" \
+           "models: [rigid_coulomb]\n" \
            "contact: {friction: 0.4, restitution: 0.8}\n"
     with pytest.raises(FieldError, match=r"club.preset.*driver"):
         impactlab.load_study(base + "club: {preset: drivr}\n")

@@ -117,8 +117,8 @@ def test_reference_options_need_a_declared_tolerance():
 
 
 STUDY = {"name": "wp", "ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
-         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": [10, 30]}, "outputs": ["tangential_impulse"]}
+         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": ["10 deg", "30 deg"]}, "outputs": ["tangential_impulse"]}
 
 
 def test_convergence_sweeps_exactly_the_models_that_declare_a_tolerance():
@@ -155,6 +155,7 @@ def test_the_memory_estimate_counts_declared_expert_resolutions():
     assert estimate(small).kernel_memory == 0 < estimate(big).kernel_memory
 
 
+@pytest.mark.slow
 def test_library_plots_leave_the_callers_backend_alone(tmp_path):
     # a fresh interpreter: the test session's own backend cannot hide a library call that switches it
     script = textwrap.dedent(f"""
@@ -166,8 +167,8 @@ def test_library_plots_leave_the_callers_backend_alone(tmp_path):
         from impactlab.data.convergence import work_precision
         from impactlab.plot.analysis import plot_work_precision
         study = {{"name": "p", "ball": {{"preset": "urethane_tour"}}, "face": {{"rigid": True}},
-                 "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": 40, "angle": 20}},
-                 "sweep": {{"impact.angle": [10, 30]}}, "models": ["maw", "rigid_coulomb"],
+                 "contact": {{"friction": 0.3, "restitution": 1.0}}, "impact": {{"speed": "40 m/s", "angle": "20 deg"}},
+                 "sweep": {{"impact.angle": ["10 deg", "30 deg"]}}, "models": ["maw", "rigid_coulomb"],
                  "outputs": ["launch_angle", "tangential_force"]}}
         ds = impactlab.run_study(study)
         plot_results(ds, r"{tmp_path / 'a.png'}")

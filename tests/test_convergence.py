@@ -1,14 +1,15 @@
 """The work-precision command: error falls with the tolerance, closed forms are exact, files and plot appear."""
 
 import numpy as np
+import pytest
 
 import impactlab
 from impactlab.cli import main
 from impactlab.data.convergence import work_precision
 
 STUDY = {"name": "wp", "ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
-         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": [8, 20, 40]},
+         "contact": {"friction": 0.3, "restitution": 1.0}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": ["8 deg", "20 deg", "40 deg"]},
          "models": ["maw", {"name": "maw", "id": "annuli", "method": "annuli"}, "rigid_coulomb"],
          "outputs": ["launch_ratio", "tangential_impulse"]}
 
@@ -25,6 +26,7 @@ def test_errors_fall_with_the_tolerance_and_closed_forms_are_exact():
     assert np.all(np.diff(ds.steps.sel(model="maw").values) >= 0)  # tighter tolerance, more steps
 
 
+@pytest.mark.slow
 def test_convergence_command_writes_results_and_a_figure(tmp_path, capsys, drawn_figures):
     path = tmp_path / "study.yaml"
     import yaml

@@ -12,9 +12,10 @@ GOLF = ["spin_loft", "vertical_launch_angle", "horizontal_launch_angle", "vertic
 
 def deliveries(**sweep):
     base = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True}, "contact": {"friction": 0.4,
-            "restitution": 0.8}, "delivery": {"club_speed": "95 mph", "path": 0, "face_angle": 0,
-                                              "attack_angle": -3, "dynamic_loft": 14},
-            "sweep": sweep, "models": ["maw", "rigid_coulomb", "restitution"], "outputs": GOLF}
+            "restitution": 0.8}, "delivery": {"club_speed": "95 mph", "path": "0 deg", "face_angle": "0 deg",
+                                              "attack_angle": "-3 deg", "dynamic_loft": "14 deg"},
+            "sweep": {field: [f"{value} deg" for value in values] for field, values in sweep.items()},
+            "models": ["maw", "rigid_coulomb", "restitution"], "outputs": GOLF}
     return base
 
 
@@ -70,7 +71,7 @@ def test_left_handed_golfer_mirrors_the_right_handed_one():
 
 def test_delivery_outputs_without_a_delivery_are_nan_with_a_reason():
     study = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True}, "contact": {"friction": 0.4,
-             "restitution": 1.0}, "impact": {"speed": 40, "angle": 20}, "models": ["rigid_coulomb"],
+             "restitution": 1.0}, "impact": {"speed": "40 m/s", "angle": "20 deg"}, "models": ["rigid_coulomb"],
              "outputs": ["spin_axis", "launch_ratio"]}
     ds = impactlab.run_study(study)
     assert np.isnan(ds.spin_axis.item()) and "needs a golf delivery" in ds.spin_axis.attrs["missing"]
@@ -79,7 +80,7 @@ def test_delivery_outputs_without_a_delivery_are_nan_with_a_reason():
 
 def test_delivery_and_impact_angle_are_exclusive():
     study = deliveries()
-    study["impact"] = {"angle": 20}
+    study["impact"] = {"angle": "20 deg"}
     with pytest.raises(FieldError, match="impact.angle: expected either a delivery or impact speed and angle"):
         impactlab.load_study(study)
     study = deliveries()

@@ -14,8 +14,8 @@ import xarray as xr
 import impactlab
 
 STUDY = {"name": "exec", "ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
-         "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": 40, "angle": 20},
-         "sweep": {"impact.angle": {"start": 2, "stop": 60, "num": 30}, "contact.friction": [0.1, 0.3, 0.5],
+         "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
+         "sweep": {"impact.angle": {"start": "2 deg", "stop": "60 deg", "num": 30}, "contact.friction": [0.1, 0.3, 0.5],
                    "ball.inertia_factor": [0.1, 0.4]},
          "models": ["maw", {"name": "maw", "id": "hyst", "inelastic": "hysteretic"}, "rigid_coulomb"],
          "outputs": ["launch_ratio", "spin_rate", "tangential_restitution"]}
@@ -33,10 +33,12 @@ def serial():
     return impactlab.run_study(STUDY, executor="serial", chunk_size=10_000)
 
 
+@pytest.mark.slow
 def test_small_chunks_join_to_the_same_result(serial):
     same(impactlab.run_study(STUDY, executor="serial", chunk_size=7), serial)
 
 
+@pytest.mark.slow
 def test_processes_give_identical_results(serial):
     same(impactlab.run_study(STUDY, executor="processes", workers=2, chunk_size=40), serial)
 
@@ -47,6 +49,7 @@ def test_dask_local_cluster_gives_identical_results(serial):
     same(impactlab.run_study(STUDY, executor="dask", workers=2, chunk_size=50), serial)
 
 
+@pytest.mark.slow
 def test_saved_chunks_are_reused(tmp_path, serial, monkeypatch):
     folder = tmp_path / "progress"
     impactlab.run_study(STUDY, executor="serial", chunk_size=20, progress_folder=folder)
@@ -61,6 +64,7 @@ def test_saved_chunks_are_reused(tmp_path, serial, monkeypatch):
     same(impactlab.run_study(STUDY, executor="serial", chunk_size=20, progress_folder=folder), serial)
 
 
+@pytest.mark.slow
 def test_progress_of_another_study_is_discarded(tmp_path):
     folder = tmp_path / "progress"
     impactlab.run_study(STUDY, executor="serial", chunk_size=60, progress_folder=folder)
@@ -76,7 +80,7 @@ BIG = """name: resumable
 ball: {preset: urethane_tour}
 face: {preset: steel}
 contact: {friction: 0.4, restitution: 0.8}
-impact: {speed: 40, angle: 20}
+impact: {speed: 40 m/s, angle: 20 deg}
 sweep:
   impact.angle: {start: 1 deg, stop: 60 deg, num: 200}
   contact.friction: {start: 0.1, stop: 0.5, num: 20}

@@ -85,7 +85,7 @@ def test_alias_bomb_is_refused_quickly_even_under_an_unknown_key(tmp_path, capsy
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "expands (through its aliases) to more than 100,000 nodes" in err
-    assert time.perf_counter() - start < 5
+    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
 
 
 @pytest.mark.parametrize("kind", ["txt", "upper", "folder", "devnull"])
@@ -133,7 +133,7 @@ def test_a_billion_cases_are_refused_before_any_value_is_made(tmp_path, capsys):
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "1,000,000,000 cases, above the limit of 10,000,000" in err and "--max-cases" in err
-    assert time.perf_counter() - start < 5
+    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
 
 
 def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, capsys):
@@ -144,7 +144,8 @@ def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, ca
     start = time.perf_counter()
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "16,000,000 cases, above the limit" in err
-    assert time.perf_counter() - start < 10  # ranges are checked at their ends, not value by value
+    # ranges are checked at their ends, not value by value (16 million scenes would take hours); generous for load
+    assert time.perf_counter() - start < 30
     small = write_study(tmp_path, "small.yaml")
     code, err = cli(capsys, "run", small, "--plan", "--max-cases", "5")
     assert code == 2 and "12 cases, above the limit of 5" in err
@@ -314,26 +315,59 @@ def _start(*args, cwd):
                             env={**os.environ, "MPLBACKEND": "Agg"})
 
 
-def _wait_for(condition, seconds=60.0):
+def _wait_for(condition, seconds=60.0, what="the condition"):
+    """Poll ``condition`` until it holds; the bound is generous (a loaded 2-core machine), never a fixed sleep."""
     deadline = time.monotonic() + seconds
     while not condition():
-        assert time.monotonic() < deadline, "timed out"
+        assert time.monotonic() < deadline, f"timed out after {seconds:g} s waiting for {what}"
         time.sleep(0.05)
 
 
+#: maw on annular strips at tolerance 1e-6 costs about 0.14 s per case on a quiet core: a chunk of 1500 cases
+#: takes minutes, so a process that stops within STOP_BOUND seconds did not wait for its chunk, however loaded
+#: the machine (the bounds below are generous for load and still far below a chunk's time)
+LONG_CHUNK = {"tolerance": "1.0e-6", "cases": 1500}
+STOP_BOUND = 30.0
+
+
+def _long_study(folder: Path) -> Path:
+    return write_study(folder, "long.yaml", **{"num: 4": "num: 1000",
+                                                "  - name: maw": "  - {name: maw, method: annuli, tolerance: "
+                                                                 f"{LONG_CHUNK['tolerance']}}}"})
+
+
+def _cpu_seconds(pid: int) -> float:
+    """CPU time (user + system) a process has used, from /proc (0 once it is gone)."""
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()
+    except (FileNotFoundError, ProcessLookupError):
+        return 0.0
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+@pytest.mark.slow
 def test_ctrl_c_inside_a_compiled_kernel_stops_promptly_and_says_how_to_resume(tmp_path):
-    # one chunk of 3000 annuli cases runs ~10 s inside numba, where Python cannot act on a signal
-    process = _start("run", _annuli_study(tmp_path, 1000), "-o", "r.h5", "--executor", "serial",
-                     "--chunk-size", "3000", cwd=tmp_path)
-    _wait_for(lambda: (tmp_path / "r.h5.progress" / "manifest.json").exists())
-    time.sleep(1.0)
-    sent = time.monotonic()
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=30)
-    assert time.monotonic() - sent < 6
-    assert process.returncode == 130 and "Traceback" not in err and "SystemError" not in err
-    assert "interrupted; finished chunks are kept in r.h5.progress: run the same command again" in err
-    assert not (tmp_path / "r.h5").exists()
+    # one chunk of 1500 annuli cases runs minutes inside numba, where Python cannot act on a signal: the
+    # watchdog must end the process after its grace period (INTERRUPT_GRACE, 3 s), not when the chunk ends
+    process = _start("run", _long_study(tmp_path), "-o", "r.h5", "--executor", "serial",
+                     "--chunk-size", LONG_CHUNK["cases"], cwd=tmp_path)
+    try:
+        _wait_for(lambda: (tmp_path / "r.h5.progress" / "manifest.json").exists() or process.poll() is not None,
+                  120, "the run to start its first chunk")
+        assert process.poll() is None, process.communicate()[1]
+        started = _cpu_seconds(process.pid)
+        _wait_for(lambda: _cpu_seconds(process.pid) > started + 1.0, 120, "a second of computing in the chunk")
+        sent = time.monotonic()
+        process.send_signal(signal.SIGINT)
+        _, err = process.communicate(timeout=3 * STOP_BOUND)
+        assert time.monotonic() - sent < STOP_BOUND
+        assert process.returncode == 130 and "Traceback" not in err and "SystemError" not in err
+        assert "interrupted; finished chunks are kept in r.h5.progress: run the same command again" in err
+        assert not (tmp_path / "r.h5").exists()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
 
 
 def _alive(pid: int) -> bool:
@@ -347,39 +381,72 @@ def _children(pid: int) -> list[int]:
     return [int(p) for p in subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()]
 
 
+def _workers(pid: int) -> list[int]:
+    """The pool's worker processes: the children forked from ``pid``, whose command line is the parent's (not
+    multiprocessing's resource tracker, a child started with a command line of its own)."""
+    try:
+        own = Path(f"/proc/{pid}/cmdline").read_bytes()
+    except (FileNotFoundError, ProcessLookupError):
+        return []
+    workers = []
+    for child in _children(pid):
+        try:
+            if Path(f"/proc/{child}/cmdline").read_bytes() == own:
+                workers.append(child)
+        except (FileNotFoundError, ProcessLookupError):
+            pass
+    return workers
+
+
 def _start_long_pool_run(folder: Path):
-    """A run whose two process workers each compute one ~5 s chunk of compiled code."""
-    process = _start("run", _annuli_study(folder, 1000), "-o", "r.h5", "--executor", "processes", "--workers", "2",
-                     "--chunk-size", "1500", cwd=folder)
-    _wait_for(lambda: len(_children(process.pid)) >= 2)
-    time.sleep(1.5)
-    return process, _children(process.pid)
+    """A run whose two process workers each compute one chunk of minutes of compiled code, both started."""
+    process = _start("run", _long_study(folder), "-o", "r.h5", "--executor", "processes", "--workers", "2",
+                     "--chunk-size", LONG_CHUNK["cases"], cwd=folder)
+    _wait_for(lambda: len(_workers(process.pid)) >= 2 or process.poll() is not None, 120, "two pool workers")
+    assert process.poll() is None, process.communicate()[1]
+    workers = _workers(process.pid)
+    # each worker inside its chunk: it has computed for a while (a forked process's CPU time starts at 0)
+    _wait_for(lambda: all(_cpu_seconds(pid) > 0.5 for pid in workers), 120, "both workers computing")
+    return process, workers
 
 
+def _stop_everything(process, workers):
+    """A failing test must not leave its processes behind."""
+    for pid in workers:
+        if _alive(pid):
+            os.kill(pid, signal.SIGKILL)
+    if process.poll() is None:
+        process.kill()
+    process.communicate()
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_to_the_parent_stops_process_workers_at_once(tmp_path, signum):
     process, workers = _start_long_pool_run(tmp_path)
-    sent = time.monotonic()
-    process.send_signal(signum)  # to the parent alone, as kill does: the parent must stop its workers
-    _, err = process.communicate(timeout=30)
-    assert time.monotonic() - sent < 2  # the running chunks are not waited for (nor, before, the queued ones)
-    assert process.returncode == 130 and "Traceback" not in err and "run the same command again" in err
-    _wait_for(lambda: not any(_alive(pid) for pid in workers), 1)
+    try:
+        sent = time.monotonic()
+        process.send_signal(signum)  # to the parent alone, as kill does: the parent must stop its workers
+        _, err = process.communicate(timeout=3 * STOP_BOUND)
+        # the running chunks (minutes each) are not waited for, nor the queued ones
+        assert time.monotonic() - sent < STOP_BOUND
+        assert process.returncode == 130 and "Traceback" not in err and "run the same command again" in err
+        _wait_for(lambda: not any(_alive(pid) for pid in workers), STOP_BOUND, "the workers to be gone")
+    finally:
+        _stop_everything(process, workers)
 
 
+@pytest.mark.slow
 def test_kill_9_of_the_parent_leaves_no_orphan_worker(tmp_path):
     process, workers = _start_long_pool_run(tmp_path)
-    assert workers
-    process.kill()
-    process.wait()  # not communicate(): orphans would hold its pipes open
+    assert len(workers) == 2
     try:
-        _wait_for(lambda: not any(_alive(pid) for pid in workers), 1.5)  # not when their chunk ends, or never
+        process.kill()
+        process.wait()  # not communicate(): orphans would hold its pipes open
+        # gone long before their chunk (minutes) would end: they die with the parent, not when the chunk is done
+        _wait_for(lambda: not any(_alive(pid) for pid in workers), STOP_BOUND, "the orphaned workers to be gone")
     finally:
-        for pid in workers:  # a failing run must not leave its orphans behind
-            if _alive(pid):
-                os.kill(pid, signal.SIGKILL)
-        process.stdout.close()
-        process.stderr.close()
+        _stop_everything(process, workers)
 
 
 def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkeypatch):
@@ -421,7 +488,10 @@ def test_dependency_warnings_are_shown_and_never_fatal(tmp_path, capsys):
     with h5py.File(plain, "w") as handle:
         handle["x"] = [1, 2, 3]
     code, err = cli(capsys, "show", plain)
-    assert code == 0 and "impactlab: warning from" in err and "formatwarning" not in err
+    # the library's warning on reading it is shown in one line and is not what ends the command: the file is
+    # refused because impactlab did not write it
+    assert code == 2 and "impactlab: warning from" in err and "formatwarning" not in err
+    assert "not an impactlab result" in err
 
 
 def test_plot_refuses_names_the_file_does_not_hold(result_file, tmp_path, capsys):
@@ -501,7 +571,7 @@ def test_misreadings_are_refused(tmp_path, capsys, replace, fragment):
 
 def test_fields_changing_together_may_repeat_a_value():
     text = study_text(**{"  impact.angle: {start: 1 deg, stop: 60 deg, num: 4}":
-                         "  club:\n    impact.angle: [10 deg, 20 deg]\n    impact.speed: [40, 40]"})
+                         "  club:\n    impact.angle: [10 deg, 20 deg]\n    impact.speed: [40 m/s, 40 m/s]"})
     assert impactlab.load_study(text).n_cases == 6
 
 

@@ -68,7 +68,7 @@ def test_cli_writes_json_and_names_what_a_plain_study_lacks(result, tmp_path, ca
     assert "choices: maw, rigid_coulomb" in capsys.readouterr().err.lower()
     plain = impactlab.run_study(impactlab.load_study({**{k: v for k, v in STUDY.items() if k != "delivery"},
                                                       "impact": {"speed": "40 m/s", "angle": "20 deg"},
-                                                      "sweep": {"impact.angle": [10, 20]},
+                                                      "sweep": {"impact.angle": ["10 deg", "20 deg"]},
                                                       "outputs": ["launch_angle"]}), executor="serial")
     write_results(plain, tmp_path / "plain.h5")
     assert main(["export", str(tmp_path / "plain.h5"), "-o", str(tmp_path / "x.json")]) != 0

@@ -124,6 +124,7 @@ def test_the_numpy_fallback_gives_the_compiled_kernels_answers(name, options, go
     assert abs(compiled["spin_rate"].values[1]) > 100.0  # a real impact, not zeros on both sides
 
 
+@pytest.mark.slow
 def test_impactlab_kernels_numpy_switches_the_kernels_off():
     import subprocess
     import sys

@@ -17,10 +17,10 @@ ROOT = Path(__file__).resolve().parent.parent
 #: V sin(a) stops when tan(a) < mu (1 + e)(1 + 1/K^2) = 1.79 at the smallest (docs/models.md, rigid_coulomb)
 ROLLING = """
 name: rolling
-ball: {radius: 0.021335, mass: 0.04593, inertia_factor: 0.4}
+ball: {radius: 0.021335 m, mass: 0.04593 kg, inertia_factor: 0.4}
 face: {rigid: true}
 contact: {friction: 0.4, restitution: 0.8}
-impact: {speed: 35, angle: 20 deg}
+impact: {speed: 35 m/s, angle: 20 deg}
 models: [rigid_coulomb, {name: restitution, tangential_restitution: 0.0}]
 outputs: [spin_rate, ball_speed, tangential_restitution]
 sensitivity:
@@ -30,7 +30,7 @@ sensitivity:
   parameters:
     contact.friction: {low: 0.3, high: 0.5}
     contact.restitution: {low: 0.7, high: 0.9}
-    impact.speed: {low: 30, high: 40}
+    impact.speed: {low: 30 m/s, high: 40 m/s}
   choices:
     rolling_laws: [rigid_coulomb, restitution]
 """
@@ -88,7 +88,7 @@ def test_elastic_impact_makes_the_inelastic_laws_one_and_maw_reports_its_error(t
 ball: {preset: urethane_tour}
 face: {rigid: true}
 contact: {friction: 0.4, restitution: 1.0}
-impact: {speed: 35, angle: 25 deg}
+impact: {speed: 35 m/s, angle: 25 deg}
 models: [maw, {name: maw, id: maw_hysteretic, inelastic: hysteretic}, rigid_coulomb]
 outputs: [spin_rate, tangential_restitution]
 sensitivity:
@@ -126,7 +126,7 @@ sensitivity:
     ("{method: sobel, parameters: {contact.friction: {low: 0.3, high: 0.5}}}", "sensitivity.method", "sobol"),
     ("{choices: {law: [maw, mwa]}, parameters: {contact.friction: {low: 0.3, high: 0.5}}}",
      "sensitivity.choices.law[1]", "maw"),
-    ("parameters: {impact.speed: {low: 30, high: 40}}", "sensitivity.parameters.impact.speed", "spread"),
+    ("parameters: {impact.speed: {low: 30 m/s, high: 40 m/s}}", "sensitivity.parameters.impact.speed", "spread"),
     # structured by cattrs: unknown keys refused at each level, with the keys the block takes
     ("{sampels: 64, parameters: {contact.friction: {low: 0.3, high: 0.5}}}", "sensitivity.sampels",
      "a key of the sensitivity block"),
@@ -140,8 +140,8 @@ def test_bad_sensitivity_block_gives_one_message(block, path, words):
 ball: {{preset: urethane_tour}}
 face: {{rigid: true}}
 contact: {{friction: 0.4, restitution: 0.8}}
-impact: {{speed: 35, angle: 25 deg}}
-sweep: {{impact.speed: [30, 40]}}
+impact: {{speed: 35 m/s, angle: 25 deg}}
+sweep: {{impact.speed: [30 m/s, 40 m/s]}}
 models: [maw, rigid_coulomb]
 sensitivity: {block if block.startswith("{") else "{" + block + "}"}
 """

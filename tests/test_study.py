@@ -26,7 +26,7 @@ ISSUE_EXAMPLE = textwrap.dedent("""\
     """)
 
 MINIMAL = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True}, "contact": {"friction": 0.4,
-           "restitution": 1.0}, "impact": {"speed": "80 mph", "angle": 15}, "models": ["maw"]}
+           "restitution": 1.0}, "impact": {"speed": "80 mph", "angle": "15 deg"}, "models": ["maw"]}
 
 
 @pytest.fixture(scope="module")
@@ -99,20 +99,20 @@ def test_presets_and_overrides():
 
 
 def test_dimension_names_clash_falls_back_to_full_paths():
-    study = impactlab.load_study({**MINIMAL, "sweep": {"ball.mass": ["40 g", "46 g"], "face.mass": ["0.2 kg", 1]}})
+    study = impactlab.load_study({**MINIMAL, "sweep": {"ball.mass": ["40 g", "46 g"], "face.mass": ["0.2 kg", "1 kg"]}})
     assert [axis.dim for axis in study.sweep] == ["ball_mass", "face_mass"]
 
 
 def test_rigid_models_need_no_elastic_moduli():
     ds = impactlab.run_study({"ball": {"radius": "21 mm", "mass": "46 g"}, "contact": {"friction": 0.3,
-                              "restitution": 0.8}, "impact": {"speed": 40, "angle": 20},
+                              "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "20 deg"},
                               "models": ["rigid_coulomb", "restitution"]})
     assert np.all(np.isfinite(ds.launch_angle.values))
 
 
 def test_a_model_missing_an_input_is_refused_naming_model_and_input():
     study = {"ball": {"radius": "21 mm", "mass": "46 g"}, "contact": {"friction": 0.3, "restitution": 0.8},
-             "impact": {"speed": 40, "angle": 20}, "models": ["rigid_coulomb", "maw"]}
+             "impact": {"speed": "40 m/s", "angle": "20 deg"}, "models": ["rigid_coulomb", "maw"]}
     with pytest.raises(ModelInputError, match=r"model 'maw' needs ball.poisson_ratio .*ball.youngs_modulus"):
         impactlab.run_study(study)
 
@@ -179,10 +179,10 @@ def test_missing_study_file_is_a_clear_error(tmp_path):
 
 
 GROUPED = {**MINIMAL, "face": {"preset": "steel"}, "impact": None,
-           "delivery": {"club_speed": "90 mph", "attack_angle": -4, "dynamic_loft": 24},
+           "delivery": {"club_speed": "90 mph", "attack_angle": "-4 deg", "dynamic_loft": "24 deg"},
            "sweep": {"club": {"labels": ["driver", "7-iron", "pitching wedge"],
                               "delivery.club_speed": ["112 mph", "90 mph", "83 mph"],
-                              "delivery.dynamic_loft": [13, 24, 33]},
+                              "delivery.dynamic_loft": ["13 deg", "24 deg", "33 deg"]},
                      "contact.friction": [0.3, 0.4]},
            "models": ["maw", "rigid_coulomb"], "outputs": ["vertical_launch_ratio", "spin_loft"]}
 
@@ -206,13 +206,14 @@ def test_fields_swept_together_share_one_labelled_dimension(tmp_path):
 
 def test_grouped_sweep_errors_name_the_field():
     study = {key: value for key, value in GROUPED.items() if value is not None}
-    bad = {**study, "sweep": {"club": {"delivery.club_speed": [1, 2], "delivery.dynamic_loft": [10, 20, 30]}}}
+    bad = {**study, "sweep": {"club": {"delivery.club_speed": ["1 m/s", "2 m/s"],
+                                      "delivery.dynamic_loft": ["10 deg", "20 deg", "30 deg"]}}}
     with pytest.raises(FieldError, match=r"sweep.club: expected lists of one length"):
         impactlab.load_study(bad)
-    bad = {**study, "sweep": {"club": {"delivery.club_sped": [1, 2]}}}
+    bad = {**study, "sweep": {"club": {"delivery.club_sped": ["1 m/s", "2 m/s"]}}}
     with pytest.raises(FieldError, match=r"sweep.club.delivery.club_sped: .*did you mean 'delivery.club_speed'"):
         impactlab.load_study(bad)
-    bad = {**study, "sweep": {"club": {"delivery.dynamic_loft": [10, 95]}}}
+    bad = {**study, "sweep": {"club": {"delivery.dynamic_loft": ["10 deg", "95 deg"]}}}
     with pytest.raises(FieldError, match=r"sweep.club\[1\]: expected a dynamic loft between -90 and 90 deg"):
         impactlab.load_study(bad)
 

@@ -32,7 +32,7 @@ CLUB_STUDY = textwrap.dedent("""\
 #: the rest of what a club study may hold, for the wrong-kind sweep below
 CLUB_EXTRAS = textwrap.dedent("""\
     contact: {friction: 0.4}
-    impact: {spin: 0}
+    impact: {spin: 0 rpm}
     outputs: [ball_speed, spin_rate]
     sweep:
       strike.toe: {start: -5 mm, stop: 5 mm, num: 2}
@@ -50,7 +50,8 @@ CLUB_BAD = [
     (("depth: 35 mm", "depth: 35 kg"), 6, ["club.center_of_mass.depth: expected a length", "got 35 kg"]),
     (("preset: driver", "preset: driver\n  rigid: 'no'"), 5, ["club.rigid: expected true or false, got no"]),
     (("inertia: {toe: 2500 g*cm**2, up: 4500 g*cm**2, target: 3000 g*cm**2}",
-      "inertia: [[0.00025, 0, 0], [0, 0.00045, 0], [0, 0, 3 s]]"), 5,
+      "inertia: [[0.00025 kg*m**2, 0 kg*m**2, 0 kg*m**2], [0 kg*m**2, 0.00045 kg*m**2, 0 kg*m**2], "
+      "[0 kg*m**2, 0 kg*m**2, 3 s]]"), 5,
      ["club.inertia[2][2]: expected a moment of inertia", "got 3 s"]),
     (("inertia: {toe: 2500 g*cm**2, up: 4500 g*cm**2, target: 3000 g*cm**2}",
       "inertia: {principal: 0.0004, axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}"), 5,
@@ -91,8 +92,9 @@ def test_a_sweep_range_and_a_figure_refuse_unknown_keys_at_their_line():
 def test_restitution_law_items_are_located():
     with pytest.raises(FieldError, match=r"^ball.restitution.speeds\[1\]: expected a speed"):
         build_scene({"ball": {"preset": "urethane_tour",
-                                        "restitution": {"law": "table", "speeds": [20, "3 kg"], "values": [0.8, 0.7]}},
-                               "impact": {"speed": 40, "angle": 10}})
+                                        "restitution": {"law": "table", "speeds": ["20 m/s", "3 kg"],
+                                                        "values": [0.8, 0.7]}},
+                               "impact": {"speed": "40 m/s", "angle": "10 deg"}})
 
 
 @pytest.mark.parametrize("block, heading", [(BallBlock, "ball"), (FaceBlock, "face"), (ClubBlock, "club"),
@@ -104,7 +106,7 @@ def test_every_key_a_block_accepts_is_documented(block, heading):
 
 
 MODELS_STUDY = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True},
-                "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": 20}}
+                "contact": {"friction": 0.4, "restitution": 0.8}, "impact": {"speed": "80 mph", "angle": "20 deg"}}
 
 
 def test_a_python_study_may_name_models_by_class_or_instance():
@@ -143,7 +145,7 @@ def test_values_of_the_wrong_kind_are_field_errors_not_crashes(change, message):
 
 def test_a_key_written_without_a_value_counts_as_left_out():
     study = impactlab.load_study("ball: {preset: urethane_tour, friction: }\nface: {rigid: true, preset: }\n"
-                                 "impact: {speed: 40, angle: 10, spin: }\nmodels: [rigid_coulomb]\n")
+                                 "impact: {speed: 40 m/s, angle: 10 deg, spin: }\nmodels: [rigid_coulomb]\n")
     assert study.scene.impact.spin == 0.0 and study.scene.face.rigid
 
 
@@ -169,7 +171,7 @@ def test_any_value_of_the_wrong_kind_is_an_error_with_a_path_never_a_crash(name)
 
     from impactlab.errors import ImpactLabError
 
-    law = "{preset: urethane_tour, restitution: {law: linear, value: 0.8, reference_speed: 40, slope: -0.002}}"
+    law = "{preset: urethane_tour, restitution: {law: linear, value: 0.8, reference_speed: 40 m/s, slope: -0.002 s/m}}"
     text = (CLUB_STUDY.replace("{preset: urethane_tour}", law) + CLUB_EXTRAS if name == "club"
             else (Path(__file__).parents[1] / "studies" / name).read_text())
     document = yaml.safe_load(text)

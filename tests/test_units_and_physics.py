@@ -1,6 +1,7 @@
 """Unit parsing, value objects, and the exact Hertz normal solution."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -13,14 +14,27 @@ from impactlab.units import to_si
 
 
 @pytest.mark.parametrize("value, dimension, expected", [
-    ("80 mph", "speed", 35.7632), (35, "speed", 35.0), ("21.335 mm", "length", 0.021335),
-    ("45.93 g", "mass", 0.04593), ("136 MPa", "pressure", 136e6), (15, "angle", math.radians(15)),
+    ("80 mph", "speed", 35.7632), ("35 m/s", "speed", 35.0), ("21.335 mm", "length", 0.021335),
+    ("45.93 g", "mass", 0.04593), ("136 MPa", "pressure", 136e6), ("15 deg", "angle", math.radians(15)),
     ("0.5 rad", "angle", 0.5), ("3000 rpm", "angular_speed", 100 * math.pi),
-    (2500, "angular_speed", 2500 * math.pi / 30),
-    ("0.4", "dimensionless", 0.4),
+    ("2500 rpm", "angular_speed", 2500 * math.pi / 30), ("-0.002 s/m", "inverse_speed", -0.002),
+    ("0.4", "dimensionless", 0.4), (0.4, "dimensionless", 0.4),
 ])
 def test_quantities_convert_to_si(value, dimension, expected):
     assert to_si(value, dimension) == pytest.approx(expected, rel=1e-12)
+
+
+@pytest.mark.parametrize("value, dimension, example", [
+    (35, "speed", "35 mph or 15.6464 m/s"), (15, "angle", "15 deg or 0.261799 rad"),
+    (2500, "angular_speed", "2500 rpm or 261.799 rad/s"), ("200", "mass", "200 g or 0.2 kg"),
+    (0.021335, "length", "0.021335 m or 21.335 mm"), (136, "pressure", "136 MPa or 1.36e+08 Pa"),
+])
+def test_a_bare_number_of_a_dimension_is_never_given_a_unit(value, dimension, example):
+    with pytest.raises(FieldError, match=f"x.y: expected .* with its unit, e.g. {re.escape(example)}"):
+        to_si(value, dimension, "x.y")
+    # where a bare number is declared SI (a Python value object's argument), it is taken as SI
+    if not isinstance(value, str):
+        assert to_si(value, dimension, "x.y", bare="si") == value
 
 
 @pytest.mark.parametrize("value", ["80 kg", "fast", True, None, [1]])

@@ -61,7 +61,7 @@ def test_elastic_cases_share_batched_solves_by_resolution_whatever_friction_or_s
 
 def test_rigid_models_solve_nothing(golf_inputs, solver_calls):
     study = {"ball": {"radius": "21 mm", "mass": "46 g"}, "contact": {"friction": 0.3, "restitution": 0.8},
-             "impact": {"speed": 40, "angle": 20}, "sweep": {"impact.angle": [5, 10, 20]},
+             "impact": {"speed": "40 m/s", "angle": "20 deg"}, "sweep": {"impact.angle": ["5 deg", "10 deg", "20 deg"]},
              "models": ["rigid_coulomb", "restitution"]}
     ds = impactlab.run_study(study)
     assert solver_calls == []
@@ -70,7 +70,7 @@ def test_rigid_models_solve_nothing(golf_inputs, solver_calls):
 
 def test_the_plan_says_what_runs_and_is_stored_with_the_result():
     study = {"ball": {"preset": "urethane_tour"}, "face": {"rigid": True}, "contact": {"friction": 0.3,
-             "restitution": 0.8}, "impact": {"speed": 40, "angle": 20}, "models": ["maw", "rigid_coulomb"],
+             "restitution": 0.8}, "impact": {"speed": "40 m/s", "angle": "20 deg"}, "models": ["maw", "rigid_coulomb"],
              "outputs": ["launch_ratio", "contact_time", "spin_axis"]}
     from impactlab.run.runner import plan_study
 

@@ -26,6 +26,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
+from impactlab.io.results import RESULT_FORMAT
 from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study
 from impactlab.vocabulary import OUTPUTS, is_scalar
@@ -107,6 +108,6 @@ def work_precision(study: Study, tolerances: Iterable[float] | np.ndarray = LADD
                 "output_units": ("output", [OUTPUTS[name].units for name in outputs])},
         attrs={"title": f"work-precision of study {study.name}", "study_name": study.name,
                "study_source": study.source, "cases": n_cases, "repeats": repeats,
-               "reference": json.dumps(notes), "impactlab_version": __version__,
+               "reference": json.dumps(notes), "impactlab_version": __version__, "impactlab_format": RESULT_FORMAT,
                "method": __doc__.strip().split("\n\n")[1].replace("\n", " ")},
     )

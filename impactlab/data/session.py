@@ -28,6 +28,7 @@ from pathlib import Path
 import attrs
 import numpy as np
 
+from impactlab.scene.plausibility import wrong_sign
 from impactlab.errors import FieldError, StudyError
 from impactlab.scene.clubs import club_key
 from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
@@ -167,6 +168,11 @@ class Session:
             if key in ("horizontal_launch_angle", "spin_axis"):
                 values[square] = np.nan
             measured[key] = values
+        # a magnitude below zero is no measurement (a ball speed of -70 mph): refused, naming each row
+        signs = [problem for row in range(index.size)
+                 for problem in wrong_sign(measured, row, f"{self.file}:{self.lines[index[row]]}")]
+        if signs:
+            raise StudyError("; ".join(signs))
         sigma = {}
         for key in MEASURED_FIELDS:
             given = self.values[f"{key}_sigma"][index]

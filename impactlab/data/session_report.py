@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from impactlab.io.safe_output import write_atomically
-from impactlab.units import DIMENSIONS, _factor
+from impactlab.units import DIMENSIONS, unit_factor
 from impactlab.data.session_layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
 
 if TYPE_CHECKING:  # annotations only: impactlab.data.session imports this module to re-export its functions
@@ -38,7 +38,8 @@ def write_normalised(session: Session, path) -> Path:
     scale = {}
     for field in present:
         dimension = FIELDS[field]
-        scale[field] = 1.0 if dimension == "dimensionless" else 1.0 / _factor(units[field], DIMENSIONS[dimension][0])
+        si_unit = DIMENSIONS[dimension][0]
+        scale[field] = 1.0 if dimension == "dimensionless" else 1.0 / unit_factor(units[field], si_unit)
     flag_text: list[list[str]] = [[] for _ in range(session.size)]
     for (field, kind), rows in session.flags.items():
         for index in np.flatnonzero(rows).tolist():

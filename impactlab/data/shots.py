@@ -26,6 +26,7 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, StudyError
+from impactlab.scene.plausibility import wrong_sign
 from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
 from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_key, club_preset
@@ -84,6 +85,7 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
         for key in MEASURED_FIELDS:
             if not sigma[key][index] > 0:
                 problems.append(f"{where}: {key}_sigma: expected a positive uncertainty, got {sigma[key][index]:g}")
+        problems.extend(wrong_sign(measured, index, where))  # a negative ball speed or total spin
         if all(np.isnan(measured[key][index]) for key in MEASURED_FIELDS):
             problems.append(f"{where}: expected at least one measured quantity ({', '.join(MEASURED_FIELDS)})")
     if problems:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 from typing import Final
@@ -20,6 +21,11 @@ FILE_TIME_DIM: Final = "time_since_contact"
 #: the version of the CF metadata conventions result files follow (cfconventions.org; checked in the tests
 #: by the IOOS compliance checker)
 CF_CONVENTIONS: Final = "CF-1.8"
+#: the layout of the result datasets (and files) this impactlab makes and reads, carried as the attribute
+#: ``impactlab_format`` (files written before it was introduced carry ``impactlab_version`` only: format 1);
+#: raised when a change would make an older impactlab misread a newer file, which then refuses it ("written by
+#: a newer impactlab")
+RESULT_FORMAT: Final = 1
 
 
 def write_results(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
@@ -67,6 +73,68 @@ def open_results(path: str | os.PathLike) -> xr.Dataset:
             loaded = dataset.load()
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise StudyError(f"{path}: not an impactlab result file ({type(exc).__name__}: {exc})") from None
+    check_result(loaded, path)
     if FILE_TIME_DIM in loaded.dims and TIME_DIM not in loaded.variables:
         loaded = loaded.rename({FILE_TIME_DIM: TIME_DIM})
     return loaded
+
+
+#: attributes held as JSON, and the Python type each decodes to
+_JSON_ATTRIBUTES = {"models": list, "plots": list, "base_scene_si": dict, "sensitivity": dict}
+#: attributes a sensitivity result must have (``impactlab show`` and ``plot`` read them)
+_SENSITIVITY_ATTRIBUTES = ("sensitivity", "sampler", "analyser", "salib_version")
+
+
+def check_result(dataset: xr.Dataset, path: str | os.PathLike = "<dataset>") -> None:
+    """Refuse a dataset impactlab did not write, one from a newer format, or one whose attributes were altered.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A dataset read from ``path``.
+    path : str or path-like
+        The file, for messages.
+
+    Raises
+    ------
+    StudyError
+        "not an impactlab result" (no ``impactlab_version`` attribute: an HDF5 or netCDF file of another
+        program), "written by a newer impactlab" (an ``impactlab_format`` above :data:`RESULT_FORMAT`), or the
+        attribute whose shape is not what impactlab writes (a ``models`` attribute that is not a JSON list, a
+        sensitivity result without its ``sampler``...).
+    """
+    from impactlab._version import __version__
+
+    attributes = dataset.attrs
+    if "impactlab_version" not in attributes:
+        raise StudyError(f"{path}: not an impactlab result (an HDF5/netCDF file without the impactlab_version "
+                         "attribute every impactlab result carries); give a file written by impactlab run")
+    written = attributes.get("impactlab_format", 1)
+    try:
+        written = int(written)
+    except (TypeError, ValueError):
+        raise StudyError(f"{path}: not an impactlab result (impactlab_format {written!r} is not a format "
+                         "number)") from None
+    if written > RESULT_FORMAT:
+        raise StudyError(f"{path}: written by a newer impactlab ({attributes['impactlab_version']}, result format "
+                         f"{written}); this is impactlab {__version__}, which reads formats up to {RESULT_FORMAT}: "
+                         "upgrade impactlab to read it")
+    for name, kind in _JSON_ATTRIBUTES.items():
+        if name not in attributes:
+            continue
+        try:
+            value = json.loads(attributes[name]) if attributes[name] != "" else kind()
+        except (TypeError, ValueError):
+            value = None
+        if not isinstance(value, kind) or (name == "models" and not all(
+                isinstance(entry, dict) and isinstance(entry.get("id"), str) and isinstance(entry.get("name"), str)
+                and isinstance(entry.get("options", {}), dict) for entry in value)):
+            shape = "JSON list of models, each with id, name and options" if name == "models" else \
+                f"JSON {'list' if kind is list else 'mapping'}"
+            raise StudyError(f"{path}: not an impactlab result as written: its {name!r} attribute is not the "
+                             f"{shape} impactlab writes (got {str(attributes[name])[:60]!r}); the file was altered")
+    if attributes.get("study_type") == "sensitivity":
+        missing = [name for name in _SENSITIVITY_ATTRIBUTES if not isinstance(attributes.get(name), str)]
+        if missing:
+            raise StudyError(f"{path}: a sensitivity result without its {', '.join(missing)} attribute(s), which "
+                             "impactlab writes in every sensitivity result; the file was altered")

@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
-from impactlab.io.results import CF_CONVENTIONS
+from impactlab.io.results import CF_CONVENTIONS, RESULT_FORMAT
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.study.core import Study
 from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
@@ -112,7 +112,7 @@ def _integer_flags(variable: xr.Variable) -> xr.Variable:
     return variable
 
 
-def versions() -> dict[str, str]:
+def versions() -> dict[str, str | int]:
     """Versions of everything that shapes a result: the numerics (numpy, scipy, numba), units (pint), storage.
 
     Read once per process (reading package metadata costs ~10 ms, more than a small study's physics);
@@ -122,8 +122,9 @@ def versions() -> dict[str, str]:
 
 
 @functools.cache
-def _versions() -> dict[str, str]:
-    found = {"impactlab_version": __version__, "python_version": platform.python_version()}
+def _versions() -> dict[str, str | int]:
+    found: dict[str, str | int] = {"impactlab_version": __version__, "impactlab_format": RESULT_FORMAT,
+                                   "python_version": platform.python_version()}
     for package in ("numpy", "scipy", "numba", "xarray", "pint", "h5py", "h5netcdf"):
         try:
             found[f"{package}_version"] = metadata.version(package)

@@ -36,6 +36,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab._version import __version__
+from impactlab.io.results import RESULT_FORMAT
 from impactlab.errors import FieldError
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.scene.core import ball_restitution, complete_inputs
@@ -273,7 +274,7 @@ def _dataset(study, spec, ids, outputs, choices, unit, nominal, numerical, form,
         "analyser": "SALib.analyze.sobol" if spec.method == "sobol" else "SALib.analyze.morris",
         "salib_version": _salib_version(),
         "models": json.dumps(models),
-        "impactlab_version": __version__,
+        "impactlab_version": __version__, "impactlab_format": RESULT_FORMAT,
         "python_version": platform.python_version(),
         "numpy_version": np.__version__,
         "xarray_version": xr.__version__,

@@ -31,6 +31,8 @@ from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
+from impactlab.units import converter
+from impactlab.scene.plausibility import HEAD_HEIGHT_LIMIT, HEAD_LENGTH_LIMIT
 from impactlab.scene.materials import MATERIAL_PRESETS, Material
 
 #: the order of the six independent tensor components as inputs and in :meth:`ClubHead.inertia_components`
@@ -92,6 +94,9 @@ def _vector3(value):
 class ClubHead:
     """A club head: a free rigid body with a (possibly curved) face.
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     mass : float
@@ -114,6 +119,10 @@ class ClubHead:
         default) for a flat face.
     material : Material, optional
         The face material; None for a rigid face.
+    face_width, face_height : float
+        Size of the face heel to toe and sole to crown [m]: a strike further from the face centre than half
+        of it misses the face and is refused (:mod:`impactlab.scene.plausibility`). Default: the USGA's limits
+        of a wood's head, 127 x 71.12 mm (Equipment Rules, Part 2, 4b), which no face exceeds.
     restitution_gain : float
         Rise of the normal restitution over the ball's own law (measured against a rigid steel plate) that this
         face gives by its spring-like ("trampoline") effect [1]: a thin, hollow-backed wood face flexes and gives
@@ -123,22 +132,28 @@ class ClubHead:
     name, source : str
     """
 
-    mass: float = attrs.field(converter=to_float, validator=positive("a positive, finite head mass in kg"))
+    mass: float = attrs.field(converter=converter("mass"), validator=positive("a positive, finite head mass in kg"))
     inertia: tuple = attrs.field(converter=_tensor, validator=_check_inertia)
     center_of_mass: tuple = attrs.field(converter=_vector3, validator=_check_center)
-    loft: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    loft: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         0.0, math.pi / 2, "a static loft between 0 and 90 deg", high_open=True))
-    lie: float = attrs.field(default=math.radians(60.0), converter=to_float, validator=in_range(
+    lie: float = attrs.field(default=math.radians(60.0), converter=converter("angle"), validator=in_range(
         0.0, math.pi / 2, "a lie angle between 0 and 90 deg", high_open=True))
-    bulge_radius: float = attrs.field(default=math.inf, converter=to_float,
+    bulge_radius: float = attrs.field(default=math.inf, converter=converter("length"),
                                       validator=positive_or_inf("a bulge radius > 0 m (inf: flat)"))
-    roll_radius: float = attrs.field(default=math.inf, converter=to_float,
+    roll_radius: float = attrs.field(default=math.inf, converter=converter("length"),
                                      validator=positive_or_inf("a roll radius > 0 m (inf: flat)"))
     material: Material | None = None
     name: str = ""
     source: str = ""
     restitution_gain: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
         0.0, 0.2, "a restitution gain of the face 0 <= de <= 0.2", high_open=False))
+    face_width: float = attrs.field(default=HEAD_LENGTH_LIMIT, converter=converter("length"),
+                                    validator=positive("a positive, finite face width in m"))
+    face_height: float = attrs.field(default=HEAD_HEIGHT_LIMIT, converter=converter("length"),
+                                     validator=positive("a positive, finite face height in m"))
+    #: a free sphere as the striker (:meth:`sphere`): the general contact scene, not a golf head
+    is_sphere: bool = False
 
     def inertia_components(self) -> dict[str, float]:
         """The six independent tensor components by input suffix (``toe``, ``up``, ..., ``up_target``) [kg m^2]."""
@@ -181,7 +196,8 @@ class ClubHead:
         moment = inertia_factor * mass * radius**2
         return cls(mass=mass, inertia=(moment, moment, moment), center_of_mass=(0.0, 0.0, radius), loft=0.0,
                    bulge_radius=radius, roll_radius=radius, material=material, name=name or "sphere",
-                   source=source or "a free sphere (ClubHead.sphere)")
+                   source=source or "a free sphere (ClubHead.sphere)", face_width=2.0 * radius,
+                   face_height=2.0 * radius, is_sphere=True)
 
     @classmethod
     def from_principal(cls, moments: ArrayLike, axes: ArrayLike, **fields: Any) -> ClubHead:
@@ -198,6 +214,9 @@ class ClubHead:
 class Strike:
     """Where the ball meets the face, from the face centre along the face axes [m].
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     toe : float
@@ -206,9 +225,9 @@ class Strike:
         Up the face (negative: towards the sole) [m].
     """
 
-    toe: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    toe: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
-    high: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    high: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
 
 
@@ -279,10 +298,24 @@ CLUB_SOURCES = {
 }
 
 
+#: face width x height [mm] of each preset: estimates, not measurements (the irons' are the 75 x 45 mm plate of
+#: their inertia estimate, the wedge's taller; the woods' those of typical 460 cm^3 and 3-wood faces, inside the
+#: USGA's head limits of 127 x 71.12 mm). They bound where a strike may land (scene/plausibility.py).
+FACE_SIZES = {"driver": (110.0, 60.0), "fairway_wood": (95.0, 40.0), "6_iron": (75.0, 45.0),
+              "7_iron": (75.0, 45.0), "pitching_wedge": (75.0, 50.0)}
+CLUB_SOURCES = {key: text + (f" Face {FACE_SIZES[key][0]:.0f} x {FACE_SIZES[key][1]:.0f} mm (heel-toe x sole-crown): "
+                             "an estimate, used to refuse strikes off the face.")
+                for key, text in CLUB_SOURCES.items()}
+
+
+def _face(key):
+    return {"face_width": FACE_SIZES[key][0] * MM, "face_height": FACE_SIZES[key][1] * MM}
+
+
 def _iron(mass, moments, loft, lie, center, name, key):
     return ClubHead(mass=mass, inertia=tuple(m * G_CM2 for m in moments),
                     center_of_mass=tuple(c * MM for c in center), loft=math.radians(loft), lie=math.radians(lie),
-                    material=MATERIAL_PRESETS["steel"], name=name, source=CLUB_SOURCES[key])
+                    material=MATERIAL_PRESETS["steel"], name=name, source=CLUB_SOURCES[key], **_face(key))
 
 
 CLUB_PRESETS: dict[str, ClubHead] = {
@@ -290,12 +323,12 @@ CLUB_PRESETS: dict[str, ClubHead] = {
         mass=DRIVER_2020["mass"], inertia=_driver_2020_tensor(),
         center_of_mass=tuple(c * MM for c in DRIVER_2020["center"]), loft=math.radians(9.8), lie=math.radians(58.0),
         bulge_radius=0.305, roll_radius=0.254, material=MATERIAL_PRESETS["titanium"],
-        name="driver (measured head, 2020)", source=CLUB_SOURCES["driver"], restitution_gain=0.083),
+        name="driver (measured head, 2020)", source=CLUB_SOURCES["driver"], restitution_gain=0.083, **_face("driver")),
     "fairway_wood": ClubHead(
         mass=0.212, inertia=tuple(m * G_CM2 for m in (1800.0, 3300.0, 1700.0)), center_of_mass=(0.0, -0.005, 0.025),
         loft=math.radians(15.0), lie=math.radians(57.0), bulge_radius=0.300, roll_radius=0.280,
         material=MATERIAL_PRESETS["steel"], name="3-wood (estimate)", source=CLUB_SOURCES["fairway_wood"],
-        restitution_gain=0.083),
+        restitution_gain=0.083, **_face("fairway_wood")),
     "6_iron": _iron(0.261, (800.0, 2600.0, 3200.0), 30.0, 62.0, (-2.0, -2.0, 6.0), "6-iron (estimate)", "6_iron"),
     "7_iron": _iron(0.268, (820.0, 2650.0, 3250.0), 34.0, 62.5, (-2.0, -2.0, 6.0), "7-iron (estimate)", "7_iron"),
     "pitching_wedge": _iron(0.289, (900.0, 2800.0, 3500.0), 46.0, 64.0, (-2.0, -1.0, 5.0), "pitching wedge (estimate)",

@@ -11,7 +11,9 @@ import numpy as np
 from impactlab.validators import check, finite, in_range, positive, to_float
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
+from impactlab.units import converter
 from impactlab.scene.materials import Ball, Face
+from impactlab.scene.plausibility import check_scene
 from impactlab.physics.contact import CLUB_REFERENCES, approach_state
 from impactlab.physics.delivery import DELIVERY_INPUTS, loft_for_spin_loft, spin_loft
 from impactlab.vocabulary import INPUTS
@@ -41,6 +43,9 @@ class Contact:
 class Impact:
     """How the ball meets the face.
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     speed : float
@@ -61,15 +66,16 @@ class Impact:
         ``-(lever) * club_spin``, ``-R2 * club_spin`` for a sphere of radius R2.
     """
 
-    speed: float = attrs.field(converter=to_float, validator=positive("a positive, finite speed in m/s"))
+    speed: float = attrs.field(converter=converter("speed"), validator=positive("a positive, finite speed in m/s"))
     angle: float = attrs.field(
-        converter=to_float,
+        converter=converter("angle"),
         validator=in_range(-math.pi / 2, math.pi / 2, "an angle between -90 and 90 deg", low_open=True,
                            high_open=True))
-    spin: float = attrs.field(default=0.0, converter=to_float, validator=finite("a finite spin rate"))
+    spin: float = attrs.field(default=0.0, converter=converter("angular_speed"), validator=finite("a finite spin rate"))
     #: spin of the striking body [rad/s] about the same axis and counted like ``spin`` (a sphere striker,
     #: ClubHead.sphere; a club head's is taken as zero): it moves the striker's contact point by w x lever
-    club_spin: float = attrs.field(default=0.0, converter=to_float, validator=finite("a finite spin rate"))
+    club_spin: float = attrs.field(default=0.0, converter=converter("angular_speed"),
+                                  validator=finite("a finite spin rate"))
 
 
 HANDEDNESS = ("right", "left")
@@ -96,6 +102,9 @@ def _check_rotation(instance, attribute, value):
 @attrs.frozen
 class Delivery:
     """A golf delivery: how the club head meets the ball, as a golfer or launch monitor describes it.
+
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
 
     Parameters
     ----------
@@ -135,14 +144,15 @@ class Delivery:
         point); it needs a club head.
     """
 
-    club_speed: float = attrs.field(converter=to_float, validator=positive("a positive, finite club speed in m/s"))
-    path: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    club_speed: float = attrs.field(converter=converter("speed"),
+                                   validator=positive("a positive, finite club speed in m/s"))
+    path: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         -math.pi / 2, math.pi / 2, "a club path between -90 and 90 deg", low_open=True, high_open=True))
-    face_angle: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    face_angle: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         -math.pi / 2, math.pi / 2, "a face angle between -90 and 90 deg", low_open=True, high_open=True))
-    attack_angle: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    attack_angle: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         -math.pi / 2, math.pi / 2, "an attack angle between -90 and 90 deg", low_open=True, high_open=True))
-    dynamic_loft: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    dynamic_loft: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
         -math.pi / 2, math.pi / 2, "a dynamic loft between -90 and 90 deg", low_open=True, high_open=True))
     handedness: str = attrs.field(default="right", validator=check(lambda v: v in HANDEDNESS,
                                                                    "right or left"))
@@ -236,6 +246,7 @@ class Scene:
             raise FieldError("strike", "a club head to strike off centre (a club block)", "no club")
         if self.club is None and self.delivery is not None and any(self.delivery.head_rotation):
             raise FieldError("delivery.head_rotation", "a club head to turn (a club block)", "no club")
+        check_scene(self)  # values no golf shot can have (a golf scene's limits by role)
         if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
                                           or self.impact.speed != self.delivery.club_speed):
             raise FieldError("impact", "the club speed and spin loft of the delivery (use Scene.from_delivery)",

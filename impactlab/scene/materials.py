@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
+from impactlab.units import converter
 
 #: Largest possible I/(m R^2) of a sphere whose mass lies within its radius
 #: (all mass in a thin shell at R).
@@ -23,6 +24,9 @@ MAX_INERTIA_FACTOR = 2.0 / 3.0
 @attrs.frozen
 class Material:
     """Isotropic linear-elastic material.
+
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
 
     Parameters
     ----------
@@ -34,7 +38,8 @@ class Material:
         Label and where the numbers come from.
     """
 
-    youngs_modulus: float = attrs.field(converter=to_float, validator=positive("a positive, finite modulus in Pa"))
+    youngs_modulus: float = attrs.field(converter=converter("pressure"),
+                                        validator=positive("a positive, finite modulus in Pa"))
     poisson_ratio: float = attrs.field(
         converter=to_float, validator=in_range(-1.0, 0.5, "a Poisson ratio with -1 < nu <= 0.5", low_open=True))
     name: str = ""
@@ -60,6 +65,9 @@ def _tuple_of_floats(value):
 class RestitutionLaw:
     """Normal coefficient of restitution of a ball against a steel face as a function of the normal impact speed.
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     kind : str
@@ -83,9 +91,9 @@ class RestitutionLaw:
     kind: str = attrs.field(default="constant", validator=attrs.validators.in_(RESTITUTION_LAWS))
     value: float = attrs.field(default=0.8, converter=to_float,
                                validator=in_range(0.0, 1.0, "a coefficient of restitution 0 <= e <= 1"))
-    reference_speed: float = attrs.field(default=40.0, converter=to_float,
+    reference_speed: float = attrs.field(default=40.0, converter=converter("speed"),
                                          validator=positive("a positive reference speed in m/s"))
-    slope: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+    slope: float = attrs.field(default=0.0, converter=converter("inverse_speed"), validator=in_range(
         -1.0, 1.0, "a slope de/dv within +-1 s/m"))
     exponent: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
         -2.0, 2.0, "an exponent within +-2"))
@@ -117,10 +125,14 @@ class RestitutionLaw:
 
 @attrs.frozen
 class Ball:
-    """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) and, for compliant models, its material."""
+    """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) and, for compliant models, its material.
 
-    radius: float = attrs.field(converter=to_float, validator=positive("a positive, finite radius in m"))
-    mass: float = attrs.field(converter=to_float, validator=positive("a positive, finite mass in kg"))
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    """
+
+    radius: float = attrs.field(converter=converter("length"), validator=positive("a positive, finite radius in m"))
+    mass: float = attrs.field(converter=converter("mass"), validator=positive("a positive, finite mass in kg"))
     inertia_factor: float = attrs.field(
         default=0.4, converter=to_float,
         validator=in_range(0.0, MAX_INERTIA_FACTOR,
@@ -147,6 +159,9 @@ class Ball:
 class Face:
     """The striking face: a material, or rigid; and the club-head mass behind it.
 
+    Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
+    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+
     Parameters
     ----------
     material : Material, optional
@@ -159,7 +174,7 @@ class Face:
 
     material: Material | None = None
     rigid: bool = attrs.field(default=False, validator=attrs.validators.instance_of(bool))
-    mass: float = attrs.field(default=math.inf, converter=to_float,
+    mass: float = attrs.field(default=math.inf, converter=converter("mass"),
                               validator=positive_or_inf("a positive club-head mass in kg (inf: a fixed face)"))
     name: str = ""
     source: str = ""

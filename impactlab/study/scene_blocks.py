@@ -161,7 +161,8 @@ def build_club(value: Any, path: str = "club") -> ClubHead:
     """A club head from a study block: a preset, its keys overridden, or every key given."""
     block = structure(value, ClubBlock, path)
     base = _preset(block, path, club_preset, None)
-    fields = _given(block, base, ("mass", "loft", "lie", "bulge_radius", "roll_radius", "restitution_gain"), {})
+    fields = _given(block, base, ("mass", "loft", "lie", "bulge_radius", "roll_radius", "restitution_gain",
+                                       "face_width", "face_height"), {})
     if "mass" not in fields:
         raise FieldError(f"{path}.mass", "the head mass (or a preset)", "nothing")
     fields["inertia"] = _inertia(block.inertia, f"{path}.inertia", base.inertia if base else None)

@@ -34,7 +34,7 @@ from cattrs.errors import AttributeValidationNote, BaseValidationError, Forbidde
 from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
-from impactlab.units import registry, to_si
+from impactlab.units import to_si
 from impactlab.study.yaml_lines import format_path, parse_path
 
 # Field types: a user quantity converted to an SI float with the dimension the name says
@@ -46,7 +46,7 @@ Angle = NewType("Angle", float)
 Spin = NewType("Spin", float)
 Inertia = NewType("Inertia", float)
 Number = NewType("Number", float)
-#: a restitution slope de/dv: a bare number in s/m or a quantity of inverse speed
+#: a restitution slope de/dv: a quantity of inverse speed ('-0.002 s/m')
 InverseSpeed = NewType("InverseSpeed", float)
 #: quantities whose unit must be written (a bare number is refused): the air conditions
 Temperature = NewType("Temperature", float)
@@ -186,6 +186,8 @@ class ClubBlock:
     youngs_modulus: Pressure | None = None
     poisson_ratio: Number | None = None
     restitution_gain: Number | None = None
+    face_width: Length | None = None
+    face_height: Length | None = None
 
 
 @attrs.frozen
@@ -383,12 +385,9 @@ DIMENSIONS_WORDS = {"temperature": "a temperature", "pressure": "a pressure", "l
 
 
 def _inverse_speed(value, _) -> float:
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
+    if isinstance(value, SI):
         return float(value)
-    try:
-        return float(registry().Quantity(str(value)).to("s/m").magnitude)
-    except Exception:  # noqa: BLE001 - pint raises many kinds; the message says what was expected
-        raise FieldError("", "a slope de/dv in s/m (a number, or e.g. '-0.002 s/m')", value) from None
+    return to_si(value, "inverse_speed")
 
 
 def _flag(value, _) -> bool:

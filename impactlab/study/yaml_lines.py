@@ -73,6 +73,97 @@ def parse_path(text: str) -> Path:
     return tuple(parts)
 
 
+#: deepest nesting (block levels + flow brackets) a study, table or data file may have; a study nests about 6
+#: deep. PyYAML's C composer recurses once per level in C, so a document nested ~50,000 deep (100 KB of
+#: ``[[[[...``) overflows the C stack and kills the process with a segmentation fault before Python can catch
+#: anything: :func:`nesting_depth` measures the depth from the text, before the parser sees it.
+MAX_YAML_DEPTH = 100
+
+
+def nesting_depth(text: str, limit: int = MAX_YAML_DEPTH) -> tuple[int, int]:
+    """An upper estimate of how deep a YAML text nests, and the line where it first exceeds ``limit``.
+
+    One pass over the text, no recursion: block levels are counted as an indentation stack (each deeper
+    level starts at a larger column; the compact ``- - -`` and ``? `` indicators each open one), flow levels
+    as open ``[`` and ``{`` outside quotes and comments. The estimate is never below the depth the YAML
+    composer will reach (a block scalar's more-indented lines may count a few levels too many, which a limit
+    of :data:`MAX_YAML_DEPTH` levels leaves harmless).
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    limit : int
+        Depth at which to stop and report the line.
+
+    Returns
+    -------
+    (depth, line) : (int, int)
+        The deepest level seen (``limit + 1`` when the scan stopped early) and the 1-based line where the
+        limit was passed (0 if it was not).
+    """
+    stack: list[int] = []
+    flow = 0
+    deepest = 0
+    quote = ""
+    for number, line in enumerate(text.splitlines(), start=1):
+        position, length = 0, len(line)
+        if flow == 0 and not quote:
+            while position < length and line[position] in " \t":
+                position += 1
+            if position == length or line[position] == "#":
+                continue
+            if line.startswith(("---", "..."), position) and position == 0:
+                stack.clear()
+                continue
+            column = position
+            while True:
+                while stack and stack[-1] >= column:
+                    stack.pop()
+                stack.append(column)
+                if line[position:position + 2] in ("- ", "? ") or line[position:] in ("-", "?"):
+                    position += 2
+                    while position < length and line[position] == " ":
+                        position += 1
+                    column = position
+                    if len(stack) > limit:
+                        return len(stack), number
+                    if position >= length:
+                        break
+                    continue
+                break
+        previous, plain = " ", False
+        for char in line[position:]:
+            if quote:
+                if char == quote:
+                    quote, plain = "", False
+                previous = char
+                continue
+            if char == "#" and previous in " \t":
+                break
+            elif plain and not (char == ":" or (flow and char in ",]}")):
+                pass  # inside plain text ("x[1]", "it's"): brackets and quotes are text
+            elif char in "\"'":
+                quote = char
+            elif char in "[{":
+                flow += 1
+                deepest = max(deepest, len(stack) + flow)
+                if deepest > limit:
+                    return deepest, number
+            elif char in "]}":
+                flow = max(flow - 1, 0)
+            plain = (plain and char != ":" and not (flow and char in ",]}")) or char not in " \t,:-?[]{}\"'"
+            previous = char
+        if not flow:
+            quote = ""  # a quoted scalar of a block value that runs on is read as more lines: over, never under
+        depth = len(stack) + flow
+        if depth > deepest:
+            deepest = depth
+            if deepest > limit:
+                return deepest, number
+    return deepest, 0
+
+
 #: libyaml's parser where PyYAML was built with it (10x faster than the pure-Python one, the same nodes and marks)
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
@@ -85,6 +176,13 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
     :func:`impactlab.study.limits.max_yaml_nodes` nodes: ten nested aliases of ten items each would
     otherwise make 10^10 nodes.
     """
+    if len(text) > MAX_TEXT_BYTES:
+        raise StudyError(f"{file or '<study>'}: {len(text):,} characters is too large for a YAML document (at most "
+                         f"{MAX_TEXT_BYTES:,})")
+    depth, line = nesting_depth(text)
+    if line:
+        raise StudyError(f"{file or '<study>'}:{line}: the YAML nests more than {MAX_YAML_DEPTH} levels deep (a "
+                         "study nests about 6); write the data flatter")
     loader = _LOADER(text)
     try:
         node = loader.get_single_node()
