@@ -43,7 +43,7 @@ MEASURED_FIELDS = {
     "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
     "spin_rate": "angular_speed", "spin_axis": "angle",
 }
-TEXT_FIELDS = ("label", "club", "handedness")
+TEXT_FIELDS = ("label", "club", "handedness", "source")
 #: usual launch-monitor column names -> field (lower case, single spaces)
 ALIASES = {
     "club speed": "club_speed", "clubspeed": "club_speed", "club head speed": "club_speed",
@@ -102,6 +102,14 @@ class ShotTable:
     budgets: dict = attrs.field(factory=dict, eq=False)
     #: (file line, reason) of every row of the file the impact models could not use (a session's other rows are)
     skipped: tuple = attrs.field(default=(), eq=False)
+    #: where each row comes from (a row's ``source:``; empty: every row is the table's own ``name``): the unit of
+    #: the per-source errors of ``impactlab validate`` and of leave-one-source-out cross-validation
+    row_sources: tuple = attrs.field(default=(), eq=False)
+
+    @property
+    def sources(self) -> tuple[str, ...]:
+        """The source of every row (the table's name where the rows name none)."""
+        return self.row_sources or (self.name,) * self.size
 
     @property
     def size(self) -> int:
@@ -117,7 +125,8 @@ class ShotTable:
                             handedness=tuple(self.handedness[i] for i in index),
                             delivery={k: v[index] for k, v in self.delivery.items()},
                             measured={k: v[index] for k, v in self.measured.items()},
-                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=())
+                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=(),
+                            row_sources=tuple(self.sources[i] for i in index))
 
 
 def _field_of(header: str) -> tuple[str | None, str | None]:
@@ -191,7 +200,9 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                      clubs=tuple(str(row.get("club")) for row in rows),
                      handedness=tuple(str(row.get("handedness", "right")) for row in rows),
                      delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at,
-                     budgets=budgets or {})
+                     budgets=budgets or {},
+                     row_sources=(tuple(str(row.get("source", name)) for row in rows)
+                                  if any("source" in row for row in rows) else ()))
 
 
 def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]:
@@ -336,11 +347,14 @@ def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> S
 
 
 # -- predictions -----------------------------------------------------------------------------------------------
-def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None) -> dict:
+def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None,
+                 club_reference: str = "centre_of_mass") -> dict:
     """Model inputs (SI arrays) of every row: its club preset, its delivery and strike, and the ball.
 
     ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: urethane_tour}``);
-    ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
+    ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``); ``club_reference`` is
+    the point of the head whose velocity the rows' club speed, path and attack angle are
+    (:class:`impactlab.scene.core.Delivery`; TrackMan: the head's geometric centre, near its centre of mass).
     """
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact = Contact(**(contact or {}))
@@ -352,7 +366,8 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         d = {key: float(value[index]) for key, value in table.delivery.items()}
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
-                            handedness=table.handedness[index], loft_at=table.loft_at)
+                            handedness=table.handedness[index], loft_at=table.loft_at,
+                            club_reference=club_reference)
         scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
