@@ -371,9 +371,11 @@ def _print_benchmarks(keys) -> list[str]:
 
 def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
-    from impactlab.data.shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
+    from impactlab.data.shot_report import (
+        OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
+    )
 
-    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
+    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
     if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png")
     if args.csv:
@@ -381,6 +383,9 @@ def _cmd_validate(args) -> int:
     over, rows = [], []
 
     for name in names:
+        if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
+            print_observations(args.model or SHOT_MODELS)
+            continue
         with user_clubs(read_club_spec(path) for path in args.club or ()):
             table = shot_table(name, args.include_flagged)
             if table is not None:

@@ -406,3 +406,14 @@ def summary(errors: dict) -> dict:
         finite = values[np.isfinite(values)]
         out[key] = float(np.sqrt(np.mean(finite**2))) if finite.size else math.nan
     return out
+
+
+def errors_by_source(errors: dict, table: ShotTable) -> dict:
+    """RMS of each error (:func:`shot_errors`) over the rows of each source: source -> :func:`summary`, the sources
+    in the order they first appear."""
+    sources = np.asarray(table.sources)
+    out = {}
+    for source in dict.fromkeys(table.sources):
+        rows = sources == source
+        out[source] = summary({key: np.asarray(values)[rows] for key, values in errors.items()})
+    return out
