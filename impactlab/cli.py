@@ -448,7 +448,7 @@ def _cmd_fit(args) -> int:
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
-            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
     data = get_dataset(args.dataset)
     known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known
@@ -594,6 +594,9 @@ def build_parser() -> argparse.ArgumentParser:
                                          "(.csv, .yaml, or trackman_tour)")
     fitting.add_argument("--cross-validate", action="store_true",
                          help="shot tables: also fit on all rows but one and report the error on the one left out")
+    fitting.add_argument("--by", choices=("source", "row"),
+                         help="shot tables: leave out one source's rows at a time (default when the rows name "
+                              "several sources) or one row")
     fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
     fitting.add_argument("--parameter", action="append",
                          help="parameter to fit (repeatable; default: friction, and beta for restitution)")

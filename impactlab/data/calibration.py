@@ -241,27 +241,48 @@ def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration,
     return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
 
 
-def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
-                   ball: dict | None = None, folds: Sequence[Any] | None = None) -> dict:
-    """Fit on all rows but some, predict those; by default leave one row out at a time.
+def source_folds(table: ShotTable) -> list[list[int]]:
+    """One fold per source of the table's rows (:attr:`ShotTable.sources`): the rows of that source."""
+    sources = list(table.sources)
+    return [[i for i, s in enumerate(sources) if s == source] for source in dict.fromkeys(sources)]
+
+
+def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
+                   folds=None, by: str = "row", start: dict | None = None) -> dict:
+    """Fit on all rows but some, predict those: leave one row out at a time (``by="row"``) or one source
+    (``by="source"``: every row of one source held out, the fit made on the other sources only).
+
+    Each fold's fit starts from ``start`` (a warm start: the full fit's values, so that a fold costs a few
+    iterations from near its optimum, not a fit from the defaults); the optimum is the same as from a cold start
+    within the optimiser's tolerance (tests/test_validation_sources.py).
 
     Returns
     -------
     dict
         ``errors``: per-row errors on the rows left out (keys of :data:`ERROR_KEYS`, NaN where not measured);
-        ``summary``: their RMS; ``fits``: the fitted values of each fold; ``labels``: the rows.
+        ``summary``: their RMS; ``by_source``: the RMS per held-out source; ``fits``: the fitted values of each
+        fold; ``calibrations``: each fold's :class:`Calibration` (at-bound and beyond-limit flags); ``folds``:
+        the held-out rows; ``labels``: the rows.
     """
-    folds = folds or [[i] for i in range(table.size)]
+    from impactlab.data.shots import errors_by_source
+
+    if folds is None:
+        if by not in ("row", "source"):
+            raise FieldError("--by", "row or source", by)
+        folds = source_folds(table) if by == "source" else [[i] for i in range(table.size)]
     held = {key: np.full(table.size, np.nan) for key in ERROR_KEYS}
-    fits = []
+    fits, calibrations = [], []
     for rows in folds:
         rows = np.asarray(rows)
         train = np.setdiff1d(np.arange(table.size), rows)
         if train.size == 0:
-            raise FieldError("folds", "folds that leave rows to fit on", rows.tolist())
-        result = calibrate(model, table.subset(train), parameters, ball)
+            raise FieldError("folds", "folds that leave rows to fit on (a table of one source cannot be "
+                             "cross-validated by source)", rows.tolist())
+        result = calibrate(model, table.subset(train), parameters, ball, start=start)
         fits.append(dict(zip(result.parameters, result.values)))
+        calibrations.append(result)
         test = table.subset(rows)
         for key, values in shot_errors(predict_with(model, test, result, ball), test).items():
             held[key][rows] = values
-    return {"errors": held, "summary": summary(held), "fits": fits, "labels": table.labels}
+    return {"errors": held, "summary": summary(held), "by_source": errors_by_source(held, table), "fits": fits,
+            "calibrations": calibrations, "folds": [list(map(int, f)) for f in folds], "labels": table.labels}

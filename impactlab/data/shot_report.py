@@ -288,8 +288,16 @@ def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
 
 def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
               cross_validate: bool = False,
-              json_path: str | None = None) -> int:
-    """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
+              json_path: str | None = None, by: str | None = None) -> int:
+    """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON.
+
+    ``by`` is the unit the cross-validation leaves out: ``source`` (every row of one source; the default when the
+    table's rows name several sources) or ``row``. Each fold starts from the full fit's values (a warm start)."""
+    if by is None:
+        by = "source" if len(set(table.sources)) > 1 else "row"
+    if cross_validate and by == "source" and len(set(table.sources)) < 2:
+        raise FieldError("--by", "several sources among the table's rows (a row's source:) to leave one out",
+                         f"source ({len(set(table.sources))} source in {table.name})")
     results = []
     for name in models or FIT_MODELS:
         model = get_model(name)()
@@ -310,13 +318,23 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
                                            for j, b in enumerate(result.parameters) if j > i))
         entry = result.as_dict()
         if cross_validate and table.size > 1:
-            held = leave_one_out(model, table, names)
-            print("  leave-one-out (errors on the row not fitted): "
+            held = leave_one_out(model, table, names, by=by, start=dict(zip(result.parameters, result.values)))
+            unit = "source" if by == "source" else "row"
+            print(f"  leave-one-{unit}-out (errors on the {unit} not fitted; warm starts from the full fit): "
                   + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
-            for index, label in enumerate(held["labels"]):
-                print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
-                                                     for k in keys))
-            entry["cross_validation"] = {"summary": held["summary"], "fits": held["fits"],
+            if by == "source":
+                for fold, calibration in zip(held["folds"], held["calibrations"]):
+                    source = table.sources[fold[0]]
+                    errors = held["by_source"][source]
+                    print(f"    held out {source} ({len(fold)} rows): "
+                          + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
+                    print(f"      fitted on the others: {calibration.describe()}")
+            else:
+                for index, label in enumerate(held["labels"]):
+                    print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
+                                                         for k in keys))
+            entry["cross_validation"] = {"by": by, "summary": held["summary"], "fits": held["fits"],
+                                         "by_source": held["by_source"], "folds": held["folds"],
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
