@@ -55,7 +55,8 @@ def main() -> None:
         print(f"{table.size} shots, sources: {sorted(set(table.sources))}")
         for name in args.models:
             model = get_model(name)()
-            names = [p for p in DEFAULT_PARAMETERS if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
+            names = [p for p in DEFAULT_PARAMETERS
+                     if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
             calibrate(model, table.subset([0, 1]), names)  # compile / warm caches
             t0 = time.perf_counter()
             full = calibrate(model, table, names)

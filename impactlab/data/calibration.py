@@ -247,8 +247,9 @@ def source_folds(table: ShotTable) -> list[list[int]]:
     return [[i for i, s in enumerate(sources) if s == source] for source in dict.fromkeys(sources)]
 
 
-def cross_validate(model, table: ShotTable, parameters=DEFAULT_PARAMETERS, ball: dict | None = None,
-                   folds=None, by: str = "row", start: dict | None = None) -> dict:
+def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
+                   ball: dict | None = None, folds: Sequence[Any] | None = None, by: str = "row",
+                   start: dict | None = None) -> dict:
     """Fit on all rows but some, predict those: leave one row out at a time (``by="row"``) or one source
     (``by="source"``: every row of one source held out, the fit made on the other sources only).
 

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
@@ -356,8 +357,8 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
 
     observations = load_observations()
     print("observations: model / published (1 = agreement; target 0.5-1.5)")
-    for family in observations.values():
-        for observation in family:
+    for members in observations.values():
+        for observation in members:
             print(f"  {describe(observation)}")
     print(f"  {'observation':<46}" + "".join(f"{model:>16}" for model in models))
     for family, compute in (("gear_effect", gear_effect), ("cover", cover_effect)):
