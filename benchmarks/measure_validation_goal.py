@@ -14,7 +14,7 @@ import argparse
 
 import attrs
 
-from impactlab.data.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate
+from impactlab.data.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate, model_with
 from impactlab.data.shot_report import shot_table
 from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
 from impactlab.data.validation.observations import cover_effect, gear_effect, load_observations
@@ -24,9 +24,10 @@ KEYS = ("ball_speed [%]", "launch angle [deg]", "spin [%]")
 TARGETS = {"ball_speed [%]": 1.0, "launch angle [deg]": 0.7, "spin [%]": 7.0}
 
 
-def configuration(name, loft_at="centre", club_reference="centre_of_mass", rolling=False, fitted=False):
+def configuration(name, loft_at="centre", club_reference="centre_of_mass", rolling=False, fitted=False,
+                  fit_rolling=False):
     return {"name": name, "loft_at": loft_at, "club_reference": club_reference, "rolling": rolling,
-            "fitted": fitted}
+            "fitted": fitted, "fit_rolling": fit_rolling}
 
 
 CONFIGURATIONS = [
@@ -36,6 +37,8 @@ CONFIGURATIONS = [
     configuration("+ rolling_hysteresis = 1 - e^2", rolling=True),
     configuration("+ calibration (leave-one-source-out)", fitted=True),
     configuration("AFTER: contact + rolling + calibration", loft_at="contact", rolling=True, fitted=True),
+    configuration("AFTER, alpha fitted: contact + calibration with rolling_hysteresis", loft_at="contact",
+                  fitted=True, fit_rolling=True),
 ]
 
 
@@ -44,6 +47,8 @@ def measure(model_name: str, config: dict) -> dict:
     model = get_model(model_name)(**options)
     table = attrs.evolve(shot_table("trackman_tour"), loft_at=config["loft_at"])
     names = [p for p in DEFAULT_PARAMETERS if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
+    if config["fit_rolling"]:
+        names.append("rolling_hysteresis")
     hook = None
     flags = ""
     if config["fitted"]:
@@ -55,6 +60,8 @@ def measure(model_name: str, config: dict) -> dict:
 
         def hook(inputs, full=full, ball=ball):
             return apply(inputs, full.parameters, full.values, ball)
+        model = model_with(model, full.parameters, full.values)  # the observations: the full fit's model
+        flags = f"full fit: {full.describe()} | folds: {flags}"
     else:
         inputs = table_inputs(table, club_reference=config["club_reference"])
         by_source = errors_by_source(shot_errors(predict(model, inputs), table), table)

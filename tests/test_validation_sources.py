@@ -116,3 +116,22 @@ def test_observations_say_what_was_assumed():
     assert result["toe"] > 0 and result["heel"] > 0
     # a rigid model has no cover: the two balls spin the same
     assert cover_effect(model, cover)["ratio"] == pytest.approx(0.0, abs=1e-3)
+
+
+def test_rolling_hysteresis_is_fitted_as_a_model_option():
+    from impactlab.data.calibration import apply
+    from impactlab.data.shot_report import shot_table
+    from impactlab.data.shots import predict, table_inputs
+    from impactlab.errors import FieldError
+
+    table = shot_table("trackman_tour")
+    # measurements made by the model itself at alpha = 0.3 (and e = 0.78): the fit must find alpha again
+    truth = get_model("rigid_coulomb")(rolling_hysteresis=0.3)
+    made = predict(truth, apply(table_inputs(table), ("restitution",), (0.78,)))
+    measured = {key: (made[key] if key in ("ball_speed", "vertical_launch_angle", "spin_rate")
+                      else np.full(table.size, math.nan)) for key in table.measured}
+    synthetic = attrs.evolve(table, measured=measured)
+    result = calibrate(get_model("rigid_coulomb")(), synthetic, ("restitution", "rolling_hysteresis"))
+    assert result.values == pytest.approx((0.78, 0.3), abs=5e-3)
+    with pytest.raises(FieldError, match="rolling_hysteresis"):
+        calibrate(get_model("restitution")(), synthetic, ("restitution", "rolling_hysteresis"))
