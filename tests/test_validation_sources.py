@@ -135,3 +135,29 @@ def test_rolling_hysteresis_is_fitted_as_a_model_option():
     assert result.values == pytest.approx((0.78, 0.3), abs=5e-3)
     with pytest.raises(FieldError, match="rolling_hysteresis"):
         calibrate(get_model("restitution")(), synthetic, ("restitution", "rolling_hysteresis"))
+
+
+def test_cli_per_source_table_and_leave_one_source_out(capsys, tmp_path):
+    from impactlab.cli import main
+
+    assert main(["validate", "--dataset", "trackman_tour", "--dataset", "observations",
+                 "--model", "rigid_coulomb", "--csv", str(tmp_path / "rows.csv")]) == 0
+    out = capsys.readouterr().out
+    assert "per source" in out and "TrackMan PGA Tour" in out and "TrackMan LPGA Tour" in out
+    assert "trackman2009_driver spin-axis change" in out and "ASSUMED" in out
+    assert (tmp_path / "rows.csv").read_text().count("\n") == 5  # header + four shots, --csv still works
+    assert main(["fit", "trackman_tour", "--cross-validate", "--model", "restitution",
+                 "--parameter", "restitution"]) == 0
+    out = capsys.readouterr().out
+    assert "leave-one-out by source" in out and "held out TrackMan LPGA Tour (2 rows)" in out
+
+
+def test_cli_by_source_needs_several_sources(capsys, tmp_path):
+    from impactlab.cli import main
+
+    path = tmp_path / "one.yaml"
+    path.write_text(TABLE.replace("source: A, ", "").replace("source: B, ", ""))
+    assert main(["fit", str(path), "--cross-validate", "--by", "source", "--model", "restitution",
+                 "--parameter", "restitution"]) == 2
+    err = capsys.readouterr().err
+    assert "--by" in err and "several sources" in err and "Traceback" not in err

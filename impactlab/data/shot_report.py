@@ -321,7 +321,7 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
         if cross_validate and table.size > 1:
             held = leave_one_out(model, table, names, by=by, start=dict(zip(result.parameters, result.values)))
             unit = "source" if by == "source" else "row"
-            print(f"  leave-one-{unit}-out (errors on the {unit} not fitted; warm starts from the full fit): "
+            print(f"  leave-one-out by {unit} (errors on the {unit} not fitted; warm starts from the full fit): "
                   + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
             if by == "source":
                 for fold, calibration in zip(held["folds"], held["calibrations"]):
