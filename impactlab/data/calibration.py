@@ -33,7 +33,7 @@ from impactlab.errors import FieldError
 from impactlab.model.base import ImpactModel
 from impactlab.scene.materials import Ball, RestitutionLaw
 from impactlab.data.shots import (
-    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, shot_errors, summary, table_inputs,
 )
 from impactlab.physics.contact import approach_state
 from impactlab.study.scene_blocks import build_ball
@@ -283,8 +283,6 @@ def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[st
         fold; ``calibrations``: each fold's :class:`Calibration` (at-bound and beyond-limit flags); ``folds``:
         the held-out rows; ``labels``: the rows.
     """
-    from impactlab.data.shots import errors_by_source
-
     if folds is None:
         if by not in ("row", "source"):
             raise FieldError("--by", "row or source", by)

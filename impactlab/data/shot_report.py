@@ -22,8 +22,10 @@ import numpy as np
 from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from impactlab.data.shots import (
-    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, read_shots, read_yaml, shot_errors, summary,
+    table_inputs,
 )
+from impactlab.data.validation.observations import cover_effect, describe, gear_effect, load_observations
 from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
@@ -196,8 +198,6 @@ SOURCE_COLUMNS = {"ball_speed [%]": "speed %", "launch angle [deg]": "launch deg
 
 def source_table(table: ShotTable, predictions: dict) -> dict:
     """source -> model -> {error key -> RMS over the source's rows} (:func:`impactlab.data.shots.errors_by_source`)."""
-    from impactlab.data.shots import errors_by_source
-
     out: dict = {}
     for model, predicted in predictions.items():
         for source, rms in errors_by_source(shot_errors(predicted, table), table).items():
@@ -353,8 +353,6 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
     (:mod:`impactlab.data.validation.observations`), rows = observation, columns = model; 1 is agreement.
 
     ``options`` maps a model id to its options (default: none, the paper's models)."""
-    from impactlab.data.validation.observations import cover_effect, describe, gear_effect, load_observations
-
     observations = load_observations()
     print("observations: model / published (1 = agreement; target 0.5-1.5)")
     for members in observations.values():
