@@ -20,6 +20,7 @@ from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS, MATERIAL_PRESE
 from impactlab.model.base import ImpactModel
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.scene.core import Contact, Delivery, Impact, Scene
+from impactlab.scene.flight import fly as _fly
 
 if TYPE_CHECKING:  # what the lazy names below are, for type checkers and editors (nothing is imported at run time)
     import xarray as xr
@@ -81,8 +82,6 @@ def fly(ball_speed: Any, launch_angle: Any, spin_rate: Any, spin_axis: Any = 0.0
     >>> round(float(shot.carry_distance), 1), shot.carry_distance.attrs["units"]
     (227.8, 'm')
     """
-    from impactlab.scene.flight import fly as _fly
-
     return _fly(ball_speed, launch_angle, spin_rate, spin_axis, launch_direction, conditions, **options)
 
 

@@ -34,7 +34,7 @@ def drawn_figures(monkeypatch):
     from matplotlib.figure import Figure
     from matplotlib.image import imread
 
-    from impactlab.plot.figures import audit
+    from impactlab.plot.style import audit
 
     record = []
     original = Figure.savefig

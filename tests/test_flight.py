@@ -9,10 +9,10 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from impactlab.data.carry import RPM, YARD, carry_table, validate_carry
-from impactlab.physics import flight
+from impactlab.physics import aerodynamics, atmosphere, flight
 from impactlab.units import MPH
 
-G = flight.G0
+G = atmosphere.G0
 DRIVER = {"ball_speed": 167 * MPH, "launch_angle": np.radians(10.9), "spin_rate": 2686 * RPM}
 SEVEN = {"ball_speed": 120 * MPH, "launch_angle": np.radians(16.3), "spin_rate": 7097 * RPM}
 
@@ -22,27 +22,27 @@ SEVEN = {"ball_speed": 120 * MPH, "launch_angle": np.radians(16.3), "spin_rate":
 # --------------------------------------------------------------------------
 def test_air_density_isa_sea_level():
     # ISA: 1.2250 kg/m^3 at 288.15 K, 101325 Pa, dry.
-    assert flight.air_density(288.15, 101325.0, 0.0) == pytest.approx(1.2250, abs=5e-4)
+    assert atmosphere.air_density(288.15, 101325.0, 0.0) == pytest.approx(1.2250, abs=5e-4)
 
 
 def test_air_density_humid_air_is_lighter_and_vectorised():
     rh = np.array([0.0, 0.5, 1.0])
-    rho = flight.air_density(303.15, 101325.0, rh)
+    rho = atmosphere.air_density(303.15, 101325.0, rh)
     assert rho.shape == (3,)
     assert np.all(np.diff(rho) < 0)
     # 30 degC saturated air: about 1.145 kg/m^3 (dry 1.164); e_s(30 C) = 4.24 kPa.
-    assert flight.saturation_vapour_pressure(303.15) == pytest.approx(4246, rel=2e-3)
+    assert atmosphere.saturation_vapour_pressure(303.15) == pytest.approx(4246, rel=2e-3)
     assert rho[2] == pytest.approx(1.1455, abs=2e-3)
 
 
 def test_pressure_at_altitude_isa_table():
     # ISO 2533 tabulated values: 1000 m 89 874.6 Pa, 5000 m 54 019.9 Pa, 11 000 m 22 632 Pa.
-    p = flight.pressure_at_altitude(np.array([0.0, 1000.0, 5000.0, 11000.0]))
+    p = atmosphere.pressure_at_altitude(np.array([0.0, 1000.0, 5000.0, 11000.0]))
     np.testing.assert_allclose(p, [101325.0, 89874.6, 54019.9, 22632.1], rtol=2e-4)
 
 
 def test_viscosity_sutherland():
-    assert flight.air_viscosity(288.15) == pytest.approx(1.7894e-5, rel=1e-3)
+    assert atmosphere.air_viscosity(288.15) == pytest.approx(1.7894e-5, rel=1e-3)
 
 
 # --------------------------------------------------------------------------
@@ -50,13 +50,13 @@ def test_viscosity_sutherland():
 # --------------------------------------------------------------------------
 def test_smits_smith_coefficients_as_published():
     # CD = 0.24 + 0.18 S + 0.06 sin(pi (Re - 9e4)/2e5); CL = 0.54 S^0.4
-    cd, cl = flight.aero_coefficients([0.1, 0.2], [9.0e4, 1.9e5], model="smits_smith_1994")
+    cd, cl = aerodynamics.aero_coefficients([0.1, 0.2], [9.0e4, 1.9e5], model="smits_smith_1994")
     np.testing.assert_allclose(cd, [0.24 + 0.018, 0.24 + 0.036 + 0.06], rtol=1e-12)
     np.testing.assert_allclose(cl, [0.54 * 0.1**0.4, 0.54 * 0.2**0.4], rtol=1e-12)
 
 
 def test_lyu_coefficients_as_published():
-    cd, cl = flight.aero_coefficients([0.2], [1.0e5], model="lyu_2018")
+    cd, cl = aerodynamics.aero_coefficients([0.2], [1.0e5], model="lyu_2018")
     assert cd[0] == pytest.approx(1.91e-11 * 1e10 - 5.40e-6 * 1e5 + 0.56)
     assert cl[0] == pytest.approx(-3.25 * 0.04 + 1.99 * 0.2)
 
@@ -64,26 +64,26 @@ def test_lyu_coefficients_as_published():
 def test_usga_patent_coefficients_reproduce_patent_data_points():
     # US 6,186,002 example data: S 0.218, Re 0.812e5 -> CL 0.278, CD 0.305;
     # S 0.092, Re 2.0e5 -> CL 0.153, CD 0.241 (regression R^2 0.99).
-    cd, cl = flight.aero_coefficients([0.218, 0.092], [0.812e5, 2.0e5], model="usga_patent_2001")
+    cd, cl = aerodynamics.aero_coefficients([0.218, 0.092], [0.812e5, 2.0e5], model="usga_patent_2001")
     np.testing.assert_allclose(cl, [0.278, 0.153], atol=0.005)
     np.testing.assert_allclose(cd, [0.305, 0.241], atol=0.01)
 
 
 def test_composite_models_as_documented():
     # lift held at the peak of Lyu et al. 2018's published fit, -3.25 S^2 + 1.99 S: 1.99^2 / 13 = 0.3046 at S 0.306
-    cd, cl = flight.aero_coefficients([0.1, 0.5], [1.5e5, 1.5e5], model="smits_smith_lift_capped")
+    cd, cl = aerodynamics.aero_coefficients([0.1, 0.5], [1.5e5, 1.5e5], model="smits_smith_lift_capped")
     assert cl[0] == pytest.approx(0.54 * 0.1**0.4) and cl[1] == pytest.approx(0.3046, abs=1e-4)
     assert cd[1] == pytest.approx(0.24 + 0.18 * 0.5 + 0.06 * np.sin(np.pi * 0.3))
     # induced drag fitted on the USGA ITR example data: CD = a + b Re + k CL^2 reproduces the patent's measured
     # condition means (CD 0.223..0.305, shot SD <= 0.006) within 0.01
-    data = np.array(flight.USGA_ITR_EXAMPLE)
+    data = np.array(aerodynamics.USGA_ITR_EXAMPLE)
     design = np.column_stack([np.ones(len(data)), data[:, 0], data[:, 3] ** 2])
     fit = design @ np.linalg.lstsq(design, data[:, 2], rcond=None)[0]
     np.testing.assert_allclose(fit, data[:, 2], atol=0.01)
-    assert 1.2 < flight.INDUCED_DRAG_FACTOR < 1.7
-    cd_l, cl_l = flight.aero_coefficients([0.2], [1.5e5], model="lyu_2018")
-    cd_i, cl_i = flight.aero_coefficients([0.2], [1.5e5], model="lyu_2018_induced_drag")
-    assert cl_i[0] == cl_l[0] and cd_i[0] == pytest.approx(cd_l[0] + flight.INDUCED_DRAG_FACTOR * cl_l[0] ** 2)
+    assert 1.2 < aerodynamics.INDUCED_DRAG_FACTOR < 1.7
+    cd_l, cl_l = aerodynamics.aero_coefficients([0.2], [1.5e5], model="lyu_2018")
+    cd_i, cl_i = aerodynamics.aero_coefficients([0.2], [1.5e5], model="lyu_2018_induced_drag")
+    assert cl_i[0] == cl_l[0] and cd_i[0] == pytest.approx(cd_l[0] + aerodynamics.INDUCED_DRAG_FACTOR * cl_l[0] ** 2)
 
 
 # --------------------------------------------------------------------------
@@ -108,9 +108,9 @@ def test_vacuum_matches_analytic_projectile(deg):
 # --------------------------------------------------------------------------
 def _scipy_reference(v0, th, w0, alpha, model="smits_smith_1994", lam=2.0e-5, T=288.15, rh=0.5):
     """Straightforward re-implementation, y LEFT internally, solved by DOP853."""
-    rho = flight.air_density(T, 101325.0, rh)
-    mu = flight.air_viscosity(T)
-    R, m = flight.BALL_RADIUS, flight.BALL_MASS
+    rho = atmosphere.air_density(T, 101325.0, rh)
+    mu = atmosphere.air_viscosity(T)
+    R, m = aerodynamics.BALL_RADIUS, aerodynamics.BALL_MASS
     k = rho * np.pi * R**2 / (2 * m)
     vhat = np.array([np.cos(th), 0.0, np.sin(th)])
     right = np.array([0.0, -1.0, 0.0])
@@ -124,7 +124,7 @@ def _scipy_reference(v0, th, w0, alpha, model="smits_smith_1994", lam=2.0e-5, T=
         sa = np.linalg.norm(c)
         s = R * y[6] * sa / sp
         re = rho * sp * 2 * R / mu
-        cd, cl = flight.aero_coefficients(s, re, model)
+        cd, cl = aerodynamics.aero_coefficients(s, re, model)
         a = -k * cd * sp * v + k * cl * sp**2 * c / sa - np.array([0, 0, G])
         return np.concatenate([v, a, [-lam * rho / 1.225 * sp * y[6] / R]])
 
@@ -320,9 +320,9 @@ def test_composite_models_regression_guard():
 
 
 def test_default_model_is_best_published_model():
-    rms = {m: validate_carry(m)["rms_carry_error"] for m in flight.PUBLISHED_MODELS}
+    rms = {m: validate_carry(m)["rms_carry_error"] for m in aerodynamics.PUBLISHED_MODELS}
     rms = {m: (v if np.isfinite(v) else np.inf) for m, v in rms.items()}
-    assert min(rms, key=rms.get) == flight.DEFAULT_MODEL
+    assert min(rms, key=rms.get) == aerodynamics.DEFAULT_MODEL
 
 
 # --------------------------------------------------------------------------
@@ -432,10 +432,12 @@ def test_study_flight_equals_fly_on_the_models_launch():
 
 def test_study_not_asking_for_the_flight_does_not_compute_it(monkeypatch):
     import impactlab
+    from impactlab.model import derive
 
     calls = []
     original = flight.fly
-    monkeypatch.setattr(flight, "fly", lambda *a, **k: calls.append(1) or original(*a, **k))
+    # the name the study's derivation calls (derive's own): a stub on impactlab.physics.flight would not reach it
+    monkeypatch.setattr(derive, "fly", lambda *a, **k: calls.append(1) or original(*a, **k))
     impactlab.run_study(_golf_study(LAUNCH), executor="serial")
     assert calls == []
     impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]), executor="serial")
@@ -483,12 +485,13 @@ def test_study_conditions_block_refuses_with_its_path(conditions, words):
 # --------------------------------------------------------------------------
 def test_trajectory_figure_lands_where_the_result_says(tmp_path, monkeypatch):
     import impactlab
-    from impactlab.plot import figures
+    from impactlab.plot import trajectories
 
     result = impactlab.run_study(_golf_study(LAUNCH + FLIGHT, conditions={"temperature": "10 degC"}))
     captured = []
-    monkeypatch.setattr(figures, "_save", lambda figure, path: captured.append(figure) or path)
-    figures.plot_trajectories(result, tmp_path / "t.png")
+    # the name plot_trajectories calls (its module's): a stub elsewhere would not reach it
+    monkeypatch.setattr(trajectories, "_save", lambda figure, path: captured.append(figure) or path)
+    trajectories.plot_trajectories(result, tmp_path / "t.png")
     side, top = captured[0].axes[:2]
     ends = np.array([[line.get_xdata()[-1], line.get_ydata()[-1]] for line in top.get_lines()
                      if len(line.get_xdata()) > 2])

@@ -59,7 +59,7 @@ def test_the_audit_names_an_empty_panel_and_a_legend_entry_with_nothing_drawn(tm
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from impactlab.plot.figures import FigureWarning, _save, audit
+    from impactlab.plot.style import FigureWarning, _save, audit
 
     figure, (full, empty) = plt.subplots(1, 2)
     full.plot([0, 1], [0, 1], label="drawn")

@@ -253,7 +253,7 @@ def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused(
 
 
 def test_every_shipped_layout_loads_and_a_broken_one_is_named():
-    from impactlab.data.session import _vendor_from_document, vendor_maps
+    from impactlab.data.session_layouts import _vendor_from_document, vendor_maps
 
     maps = vendor_maps()
     assert {"trackman_tps", "garmin_golf", "foresight_fsx", "rapsodo_mlm2pro", "flightscope_cloud",
@@ -321,3 +321,10 @@ def test_spin_columns_that_disagree_row_by_row_are_flagged_not_trusted():
     session = read_session_text(text, "s.csv")
     assert session.flags[("spin_axis", "inconsistent")].tolist() == [False, True]
     assert session.flagged("spin_axis").tolist() == [False, True]
+
+
+def test_a_header_cell_with_a_line_break_is_refused_with_a_message():
+    """A quoted CSV header cell may hold a line break; the header parser said nothing and crashed on it (an
+    AttributeError traceback) before: now one StudyError naming the cell."""
+    with pytest.raises(StudyError, match=r"'Club\\nSpeed \[mph\]': expected a column name on one line"):
+        read_session_text('"Club\nSpeed [mph]",Ball Speed [mph]\n100,150\n', "x.csv")

@@ -1,7 +1,7 @@
 """The ball-flight model against TrackMan's published tour carries (impactlab/data/validation/trackman_carry.yaml).
 
 :func:`carry_table` reads the measured rows (launch in, max height, land angle and carry out, per club) with their
-citation; :func:`validate_carry` flies each row's launch with a model of :data:`impactlab.physics.flight.MODELS`
+citation; :func:`validate_carry` flies each row's launch with a model of :data:`impactlab.physics.aerodynamics.MODELS`
 and gives model beside measurement. ``python -m impactlab.data.carry [MODEL ...]`` prints the tables of
 docs/flight.md.
 """
@@ -16,6 +16,7 @@ import numpy as np
 import yaml
 
 from impactlab.physics import flight
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS
 from impactlab.units import MPH
 
 YARD = 0.9144  #: m (exact, the international yard)
@@ -66,13 +67,13 @@ def carry_table(name: str = "trackman_carry") -> CarryTable:
                       document.get("confirmed", "").strip())
 
 
-def validate_carry(model: str = flight.DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
+def validate_carry(model: str = DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
     """Fly every row of ``table`` with ``model``; model and measurement side by side (SI) and the carry errors.
 
     Parameters
     ----------
     model : str
-        A key of :data:`impactlab.physics.flight.MODELS`.
+        A key of :data:`impactlab.physics.aerodynamics.MODELS`.
     table : CarryTable, optional
         Default :func:`carry_table`.
     **options
@@ -93,7 +94,7 @@ def validate_carry(model: str = flight.DEFAULT_MODEL, table: CarryTable | None =
             "rms_carry_error": float(np.sqrt(np.mean(np.square(error)))), "table": table}
 
 
-def format_validation(model: str = flight.DEFAULT_MODEL, **options) -> str:
+def format_validation(model: str = DEFAULT_MODEL, **options) -> str:
     """The validation of ``model`` as a Markdown table (yards, degrees), with its RMS carry error."""
     check = validate_carry(model, **options)
     table = check["table"]
@@ -113,5 +114,5 @@ def format_validation(model: str = flight.DEFAULT_MODEL, **options) -> str:
 if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
     import sys
 
-    for name in sys.argv[1:] or [key for key in flight.MODELS if key != "vacuum"]:
+    for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
         print(format_validation(name), end="\n\n")

@@ -64,9 +64,9 @@ def describe(result: FitResult) -> str:
     """One line: each parameter with its one-sigma uncertainty, its bound or 'not identified' said
     (:func:`impactlab.data.least_squares.state`), and the points left out."""
     near = result.near_bound or (False,) * len(result.parameters)
-    lines = [f"{name} = {least_squares.state(*state, spec='.3f', sigma_spec='.3f')}"
-             for name, *state in zip(result.parameters, result.values, result.uncertainties, result.identified,
-                                     result.at_bound, near)]
+    lines = [f"{name} = {least_squares.state(value, sigma, known, at, close, spec='.3f', sigma_spec='.3f')}"
+             for name, value, sigma, known, at, close in zip(result.parameters, result.values, result.uncertainties,
+                                                             result.identified, result.at_bound, near)]
     if result.unused_points:
         lines.append(f"points not used (the model cannot predict them): {', '.join(result.unused_points)}")
     return "; ".join(lines)

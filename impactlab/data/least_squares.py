@@ -50,6 +50,7 @@ from collections.abc import Callable, Sequence
 
 import attrs
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 #: a scaled Jacobian column below this fraction of the largest one: the data do not depend on the parameter
@@ -173,8 +174,8 @@ def analyse(jacobian: np.ndarray, residuals: np.ndarray, values: np.ndarray, low
             "singular_values": np.linalg.svd(scaled_jacobian, compute_uv=False)}
 
 
-def solve(residuals: Callable[[np.ndarray], np.ndarray], start: Sequence[float], lower: Sequence[float],
-          upper: Sequence[float], *, weighted: bool, names: Sequence[str] = (),
+def solve(residuals: Callable[[np.ndarray], np.ndarray], start: ArrayLike, lower: ArrayLike,
+          upper: ArrayLike, *, weighted: bool, names: Sequence[str] = (),
           limits: Sequence[PhysicalLimit] = ()) -> Solution:
     """Minimise the sum of squares of ``residuals(x)`` within the bounds and say what the data tell of each x.
 
@@ -195,17 +196,17 @@ def solve(residuals: Callable[[np.ndarray], np.ndarray], start: Sequence[float],
     -------
     Solution
     """
-    lower = np.asarray(lower, dtype=float)
-    upper = np.asarray(upper, dtype=float)
-    if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper)) and np.all(upper > lower)):
+    low = np.asarray(lower, dtype=float)
+    high = np.asarray(upper, dtype=float)
+    if not (np.all(np.isfinite(low)) and np.all(np.isfinite(high)) and np.all(high > low)):
         raise ValueError("least-squares bounds must be finite with upper > lower")
-    span = upper - lower
-    x0 = np.clip(np.asarray(start, dtype=float), lower, upper)
+    span = high - low
+    x0 = np.clip(np.asarray(start, dtype=float), low, high)
     start_residuals = np.asarray(residuals(x0), dtype=float)
     # absolute finite-difference step DIFF_STEP * span (scipy's diff_step is relative to max(1, |x|) ... |x|)
     step = DIFF_STEP * span / np.maximum(np.abs(x0), 1e-3)
-    solution = least_squares(residuals, x0, bounds=(lower, upper), x_scale=span, diff_step=step, method="trf")
-    found = analyse(solution.jac, solution.fun, solution.x, lower, upper, weighted)
+    solution = least_squares(residuals, x0, bounds=(low, high), x_scale=span, diff_step=step, method="trf")
+    found = analyse(solution.jac, solution.fun, solution.x, low, high, weighted)
     fitted = dict(zip(names, (float(v) for v in solution.x)))
     beyond = tuple(message for limit in limits if (message := limit.check(fitted)) is not None)
     return Solution(values=solution.x, uncertainties=found["uncertainties"], covariance=found["covariance"],

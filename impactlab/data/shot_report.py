@@ -30,6 +30,7 @@ from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.calibration import cross_validate as leave_one_out
+from impactlab.data.least_squares import usable_rows
 
 if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
     from matplotlib.figure import Figure
@@ -153,8 +154,6 @@ def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None 
 
     ``rows``, when given a list, receives the per-shot table (:func:`prediction_rows`) of every model.
     """
-    from impactlab.model.registry import get_model
-
     print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
     print(f"  source: {table.source}")
     for line in skipped_text(table):
@@ -262,8 +261,6 @@ def write_prediction_rows(rows: list[dict], path) -> Path:
     import csv
     import io
 
-    from impactlab.io.safe_output import write_atomically
-
     columns = ["table", "shot", "club", "handedness", "model", "club_speed [m/s]", "attack_angle [deg]",
                "dynamic_loft [deg]", "path [deg]", "face_angle [deg]"]
     for field, unit, _ in _CSV_QUANTITIES:
@@ -280,8 +277,6 @@ def write_prediction_rows(rows: list[dict], path) -> Path:
 
 def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
     """Labels of the rows whose prediction of a measured value is not finite (left out of every RMS)."""
-    from impactlab.data.least_squares import usable_rows
-
     usable = usable_rows(np.stack([predicted[key] for key in MEASURED_FIELDS], axis=1),
                          np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
     return [label for label, ok in zip(table.labels, usable) if not ok]

@@ -28,122 +28,15 @@ import numpy as np
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
-from impactlab.physics.delivery import loft_for_spin_loft, spin_loft
 from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_key, club_preset
-from impactlab.scene.core import SPIN_LOFT_TOLERANCE, Contact, Delivery, Scene, ball_restitution, complete_inputs
+from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
-
-#: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
-DELIVERY_FIELDS = {
-    "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle", "dynamic_loft": "angle",
-    "strike_toe": "length", "strike_high": "length", "spin_loft": "angle", "face_to_path": "angle",
-}
-MEASURED_FIELDS = {
-    "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
-    "spin_rate": "angular_speed", "spin_axis": "angle",
-}
-TEXT_FIELDS = ("label", "club", "handedness", "source")
-#: usual launch-monitor column names -> field (lower case, single spaces)
-ALIASES = {
-    "club speed": "club_speed", "clubspeed": "club_speed", "club head speed": "club_speed",
-    "attack angle": "attack_angle", "aoa": "attack_angle", "angle of attack": "attack_angle",
-    "club path": "path", "face angle": "face_angle", "dynamic loft": "dynamic_loft", "dyn. loft": "dynamic_loft",
-    "dyn loft": "dynamic_loft", "impact offset": "strike_toe", "impact height": "strike_high",
-    "spin loft": "spin_loft", "face to path": "face_to_path",
-    "ball speed": "ball_speed", "launch angle": "vertical_launch_angle", "launch direction": "horizontal_launch_angle",
-    "spin rate": "spin_rate", "total spin": "spin_rate", "spin axis": "spin_axis", "shot": "label", "name": "label",
-}
-#: the errors of a prediction against a shot table, in the data's own units
-ERROR_KEYS = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
-#: default one-sigma uncertainty of a shot (SI), used where a table gives none: this project's assumption of how well
-#: one launch-monitor shot or average represents its delivery, not a manufacturer's figure
-DEFAULT_SIGMA = {"ball_speed": 0.5, "vertical_launch_angle": math.radians(0.3),
-                 "horizontal_launch_angle": math.radians(0.3), "spin_rate": 200.0 * 2 * math.pi / 60,
-                 "spin_axis": math.radians(1.0)}
-
-
-@attrs.frozen
-class ShotTable:
-    """Rows of measured shots, SI values (NaN: not measured), with the table's provenance.
-
-    Attributes
-    ----------
-    name, source : str
-        What the table is, and where each number comes from (measurement or model output).
-    labels, clubs, handedness : tuple of str
-    delivery : dict of ndarray
-        ``DELIVERY_FIELDS`` per row [SI].
-    measured, sigma : dict of ndarray
-        ``MEASURED_FIELDS`` per row and their one-sigma uncertainties [SI].
-    ball : dict
-        The ball block the table names (a study ``ball:`` mapping), or empty.
-    loft_at : str
-        Where the table's dynamic loft and face angle were measured: ``contact`` (default; what a launch
-        monitor reports: TrackMan defines dynamic loft as the loft "at the center-point of contact between the
-        club and ball") or ``centre`` (the face centre). It is the rows' ``Delivery.loft_at``: on a bulged and
-        rolled face a strike off the centre meets a face turned by its bulge and roll, and a ``contact`` row's
-        head is turned so that the face at the strike point has the measured loft and face angle
-        (:func:`impactlab.physics.delivery.centre_face`).
-    """
-
-    name: str
-    source: str
-    labels: tuple[str, ...]
-    clubs: tuple[str, ...]
-    handedness: tuple[str, ...]
-    delivery: dict = attrs.field(eq=False)
-    measured: dict = attrs.field(eq=False)
-    sigma: dict = attrs.field(eq=False)
-    ball: dict = attrs.field(factory=dict, eq=False)
-    loft_at: str = attrs.field(default="contact", validator=attrs.validators.in_(("contact", "centre")))
-    #: model id -> {error key of :data:`ERROR_KEYS` -> largest allowed RMS}: regression budgets, not the data's
-    #: uncertainty (tests/test_shots.py holds them and checks they only tighten)
-    budgets: dict = attrs.field(factory=dict, eq=False)
-    #: (file line, reason) of every row of the file the impact models could not use (a session's other rows are)
-    skipped: tuple = attrs.field(default=(), eq=False)
-    #: where each row comes from (a row's ``source:``; empty: every row is the table's own ``name``): the unit of
-    #: the per-source errors of ``impactlab validate`` and of leave-one-source-out cross-validation
-    row_sources: tuple = attrs.field(default=(), eq=False)
-
-    @property
-    def sources(self) -> tuple[str, ...]:
-        """The source of every row (the table's name where the rows name none)."""
-        return self.row_sources or (self.name,) * self.size
-
-    @property
-    def size(self) -> int:
-        """Number of shots (rows)."""
-        return len(self.labels)
-
-    def subset(self, rows: Any) -> ShotTable:
-        """The table of rows ``rows`` (an index or mask): a fold of a cross-validation."""
-        rows = np.asarray(rows)
-        index = np.arange(self.size)[rows]
-        return attrs.evolve(self, labels=tuple(self.labels[i] for i in index),
-                            clubs=tuple(self.clubs[i] for i in index),
-                            handedness=tuple(self.handedness[i] for i in index),
-                            delivery={k: v[index] for k, v in self.delivery.items()},
-                            measured={k: v[index] for k, v in self.measured.items()},
-                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=(),
-                            row_sources=tuple(self.sources[i] for i in index))
-
-
-def _field_of(header: str) -> tuple[str | None, str | None]:
-    """(field, unit) of a column header like 'Club Speed [mph]', 'spin_rate (rpm)' or 'ball_speed_sigma [mph]'."""
-    match = re.match(r"^\s*(.*?)\s*(?:[\[(]\s*(.*?)\s*[\])])?\s*$", header)
-    assert match is not None, "every part of the pattern is optional: it matches any header"
-    name, unit = match.group(1), match.group(2)
-    key = re.sub(r"\s+", " ", name.strip().lower())
-    sigma = key.endswith("_sigma") or key.endswith(" sigma")
-    if sigma:
-        key = key[:-6].strip(" _")
-    key = ALIASES.get(key, key.replace(" ", "_"))
-    known = key in DELIVERY_FIELDS or key in MEASURED_FIELDS or key in TEXT_FIELDS
-    if not known or (sigma and key not in MEASURED_FIELDS):
-        return None, unit
-    return (f"{key}_sigma" if sigma else key), unit
-
+from impactlab.data.documents import ShotTableBlock, structure_document
+from impactlab.data.session import GENERIC, read_session, read_session_text
+# the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
+from impactlab.data.shot_table import (ALIASES as ALIASES, DEFAULT_SIGMA, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS,
+                                       TEXT_FIELDS, ShotTable, _field_of, _resolve_spin_loft)
 
 def _convert(value, field: str, unit: str | None, where: str) -> float:
     base = field[:-6] if field.endswith("_sigma") else field
@@ -205,36 +98,6 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                                   if any("source" in row for row in rows) else ()))
 
 
-def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]:
-    """Rows that give the face to path instead of the face angle, or the 3-D spin loft instead of the dynamic loft
-    (TrackMan exports both, "Face To Path" and "Spin Loft"): the missing angle follows, in place; where both are
-    given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). Returns the problems found."""
-    problems = []
-    path = np.nan_to_num(delivery["path"])
-    f2p, face = delivery["face_to_path"], delivery["face_angle"]
-    disagree = np.isfinite(f2p) & np.isfinite(face) & (np.abs(face - path - f2p) > SPIN_LOFT_TOLERANCE)
-    for index in np.nonzero(disagree)[0]:
-        problems.append(f"{file}:{rows[index].get('_line', '?')}: face_to_path: expected face_angle - path "
-                        f"({math.degrees(face[index] - path[index]):.2f} deg), got {math.degrees(f2p[index]):.2f} deg")
-    delivery["face_angle"] = np.where(np.isnan(face) & np.isfinite(f2p), path + f2p, face)
-    given = delivery["spin_loft"]
-    face, attack, loft = np.nan_to_num(delivery["face_angle"]), delivery["attack_angle"], delivery["dynamic_loft"]
-    implied = loft_for_spin_loft(given, path, face, attack)
-    with np.errstate(invalid="ignore"):
-        made = spin_loft(path, face, attack, loft)
-    for index in np.nonzero(np.isfinite(given))[0]:
-        where = f"{file}:{rows[index].get('_line', '?')}: spin_loft"
-        if np.isnan(loft[index]) and np.isnan(implied[index]) and np.isfinite(attack[index]):
-            problems.append(f"{where}: expected a spin loft at least the angle between face and path, got "
-                            f"{math.degrees(given[index]):.2f} deg")
-        elif np.isfinite(loft[index]) and abs(made[index] - given[index]) > SPIN_LOFT_TOLERANCE:
-            problems.append(f"{where}: expected the spin loft the row's angles make ({math.degrees(made[index]):.2f} "
-                            f"deg, within {math.degrees(SPIN_LOFT_TOLERANCE):.1f}), got "
-                            f"{math.degrees(given[index]):.2f} deg")
-    delivery["dynamic_loft"] = np.where(np.isnan(loft), implied, loft)
-    return problems
-
-
 def _check_text(row: dict, where: str, problems: list) -> None:
     if "club" in row:
         key = club_key(row["club"])
@@ -252,8 +115,6 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
     """A shot table from CSV text: a launch-monitor export as exported, or impactlab's own layout (a header row of
     fields with units, one shot per line); see :mod:`impactlab.data.session`. Rows the impact models cannot use
     are skipped with their reason (``ShotTable.skipped``); a cell that cannot be read refuses the file."""
-    from impactlab.data.session import GENERIC, read_session_text
-
     session = read_session_text(text, file)
     table = session.shot_table(include_flagged)
     if name or source:
@@ -266,7 +127,6 @@ def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: st
 
 def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     """A shot table from YAML: ``name``, ``source``, optional ``ball``, ``units``, ``sigma``, and ``rows``."""
-    from impactlab.data.documents import ShotTableBlock, structure_document  # documents imports this module
     document, lines = load_yaml(text, file)
     if not isinstance(document, dict) or "rows" not in document:
         raise StudyError(f"{file}: expected a mapping with name, source, units, sigma and rows")
@@ -337,8 +197,6 @@ def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> S
     if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
     if path.suffix.lower() == ".csv":
-        from impactlab.data.session import read_session
-
         return read_session(path).shot_table(include_flagged)
     text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() in (".yaml", ".yml"):
@@ -357,9 +215,9 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     (:class:`impactlab.scene.core.Delivery`; TrackMan: the head's geometric centre, near its centre of mass).
     """
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
-    contact = Contact(**(contact or {}))
+    contact_law = Contact(**(contact or {}))
     # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
-    scene_ball = attrs.evolve(ball, restitution=None) if contact.restitution is None else ball
+    scene_ball = attrs.evolve(ball, restitution=None) if contact_law.restitution is None else ball
     scenes = []
     for index in range(table.size):
         club = club_preset(table.clubs[index])
@@ -368,12 +226,12 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
                             handedness=table.handedness[index], loft_at=table.loft_at,
                             club_reference=club_reference)
-        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact, delivery, 0.0, club,
+        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact_law, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
     inputs = complete_inputs({key: np.array([values[key] for values in per_scene]) for key in sorted(keys)})
-    if contact.restitution is None and ball.restitution is not None:
+    if contact_law.restitution is None and ball.restitution is not None:
         inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the contact
     return inputs
 

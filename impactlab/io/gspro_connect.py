@@ -30,6 +30,7 @@ from collections.abc import Callable, Sequence
 import attrs
 
 from impactlab.errors import EnvironmentFault, FieldError
+from impactlab.io.interchange import wire_message
 
 #: GSPro Connect's port (the vendor writes "0921")
 DEFAULT_PORT = 921
@@ -52,12 +53,12 @@ class GSProConnectError(EnvironmentFault):
 class NotJsonError(ValueError):
     """Bytes in the reply stream that are not a JSON object; ``text`` holds them (shortened)."""
 
-    def __init__(self, data: bytes, why: str):
+    def __init__(self, data: bytes | bytearray, why: str):
         self.text = _show(data)
         super().__init__(f"{why}: {self.text}")
 
 
-def _show(data: bytes, limit: int = 80) -> str:
+def _show(data: bytes | bytearray, limit: int = 80) -> str:
     text = repr(bytes(data[:limit]))
     return text + (f" ... ({len(data)} bytes)" if len(data) > limit else "")
 
@@ -275,6 +276,7 @@ class OpenConnectClient:
             remaining = deadline - time.monotonic()
             if remaining <= 0:
                 raise self._timeout(what)
+            assert self._socket is not None, "connected before a reply is awaited"
             self._socket.settimeout(remaining)
             try:
                 data = self._socket.recv(4096)
@@ -336,8 +338,6 @@ def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0
     GSProConnectError
         The first failure, saying which shot it stopped at and how many were accepted before it.
     """
-    from impactlab.io.interchange import wire_message
-
     accepted: list[Reply] = []
     client = OpenConnectClient(host, port, timeout, on_notice=progress)
     with client:  # a failure to connect is said as it is

@@ -192,8 +192,6 @@ def _base_scene(dataset: xr.Dataset) -> dict:
 
 def _input_values(subset: xr.Dataset, reference: xr.DataArray, scene: dict, name: str) -> np.ndarray | None:
     """SI value of input ``name`` for every case: its sweep coordinate, else the base scene's; None if neither."""
-    from impactlab.units import to_si
-
     spec = INPUTS[name]
     for coord in subset.coords.values():
         if INPUT_BY_PATH.get(coord.attrs.get("study_path")) != name:
@@ -233,8 +231,6 @@ def _club_data(subset: xr.Dataset, reference: xr.DataArray, scene: dict) -> dict
 
 def _carry_yards(subset: xr.Dataset, reference: xr.DataArray) -> np.ndarray | None:
     """Carry of every case in yards, if the result has ``carry_distance`` (in its ``units``)."""
-    from impactlab.units import to_si
-
     if "carry_distance" not in subset.data_vars:
         return None
     carry = subset["carry_distance"]

@@ -11,6 +11,7 @@ import xarray as xr
 from impactlab.errors import StudyError
 from impactlab.io.safe_output import write_atomically
 from impactlab.vocabulary import TIME_DIM
+from impactlab._version import __version__
 
 ENGINE: Final = "h5netcdf"
 #: the name of the time axis of histories in a file: CF keeps a coordinate called "time" for calendar time
@@ -39,8 +40,6 @@ def _cf_metadata(dataset: xr.Dataset) -> xr.Dataset:
     """A shallow copy of ``dataset`` with what CF asks of a file: ``Conventions``, a ``history`` line, and
     coordinates without ``_FillValue`` (CF 2.5.1: a coordinate is never missing; xarray gives float ones NaN)."""
     import datetime as _dt
-
-    from impactlab._version import __version__
 
     dataset = dataset.copy()
     if TIME_DIM in dataset.dims and FILE_TIME_DIM not in dataset.variables:

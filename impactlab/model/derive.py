@@ -19,8 +19,10 @@ from impactlab.model.case_inputs import CaseInputs
 from impactlab.physics import hertz
 from impactlab.physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, ground_outputs, impulse_vector
 from impactlab.physics.delivery import DELIVERY_INPUTS
+from impactlab.physics.flight import fly
 from impactlab.physics.mechanics import AFTER_IMPACT_INPUTS
 from impactlab.vocabulary import FLIGHT_OUTPUTS
+from impactlab.scene.flight import air_arrays
 
 IMPULSES = frozenset({"normal_impulse", "tangential_impulse"})
 FROM_IMPULSES = frozenset({
@@ -126,9 +128,6 @@ def fly_launch(ball_speed, golf: dict, inputs) -> dict:
     and radius are the scene's; the air is the study's ``conditions`` (absent: the standard air of
     :mod:`impactlab.scene.flight`). The same numbers as :func:`impactlab.fly` with those arguments.
     """
-    from impactlab.physics.flight import fly
-    from impactlab.scene.flight import air_arrays
-
     spin = np.hypot(golf["back_spin"], golf["side_spin"])
     return fly(ball_speed, golf["vertical_launch_angle"], spin, golf["spin_axis"], golf["horizontal_launch_angle"],
                ball_mass=inputs["ball_mass"], ball_radius=inputs["ball_radius"],

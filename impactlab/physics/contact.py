@@ -254,10 +254,10 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     if inverse_inertia is not None:
         skew = _skew(lever)
         head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
-    mobility = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
-    mobility = 0.5 * (mobility + np.swapaxes(mobility, 1, 2))
-    off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
-    one_dimensional = off <= DIAGONAL_TOLERANCE * mobility[:, 2, 2]
+    matrix = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
+    matrix = 0.5 * (matrix + np.swapaxes(matrix, 1, 2))
+    off = np.abs(matrix[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
+    one_dimensional = off <= DIAGONAL_TOLERANCE * matrix[:, 2, 2]
 
     # Hertz radius of the ball on the curved face: the geometric mean of the principal relative radii
     # (Johnson, Contact Mechanics, 1985, section 4.2: good to a few per cent of the contact radius for the
@@ -266,7 +266,7 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     return {
         "slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
         "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
-        "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": mobility,
+        "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": matrix,
         "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
         "ball_spin": ball_spin, "head_spin": head_spin, "one_dimensional": one_dimensional, "frame": frame,
         "club_velocity": club_velocity, "contact_velocity": contact_velocity,

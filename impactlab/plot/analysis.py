@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactlab.plot.figures import _axis_label, _save
+from impactlab.plot.style import _axis_label, _save
 from impactlab.vocabulary import OUTPUTS
 
 def _case_labels(dataset: xr.Dataset) -> list[tuple[dict, str]]:

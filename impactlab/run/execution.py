@@ -87,7 +87,7 @@ def compute_chunk(model: ImpactModel, inputs: dict | CaseInputs, outputs: Sequen
         part = CaseInputs(_cases_of(inputs, chunk))
     result = model.compute_arrays(part, outputs, plan=plan)  # arrays inside: no Dataset built per chunk
     # what assembly needs and nothing else: the values in the vocabulary's units, the time axis, the reasons
-    out = {"data": {name: result.in_units(name) for name in result.values}, "time": result.time,
+    out: dict[str, Any] = {"data": {name: result.in_units(name) for name in result.values}, "time": result.time,
            "missing": dict(result.missing)}
     if paths:
         out["one_line"] = int(np.count_nonzero(part.contact_state()["one_dimensional"]))

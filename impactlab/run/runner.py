@@ -23,6 +23,7 @@ from impactlab.run.sensitivity import run_sensitivity
 from impactlab.study.arrays import ball_law_applies, case_inputs
 from impactlab.study.core import Study, load_study
 from impactlab.physics.contact import contact_state
+from impactlab.physics.delivery import DELIVERY_INPUTS
 from impactlab.study.limits import check
 from impactlab.run.execution import ProgressStore, fingerprint, run_chunks
 from impactlab.io.results import write_results
@@ -106,8 +107,6 @@ def plan_study(study: Study) -> StudyPlan:
 
 def case_input_names(study: Study) -> set[str]:
     """The names of :func:`case_inputs` of ``study``, without building its arrays."""
-    from impactlab.physics.delivery import DELIVERY_INPUTS
-
     names = set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
     if all(name in names for name in DELIVERY_INPUTS):
         names.add("angle")

@@ -13,7 +13,7 @@ from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import Ball, Face
 from impactlab.physics.contact import CLUB_REFERENCES, approach_state
-from impactlab.physics.delivery import DELIVERY_INPUTS, spin_loft
+from impactlab.physics.delivery import DELIVERY_INPUTS, loft_for_spin_loft, spin_loft
 from impactlab.vocabulary import INPUTS
 
 
@@ -167,8 +167,6 @@ class Delivery:
         must agree with the spin loft to :data:`SPIN_LOFT_TOLERANCE`; otherwise, or where no loft makes that
         spin loft, a FieldError says which numbers disagree.
         """
-        from impactlab.physics.delivery import loft_for_spin_loft
-
         if face_to_path is not None and face_angle is not None \
                 and abs(face_angle - path - face_to_path) > SPIN_LOFT_TOLERANCE:
             raise FieldError("face_to_path", "face_angle - path (or only one of face_to_path, face_angle)",

@@ -20,9 +20,11 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError
+from impactlab.physics import aerodynamics, atmosphere
 from impactlab.physics import flight as physics
-from impactlab.units import to_si
+from impactlab.units import DIMENSIONS, to_si
 from impactlab.validators import in_range, to_float
+from impactlab.vocabulary import OUTPUTS
 
 #: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
 STANDARD_TEMPERATURE = 288.15
@@ -82,7 +84,7 @@ def air_arrays(inputs: Mapping) -> dict:
     temperature = inputs.get("air_temperature", STANDARD_TEMPERATURE)
     pressure = inputs.get("air_pressure")
     if pressure is None:
-        pressure = physics.pressure_at_altitude(inputs.get("altitude", 0.0))
+        pressure = atmosphere.pressure_at_altitude(inputs.get("altitude", 0.0))
     headwind = np.asarray(inputs.get("headwind", 0.0), dtype=float)
     crosswind = np.asarray(inputs.get("crosswind", 0.0), dtype=float)
     headwind, crosswind = np.broadcast_arrays(headwind, crosswind)
@@ -149,8 +151,6 @@ _EXAMPLE = {"speed": "mph", "angle": "deg", "angular_speed": "rpm", "temperature
 
 
 def _words(dimension: str) -> str:
-    from impactlab.units import DIMENSIONS
-
     si_unit = DIMENSIONS[dimension][0]
     if dimension == "dimensionless":
         return "a number (or a string with a unit such as '50 %')"
@@ -182,7 +182,7 @@ def conditions_from(conditions) -> Conditions:
 
 
 def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0, conditions=None, *,
-        ball_mass=physics.BALL_MASS, ball_radius=physics.BALL_RADIUS, model=physics.DEFAULT_MODEL,
+        ball_mass=aerodynamics.BALL_MASS, ball_radius=aerodynamics.BALL_RADIUS, model=aerodynamics.DEFAULT_MODEL,
         trajectories=False):
     """Fly golf shots from their launch to where they come back to tee height; one Dataset of the results.
 
@@ -206,7 +206,7 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
-        Aerodynamic model, a key of :data:`impactlab.physics.flight.MODELS` (default ``"smits_smith_1994"``).
+        Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS` (default ``"smits_smith_1994"``).
     trajectories : bool
         Also return the sampled paths ``x``, ``y`` (right positive), ``z`` [m] over ``t`` [s], on dims
         (``shot``, ``t``); each shot's path stops at its landing point (later samples repeat it).
@@ -244,8 +244,6 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     """
     import xarray as xr
 
-    from impactlab.vocabulary import OUTPUTS
-
     values = {
         "ball_speed": quantity_array(ball_speed, "speed", "ball_speed"),
         "launch_angle": quantity_array(launch_angle, "angle", "launch_angle"),
@@ -268,8 +266,8 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
-    if model not in physics.MODELS:
-        raise FieldError("model", "an aerodynamic model", str(model), choices=physics.MODELS)
+    if model not in aerodynamics.MODELS:
+        raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
     air_inputs = {"air_temperature": air.temperature, "relative_humidity": air.relative_humidity,
                   "headwind": air.headwind, "crosswind": air.crosswind}
@@ -297,11 +295,11 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     pressure = float(arguments["pressure"])
     attributes = {
         "aerodynamic_model": model,
-        "aerodynamic_references": physics.MODEL_REFERENCES[model],
+        "aerodynamic_references": aerodynamics.MODEL_REFERENCES[model],
         "air_temperature_K": air.temperature,
         "air_pressure_Pa": pressure,
         "air_relative_humidity": air.relative_humidity,
-        "air_density_kg_m3": float(physics.air_density(air.temperature, pressure, air.relative_humidity)),
+        "air_density_kg_m3": float(atmosphere.air_density(air.temperature, pressure, air.relative_humidity)),
         "headwind_m_s": air.headwind,
         "crosswind_m_s": air.crosswind,
         "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),

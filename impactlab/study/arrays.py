@@ -49,6 +49,7 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
         ball_axes = [(axis, grid) for axis, grid in zip(study.sweep, grids) if axis.balls is not None]
         if ball_axes:  # a swept ball preset: each case's ball's own law at its own normal speed
             (axis, grid), = ball_axes
+            assert axis.balls is not None, "ball_axes holds the axes with balls"
             if any(ball.restitution is None for ball in axis.balls):
                 raise FieldError("sweep.ball.preset", "balls that all have a restitution law, or a "
                                  "contact.restitution for all", "a ball without one")

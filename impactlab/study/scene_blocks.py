@@ -21,6 +21,7 @@ from impactlab.scene.materials import (
 )
 from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
+from impactlab.scene.flight import Conditions
 from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ConditionsBlock, ContactBlock, DeliveryBlock,
                                     FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock, structure)
 
@@ -230,8 +231,6 @@ def build_delivery(value: Any, path: str = "delivery") -> Delivery:
 
 def build_conditions(value):
     """The air of a ``conditions`` block (units required), or None when the study has none (the standard air)."""
-    from impactlab.scene.flight import Conditions
-
     if value is None:
         return None
     block = structure(value, ConditionsBlock, "conditions")

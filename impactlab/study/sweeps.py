@@ -98,7 +98,7 @@ def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, l
     for _, values in fields:
         array = np.asarray(values, dtype=float)
         if not np.all(np.isfinite(array)):
-            candidates = range(size)
+            candidates = set(range(size))
             break
         candidates |= {int(np.argmin(array)), int(np.argmax(array))}
     try:
@@ -165,7 +165,8 @@ def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list
     if block not in document:
         raise FieldError(where, f"a {block} block in the study to sweep the preset of", f"no {block}")
     wanted = CLUB_PRESET_INPUTS if block == "club" else _ball_preset_inputs(document)
-    values, scenes = {name: [] for name in wanted}, []
+    values: dict[str, list] = {name: [] for name in wanted}
+    scenes = []
     for index, preset in enumerate(names):
         trial = dict(document, **{block: dict(document.get(block) or {}, preset=preset)})
         try:
@@ -188,7 +189,7 @@ def build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
         raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
-    raw_axes = []  # (dim or None, labels, [(path, input, values)], balls or None)
+    raw_axes: list[tuple] = []  # (dim or None, labels, [(path, input, values)], balls or None)
     for key, spec in sweep.items():
         key = str(key)
         if key in PRESET_SWEEPS:  # a dimension "club" or "ball" labelled by preset, setting every input of it

@@ -14,7 +14,7 @@ try:  # numba is a dependency, but impactlab stays usable (slower) where it cann
 
     HAVE_NUMBA = os.environ.get("IMPACTLAB_KERNELS", "numba") != "numpy"
 except ImportError:  # pragma: no cover - depends on the platform
-    numba = None
+    numba = None  # type: ignore[assignment]
     HAVE_NUMBA = False
 
 

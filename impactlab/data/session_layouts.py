@@ -1,0 +1,235 @@
+"""Launch-monitor layouts as data: the session vocabulary, each vendor's column map, and how a header is read.
+
+:data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML
+column maps of ``impactlab/data/vendors/`` (the module docstring of :mod:`impactlab.data.session` says what a
+map holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and
+:func:`_recognise` turn a header row into fields, units and the layout that wrote it.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from importlib import resources
+
+import attrs
+
+from impactlab.errors import FieldError, StudyError
+from impactlab.units import to_si
+from impactlab.data.shot_table import _field_of
+
+#: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
+#: impactlab.vocabulary (inputs: club_speed is the delivery's speed; outputs: ball_speed, back_spin...) and the ball
+#: flight's outputs (carry_distance, apex_height, landing_angle, offline_distance, flight_time)
+FIELDS = {
+    "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle",
+    "dynamic_loft": "angle", "face_to_path": "angle", "spin_loft": "angle", "strike_toe": "length",
+    "strike_high": "length", "ball_speed": "speed", "vertical_launch_angle": "angle",
+    "horizontal_launch_angle": "angle",
+    "spin_rate": "angular_speed", "spin_axis": "angle", "back_spin": "angular_speed", "side_spin": "angular_speed",
+    "smash_factor": "dimensionless",
+    "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",
+    "landing_angle": "angle", "flight_time": "time",
+}
+TEXT_FIELDS = ("label", "club", "handedness")
+#: per-row one-sigma uncertainties of the predicted quantities (impactlab's own layout: ``ball_speed_sigma [mph]``)
+SIGMA_FIELDS = {f"{key}_sigma": FIELDS[key] for key in
+                ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "spin_rate", "spin_axis")}
+FIELDS.update(SIGMA_FIELDS)
+#: what each field is, for reports
+DESCRIPTIONS = {
+    "club_speed": "club speed", "attack_angle": "attack angle", "path": "club path", "face_angle": "face angle",
+    "dynamic_loft": "dynamic loft", "face_to_path": "face to path (checked against face angle - path)",
+    "spin_loft": "spin loft (3-D; gives the dynamic loft a row leaves out, checked against it when both are given)",
+    "strike_toe": "impact point towards the toe", "strike_high": "impact point up the face",
+    "ball_speed": "ball speed", "vertical_launch_angle": "launch angle", "horizontal_launch_angle": "launch direction",
+    "spin_rate": "spin rate", "spin_axis": "spin axis", "back_spin": "back spin", "side_spin": "side spin",
+    "smash_factor": "smash factor", "carry_distance": "carry", "total_distance": "total distance",
+    "apex_height": "apex height", "offline_distance": "offline distance", "landing_angle": "landing angle",
+    "flight_time": "flight time", **{key: f"uncertainty of the {key[:-6].replace('_', ' ')}" for key in SIGMA_FIELDS},
+    "label": "shot label", "club": "club name", "handedness": "handedness",
+}
+#: units written by the normalised table (--csv): the vocabulary's display units
+DISPLAY_UNITS = {"speed": "m/s", "angle": "deg", "angular_speed": "rpm", "length": "m", "time": "s",
+                 "dimensionless": "1"}
+#: vendor spellings of units -> pint spellings
+UNIT_SPELLINGS = {
+    "yds": "yd", "yards": "yd", "yard": "yd", "meters": "m", "metres": "m", "meter": "m", "metre": "m",
+    "°": "deg", "*": "deg", "degrees": "deg", "degree": "deg", "sec": "s", "inches": "in", "inch": "in",
+    "feet": "ft", "kph": "km/h", "km/t": "km/h", "kmh": "km/h", "mi/h": "mph", "": "",
+}
+
+
+# -- vendor maps -----------------------------------------------------------------------------------------------
+@attrs.frozen
+class ColumnRule:
+    """How one vendor column becomes a field: the field and the sign that turns it into the vocabulary's."""
+
+    field: str
+    sign: float = 1.0
+
+
+@attrs.frozen
+class VendorMap:
+    """A vendor's export layout (one YAML file of ``impactlab/data/vendors``); see the module docstring."""
+
+    id: str
+    name: str
+    source: str
+    recognise: tuple[str, ...]
+    units: str
+    columns: dict = attrs.field(eq=False)
+    implied_units: dict = attrs.field(factory=dict, eq=False)
+    loft_at: str = "contact"
+    #: the point of the head whose motion the club data give: geometric_centre (TrackMan: ~ the centre of mass),
+    #: face_centre (optical monitors) or unknown
+    club_reference_point: str = attrs.field(default="unknown", validator=attrs.validators.in_(
+        ("geometric_centre", "face_centre", "unknown")))
+    club_reference: str = ""
+    signs: str = ""
+    missing: tuple[str, ...] = ("",)
+    sentinel_at_least: float | None = None
+    estimated: dict | None = attrs.field(default=None, eq=False)
+    clamped: dict = attrs.field(factory=dict, eq=False)
+    summary_rows: dict | None = attrs.field(default=None, eq=False)
+    left_right_suffix: bool = False
+    #: True: the file's spin-axis sign is checked against its side spin (whose sign the layout states) and turned
+    #: when every row disagrees (Garmin Golf app versions write the axis with either sign)
+    spin_axis_follows_side_spin: bool = False
+    #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
+    excluded: dict | None = attrs.field(default=None, eq=False)
+
+    def rule(self, header: str) -> ColumnRule | None:
+        """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
+        name, unit = split_header(header)
+        full = _norm(header)
+        if full in self.columns:
+            return self.columns[full]
+        if unit is not None and f"{_norm(name)} [unit]" in self.columns:
+            return self.columns[f"{_norm(name)} [unit]"]
+        return self.columns.get(_norm(name))
+
+
+def _norm(text: str) -> str:
+    return re.sub(r"\s+", " ", str(text).strip().lower())
+
+
+def _vendor_from_document(document: dict, where: str) -> VendorMap:
+    keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
+            "club_reference_point",
+            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
+            "excluded", "spin_axis_follows_side_spin"}
+    unknown = set(document) - keys
+    if unknown:
+        raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
+    columns = {}
+    for header, rule in (document.get("columns") or {}).items():
+        rule = {"field": rule} if isinstance(rule, str) or rule is None else dict(rule)
+        field = rule.get("field")
+        if field is not None and field not in FIELDS and field not in TEXT_FIELDS:
+            raise StudyError(f"{where}: columns.{header}: {field!r} is not a session field "
+                             f"({', '.join((*FIELDS, *TEXT_FIELDS))})")
+        columns[_norm(header)] = None if field is None else ColumnRule(field, float(rule.get("sign", 1)))
+    if document.get("units") not in ("row", "header", "implied"):
+        raise StudyError(f"{where}: units: expected row, header or implied")
+    clamped = {}
+    for field, limit in (document.get("clamped") or {}).items():
+        clamped[field] = to_si(str(limit), FIELDS[field], f"{where}: clamped.{field}")
+    return VendorMap(
+        id=document["id"], name=document["name"], source=document["source"],
+        recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
+        implied_units={_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
+        loft_at=document.get("loft_at", "contact"),
+        club_reference_point=document.get("club_reference_point", "unknown"),
+        club_reference=" ".join(str(document.get("club_reference", "")).split()),
+        signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
+        sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
+        summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)),
+        excluded=document.get("excluded"),
+        spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+
+
+@functools.cache
+def vendor_maps() -> dict[str, VendorMap]:
+    """Every vendor layout shipped with impactlab, by id."""
+    import yaml
+
+    maps = {}
+    for entry in sorted(resources.files("impactlab.data.vendors").iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".yaml"):
+            vendor = _vendor_from_document(yaml.safe_load(entry.read_text(encoding="utf-8")),
+                                           f"impactlab/data/vendors/{entry.name}")
+            maps[vendor.id] = vendor
+    return maps
+
+
+#: impactlab's own layout: vocabulary names and the usual launch-monitor names, units in the header or a units row
+GENERIC = VendorMap(id="impactlab", name="impactlab shot table (vocabulary or usual launch-monitor names)",
+                    source="", recognise=(), units="header", columns={}, missing=("",),
+                    club_reference="as the table states (impactlab counts the delivery at the face centre after "
+                                   "turning a contact-point loft back to it; docs/vendors.md)")
+
+
+def split_header(header: str) -> tuple[str, str | None]:
+    """(name, unit) of a header cell: ``Club Speed [mph]``, ``Ball Speed (m/s)``, ``AOA (°)`` (unit None: none)."""
+    match = re.match(r"^\s*(.*?)\s*(?:[\[(]\s*([^\[\]()]*?)\s*[\])])?\s*$", str(header))
+    if match is None:  # a cell holding a line break (a quoted CSV cell may): refused, never a traceback
+        raise StudyError(f"header {header!r}: expected a column name on one line")
+    return match.group(1), match.group(2)
+
+
+def _unit_factor(unit: str, dimension: str, where: str) -> float:
+    """SI value of one ``unit`` of ``dimension`` (vendor spellings accepted); FieldError when it is not one."""
+    spelled = UNIT_SPELLINGS.get(unit.strip().lower(), unit.strip())
+    if dimension == "dimensionless":
+        if spelled in ("", "1", "-"):
+            return 1.0
+        raise FieldError(where, "a number without unit", unit)
+    return to_si(f"1 {spelled}", dimension, where)
+
+def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
+    maps = vendor_maps()
+    if forced is not None:
+        if forced == GENERIC.id:
+            return GENERIC
+        if forced not in maps:
+            raise FieldError("--vendor", "a vendor layout", forced, choices=[GENERIC.id, *maps])
+        return maps[forced]
+    names = {_norm(split_header(cell)[0]) for cell in header}
+    found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names]
+    if not found:
+        return GENERIC
+    found.sort(key=lambda vendor: -len(vendor.recognise))
+    return found[0]
+
+
+def _header_index(rows: list[list[str]], forced: str | None) -> int:
+    """The row holding the header: the first that a vendor map recognises, else the first non-empty row."""
+    maps = vendor_maps() if forced in (None,) else ({forced: vendor_maps()[forced]} if forced in vendor_maps()
+                                                     else {})
+    first = None
+    for index, cells in enumerate(rows[:12]):
+        if not any(cell.strip() for cell in cells):
+            continue
+        if first is None:
+            first = index
+        names = {_norm(split_header(cell)[0]) for cell in cells}
+        if any(set(vendor.recognise) <= names for vendor in maps.values()):
+            return index
+    return 0 if first is None else first
+
+
+def _generic_field(header: str) -> tuple[str | None, str | None]:
+    """(field, unit) of a column of impactlab's own layout (vocabulary names and the usual aliases)."""
+    field, unit = _field_of(header)
+    if field is None:
+        name, unit = split_header(header)
+        key = _norm(name).replace(" ", "_")
+        key = {"carry": "carry_distance", "total": "total_distance", "apex": "apex_height",
+               "backspin": "back_spin", "sidespin": "side_spin", "back_spin": "back_spin",
+               "offline": "offline_distance", "smash": "smash_factor", "face_to_path": "face_to_path",
+               "club_path": "path", "club_face": "face_angle"}.get(key, key)
+        if key in FIELDS or key in TEXT_FIELDS:
+            return key, unit
+        return None, unit
+    return field, unit

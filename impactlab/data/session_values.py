@@ -1,0 +1,267 @@
+"""From a session file's text to per-column values: bytes and rows, decimal marks, numbers, flags, derived values.
+
+The steps of :func:`impactlab.data.session.read_session_text` below the column plan: reading the file's bytes
+(UTF-8 or UTF-16, never a binary file), splitting rows with the separator the file states or its header implies,
+telling decimal commas from points (a file mixing both is refused), reading a column's cells as numbers, and
+the flags and derived values (spin from back and side spin, face angle from face to path) a layout implies.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+import stat
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from impactlab.errors import StudyError
+from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
+
+#: the largest file read as a session [bytes]
+MAX_SESSION_BYTES = 512 * 2**20
+#: rows above which a progress bar is drawn (on a terminal)
+PROGRESS_ROWS = 20_000
+
+
+def _read_bytes(path: Path) -> str:
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        raise StudyError(f"{path}: no such shot table (a launch-monitor export, .csv or .yaml)") from None
+    except OSError as exc:
+        raise StudyError(f"{path}: cannot read this shot table: {exc.strerror}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise StudyError(f"{path}: is a folder, not a shot table")
+    if info.st_size > MAX_SESSION_BYTES:
+        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a shot table (at most "
+                         f"{MAX_SESSION_BYTES:,})")
+    data = path.read_bytes()
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            return data.decode("utf-16")
+        except UnicodeDecodeError:
+            raise StudyError(f"{path}: is not UTF-16 text after its UTF-16 byte-order mark") from None
+    if b"\0" in data:
+        raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a shot table")
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise StudyError(f"{path}:{line}: is not UTF-8 text (byte 0x{data[exc.start]:02x}); save the shot table "
+                         "as UTF-8") from None
+
+
+def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str]]:
+    """Rows (cells) with their file lines, after the ``sep=`` line; the separator said in notes."""
+    notes = []
+    text = text.lstrip("\ufeff")
+    first_end = text.find("\n")
+    first = text if first_end < 0 else text[:first_end]
+    delimiter = None
+    line_offset = 0
+    match = re.match(r'^\s*"?sep=(.)"?\s*$', first.rstrip("\r"))
+    if match:
+        delimiter = match.group(1)
+        notes.append(f"separator {delimiter!r} (from the file's 'sep=' line)")
+        text = "" if first_end < 0 else text[first_end + 1:]
+        line_offset = 1
+    sample = [line for line in text[:20000].splitlines() if line.strip()][:6]
+    if delimiter is None:
+        # the separator that splits the header (the widest of the first lines: a title line may come first)
+        # into the most columns, then the one whose other lines agree with that width
+        scores = {}
+        for candidate in (",", ";", "\t"):
+            widths = [len(next(csv.reader([line], delimiter=candidate))) for line in sample] or [1]
+            widest = max(widths)
+            scores[candidate] = (widest, sum(width == widest for width in widths), candidate == ",")
+        delimiter = max(scores, key=lambda candidate: scores[candidate])
+        if scores[delimiter][0] <= 1:
+            delimiter = ","
+        if delimiter != ",":
+            notes.append(f"separator {delimiter!r} (the header splits into {scores[delimiter][0]} columns with it)")
+    reader = csv.reader(io.StringIO(text, newline=""), delimiter=delimiter, skipinitialspace=True)
+    rows, lines = [], []
+    try:
+        for cells in reader:
+            rows.append(cells)
+            lines.append(reader.line_num + line_offset)
+    except csv.Error as exc:
+        raise StudyError(f"{file}:{reader.line_num + line_offset}: not readable as a table: {exc}") from None
+    return rows, lines, notes
+
+
+_UNITS_CELL = re.compile(r"^\s*\[[^\]]*\]\s*$")
+_NUMBER_POINT = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+_NUMBER_COMMA = re.compile(r"^[+-]?\d+,\d+$")
+
+
+def _progress(total: int, label: str):
+    """A tqdm bar on a terminal for large sessions; a do-nothing stand-in otherwise."""
+    if total < PROGRESS_ROWS or not sys.stderr.isatty():
+        class _Quiet:
+            def update(self, n):
+                pass
+
+            def close(self):
+                pass
+        return _Quiet()
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=label, unit="row", file=sys.stderr, leave=False)
+
+
+def _decimal_mark(columns: list, file: str) -> str:
+    """'.' or ',' for the numbers of the file; StudyError when both occur (never read one as the other)."""
+    import pandas as pd
+
+    comma_example = point_example = None
+    for raw in columns:
+        cells = pd.Series(raw, dtype=object).astype(str).str.strip().str.rstrip("LRlr ").str.strip()
+        commas = cells[cells.str.match(_NUMBER_COMMA.pattern)]
+        points = cells[cells.str.contains(".", regex=False) & cells.str.match(_NUMBER_POINT.pattern)]
+        if comma_example is None and len(commas):
+            comma_example = commas.iloc[0]
+        if point_example is None and len(points):
+            point_example = points.iloc[0]
+        if comma_example and point_example:
+            raise StudyError(f"{file}: numbers are written with both decimal marks ({point_example!r} and "
+                             f"{comma_example!r}); the file cannot be read without guessing which is meant")
+    return "," if comma_example else "."
+
+
+def _to_numbers(raw, layout: VendorMap, decimal: str):
+    """(values, missing mask, indices of bad cells) of one column's text cells, vectorised."""
+    import pandas as pd
+
+    series = pd.Series(raw, dtype=object).astype(str).str.strip()
+    missing = series.isin(list(layout.missing)) | series.str.upper().isin(["NAN", "N/A", "NA"])
+    cleaned = series
+    if layout.left_right_suffix:
+        side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
+        has = side[1].notna()
+        cleaned = cleaned.where(~has, side[0])
+        signs: np.ndarray | float = np.where(has & side[1].str.upper().eq("L"), -1.0, 1.0)
+    else:
+        signs = 1.0
+    if decimal == ",":
+        cleaned = cleaned.str.replace(",", ".", regex=False)
+    numbers = pd.to_numeric(cleaned.where(~missing, "nan"), errors="coerce").to_numpy(dtype=float)
+    bad = np.flatnonzero(np.isnan(numbers) & ~missing.to_numpy())
+    return numbers * signs, missing.to_numpy(), bad.tolist()
+
+
+def _flag_estimated(layout, header, columns, values, flags, used, unused) -> None:
+    rule = layout.estimated
+    if not rule:
+        return
+    names = [_norm(split_header(c)[0]) for c in header]
+    if _norm(rule["column"]) not in names:
+        return
+    column = names.index(_norm(rule["column"]))
+    cells = columns[column]
+    if header[column] in unused:
+        unused.remove(header[column])
+        used.append((header[column], "estimated flag: " + " or ".join(map(str, rule["values"])) + " marks "
+                     + ", ".join(rule["fields"]) + " as estimated", "", 1.0))
+    marks = {_norm(v) for v in rule["values"]}
+    estimated = np.array([_norm(cell) in marks for cell in cells])
+    if estimated.any():
+        for field in rule["fields"]:
+            present = estimated & np.isfinite(values[field])
+            if present.any():
+                flags[(field, "estimated")] = present
+
+
+def _flag_excluded(layout, header, columns, flags, used, unused) -> None:
+    rule = layout.excluded
+    if not rule:
+        return
+    names = [_norm(split_header(c)[0]) for c in header]
+    if _norm(rule["column"]) not in names:
+        return
+    column = names.index(_norm(rule["column"]))
+    if header[column] in unused:
+        unused.remove(header[column])
+        used.append((header[column], "rows marked not to use: " + " or ".join(map(str, rule["values"])), "", 1.0))
+    marks = {_norm(v) for v in rule["values"]}
+    excluded = np.array([_norm(cell) in marks for cell in columns[column]])
+    if excluded.any():
+        flags[("row", "excluded")] = excluded
+
+
+def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
+    """The ``flags`` column of impactlab's normalised table (``spin_rate:estimated;spin_axis:clamped``)."""
+    column = [_norm(cell) for cell in header].index("flags")
+    unused.remove(header[column])
+    used.append((header[column], "flags (field:estimated, field:clamped, field:no data)", "", 1.0))
+    for index, cell in enumerate(columns[column]):
+        for item in filter(None, (part.strip() for part in cell.split(";"))):
+            field, _, kind = item.partition(":")
+            if (field, kind) != ("row", "excluded") and (field not in FIELDS
+                                                          or kind not in ("estimated", "clamped", "no data",
+                                                                          "inconsistent")):
+                raise StudyError(f"{file}:{lines[index]}: flags: expected field:estimated, field:clamped or "
+                                 f"field:no data with a field of the vocabulary, got {item!r}")
+            flags.setdefault((field, kind), np.zeros(len(lines), bool))[index] = True
+
+
+def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
+    """Fill what follows from other columns: spin rate and axis from back and side spin, the face angle from
+    face-to-path and path; say each, and check face to path where both sides are given."""
+    back, side = values["back_spin"], values["side_spin"]
+    given = {field for _, field, _, _ in used}
+    if "spin_rate" not in given and np.isfinite(back).any():
+        values["spin_rate"] = np.hypot(back, side)
+        notes.append("spin rate = hypot(back spin, side spin) (no spin-rate column)")
+        _inherit(flags, "spin_rate", ("back_spin", "side_spin"))
+    if "spin_axis" not in given and np.isfinite(back).any() and np.isfinite(side).any():
+        values["spin_axis"] = np.arctan2(side, back)
+        notes.append("spin axis = atan(side spin / back spin) (no spin-axis column; both positive curving right)")
+        _inherit(flags, "spin_axis", ("back_spin", "side_spin"))
+    if "face_angle" not in given and "face_to_path" in given and "path" in given:
+        values["face_angle"] = values["path"] + values["face_to_path"]
+        notes.append("face angle = club path + face to path (no face-angle column)")
+        _inherit(flags, "face_angle", ("path", "face_to_path"))
+    elif {"face_angle", "face_to_path", "path"} <= given:
+        with np.errstate(invalid="ignore"):
+            off = np.abs(values["face_angle"] - values["path"] - values["face_to_path"]) > math.radians(0.05)
+        if off.any():
+            notes.append(f"face to path differs from face angle - club path by more than 0.05 deg in {int(off.sum())}"
+                         f" row(s) (kept as measured; face angle and path are used)")
+
+
+def _check_spin_signs(layout, values, used, notes, flags) -> None:
+    """Side spin and spin axis describe one tilt: in the vocabulary both are positive curving right. Where a file
+    gives both, rows whose signs disagree (both clearly non-zero: 50 rpm, 0.5 deg) are a convention the layout does
+    not describe: a layout whose axis follows its side spin has its axis turned when every such row disagrees;
+    otherwise the disagreeing rows' spin axis and side spin are flagged ``inconsistent`` (left out like estimated
+    values) and the report says how many."""
+    given = {field for _, field, _, _ in used}
+    if not {"spin_axis", "side_spin"} <= given:
+        return
+    side, axis = values["side_spin"], values["spin_axis"]
+    with np.errstate(invalid="ignore"):
+        clear = (np.abs(side) > 50 * 2 * math.pi / 60) & (np.abs(axis) > math.radians(0.5))
+        disagree = clear & (np.sign(side) != np.sign(axis))
+    if not disagree.any():
+        return
+    if layout.spin_axis_follows_side_spin and disagree.sum() == clear.sum():
+        values["spin_axis"] = -axis
+        notes.append(f"spin axis: its sign disagrees with the side spin's in all {int(clear.sum())} row(s) with "
+                     f"clear spin, so this export counts the axis positive curving left; turned to the vocabulary's "
+                     f"(positive curving right, agreeing with the side spin)")
+        return
+    for field in ("spin_axis", "side_spin"):
+        flags[(field, "inconsistent")] = disagree
+    notes.append(f"side spin and spin axis disagree in sign in {int(disagree.sum())} of {int(clear.sum())} row(s) "
+                 f"with clear spin: those rows' spin axis and side spin are flagged inconsistent and left out")
+
+
+def _inherit(flags: dict, field: str, sources) -> None:
+    for (name, kind), rows in list(flags.items()):
+        if name in sources and kind in ("estimated", "clamped"):
+            flags[(field, kind)] = flags.get((field, kind), np.zeros_like(rows)) | rows

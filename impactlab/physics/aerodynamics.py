@@ -1,0 +1,303 @@
+"""A golf ball in the air: its Reynolds number and spin ratio, the published drag and lift models, and the spin
+decay (plain numpy, SI units; every function broadcasts its inputs).
+
+Used by the trajectory integrator :func:`impactlab.physics.flight.fly`; docs/flight.md has the models, their
+validation and what failed.
+
+References
+----------
+.. [SS94] A. J. Smits and D. R. Smith, "A new aerodynamic model of a golf ball
+   in flight", in *Science and Golf II* (Proc. 1994 World Scientific Congress
+   of Golf), A. J. Cochran and M. R. Farrally (eds.), E & FN Spon, London,
+   1994, pp. 340-347.  Model constants as reproduced in R. D. Mehta's review
+   text (e.g. Mehta & Pallis 2001) and in A. R. Penner, "The physics of golf:
+   the optimum loft of a driver", Am. J. Phys. 69, 563 (2001), eq. (16).
+.. [Ly18] Z. Lyu, J. Kensrud, L. Smith, T. Tosaya, "Aerodynamics of golf balls
+   in still air", Proceedings 2(6), 238 (2018), doi:10.3390/proceedings2060238
+   (CC BY 4.0).
+.. [US01] B. B. Lieberman, A. J. Smits, S. J. Quintavalla, F. W. Thomas,
+   D. Winfield (USGA), "Method for determining coefficients of lift and drag
+   of a golf ball", US Patent 6,186,002 B1 (2001); regression "model 3" and
+   its example coefficients.
+.. [Na08] A. M. Nathan, "The spin decay of a baseball" (2008),
+   baseball.physics.illinois.edu/spindown-rev1.pdf -- restates the Smits &
+   Smith and Tavares et al. golf spin-decay fits, SRD = -lambda S.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "BALL_MASS",
+    "BALL_RADIUS",
+    "DEFAULT_MODEL",
+    "MODELS",
+    "MODEL_REFERENCES",
+    "PUBLISHED_MODELS",
+    "aero_coefficients",
+    "reynolds_number",
+    "spin_decay_rate",
+    "spin_ratio",
+]
+
+BALL_MASS = 0.04593  #: maximum legal ball mass (R&A/USGA Equipment Rules), kg
+BALL_RADIUS = 0.021335  #: minimum legal ball radius (42.67 mm diameter), m
+_RHO_REF = 1.225  # kg/m^3, ISA sea level; reference density of the spin-decay fit
+
+
+def reynolds_number(speed, density, viscosity, radius=BALL_RADIUS):
+    """Ball Reynolds number based on diameter, ``Re = rho v (2R) / mu``.
+
+    Parameters
+    ----------
+    speed : array_like
+        Air-relative ball speed, m/s.
+    density : array_like
+        Air density, kg/m^3.
+    viscosity : array_like
+        Dynamic viscosity, Pa s.
+    radius : array_like, optional
+        Ball radius, m.
+
+    Returns
+    -------
+    ndarray
+        Reynolds number (dimensionless).
+    """
+    return np.asarray(density) * np.asarray(speed) * 2.0 * np.asarray(radius) / np.asarray(viscosity)
+
+
+def spin_ratio(spin, speed, radius=BALL_RADIUS):
+    """Spin ratio (spin parameter) ``S = R omega / v``.
+
+    Parameters
+    ----------
+    spin : array_like
+        Spin rate, rad/s.
+    speed : array_like
+        Air-relative speed, m/s (must be > 0).
+    radius : array_like, optional
+        Ball radius, m.
+
+    Returns
+    -------
+    ndarray
+        Spin ratio (dimensionless).
+    """
+    return np.asarray(radius) * np.asarray(spin) / np.asarray(speed)
+
+
+# --------------------------------------------------------------------------
+# Published aerodynamic models
+# --------------------------------------------------------------------------
+def _cd_cl_smits_smith(s, re):
+    # [SS94]: wind-tunnel measurements on spinning balls (4e4 < Re < 2.5e5,
+    # 0.04 < S < 1.4); closed-form model proposed for driver shots,
+    # 7e4 < Re < 2.1e5, 0.08 < S < 0.2.  Constants as published:
+    # CD1 = 0.24, CD2 = 0.18, CD3 = 0.06, A1 = 9e4, A2 = 2e5, CL1 = 0.54.
+    cd = 0.24 + 0.18 * s + 0.06 * np.sin(np.pi * (re - 9.0e4) / 2.0e5)
+    cl = 0.54 * s**0.4
+    return cd, cl
+
+
+def _cd_cl_lyu(s, re):
+    # [Ly18]: free-flight (light-gate) measurements in still air; quadratic
+    # fits published in their Figs. 3b (drag, Kirkland 2017 ball, spinning
+    # 1500-2500 rpm) and 4b (lift, 13 balls, S ~ 0.04-0.32, 32-91 m/s).
+    # Drag branch switch at Re = 7.5e4 (overlap of the two published fit
+    # ranges; the two curves cross near there).
+    cd_low = 1.29e-10 * re**2 - 2.59e-5 * re + 1.50
+    cd_high = 1.91e-11 * re**2 - 5.40e-6 * re + 0.56
+    cd = np.where(re < 7.5e4, cd_low, cd_high)
+    # Lift fit peaks at S = 0.306 (CL = 0.305); beyond the fitted range we hold
+    # the peak value rather than let the parabola go negative (extrapolation).
+    s_c = np.minimum(s, 1.99 / (2 * 3.25))
+    cl = -3.25 * s_c**2 + 1.99 * s_c
+    return cd, cl
+
+
+def _cd_cl_usga(s, re):
+    # [US01]: USGA Indoor Test Range measurements of one test ball
+    # (0.044 < S < 0.22, 0.81e5 < Re < 2.0e5) and the patent's example
+    # regression "model 3" (Re in units of 1e5):
+    #   CD = A + B S^2 + C Re + D S,  (0.2028, 2.8466, 0.0165, -0.2159)
+    #   CL = A + B S + C / Re^2 + D S^2, (0.0860, 0.6463, -0.0122, 1.4789)
+    r5 = re / 1.0e5
+    cd = 0.2028 + 2.8466 * s**2 + 0.0165 * r5 - 0.2159 * s
+    cl = 0.0860 + 0.6463 * s - 0.0122 / r5**2 + 1.4789 * s**2
+    return cd, cl
+
+
+#: Lyu et al. 2018's published lift fit peaks at S = 1.99/6.5 = 0.306 with CL = 0.305, the largest lift it measured
+#: on modern balls (13-ball average at S ~0.32: 0.315)
+LYU_LIFT_PEAK = 1.99**2 / (4 * 3.25)
+#: USGA ITR example data of US 6,186,002 (seven condition means, Re/1e5, S, CD, CL; measurements of one
+#: late-1990s test ball), to which the induced-drag factor of ``lyu_2018_induced_drag`` is fitted
+USGA_ITR_EXAMPLE = ((0.81, 0.097, 0.223, 0.146), (0.81, 0.218, 0.305, 0.278), (1.23, 0.153, 0.256, 0.214),
+                    (1.25, 0.088, 0.226, 0.146), (1.61, 0.090, 0.234, 0.151), (2.0, 0.092, 0.241, 0.153),
+                    (1.98, 0.044, 0.231, 0.115))
+
+
+def _induced_drag_factor():
+    """k of CD = a + b Re/1e5 + k CL^2, least squares on :data:`USGA_ITR_EXAMPLE` (1.437)."""
+    data = np.asarray(USGA_ITR_EXAMPLE)
+    design = np.column_stack([np.ones(len(data)), data[:, 0], data[:, 3] ** 2])
+    return float(np.linalg.lstsq(design, data[:, 2], rcond=None)[0][2])
+
+
+INDUCED_DRAG_FACTOR = _induced_drag_factor()
+
+
+def _cd_cl_smits_smith_capped(s, re):
+    # NOT a published model: Smits & Smith (1994) with its lift held at the largest lift measured on modern
+    # balls (Lyu et al. 2018's fit peak, 0.305). Tried because the Smits & Smith lift law is stated valid only
+    # for S < 0.2 and irons fly at S 0.3-1.2; the cap was chosen after seeing the TrackMan misfit (docs/flight.md).
+    cd, cl = _cd_cl_smits_smith(s, re)
+    return cd, np.minimum(cl, LYU_LIFT_PEAK)
+
+
+def _cd_cl_lyu_induced(s, re):
+    # NOT a published model: Lyu et al. 2018's drag and lift fits plus an induced drag k CL^2, k fitted on the USGA
+    # ITR example data (a source other than TrackMan): Lyu's drag fit has no spin term.
+    cd, cl = _cd_cl_lyu(s, re)
+    return cd + INDUCED_DRAG_FACTOR * cl**2, cl
+
+
+def _cd_cl_vacuum(s, re):
+    z = np.zeros(np.broadcast(s, re).shape)
+    return z, z
+
+
+#: Registry of published aerodynamic models: name -> (cd_cl(S, Re), spin-decay lambda).
+MODELS = {
+    "smits_smith_1994": (_cd_cl_smits_smith, 2.0e-5),
+    "lyu_2018": (_cd_cl_lyu, 2.0e-5),
+    "usga_patent_2001": (_cd_cl_usga, 2.0e-5),
+    "smits_smith_lift_capped": (_cd_cl_smits_smith_capped, 2.0e-5),
+    "lyu_2018_induced_drag": (_cd_cl_lyu_induced, 2.0e-5),
+    "vacuum": (_cd_cl_vacuum, 0.0),
+}
+#: the models whose coefficients are published as they are (the others combine published pieces; docs/flight.md)
+PUBLISHED_MODELS = ("smits_smith_1994", "lyu_2018", "usga_patent_2001")
+DEFAULT_MODEL = "smits_smith_1994"
+#: citation of each model's coefficients, and whether they are fits to measurements
+MODEL_REFERENCES = {
+    "smits_smith_1994": "A. J. Smits and D. R. Smith, 'A new aerodynamic model of a golf ball in flight', Science and "
+                        "Golf II (1994) 340-347 (fits to wind-tunnel measurements); spin decay lambda = 2e-5 (same)",
+    "lyu_2018": "Z. Lyu, J. Kensrud, L. Smith, T. Tosaya, 'Aerodynamics of golf balls in still air', Proceedings "
+                "2(6), 238 (2018), doi:10.3390/proceedings2060238 (fits to free-flight measurements)",
+    "usga_patent_2001": "US Patent 6,186,002 B1 (USGA, 2001), regression 'model 3' of Indoor Test Range "
+                        "measurements",
+    "smits_smith_lift_capped": "composite, not a published model: Smits & Smith (1994) with the lift held at 0.305, "
+                               "the peak of Lyu et al. (2018)'s measured lift fit",
+    "lyu_2018_induced_drag": "composite, not a published model: Lyu et al. (2018) fits plus induced drag 1.44 CL^2 "
+                             "fitted on the USGA ITR example data of US 6,186,002 B1",
+    "vacuum": "no air (a test limit)",
+}
+
+
+def aero_coefficients(s, re, model=DEFAULT_MODEL):
+    """Drag and lift coefficients of a spinning golf ball.
+
+    Parameters
+    ----------
+    s : array_like
+        Spin ratio ``S = R omega / v`` (dimensionless, >= 0).
+    re : array_like
+        Reynolds number ``rho v 2R / mu`` (dimensionless).
+    model : str, optional
+        One of :data:`MODELS`:
+
+        ``"smits_smith_1994"`` (default) -- [SS94]_, fitted by the authors to
+        their wind-tunnel measurements::
+
+            CD = 0.24 + 0.18 S + 0.06 sin(pi (Re - 90 000) / 200 000)
+            CL = 0.54 S**0.4
+
+        stated valid for 7e4 < Re < 2.1e5, 0.08 < S < 0.2 (driver shots);
+        the underlying measurements cover 4e4 < Re < 2.5e5, 0.04 < S < 1.4.
+
+        ``"lyu_2018"`` -- [Ly18]_, quadratic fits to free-flight light-gate
+        measurements in still air::
+
+            CD = 1.29e-10 Re^2 - 2.59e-5 Re + 1.50   (Re < 7.5e4)
+            CD = 1.91e-11 Re^2 - 5.40e-6 Re + 0.56   (Re >= 7.5e4)
+            CL = -3.25 S^2 + 1.99 S                  (held at its peak 0.305 for S > 0.306)
+
+        ``"usga_patent_2001"`` -- [US01]_ "model 3" regression of USGA
+        Indoor-Test-Range measurements (Re in 1e5)::
+
+            CD = 0.2028 + 2.8466 S^2 + 0.0165 Re - 0.2159 S
+            CL = 0.0860 + 0.6463 S - 0.0122 / Re^2 + 1.4789 S^2
+
+        ``"smits_smith_lift_capped"`` -- NOT a published model: Smits & Smith
+        with ``CL = min(0.54 S**0.4, 0.305)``, the cap being the peak of the
+        Lyu et al. (2018) lift fit (the largest lift measured on modern balls).
+
+        ``"lyu_2018_induced_drag"`` -- NOT a published model: Lyu et al.
+        (2018) plus an induced drag ``k CL**2`` with ``k = 1.437`` fitted on
+        the USGA ITR example data of [US01]_.
+
+        ``"vacuum"`` -- zero drag and lift (for tests).
+
+    Returns
+    -------
+    cd, cl : ndarray
+        Drag and lift coefficients referred to ``q = rho v^2 / 2`` and the
+        frontal area ``pi R^2``.
+
+    Notes
+    -----
+    All three published models are curve fits to measurements; outside their
+    fitted ranges (irons and wedges reach S = 0.3-1.2 late in flight) they are
+    extrapolations.  See docs/flight.md for the validation of each.
+    """
+    fn, _ = MODELS[model]
+    s = np.asarray(s, dtype=float)
+    re = np.asarray(re, dtype=float)
+    return fn(s, re)
+
+
+def spin_decay_rate(spin, speed, density=_RHO_REF, radius=BALL_RADIUS, lam=2.0e-5):
+    """Rate of change of spin from the aerodynamic torque.
+
+    Parameters
+    ----------
+    spin : array_like
+        Spin rate, rad/s.
+    speed : array_like
+        Air-relative speed, m/s.
+    density : array_like, optional
+        Air density, kg/m^3.  The published constant was measured near
+        sea-level density; it is scaled by ``density / 1.225``.
+    radius : array_like, optional
+        Ball radius, m.
+    lam : float, optional
+        Dimensionless decay constant.  2.0e-5 (Smits & Smith 1994, wind
+        tunnel); 2.5e-5 would be Tavares, Shannon & Melvin (1999, radar).
+
+    Returns
+    -------
+    ndarray
+        ``d omega / dt``, rad/s^2 (negative).
+
+    Notes
+    -----
+    Smits & Smith found the normalised spin-decay rate
+    ``SRD = (d omega/dt) R^2 / v^2`` linear in S and independent of Re:
+    ``SRD = -lam S`` [SS94]_, [Na08]_, i.e.
+    ``d omega / dt = -lam v omega / R`` (Penner 2001 eq. 16).  For a torque
+    ``-R rho A C_M v^2`` with ``C_M`` proportional to S, ``lam`` is
+    proportional to air density, hence the density scaling (an assumption of
+    this module; it changes a 10 000 ft carry by about 1 yd).
+    At 70 m/s this is about 6.6 %/s, at 40 m/s 3.7 %/s -- consistent with
+    TrackMan's quoted "typically 4 % per second".
+    """
+    return (
+        -lam
+        * (np.asarray(density) / _RHO_REF)
+        * np.asarray(speed)
+        * np.asarray(spin)
+        / np.asarray(radius)
+    )

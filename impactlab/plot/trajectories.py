@@ -1,0 +1,150 @@
+"""The ball's flight after each model's launch, side and top view, flown again from a result's stored launch."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from impactlab.errors import FieldError
+from impactlab.vocabulary import MODEL_DIM
+from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS
+from impactlab.physics.flight import fly
+from impactlab.scene.flight import air_arrays
+from impactlab.model.derive import FLIGHT_INPUTS
+from impactlab.plot.style import _MARKERS, _STYLES, _save
+
+#: the launch a trajectory figure needs in a result file (a golf study that asks for them)
+TRAJECTORY_LAUNCH = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin",
+                     "spin_axis")
+#: most shots drawn per model (more would be a blur): evenly spaced over the cases, and the title says so
+MAX_TRAJECTORIES = 12
+
+
+def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str = "") -> Path:
+    """Side and top views of the ball flight after each model's launch, one colour per model, one style per case.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A golf study's result holding the launch outputs of :data:`TRAJECTORY_LAUNCH` (ball speed in m/s,
+        angles in degree, spins in rpm, as a result file stores them).
+    path : path
+        The PNG to write.
+    title : str
+        Above the panels; default names the study and the air.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    FieldError
+        The result lacks a launch output, or sweeps the air (the paths are flown in its base conditions).
+
+    Notes
+    -----
+    The paths are flown again from the stored launch with :func:`impactlab.physics.flight.fly` (the study's
+    ball, the air of its ``conditions`` block, or the standard air without one), so they land where the result's
+    ``carry_distance`` says when it holds one. Distances in metres, with yards on the top axis.
+    """
+    # imported where a figure is drawn (heavy: a run that draws nothing never loads it); a bare Figure, no
+    # pyplot: drawing never changes the caller's backend or open figures
+    from matplotlib import rcParams
+    from matplotlib.figure import Figure
+
+    absent = [name for name in TRAJECTORY_LAUNCH if name not in dataset.data_vars]
+    if absent:
+        raise FieldError("--trajectories", "a golf result holding the launch (add these to the study's outputs: "
+                         + ", ".join(absent) + ")", "a result without them")
+    scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
+    swept_air = [name for name in FLIGHT_INPUTS
+                 if name in dataset.coords or INPUT_COORDS.get(name, name) in dataset.coords]
+    if swept_air:
+        raise FieldError("--trajectories", "a result whose air is not swept (the paths are flown in one air); "
+                         "select one value first", ", ".join(swept_air))
+    if MODEL_DIM not in dataset.dims:
+        dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
+    air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
+    mass = float(scene.get("ball_mass", BALL_MASS))
+    radius = float(scene.get("ball_radius", BALL_RADIUS))
+    case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
+    stacked = dataset[list(TRAJECTORY_LAUNCH)].stack(case=case_dims) if case_dims else \
+        dataset[list(TRAJECTORY_LAUNCH)].expand_dims(case=[0])
+    n_cases = stacked.sizes["case"]
+    shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
+    figure = Figure(figsize=(10.5, 7.5))
+    side, top = figure.subplots(2, 1, sharex=True)
+    colours = rcParams["axes.prop_cycle"].by_key()["color"]
+    drawn = 0
+    for m, model in enumerate(stacked[MODEL_DIM].values):
+        row = stacked.sel({MODEL_DIM: model}).isel(case=shown)
+        spin = np.hypot(row["back_spin"].values, row["side_spin"].values) * np.pi / 30.0
+        finite = np.isfinite(row["ball_speed"].values) & np.isfinite(spin) & (row["ball_speed"].values > 0)
+        if not finite.any():
+            continue
+        result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
+                            spin[finite], np.radians(row["spin_axis"].values[finite]),
+                            np.radians(row["horizontal_launch_angle"].values[finite]), ball_mass=mass,
+                            ball_radius=radius, return_trajectories=True, **air)
+        labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
+        for k in range(result["x"].shape[0]):
+            style = _STYLES[k % len(_STYLES)]
+            label = f"{model}" + (f", {labels[k]}" if labels[k] else "")
+            # a marker per model at the landing point, so that a path lying on another model's stays visible
+            marks = dict(color=colours[m % len(colours)], linestyle=style, marker=_MARKERS[m % len(_MARKERS)],
+                         markevery=[-1], markersize=5, markerfacecolor="none")
+            side.plot(result["x"][k], result["z"][k], label=label, **marks)
+            top.plot(result["x"][k], result["y"][k], label=label, **marks)
+            drawn += 1
+    if not drawn:
+        raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
+    side.set_ylabel("height [m]")
+    side.set_ylim(bottom=0.0)
+    side.set_title("side view (heights not to scale with distances)")
+    top.set_ylabel("offline, right of the target\nline downwards [m]")
+    top.set_xlabel("along the target line [m]")
+    top.axhline(0.0, color="0.6", linewidth=0.8)
+    top.invert_yaxis()  # seen from above, with the target to the right, the golfer's right is down the page
+    top.set_title("top view (from above, target to the right)")
+    side.set_xlabel("along the target line [m]")
+    side.tick_params(labelbottom=True)
+    for axis in (side, top):
+        axis.grid(True, alpha=0.3)
+        yards = axis.secondary_xaxis("top", functions=(lambda v: v / 0.9144, lambda v: v * 0.9144))
+        yards.set_xlabel("[yd]", fontsize=8)
+    figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
+                  title_fontsize=7)
+    air_words = (f"air {air['temperature'] - 273.15:.0f} degC, {float(air['pressure']) / 100:.0f} hPa, "
+                 f"{100 * float(air['relative_humidity']):.0f} % RH")
+    wind = np.asarray(air["wind"], dtype=float).reshape(-1)
+    if np.any(wind):
+        air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
+    count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
+    figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
+                    f"Smits & Smith (1994) aerodynamics, {air_words}{count}", fontsize=9)
+    figure.tight_layout(rect=(0.0, 0.0, 0.80, 1.0))
+    return _save(figure, path)
+
+
+#: coordinate names a swept air field takes in a result (its last path component)
+INPUT_COORDS = {"air_temperature": "temperature", "air_pressure": "pressure"}
+
+
+def _case_label(row, index: int) -> str:
+    """The case's coordinates in words (``toe -10 mm``-like: 'toe -0.01'), for a legend."""
+    if "case" not in row.coords or row.sizes.get("case", 0) <= 1:
+        return ""
+    parts = []
+    for name in row["case"].to_index().names if hasattr(row["case"].to_index(), "names") else []:
+        if name is None or name == "case":
+            continue
+        value = row[name].values[index]
+        units = row[name].attrs.get("units", "")
+        units = "" if units in ("", "1") else f" {units}"
+        parts.append(f"{name} {value:g}{units}" if isinstance(value, (int, float, np.floating)) else f"{name} {value}")
+    return ", ".join(parts)
