@@ -380,7 +380,8 @@ def _cmd_validate(args) -> int:
         check_output(args.plot, what="--plot file", suffix=".png")
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
-    over, rows = [], []
+    over: list[str] = []
+    rows: list[dict] = []
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
