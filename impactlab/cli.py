@@ -371,16 +371,22 @@ def _print_benchmarks(keys) -> list[str]:
 
 def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
-    from impactlab.data.shot_report import SHOT_MODELS, SHOT_TABLES, print_shot_errors, shot_table
+    from impactlab.data.shot_report import (
+        OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
+    )
 
-    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES))
+    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
     if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png")
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
-    over, rows = [], []
+    over: list[str] = []
+    rows: list[dict] = []
 
     for name in names:
+        if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
+            print_observations(args.model or SHOT_MODELS)
+            continue
         with user_clubs(read_club_spec(path) for path in args.club or ()):
             table = shot_table(name, args.include_flagged)
             if table is not None:
@@ -443,7 +449,7 @@ def _cmd_fit(args) -> int:
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
-            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json)
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
     data = get_dataset(args.dataset)
     known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known
@@ -589,6 +595,9 @@ def build_parser() -> argparse.ArgumentParser:
                                          "(.csv, .yaml, or trackman_tour)")
     fitting.add_argument("--cross-validate", action="store_true",
                          help="shot tables: also fit on all rows but one and report the error on the one left out")
+    fitting.add_argument("--by", choices=("source", "row"),
+                         help="shot tables: leave out one source's rows at a time (default when the rows name "
+                              "several sources) or one row")
     fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
     fitting.add_argument("--parameter", action="append",
                          help="parameter to fit (repeatable; default: friction, and beta for restitution)")

@@ -33,7 +33,7 @@ from impactlab.errors import FieldError
 from impactlab.model.base import ImpactModel
 from impactlab.scene.materials import Ball, RestitutionLaw
 from impactlab.data.shots import (
-    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, shot_errors, summary, table_inputs,
 )
 from impactlab.physics.contact import approach_state
 from impactlab.study.scene_blocks import build_ball
@@ -48,7 +48,11 @@ PARAMETERS = {
     "restitution_slope": ((-0.01, 0.0), -0.001, "de/dv of the ball's restitution law [s/m]"),
     "face_restitution_gain": ((0.0, 0.15), 0.03, "rise of e on a thin wood face (rows whose club face is bulged)"),
     "strike_high": ((-0.015, 0.015), 0.0, "mean strike offset up the face [m]"),
+    "rolling_hysteresis": ((0.0, 1.0), 0.1, "loss fraction alpha of the cover's rolling resistance, d = (3/16) alpha a "
+                           "(a model option; impactlab.physics.ball_laws)"),
 }
+#: parameters that are a model's options, not its inputs: the model is rebuilt with the value
+MODEL_OPTIONS = ("rolling_hysteresis",)
 #: normal speed at which the fitted restitution law's ``restitution`` applies [m/s]
 REFERENCE_SPEED = 40.0
 DEFAULT_PARAMETERS = ("friction", "tangential_loss", "restitution", "face_restitution_gain")
@@ -176,6 +180,10 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
     if "tangential_loss" in names and "tangential_loss" not in model.optional_inputs | model.requires:
         raise FieldError("--parameter", f"a parameter model {model.name!r} uses (it has no tangential loss)",
                          "tangential_loss", choices=[n for n in PARAMETERS if n != "tangential_loss"])
+    for name in MODEL_OPTIONS:
+        if name in names and name not in model.options_dict():
+            raise FieldError("--parameter", f"a parameter model {model.name!r} has (it has no {name} option)", name,
+                             choices=[n for n in PARAMETERS if n not in MODEL_OPTIONS])
     measured_values = sum(int(np.isfinite(table.measured[key]).sum()) for key in MEASURED_FIELDS)
     if measured_values < len(names):
         raise FieldError("--parameter", f"at most as many parameters as measured values ({measured_values})",
@@ -185,7 +193,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
     high = np.array([PARAMETERS[name][0][1] for name in names])
     x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
     inputs = table_inputs(table, ball)
-    first = predict(model, apply(inputs, names, x0, ball_object))
+    first = predict(model_with(model, names, x0), apply(inputs, names, x0, ball_object))
     usable = least_squares.usable_rows(np.stack([first[key] for key in MEASURED_FIELDS], axis=1),
                                        np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
     unused = tuple(label for label, ok in zip(table.labels, usable) if not ok)
@@ -196,7 +204,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         inputs = table_inputs(table, ball)
 
     def predicted(x):
-        return predict(model, apply(inputs, names, x, ball_object))
+        return predict(model_with(model, names, x), apply(inputs, names, x, ball_object))
 
     before = predicted(x0)
     solution = least_squares.solve(lambda x: _residuals(predicted(x), table), x0, low, high, weighted=True,
@@ -238,30 +246,60 @@ def _limits(ball) -> tuple:
 def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
     """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
     inputs = table_inputs(table, ball)
-    return predict(model, apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
+    return predict(model_with(model, calibration.parameters, calibration.values),
+                   apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
+
+
+def model_with(model: ImpactModel, names: Sequence[str], values: Sequence[float]) -> ImpactModel:
+    """``model`` with the calibration's model options (:data:`MODEL_OPTIONS`) among ``names`` set to ``values``
+    (the model itself when there are none)."""
+    given = {name: float(value) for name, value in zip(names, values) if name in MODEL_OPTIONS}
+    if not given:
+        return model
+    return type(model)(**{**model.options_dict(), **given})
+
+
+def source_folds(table: ShotTable) -> list[list[int]]:
+    """One fold per source of the table's rows (:attr:`ShotTable.sources`): the rows of that source."""
+    sources = list(table.sources)
+    return [[i for i, s in enumerate(sources) if s == source] for source in dict.fromkeys(sources)]
 
 
 def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
-                   ball: dict | None = None, folds: Sequence[Any] | None = None) -> dict:
-    """Fit on all rows but some, predict those; by default leave one row out at a time.
+                   ball: dict | None = None, folds: Sequence[Any] | None = None, by: str = "row",
+                   start: dict | None = None) -> dict:
+    """Fit on all rows but some, predict those: leave one row out at a time (``by="row"``) or one source
+    (``by="source"``: every row of one source held out, the fit made on the other sources only).
+
+    Each fold's fit starts from ``start`` (a warm start: the full fit's values, so that a fold costs a few
+    iterations from near its optimum, not a fit from the defaults); the optimum is the same as from a cold start
+    within the optimiser's tolerance (tests/test_validation_sources.py).
 
     Returns
     -------
     dict
         ``errors``: per-row errors on the rows left out (keys of :data:`ERROR_KEYS`, NaN where not measured);
-        ``summary``: their RMS; ``fits``: the fitted values of each fold; ``labels``: the rows.
+        ``summary``: their RMS; ``by_source``: the RMS per held-out source; ``fits``: the fitted values of each
+        fold; ``calibrations``: each fold's :class:`Calibration` (at-bound and beyond-limit flags); ``folds``:
+        the held-out rows; ``labels``: the rows.
     """
-    folds = folds or [[i] for i in range(table.size)]
+    if folds is None:
+        if by not in ("row", "source"):
+            raise FieldError("--by", "row or source", by)
+        folds = source_folds(table) if by == "source" else [[i] for i in range(table.size)]
     held = {key: np.full(table.size, np.nan) for key in ERROR_KEYS}
-    fits = []
+    fits, calibrations = [], []
     for rows in folds:
         rows = np.asarray(rows)
         train = np.setdiff1d(np.arange(table.size), rows)
         if train.size == 0:
-            raise FieldError("folds", "folds that leave rows to fit on", rows.tolist())
-        result = calibrate(model, table.subset(train), parameters, ball)
+            raise FieldError("folds", "folds that leave rows to fit on (a table of one source cannot be "
+                             "cross-validated by source)", rows.tolist())
+        result = calibrate(model, table.subset(train), parameters, ball, start=start)
         fits.append(dict(zip(result.parameters, result.values)))
+        calibrations.append(result)
         test = table.subset(rows)
         for key, values in shot_errors(predict_with(model, test, result, ball), test).items():
             held[key][rows] = values
-    return {"errors": held, "summary": summary(held), "fits": fits, "labels": table.labels}
+    return {"errors": held, "summary": summary(held), "by_source": errors_by_source(held, table), "fits": fits,
+            "calibrations": calibrations, "folds": [list(map(int, f)) for f in folds], "labels": table.labels}

@@ -19,10 +19,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 from impactlab.data.shots import (
-    ERROR_KEYS, MEASURED_FIELDS, ShotTable, predict, read_shots, read_yaml, shot_errors, summary, table_inputs,
+    ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, read_shots, read_yaml, shot_errors, summary,
+    table_inputs,
 )
+from impactlab.data.validation.observations import cover_effect, describe, gear_effect, load_observations
 from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
@@ -177,12 +180,49 @@ def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None 
             over.append(f"{table.name}/{name}")
             print(f"  {'':<16}rows not used (the model cannot predict them; OVER): {', '.join(unused)}")
     print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
-          "getting worse)\n")
+          "getting worse)")
+    print_source_table(table, predictions)
+    print()
     if rows is not None:
         rows.extend(prediction_rows(table, predictions))
     if plot:
         print(f"wrote {plot_shots(table, predictions, plot)}", file=sys.stderr)
     return sorted(set(over))
+
+
+#: the per-source table's columns: error key -> short heading
+SOURCE_COLUMNS = {"ball_speed [%]": "speed %", "launch angle [deg]": "launch deg", "spin [%]": "spin %",
+                  "launch direction [deg]": "direction deg", "spin axis [deg]": "axis deg"}
+
+
+def source_table(table: ShotTable, predictions: dict) -> dict:
+    """source -> model -> {error key -> RMS over the source's rows} (:func:`impactlab.data.shots.errors_by_source`)."""
+    out: dict = {}
+    for model, predicted in predictions.items():
+        for source, rms in errors_by_source(shot_errors(predicted, table), table).items():
+            out.setdefault(source, {})[model] = rms
+    return out
+
+
+def format_source_table(errors: dict, keys=None) -> list[str]:
+    """Lines of a table: one row per source, one column group per model, RMS of each error key."""
+    models = list(next(iter(errors.values())))
+    keys = keys or [key for key in SOURCE_COLUMNS
+                    if any(math.isfinite(errors[s][m][key]) for s in errors for m in errors[s])]
+    width = 11 * len(keys) + 2
+    lines = [f"  {'source':<22}" + "".join(f"{model:>{width}}" for model in models),
+             f"  {'':<22}" + "".join("  " + "".join(f"{SOURCE_COLUMNS[k]:>11}" for k in keys) for _ in models)]
+    for source, by_model in errors.items():
+        lines.append(f"  {source:<22}" + "".join("  " + "".join(f"{by_model[m][k]:11.2f}" for k in keys)
+                                                 for m in models))
+    return lines
+
+
+def print_source_table(table: ShotTable, predictions: dict) -> None:
+    """Print the RMS errors per source (rows) and model (columns)."""
+    print("  per source (RMS over the source's rows; rows = source, columns = model):")
+    for line in format_source_table(source_table(table, predictions)):
+        print(line)
 
 
 #: the per-shot table's quantities: (field, unit, factor from SI)
@@ -244,8 +284,16 @@ def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
 
 def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
               cross_validate: bool = False,
-              json_path: str | None = None) -> int:
-    """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON."""
+              json_path: str | None = None, by: str | None = None) -> int:
+    """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON.
+
+    ``by`` is the unit the cross-validation leaves out: ``source`` (every row of one source; the default when the
+    table's rows name several sources) or ``row``. Each fold starts from the full fit's values (a warm start)."""
+    if by is None:
+        by = "source" if len(set(table.sources)) > 1 else "row"
+    if cross_validate and by == "source" and len(set(table.sources)) < 2:
+        raise FieldError("--by", "several sources among the table's rows (a row's source:) to leave one out",
+                         f"source ({len(set(table.sources))} source in {table.name})")
     results = []
     for name in models or FIT_MODELS:
         model = get_model(name)()
@@ -266,16 +314,49 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
                                            for j, b in enumerate(result.parameters) if j > i))
         entry = result.as_dict()
         if cross_validate and table.size > 1:
-            held = leave_one_out(model, table, names)
-            print("  leave-one-out (errors on the row not fitted): "
+            held = leave_one_out(model, table, names, by=by, start=dict(zip(result.parameters, result.values)))
+            unit = "source" if by == "source" else "row"
+            print(f"  leave-one-out by {unit} (errors on the {unit} not fitted; warm starts from the full fit): "
                   + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
-            for index, label in enumerate(held["labels"]):
-                print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
-                                                     for k in keys))
-            entry["cross_validation"] = {"summary": held["summary"], "fits": held["fits"],
+            if by == "source":
+                for fold, calibration in zip(held["folds"], held["calibrations"]):
+                    source = table.sources[fold[0]]
+                    errors = held["by_source"][source]
+                    print(f"    held out {source} ({len(fold)} rows): "
+                          + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
+                    print(f"      fitted on the others: {calibration.describe()}")
+            else:
+                for index, label in enumerate(held["labels"]):
+                    print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
+                                                         for k in keys))
+            entry["cross_validation"] = {"by": by, "summary": held["summary"], "fits": held["fits"],
+                                         "by_source": held["by_source"], "folds": held["folds"],
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
         write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
         print(f"wrote {json_path}", file=sys.stderr)
     return 0
+
+
+#: the pseudo-dataset ``impactlab validate --dataset observations``: published differences between shots
+OBSERVATIONS = "observations"
+
+
+def print_observations(models: Sequence[str], options: dict | None = None) -> None:
+    """Print each model's ratio to the published gear-effect and cover observations
+    (:mod:`impactlab.data.validation.observations`), rows = observation, columns = model; 1 is agreement.
+
+    ``options`` maps a model id to its options (default: none, the paper's models)."""
+    observations = load_observations()
+    print("observations: model / published (1 = agreement; target 0.5-1.5)")
+    for members in observations.values():
+        for observation in members:
+            print(f"  {describe(observation)}")
+    print(f"  {'observation':<46}" + "".join(f"{model:>16}" for model in models))
+    for family, compute in (("gear_effect", gear_effect), ("cover", cover_effect)):
+        for observation in observations[family]:
+            what = "spin-axis change" if family == "gear_effect" else "wedge cover difference"
+            cells = [compute(get_model(m)(**(options or {}).get(m, {})), observation)["ratio"] for m in models]
+            print(f"  {observation.name + ' ' + what:<46}" + "".join(f"{c:16.3f}" for c in cells))
+    print()

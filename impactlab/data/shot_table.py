@@ -26,7 +26,7 @@ MEASURED_FIELDS = {
     "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
     "spin_rate": "angular_speed", "spin_axis": "angle",
 }
-TEXT_FIELDS = ("label", "club", "handedness")
+TEXT_FIELDS = ("label", "club", "handedness", "source")
 #: usual launch-monitor column names -> field (lower case, single spaces)
 ALIASES = {
     "club speed": "club_speed", "clubspeed": "club_speed", "club head speed": "club_speed",
@@ -85,6 +85,14 @@ class ShotTable:
     budgets: dict = attrs.field(factory=dict, eq=False)
     #: (file line, reason) of every row of the file the impact models could not use (a session's other rows are)
     skipped: tuple = attrs.field(default=(), eq=False)
+    #: where each row comes from (a row's ``source:``; empty: every row is the table's own ``name``): the unit of
+    #: the per-source errors of ``impactlab validate`` and of leave-one-source-out cross-validation
+    row_sources: tuple = attrs.field(default=(), eq=False)
+
+    @property
+    def sources(self) -> tuple[str, ...]:
+        """The source of every row (the table's name where the rows name none)."""
+        return self.row_sources or (self.name,) * self.size
 
     @property
     def size(self) -> int:
@@ -100,7 +108,8 @@ class ShotTable:
                             handedness=tuple(self.handedness[i] for i in index),
                             delivery={k: v[index] for k, v in self.delivery.items()},
                             measured={k: v[index] for k, v in self.measured.items()},
-                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=())
+                            sigma={k: v[index] for k, v in self.sigma.items()}, skipped=(),
+                            row_sources=tuple(self.sources[i] for i in index))
 
 
 def _field_of(header: str) -> tuple[str | None, str | None]:

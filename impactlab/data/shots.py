@@ -95,7 +95,9 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
                      clubs=tuple(str(row.get("club")) for row in rows),
                      handedness=tuple(str(row.get("handedness", "right")) for row in rows),
                      delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at,
-                     budgets=budgets or {})
+                     budgets=budgets or {},
+                     row_sources=(tuple(str(row.get("source", name)) for row in rows)
+                                  if any("source" in row for row in rows) else ()))
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
@@ -205,11 +207,14 @@ def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> S
 
 
 # -- predictions -----------------------------------------------------------------------------------------------
-def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None) -> dict:
+def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict | None = None,
+                 club_reference: str = "centre_of_mass") -> dict:
     """Model inputs (SI arrays) of every row: its club preset, its delivery and strike, and the ball.
 
     ``ball_block`` is a study ``ball:`` mapping (default: the table's, else ``{preset: urethane_tour}``);
-    ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``).
+    ``contact`` overrides the ball's friction and restitution (``{friction, restitution}``); ``club_reference`` is
+    the point of the head whose velocity the rows' club speed, path and attack angle are
+    (:class:`impactlab.scene.core.Delivery`; TrackMan: the head's geometric centre, near its centre of mass).
     """
     ball = build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
     contact_law = Contact(**(contact or {}))
@@ -221,7 +226,8 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
         d = {key: float(value[index]) for key, value in table.delivery.items()}
         delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
                             attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
-                            handedness=table.handedness[index], loft_at=table.loft_at)
+                            handedness=table.handedness[index], loft_at=table.loft_at,
+                            club_reference=club_reference)
         scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact_law, delivery, 0.0, club,
                                           Strike(d["strike_toe"], d["strike_high"])))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
@@ -259,4 +265,15 @@ def summary(errors: dict) -> dict:
     for key, values in errors.items():
         finite = values[np.isfinite(values)]
         out[key] = float(np.sqrt(np.mean(finite**2))) if finite.size else math.nan
+    return out
+
+
+def errors_by_source(errors: dict, table: ShotTable) -> dict:
+    """RMS of each error (:func:`shot_errors`) over the rows of each source: source -> :func:`summary`, the sources
+    in the order they first appear."""
+    sources = np.asarray(table.sources)
+    out = {}
+    for source in dict.fromkeys(table.sources):
+        rows = sources == source
+        out[source] = summary({key: np.asarray(values)[rows] for key, values in errors.items()})
     return out

@@ -1,0 +1,101 @@
+"""Issue 21's Goal measurement: per source, BEFORE (the paper's models as shipped, defaults, not fitted) and AFTER
+(the new forms and a calibration fitted on the other sources only), on rows not fitted; the heel/toe spin-axis
+change and the wedge cover difference as ratios to the published observations; each mechanism one at a time.
+
+    .venv/bin/python benchmarks/measure_validation_goal.py [--models rigid_coulomb hertz_mindlin]
+
+Prints markdown (docs/validation.md, "Validation by source"). Targets: ball speed within 1 %, launch within
+0.7 deg, spin within 7 % (RMS over a held-out source's rows), ratios within 0.5-1.5.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import attrs
+
+from impactlab.data.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate, model_with
+from impactlab.data.shot_report import shot_table
+from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
+from impactlab.data.validation.observations import cover_effect, gear_effect, load_observations
+from impactlab.model.registry import get_model
+
+KEYS = ("ball_speed [%]", "launch angle [deg]", "spin [%]")
+TARGETS = {"ball_speed [%]": 1.0, "launch angle [deg]": 0.7, "spin [%]": 7.0}
+
+
+def configuration(name, loft_at="centre", club_reference="centre_of_mass", rolling=False, fitted=False,
+                  fit_rolling=False):
+    return {"name": name, "loft_at": loft_at, "club_reference": club_reference, "rolling": rolling,
+            "fitted": fitted, "fit_rolling": fit_rolling}
+
+
+CONFIGURATIONS = [
+    configuration("BEFORE: as shipped (loft at centre, defaults, not fitted)"),
+    configuration("+ loft_at contact", loft_at="contact"),
+    configuration("+ club_reference face_centre", club_reference="face_centre"),
+    configuration("+ rolling_hysteresis = 1 - e^2", rolling=True),
+    configuration("+ calibration (leave-one-source-out)", fitted=True),
+    configuration("AFTER: contact + rolling + calibration", loft_at="contact", rolling=True, fitted=True),
+    configuration("AFTER, alpha fitted: contact + calibration with rolling_hysteresis", loft_at="contact",
+                  fitted=True, fit_rolling=True),
+]
+
+
+def measure(model_name: str, config: dict) -> dict:
+    options = {"rolling_hysteresis": "restitution"} if config["rolling"] else {}
+    model = get_model(model_name)(**options)
+    table = attrs.evolve(shot_table("trackman_tour"), loft_at=config["loft_at"])
+    names = [p for p in DEFAULT_PARAMETERS if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]
+    if config["fit_rolling"]:
+        names.append("rolling_hysteresis")
+    hook = None
+    flags = ""
+    if config["fitted"]:
+        full = calibrate(model, table, names)
+        held = cross_validate(model, table, names, by="source", start=dict(zip(full.parameters, full.values)))
+        by_source = held["by_source"]
+        flags = " | ".join(c.describe() for c in held["calibrations"])
+        ball = None
+
+        def hook(inputs, full=full, ball=ball):
+            return apply(inputs, full.parameters, full.values, ball)
+        model = model_with(model, full.parameters, full.values)  # the observations: the full fit's model
+        flags = f"full fit: {full.describe()} | folds: {flags}"
+    else:
+        inputs = table_inputs(table, club_reference=config["club_reference"])
+        by_source = errors_by_source(shot_errors(predict(model, inputs), table), table)
+    observations = load_observations()
+    ratios = {o.name: gear_effect(model, o, config["loft_at"], config["club_reference"], hook)["ratio"]
+              for o in observations["gear_effect"]}
+    ratios.update({o.name: cover_effect(model, o, config["loft_at"], config["club_reference"], hook)["ratio"]
+                   for o in observations["cover"]})
+    return {"by_source": by_source, "ratios": ratios, "flags": flags}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--models", nargs="+", default=["rigid_coulomb", "hertz_mindlin"])
+    args = parser.parse_args()
+    for model_name in args.models:
+        print(f"\n#### {model_name}\n")
+        print("| configuration | source | ball speed % | launch deg | spin % | driver axis ratio | 6-iron axis ratio "
+              "| wedge cover ratio |")
+        print("|---|---|---|---|---|---|---|---|")
+        flags = []
+        for config in CONFIGURATIONS:
+            result = measure(model_name, config)
+            ratios = result["ratios"]
+            for index, (source, rms) in enumerate(result["by_source"].items()):
+                tail = (f" {ratios['trackman2009_driver']:.2f} | {ratios['trackman2009_6_iron']:.2f} | "
+                        f"{ratios['titleist_wedgecraft_58']:.3f} |") if index == 0 else " | | |"
+                print(f"| {config['name'] if index == 0 else ''} | {source} | "
+                      + " | ".join(f"{rms[k]:.2f}{'' if rms[k] <= TARGETS[k] else ' x'}" for k in KEYS) + " |" + tail)
+            if result["flags"]:
+                flags.append(f"- {config['name']}: folds' fits: {result['flags']}")
+        print("\n(x: outside the target; ball speed 1 %, launch 0.7 deg, spin 7 %; ratios target 0.5-1.5)\n")
+        print("\n".join(flags))
+
+
+if __name__ == "__main__":
+    main()
