@@ -169,7 +169,8 @@ def test_plan_shows_the_estimate_and_runaway_resolution_options_are_refused(tmp_
 def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch):
     folder = tmp_path / "adir"
     folder.mkdir()
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", folder)
     assert code == 2 and "is a folder; give a file name inside it" in err
     assert list(tmp_path.glob("adir.progress")) == [] and list(folder.iterdir()) == []
@@ -182,7 +183,8 @@ def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch
     (["-o", "/dev/full"], "is not a regular file"),
 ])
 def test_bad_output_paths_are_refused_before_running(tmp_path, capsys, old_result, monkeypatch, args, fragment):
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     args = [arg.format(tmp=tmp_path, old=old_result) for arg in args]
     code, err = cli(capsys, "run", write_study(tmp_path), *args)
     assert code == 2 and fragment.format(tmp=tmp_path) in err
@@ -199,7 +201,8 @@ def test_export_and_fit_outputs_are_checked_first(tmp_path, capsys, monkeypatch)
 
 
 def test_study_names_cannot_leave_outdir_or_collide(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     outdir = tmp_path / "deep" / "results"
     escaping = write_study(tmp_path, "escape.yaml", **{"name: compare-models": "name: ../../x"})
     code, err = cli(capsys, "run", escaping, "--outdir", outdir)
@@ -544,7 +547,7 @@ def test_debug_shows_the_traceback_and_internal_errors_say_so(tmp_path, capsys, 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("a bug")
 
-    monkeypatch.setattr("impactlab.cli.run_study", broken)
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study", broken)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", tmp_path / "r.h5")
     assert code == 1 and "internal error: ZeroDivisionError: a bug (run again with --debug" in err
     code = main(["--debug", "run", str(write_study(tmp_path)), "-o", str(tmp_path / "r.h5")])
