@@ -22,7 +22,7 @@ from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
 from impactlab.io.safe_output import check_output, write_atomically
-from impactlab.scene.clubs import user_clubs
+from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
 from impactlab.vocabulary import OUTPUTS
 

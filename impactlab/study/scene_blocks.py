@@ -14,7 +14,8 @@ from typing import Any
 
 import attrs
 
-from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike, club_preset
+from impactlab.scene.catalogue import club_preset
+from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import (
     MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, face_preset,
