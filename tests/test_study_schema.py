@@ -10,7 +10,8 @@ import pytest
 import impactlab
 from impactlab.errors import FieldError
 from impactlab.study.core import build_scene
-from impactlab.study.schema import BallBlock, ClubBlock, DeliveryBlock, FaceBlock, StrikeBlock, keys_of, structure
+from impactlab.study.schema import BallBlock, ClubBlock, DeliveryBlock, FaceBlock, StrikeBlock, keys_of
+from impactlab.study.structuring import structure
 from impactlab_models.maw import MawModel
 from impactlab_models.rigid_coulomb import RigidCoulombModel
 from test_study import assert_one_clear_message

@@ -24,7 +24,8 @@ from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
 from impactlab.scene.flight import Conditions
 from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ConditionsBlock, ContactBlock, DeliveryBlock,
-                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock, structure)
+                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock)
+from impactlab.study.structuring import structure
 
 
 def _construct(cls, where: str, **kwargs):
