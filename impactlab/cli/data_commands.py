@@ -50,7 +50,8 @@ def _cmd_validate(args) -> int:
         check_output(args.plot, what="--plot file", suffix=".png")
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
-    over, rows = [], []
+    over: list[str] = []
+    rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
 
     for name in names:
         with user_clubs(read_club_spec(path) for path in args.club or ()):

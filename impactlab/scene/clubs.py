@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
-from impactlab.units import converter
+from impactlab.units import si_angle, si_length, si_mass
 from impactlab.scene.plausibility import HEAD_HEIGHT_LIMIT, HEAD_LENGTH_LIMIT
 from impactlab.scene.materials import Material
 
@@ -134,25 +134,25 @@ class ClubHead:
     name, source : str
     """
 
-    mass: float = attrs.field(converter=converter("mass"), validator=positive("a positive, finite head mass in kg"))
+    mass: float = attrs.field(converter=si_mass, validator=positive("a positive, finite head mass in kg"))
     inertia: tuple = attrs.field(converter=_tensor, validator=_check_inertia)
     center_of_mass: tuple = attrs.field(converter=_vector3, validator=_check_center)
-    loft: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
+    loft: float = attrs.field(default=0.0, converter=si_angle, validator=in_range(
         0.0, math.pi / 2, "a static loft between 0 and 90 deg", high_open=True))
-    lie: float = attrs.field(default=math.radians(60.0), converter=converter("angle"), validator=in_range(
+    lie: float = attrs.field(default=math.radians(60.0), converter=si_angle, validator=in_range(
         0.0, math.pi / 2, "a lie angle between 0 and 90 deg", high_open=True))
-    bulge_radius: float = attrs.field(default=math.inf, converter=converter("length"),
+    bulge_radius: float = attrs.field(default=math.inf, converter=si_length,
                                       validator=positive_or_inf("a bulge radius > 0 m (inf: flat)"))
-    roll_radius: float = attrs.field(default=math.inf, converter=converter("length"),
+    roll_radius: float = attrs.field(default=math.inf, converter=si_length,
                                      validator=positive_or_inf("a roll radius > 0 m (inf: flat)"))
     material: Material | None = None
     name: str = ""
     source: str = ""
     restitution_gain: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
         0.0, 0.2, "a restitution gain of the face 0 <= de <= 0.2", high_open=False))
-    face_width: float = attrs.field(default=HEAD_LENGTH_LIMIT, converter=converter("length"),
+    face_width: float = attrs.field(default=HEAD_LENGTH_LIMIT, converter=si_length,
                                     validator=positive("a positive, finite face width in m"))
-    face_height: float = attrs.field(default=HEAD_HEIGHT_LIMIT, converter=converter("length"),
+    face_height: float = attrs.field(default=HEAD_HEIGHT_LIMIT, converter=si_length,
                                      validator=positive("a positive, finite face height in m"))
     #: a free sphere as the striker (:meth:`sphere`): the general contact scene, not a golf head
     is_sphere: bool = False
@@ -227,7 +227,7 @@ class Strike:
         Up the face (negative: towards the sole) [m].
     """
 
-    toe: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
+    toe: float = attrs.field(default=0.0, converter=si_length, validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
-    high: float = attrs.field(default=0.0, converter=converter("length"), validator=in_range(
+    high: float = attrs.field(default=0.0, converter=si_length, validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
