@@ -24,7 +24,7 @@ import numpy as np
 
 import impactlab
 from impactlab.model.case_inputs import CaseInputs
-from impactlab.scene.clubs import CLUB_PRESETS
+from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.model.registry import get_model
 
 OUTPUTS = ["tangential_restitution", "spin_rate", "vertical_launch_angle", "horizontal_launch_angle", "spin_axis"]

@@ -24,7 +24,7 @@ import numpy as np  # noqa: E402
 
 import impactlab  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
-from impactlab.scene.clubs import CLUB_PRESETS  # noqa: E402
+from impactlab.scene.catalogue import CLUB_PRESETS  # noqa: E402
 from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs  # noqa: E402
 from impactlab.scene.materials import BALL_PRESETS  # noqa: E402
 

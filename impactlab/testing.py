@@ -37,7 +37,8 @@ from impactlab.errors import ModelContractError
 from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
 from impactlab.model.base import ImpactModel
 from impactlab.physics.mechanics import effective_mass
-from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.clubs import ClubHead, Strike
+from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.scene.core import Contact, Delivery, Impact, Scene, complete_inputs
 from impactlab.vocabulary import CASE_DIM, EVERY_SCALAR_OUTPUT, INPUTS, OUTPUTS, TIME_DIM, is_history
 

@@ -14,6 +14,7 @@ converters. Inside impactlab everything is SI with angles in radians and spin in
 
 from __future__ import annotations
 
+import enum
 import functools
 import math
 from numbers import Real
@@ -123,7 +124,7 @@ def to_si(value: object, dimension: str, path: str = "", bare: str | None = None
     if not isinstance(value, str):
         raise FieldError(path, expected, value)
     converted = _string_to_si(value.strip(), dimension)
-    if converted is _BARE:  # a bare number written as text: its unit would be guessed as well (in Python too)
+    if converted is _Bare.BARE:  # a bare number written as text: its unit would be guessed as well (in Python too)
         raise FieldError(path, unit_missing(float(value), dimension), value)
     if isinstance(converted, str):  # why the text is not a quantity of this dimension
         raise FieldError(path, f"{expected}{converted}", value)
@@ -141,7 +142,7 @@ def _quantity_to_si(value, dimension: str, path: str, expected: str) -> float:
     except (TypeError, ValueError):
         raise FieldError(path, f"{expected}; one value, not an array", str(value)) from None
     converted = _string_to_si(text, dimension)
-    if converted is _BARE:
+    if converted is _Bare.BARE:
         return float(value.magnitude) if dimension == "dimensionless" else to_si(float(value.magnitude), dimension,
                                                                                   path)
     if isinstance(converted, str):
@@ -164,23 +165,72 @@ def converter(dimension: str):
     callable
     """
     def convert(value):
-        if isinstance(value, bool) or value is None:
-            return value
-        if isinstance(value, int):
-            return float(value)
-        if isinstance(value, str) or _is_pint(value):
-            return to_si(value, dimension, bare="si")
-        return value
+        return _convert(value, dimension)
     convert.__doc__ = f"attrs converter: {DIMENSIONS[dimension][2]} as SI float (bare numbers are SI)."
     return convert
 
 
-#: what :func:`_string_to_si` answers for text that is a bare number
-_BARE = object()
+def _convert(value: Any, dimension: str) -> Any:
+    """What :func:`converter` does: a bare number is SI, text with a unit or a pint quantity is converted, anything
+    else (None, a bool, a list) is passed on for the validators to refuse."""
+    if isinstance(value, bool) or value is None:
+        return value
+    if isinstance(value, int):
+        return float(value)
+    if isinstance(value, str) or _is_pint(value):
+        return to_si(value, dimension, bare="si")
+    return value
+
+
+# The converters of the value objects' fields, one named function per dimension (what ``converter(dimension)``
+# returns): attrs' mypy plugin reads a named converter's signature, so ``Ball(mass="45.93 g")`` type-checks, where
+# a converter made by a call is opaque to it.
+def si_length(value: Any) -> Any:
+    """attrs converter: a length as an SI float [m] (a bare number is SI; text with a unit or pint converted)."""
+    return _convert(value, "length")
+
+
+def si_angle(value: Any) -> Any:
+    """attrs converter: an angle as an SI float [rad] (a bare number is SI; text with a unit or pint converted)."""
+    return _convert(value, "angle")
+
+
+def si_mass(value: Any) -> Any:
+    """attrs converter: a mass as an SI float [kg] (a bare number is SI; text with a unit or pint converted)."""
+    return _convert(value, "mass")
+
+
+def si_speed(value: Any) -> Any:
+    """attrs converter: a speed as an SI float [m/s] (a bare number is SI; text with a unit or pint converted)."""
+    return _convert(value, "speed")
+
+
+def si_angular_speed(value: Any) -> Any:
+    """attrs converter: an angular speed as an SI float [rad/s] (a bare number is SI; text with a unit or pint
+    converted)."""
+    return _convert(value, "angular_speed")
+
+
+def si_pressure(value: Any) -> Any:
+    """attrs converter: a pressure (a modulus) as an SI float [Pa] (a bare number is SI; text with a unit or pint
+    converted)."""
+    return _convert(value, "pressure")
+
+
+def si_inverse_speed(value: Any) -> Any:
+    """attrs converter: an inverse speed as an SI float [s/m] (a bare number is SI; text with a unit or pint
+    converted)."""
+    return _convert(value, "inverse_speed")
+
+
+class _Bare(enum.Enum):
+    """What :func:`_string_to_si` answers for text that is a bare number (its one member, ``BARE``)."""
+
+    BARE = "bare"
 
 
 @functools.lru_cache(maxsize=4096)
-def _string_to_si(text: str, dimension: str) -> float | str | object:
+def _string_to_si(text: str, dimension: str) -> float | str | _Bare:
     """The SI value of a quantity written as text, or the reason (a suffix of the message) it is not one.
 
     Memoised: pint parses a quantity in about 0.3 ms, and a study names the same few ("80 mph", "20 deg")
@@ -198,7 +248,7 @@ def _string_to_si(text: str, dimension: str) -> float | str | object:
         except ValueError:  # a unit pint counts as none ("50 %"): judged below like any other
             number = None
         if number is not None:  # a bare number written as a string
-            return number if dimension == "dimensionless" else _BARE
+            return number if dimension == "dimensionless" else _Bare.BARE
     # pint counts radians as dimensionless, so "50 %" would pass as 0.5 rad, "30 deg" as a friction of
     # 0.52, and "50 Hz" as 50 rad/s: whether an angle unit is written decides instead
     angular = _has_angle(quantity)

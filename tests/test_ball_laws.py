@@ -75,7 +75,8 @@ def test_restitution_cap_leaves_the_one_dimensional_model_unchanged(golf_inputs=
 
 
 def _centred_head_cases(offsets, loft_deg=20.0, friction=0.15, restitutions=(0.7,)):
-    from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+    from impactlab.scene.clubs import ClubHead, Strike
+    from impactlab.scene.catalogue import CLUB_PRESETS
     from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs
     from impactlab.scene.materials import BALL_PRESETS
 

@@ -8,7 +8,7 @@ import pytest
 
 from impactlab.cli import main
 from impactlab.errors import FieldError
-from impactlab.scene.clubs import CLUB_CATALOGUE, club_from_spec, club_key, user_clubs
+from impactlab.scene.catalogue import CLUB_CATALOGUE, club_from_spec, club_key, user_clubs
 from impactlab.study.club_specs import read_club_spec
 
 SET = ("driver", "3_wood", "5_wood", "7_wood", "3_hybrid", "4_hybrid", "5_hybrid", "3_iron", "4_iron", "5_iron",

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import impactlab
-from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.clubs import ClubHead, Strike
+from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.scene.materials import BALL_PRESETS
 from impactlab.physics.contact import after_impact, contact_state, impulse_vector

@@ -11,7 +11,8 @@ from impactlab.errors import FieldError
 from impactlab.model.registry import get_model
 from impactlab.physics.contact import after_impact, contact_state, impulse_vector
 from impactlab.physics.delivery import centre_face, contact_face, loft_for_spin_loft
-from impactlab.scene.clubs import CLUB_PRESETS, Strike
+from impactlab.scene.clubs import Strike
+from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs
 from impactlab.scene.materials import BALL_PRESETS
 from impactlab.study.core import build_delivery, build_scene

@@ -110,10 +110,30 @@ def test_a_path_is_read_as_a_file_never_as_yaml_text(tmp_path, capsys, kind):
 
 
 def test_shot_tables_and_result_files_are_checked_the_same_way(tmp_path, capsys):
-    table = tmp_path / "shots.csv"
-    table.write_bytes("club_speed,ball_speed\n".encode("utf-16"))
-    code, err = cli(capsys, "validate", "--dataset", table)
-    assert code == 2 and "is UTF-16 text; save the shot table as UTF-8" in err
+    """A shot table saved as UTF-16 (what Windows exports write) is read as exported, the same values as its UTF-8
+    twin (issue 22); a file that is not a result file is refused by ``show`` with one clear message."""
+    text = "club,club_speed [mph],ball_speed [mph],back_spin [rpm]\n7 Iron,87.0,120.0,7097\nDriver,113.0,167.0,2686\n"
+    (tmp_path / "utf8.csv").write_text(text, encoding="utf-8")
+    (tmp_path / "utf16.csv").write_bytes(text.encode("utf-16"))  # with its byte-order mark, as exported
+    described = {}
+    for name in ("utf8", "utf16"):
+        code = main(["shots", str(tmp_path / f"{name}.csv"), "--csv", str(tmp_path / f"{name}-read.csv")])
+        out, err = capsys.readouterr()
+        assert code == 0 and "Traceback" not in err, err
+        described[name] = out.replace(f"{name}.csv", "FILE")
+    assert described["utf16"] == described["utf8"] and "2 shot(s); clubs: 7 Iron x1, Driver x1" in described["utf8"]
+    read = (tmp_path / "utf16-read.csv").read_text().splitlines()
+    assert read == (tmp_path / "utf8-read.csv").read_text().splitlines()
+    # the values in SI by hand: 1 mph = 0.44704 m/s exactly (the international mile); spin stays in rpm
+    assert read[0] == "line,club,club_speed [m/s],ball_speed [m/s],back_spin [rpm],flags"
+    for row, (club, club_mph, ball_mph, spin) in zip(read[1:], [("7 Iron", 87.0, 120.0, 7097),
+                                                                 ("Driver", 113.0, 167.0, 2686)]):
+        cells = row.split(",")
+        assert cells[1] == club and float(cells[4]) == spin
+        assert float(cells[2]) == pytest.approx(club_mph * 0.44704, rel=1e-12)
+        assert float(cells[3]) == pytest.approx(ball_mph * 0.44704, rel=1e-12)
+    code, err = cli(capsys, "show", tmp_path / "utf16.csv")
+    assert code == 2 and "not an impactlab result file" in err and "Traceback" not in err
     code, err = cli(capsys, "show", tmp_path)
     assert code == 2 and "is a folder, not a result file" in err
     code, err = cli(capsys, "show", "/dev/null")
@@ -169,7 +189,8 @@ def test_plan_shows_the_estimate_and_runaway_resolution_options_are_refused(tmp_
 def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch):
     folder = tmp_path / "adir"
     folder.mkdir()
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", folder)
     assert code == 2 and "is a folder; give a file name inside it" in err
     assert list(tmp_path.glob("adir.progress")) == [] and list(folder.iterdir()) == []
@@ -182,7 +203,8 @@ def test_output_folder_is_refused_before_computing(tmp_path, capsys, monkeypatch
     (["-o", "/dev/full"], "is not a regular file"),
 ])
 def test_bad_output_paths_are_refused_before_running(tmp_path, capsys, old_result, monkeypatch, args, fragment):
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     args = [arg.format(tmp=tmp_path, old=old_result) for arg in args]
     code, err = cli(capsys, "run", write_study(tmp_path), *args)
     assert code == 2 and fragment.format(tmp=tmp_path) in err
@@ -199,7 +221,8 @@ def test_export_and_fit_outputs_are_checked_first(tmp_path, capsys, monkeypatch)
 
 
 def test_study_names_cannot_leave_outdir_or_collide(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("impactlab.cli.run_study", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
     outdir = tmp_path / "deep" / "results"
     escaping = write_study(tmp_path, "escape.yaml", **{"name: compare-models": "name: ../../x"})
     code, err = cli(capsys, "run", escaping, "--outdir", outdir)
@@ -544,7 +567,7 @@ def test_debug_shows_the_traceback_and_internal_errors_say_so(tmp_path, capsys, 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("a bug")
 
-    monkeypatch.setattr("impactlab.cli.run_study", broken)
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study", broken)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", tmp_path / "r.h5")
     assert code == 1 and "internal error: ZeroDivisionError: a bug (run again with --debug" in err
     code = main(["--debug", "run", str(write_study(tmp_path)), "-o", str(tmp_path / "r.h5")])

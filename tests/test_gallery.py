@@ -31,7 +31,7 @@ def thinned(path: Path) -> dict:
 def test_every_gallery_figure_shows_what_its_legend_and_axes_claim(path, tmp_path, drawn_figures):
     study = impactlab.load_study(thinned(path), file=str(path))
     result = impactlab.run_study(study, executor="serial")
-    from impactlab.cli import _draw  # what impactlab run --plot draws, sensitivity studies included
+    from impactlab.cli.study_commands import _draw  # what impactlab run --plot draws, sensitivity studies included
 
     pictures = _draw(result, tmp_path / f"{path.stem}.h5", None)
     assert len(drawn_figures) == len(pictures)

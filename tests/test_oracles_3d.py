@@ -17,7 +17,8 @@ import pytest
 
 from impactlab.model.registry import get_model
 from impactlab.physics.contact import contact_state
-from impactlab.scene.clubs import CLUB_PRESETS, ClubHead, Strike
+from impactlab.scene.clubs import ClubHead, Strike
+from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs
 from impactlab.scene.materials import BALL_PRESETS, MATERIAL_PRESETS
 

@@ -10,7 +10,8 @@ import pytest
 import impactlab
 from impactlab.errors import FieldError
 from impactlab.study.core import build_scene
-from impactlab.study.schema import BallBlock, ClubBlock, DeliveryBlock, FaceBlock, StrikeBlock, keys_of, structure
+from impactlab.study.schema import BallBlock, ClubBlock, DeliveryBlock, FaceBlock, StrikeBlock, keys_of
+from impactlab.study.structuring import structure
 from impactlab_models.maw import MawModel
 from impactlab_models.rigid_coulomb import RigidCoulombModel
 from test_study import assert_one_clear_message
@@ -64,7 +65,7 @@ CLUB_BAD = [
 def test_the_club_study_loads():
     study = impactlab.load_study(CLUB_STUDY)
     assert study.scene.strike.toe == pytest.approx(0.005) and study.scene.strike.high == pytest.approx(-0.002)
-    high = impactlab.scene.clubs.club_preset("driver").center_of_mass[1]  # a key left out keeps the preset's
+    high = impactlab.scene.catalogue.club_preset("driver").center_of_mass[1]  # a key left out keeps the preset's
     assert study.scene.club.center_of_mass == pytest.approx((0.002, high, 0.035))
     assert study.scene.club.inertia[0][0] == pytest.approx(2.5e-4)
 

@@ -87,7 +87,7 @@ def test_foresight_sentinel_is_no_data_and_the_spin_axis_follows_from_side_and_b
     # side spin -1561, back spin 5554 (LastShot2.CSV): an axis tilted left by atan(1561/5554)
     assert v["spin_axis"][0] == pytest.approx(-math.atan(1561 / 5554))
     assert v["spin_rate"][0] == pytest.approx(5769 * RPM)  # Total Spin is used as given
-    from impactlab.scene.clubs import club_key
+    from impactlab.scene.catalogue import club_key
     assert club_key(session.text["club"][0]) == "driver"  # '1w'
 
 
@@ -166,7 +166,7 @@ def test_the_normalised_table_reads_back_to_the_same_values_and_flags(tmp_path):
 
 
 def test_club_names_of_launch_monitors_map_onto_the_catalogue():
-    from impactlab.scene.clubs import club_key
+    from impactlab.scene.catalogue import club_key
 
     expected = {"Driver": "driver", "1w": "driver", "Dr": "driver", "7i": "7_iron", "7 Iron": "7_iron",
                 "PW": "pitching_wedge", "Pitching Wedge": "pitching_wedge", "6_iron": "6_iron"}

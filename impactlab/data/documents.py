@@ -5,7 +5,7 @@ Two documents: a YAML shot table (:func:`impactlab.data.shots.read_yaml`) and a 
 keys a user may write, typed by what they hold; :func:`structure_document` turns the parsed YAML into it with
 unknown keys refused and every value of the wrong shape (a list where a mapping belongs, a mapping where a
 number belongs...) one :class:`~impactlab.errors.FieldError` at the key's ``file:line``, with the pattern and the
-error wording of :mod:`impactlab.study.schema`. The blocks check shapes; what the values mean (a field name, a
+error wording of :mod:`impactlab.study.structuring`. The blocks check shapes; what the values mean (a field name, a
 unit, a club preset) is checked by the readers, which report every bad cell at once.
 """
 
@@ -23,7 +23,7 @@ from cattrs.errors import BaseValidationError, ForbiddenExtraKeysError
 from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
-from impactlab.study.schema import _field_error
+from impactlab.study.structuring import _field_error
 from impactlab.study.yaml_lines import format_path, line_of, parse_path
 
 #: a piece of text: a string (a number written where text belongs is taken as its text, as YAML reads ``7``)

@@ -30,7 +30,7 @@ import numpy as np
 
 from impactlab.scene.plausibility import wrong_sign
 from impactlab.errors import FieldError, StudyError
-from impactlab.scene.clubs import club_key
+from impactlab.scene.catalogue import club_key
 from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
 from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, ColumnRule, VendorMap,
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,

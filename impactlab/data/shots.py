@@ -29,7 +29,8 @@ from impactlab.errors import FieldError, StudyError
 from impactlab.scene.plausibility import wrong_sign
 from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
-from impactlab.scene.clubs import CLUB_PRESETS, Strike, club_key, club_preset
+from impactlab.scene.clubs import Strike
+from impactlab.scene.catalogue import CLUB_PRESETS, club_key, club_preset
 from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, complete_inputs
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file

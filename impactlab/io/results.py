@@ -103,8 +103,6 @@ def check_result(dataset: xr.Dataset, path: str | os.PathLike = "<dataset>") -> 
         attribute whose shape is not what impactlab writes (a ``models`` attribute that is not a JSON list, a
         sensitivity result without its ``sampler``...).
     """
-    from impactlab._version import __version__
-
     attributes = dataset.attrs
     if "impactlab_version" not in attributes:
         raise StudyError(f"{path}: not an impactlab result (an HDF5/netCDF file without the impactlab_version "

@@ -84,7 +84,7 @@ class Contact3DSolution:
     work: np.ndarray
     steps: np.ndarray
     unfinished: np.ndarray
-    moment: np.ndarray | None = None
+    moment: np.ndarray
     time: np.ndarray | None = None
     normal_force: np.ndarray | None = None
     tangential_force: np.ndarray | None = None

@@ -11,7 +11,7 @@ import numpy as np
 from impactlab.validators import check, finite, in_range, positive, to_float
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.errors import FieldError
-from impactlab.units import converter
+from impactlab.units import si_angle, si_angular_speed, si_speed
 from impactlab.scene.materials import Ball, Face
 from impactlab.scene.plausibility import check_scene
 from impactlab.physics.contact import CLUB_REFERENCES, approach_state
@@ -66,15 +66,15 @@ class Impact:
         ``-(lever) * club_spin``, ``-R2 * club_spin`` for a sphere of radius R2.
     """
 
-    speed: float = attrs.field(converter=converter("speed"), validator=positive("a positive, finite speed in m/s"))
+    speed: float = attrs.field(converter=si_speed, validator=positive("a positive, finite speed in m/s"))
     angle: float = attrs.field(
-        converter=converter("angle"),
+        converter=si_angle,
         validator=in_range(-math.pi / 2, math.pi / 2, "an angle between -90 and 90 deg", low_open=True,
                            high_open=True))
-    spin: float = attrs.field(default=0.0, converter=converter("angular_speed"), validator=finite("a finite spin rate"))
+    spin: float = attrs.field(default=0.0, converter=si_angular_speed, validator=finite("a finite spin rate"))
     #: spin of the striking body [rad/s] about the same axis and counted like ``spin`` (a sphere striker,
     #: ClubHead.sphere; a club head's is taken as zero): it moves the striker's contact point by w x lever
-    club_spin: float = attrs.field(default=0.0, converter=converter("angular_speed"),
+    club_spin: float = attrs.field(default=0.0, converter=si_angular_speed,
                                   validator=finite("a finite spin rate"))
 
 
@@ -144,15 +144,15 @@ class Delivery:
         point); it needs a club head.
     """
 
-    club_speed: float = attrs.field(converter=converter("speed"),
+    club_speed: float = attrs.field(converter=si_speed,
                                    validator=positive("a positive, finite club speed in m/s"))
-    path: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
+    path: float = attrs.field(default=0.0, converter=si_angle, validator=in_range(
         -math.pi / 2, math.pi / 2, "a club path between -90 and 90 deg", low_open=True, high_open=True))
-    face_angle: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
+    face_angle: float = attrs.field(default=0.0, converter=si_angle, validator=in_range(
         -math.pi / 2, math.pi / 2, "a face angle between -90 and 90 deg", low_open=True, high_open=True))
-    attack_angle: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
+    attack_angle: float = attrs.field(default=0.0, converter=si_angle, validator=in_range(
         -math.pi / 2, math.pi / 2, "an attack angle between -90 and 90 deg", low_open=True, high_open=True))
-    dynamic_loft: float = attrs.field(default=0.0, converter=converter("angle"), validator=in_range(
+    dynamic_loft: float = attrs.field(default=0.0, converter=si_angle, validator=in_range(
         -math.pi / 2, math.pi / 2, "a dynamic loft between -90 and 90 deg", low_open=True, high_open=True))
     handedness: str = attrs.field(default="right", validator=check(lambda v: v in HANDEDNESS,
                                                                    "right or left"))

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
-from impactlab.units import converter
+from impactlab.units import si_inverse_speed, si_length, si_mass, si_pressure, si_speed
 
 #: Largest possible I/(m R^2) of a sphere whose mass lies within its radius
 #: (all mass in a thin shell at R).
@@ -38,7 +38,7 @@ class Material:
         Label and where the numbers come from.
     """
 
-    youngs_modulus: float = attrs.field(converter=converter("pressure"),
+    youngs_modulus: float = attrs.field(converter=si_pressure,
                                         validator=positive("a positive, finite modulus in Pa"))
     poisson_ratio: float = attrs.field(
         converter=to_float, validator=in_range(-1.0, 0.5, "a Poisson ratio with -1 < nu <= 0.5", low_open=True))
@@ -91,9 +91,9 @@ class RestitutionLaw:
     kind: str = attrs.field(default="constant", validator=attrs.validators.in_(RESTITUTION_LAWS))
     value: float = attrs.field(default=0.8, converter=to_float,
                                validator=in_range(0.0, 1.0, "a coefficient of restitution 0 <= e <= 1"))
-    reference_speed: float = attrs.field(default=40.0, converter=converter("speed"),
+    reference_speed: float = attrs.field(default=40.0, converter=si_speed,
                                          validator=positive("a positive reference speed in m/s"))
-    slope: float = attrs.field(default=0.0, converter=converter("inverse_speed"), validator=in_range(
+    slope: float = attrs.field(default=0.0, converter=si_inverse_speed, validator=in_range(
         -1.0, 1.0, "a slope de/dv within +-1 s/m"))
     exponent: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
         -2.0, 2.0, "an exponent within +-2"))
@@ -131,8 +131,8 @@ class Ball:
     with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
     """
 
-    radius: float = attrs.field(converter=converter("length"), validator=positive("a positive, finite radius in m"))
-    mass: float = attrs.field(converter=converter("mass"), validator=positive("a positive, finite mass in kg"))
+    radius: float = attrs.field(converter=si_length, validator=positive("a positive, finite radius in m"))
+    mass: float = attrs.field(converter=si_mass, validator=positive("a positive, finite mass in kg"))
     inertia_factor: float = attrs.field(
         default=0.4, converter=to_float,
         validator=in_range(0.0, MAX_INERTIA_FACTOR,
@@ -174,7 +174,7 @@ class Face:
 
     material: Material | None = None
     rigid: bool = attrs.field(default=False, validator=attrs.validators.instance_of(bool))
-    mass: float = attrs.field(default=math.inf, converter=converter("mass"),
+    mass: float = attrs.field(default=math.inf, converter=si_mass,
                               validator=positive_or_inf("a positive club-head mass in kg (inf: a fixed face)"))
     name: str = ""
     source: str = ""

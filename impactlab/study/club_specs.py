@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from impactlab.errors import FieldError
-from impactlab.scene.clubs import ClubHead, club_from_spec
+from impactlab.scene.clubs import ClubHead
+from impactlab.scene.catalogue import club_from_spec
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 
 

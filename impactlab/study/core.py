@@ -29,7 +29,8 @@ from impactlab.scene.core import Scene
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike)
 from impactlab.study.datasets import DATASETS
-from impactlab.study.schema import PlotBlock, StudyBlock, keys_of, lookup, structure
+from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
+from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
 from impactlab.study.sweeps import SweepAxis, SweepField, build_sweep
 from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,

@@ -14,7 +14,8 @@ from typing import Any
 
 import attrs
 
-from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike, club_preset
+from impactlab.scene.catalogue import club_preset
+from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import (
     MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, face_preset,
@@ -23,7 +24,8 @@ from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
 from impactlab.scene.flight import Conditions
 from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ConditionsBlock, ContactBlock, DeliveryBlock,
-                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock, structure)
+                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock)
+from impactlab.study.structuring import structure
 
 
 def _construct(cls, where: str, **kwargs):

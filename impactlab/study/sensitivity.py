@@ -14,7 +14,8 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError
-from impactlab.study.schema import ParameterRangeBlock, SensitivityBlock, keys_of, structure
+from impactlab.study.schema import ParameterRangeBlock, SensitivityBlock, keys_of
+from impactlab.study.structuring import structure
 from impactlab.units import to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS
 

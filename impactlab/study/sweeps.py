@@ -15,7 +15,8 @@ import numpy as np
 from impactlab.errors import FieldError
 from impactlab.study.limits import check_cases
 from impactlab.study.scene_blocks import build_scene
-from impactlab.study.schema import SI, RangeBlock, keys_of, rate_with_unit, structure
+from impactlab.study.schema import SI, RangeBlock, keys_of, rate_with_unit
+from impactlab.study.structuring import structure
 from impactlab.units import to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM
 

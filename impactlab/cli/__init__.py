@@ -1,0 +1,196 @@
+"""The ``impactlab`` command line: run studies, list models, show and plot result files, validate and fit the
+models against measured data.
+
+This package holds the parser and :func:`main` (the ``impactlab`` entry point); the commands live by concern in
+:mod:`impactlab.cli.study_commands` (run, models, show, plot, convergence, paper, export) and
+:mod:`impactlab.cli.data_commands` (validate, fit, shots).
+
+Bad input ends with one message on stderr (what, where, expected, given,
+choices) and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Sequence
+
+from impactlab._version import __version__
+from impactlab.cli.data_commands import _cmd_fit, _cmd_shots, _cmd_validate
+from impactlab.cli.study_commands import (_cmd_convergence, _cmd_export, _cmd_models, _cmd_paper, _cmd_plot,
+                                          _cmd_run, _cmd_show)
+from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
+from impactlab.run.faults import run_command
+from impactlab.study import limits
+from impactlab.study.limits import parse_size
+
+
+def _count(text: str) -> int:
+    """argparse type: a whole number >= 1 (workers, cases per chunk, repeats), refused at once otherwise."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {value}")
+    return value
+
+
+def _size(text: str) -> int:
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"expected {exc}") from None
+
+
+
+def _seconds(text: str) -> float:
+    """argparse type: a positive, finite number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text}")
+    return value
+
+
+
+CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
+    parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
+    parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    run = commands.add_parser("run", help="run a study file and write its results (HDF5)")
+    run.add_argument("study", nargs="+", help="study YAML file(s)")
+    run.add_argument("-o", "--output", help="result file (.h5) of a single study; default: STUDY_NAME.h5")
+    run.add_argument("--outdir", help="folder for the results, one STUDY_NAME.h5 per study (created if needed)")
+    run.add_argument("--plot", metavar="PNG", nargs="?", const=True,
+                     help="also draw the results (to PNG, default: next to the result file)")
+    run.add_argument("--plan", action="store_true", help="print what would run, and why, then stop")
+    run.add_argument("--executor", choices=("auto", "serial", "processes", "dask"), default="auto",
+                     help="where cases run: auto (serial for small studies, every core for large), serial, "
+                          "processes, dask; results are identical")
+    run.add_argument("--workers", type=_count, help="worker processes (default: every core)")
+    run.add_argument("--scheduler", metavar="ADDRESS", help="dask.distributed scheduler (implies --executor dask)")
+    run.add_argument("--chunk-size", type=_count, help="cases per unit of work")
+    run.add_argument("--max-cases", type=_count, help="refuse studies of more cases than this (default 10,000,000; "
+                                                       "also IMPACTLAB_MAX_CASES)")
+    run.add_argument("--max-memory", type=_size, help="refuse studies estimated to need more memory than this, e.g. "
+                                                       "16GiB (default 4GiB; also IMPACTLAB_MAX_MEMORY)")
+    run.add_argument("--notes", action="store_true",
+                     help="print every validity note in full (default: one line per result file with their count)")
+    run.add_argument("-q", "--quiet", action="store_true")
+    run.set_defaults(handler=_cmd_run)
+
+    models = commands.add_parser("models", help="list the registered models, what they need and provide")
+    models.add_argument("--json", action="store_true")
+    models.set_defaults(handler=_cmd_models)
+
+    show = commands.add_parser("show", help="describe a result file")
+    show.add_argument("file")
+    show.set_defaults(handler=_cmd_show)
+
+    plot = commands.add_parser("plot", help="draw a result file as PNG (by default the figures its study declares)")
+    plot.add_argument("file")
+    plot.add_argument("-o", "--output", help="PNG file (default: next to the result file)")
+    plot.add_argument("--x", help="sweep dimension for the horizontal axis")
+    plot.add_argument("--history", metavar="OUTPUT", help="draw this history (e.g. tangential_force) against time")
+    plot.add_argument("-v", "--variable", dest="variables", action="append",
+                      help="a scalar output to draw (repeatable; default: all)")
+    plot.add_argument("--trajectories", action="store_true",
+                      help="draw the ball flight after each model's launch, side and top view (a golf result "
+                           "holding ball_speed, vertical/horizontal_launch_angle, back_spin, side_spin, spin_axis)")
+    plot.set_defaults(handler=_cmd_plot)
+    convergence = commands.add_parser("convergence", help="error against run time for every model of a study")
+    convergence.add_argument("study", help="study YAML file (its cases and outputs are used)")
+    convergence.add_argument("-o", "--output", help="result file (.h5); default: STUDY_NAME-work-precision.h5")
+    convergence.add_argument("--plot", metavar="PNG", nargs="?", const=True,
+                             help="draw the work-precision diagram (default: next to the result file)")
+    convergence.add_argument("--repeats", type=_count, default=3, help="timed repeats per point (median)")
+    convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
+    convergence.add_argument("-q", "--quiet", action="store_true")
+    convergence.set_defaults(handler=_cmd_convergence)
+
+    export = commands.add_parser("export", help="export a delivery result's shots to golf simulators (a file, or "
+                                                "GSPro Open Connect live)")
+    export.add_argument("file", help="result file (.h5) of a study with a delivery block")
+    where = export.add_mutually_exclusive_group(required=True)
+    where.add_argument("-o", "--output", help="JSON file: an array of shot messages")
+    where.add_argument("--gspro", metavar="HOST:PORT",
+                       help="send each shot to GSPro Open Connect at HOST:PORT (port 921 if left out) and wait "
+                            "for its reply")
+    export.add_argument("--timeout", type=_seconds, default=5.0, metavar="SECONDS",
+                        help="--gspro: seconds to wait for the connection and for each reply (default 5)")
+    export.add_argument("--format", choices=("gspro",), default="gspro",
+                        help="gspro: GSPro Open Connect v1 (Speed mph, SpinAxis/HLA positive right, VLA, spins rpm; "
+                             "club speed mph, attack angle, path, face, dynamic loft in deg)")
+    export.add_argument("--model", help="only this model's shots (default: every model)")
+    export.add_argument("--device-id", default="impactlab", help="DeviceID of the messages")
+    export.set_defaults(handler=_cmd_export)
+
+    validate = commands.add_parser("validate", help="every model against the measured data the project cites")
+    validate.add_argument("--dataset", action="append",
+                          help="only this dataset, or a shot table file (.csv, .yaml) (repeatable; default: all)")
+    validate.add_argument("--model", action="append", help="models to compare on shot tables (default: all)")
+    validate.add_argument("--plot", help="shot tables: draw measured beside predicted launch to this PNG")
+    validate.add_argument("--benchmark", action="append",
+                          help="only this Chung & Ooi / Kharaz benchmark, or 'all' (repeatable; default: all, "
+                               "unless --dataset is given)")
+    validate.add_argument("--csv", help="shot tables: write every shot's measured launch beside each model's "
+                                        "prediction to this CSV file")
+    validate.add_argument("--include-flagged", action="store_true",
+                          help="shot tables: compare estimated and clamped values too (left out by default)")
+    validate.add_argument("--club", action="append", help=CLUB_HELP)
+    validate.set_defaults(handler=_cmd_validate)
+
+    shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
+    shots.add_argument("file", help="a session file: TrackMan, Garmin Golf, Foresight FSX, Rapsodo, FlightScope "
+                                    "export, or an impactlab shot-table CSV")
+    shots.add_argument("--csv", help="write the normalised table (the vocabulary's names, units in the header)")
+    shots.add_argument("--vendor", help="read with this vendor layout (default: recognised from the header)")
+    shots.add_argument("--include-flagged", action="store_true",
+                       help="count estimated and clamped values as usable (left out of fits by default)")
+    shots.add_argument("--club", action="append", help=CLUB_HELP)
+    shots.set_defaults(handler=_cmd_shots)
+
+    fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
+    fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them), or a shot table "
+                                         "(.csv, .yaml, or trackman_tour)")
+    fitting.add_argument("--cross-validate", action="store_true",
+                         help="shot tables: also fit on all rows but one and report the error on the one left out")
+    fitting.add_argument("--by", choices=("source", "row"),
+                         help="shot tables: leave out one source's rows at a time (default when the rows name "
+                              "several sources) or one row")
+    fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
+    fitting.add_argument("--parameter", action="append",
+                         help="parameter to fit (repeatable; default: friction, and beta for restitution)")
+    fitting.add_argument("--json", help="also write the fits to this JSON file")
+    fitting.add_argument("--include-flagged", action="store_true",
+                         help="shot tables: fit estimated and clamped values too (left out by default)")
+    fitting.add_argument("--club", action="append", help=CLUB_HELP)
+    fitting.set_defaults(handler=_cmd_fit)
+
+    paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
+    paper.add_argument("results", help="folder holding the result files of studies/paper/*.yaml")
+    paper.add_argument("-o", "--output", default="docs/paper.md", help="report file (markdown)")
+    paper.add_argument("--figures", help="folder for the figures (default: figures/ beside the report)")
+    paper.set_defaults(handler=_cmd_paper)
+    for command in commands.choices.values():  # --debug after the command too; SUPPRESS keeps a global one
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                             help="show the Python traceback of an error")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run one command; every failure ends as one message and an exit status (impactlab.run.faults)."""
+    args = build_parser().parse_args(argv)
+    # the limits and the warning hook (run_command) are the command's own: both are put back on return
+    with limits.configured(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None)):
+        return run_command(lambda: args.handler(args), debug=args.debug)
+

@@ -1,0 +1,154 @@
+"""The commands on measured data: ``validate`` (every model against the cited datasets, benchmarks and shot
+tables), ``fit`` (model parameters from data) and ``shots`` (read a launch-monitor export as exported).
+
+The shot tables' calibration and the fits import scipy.optimize (about 0.2 s): ``impactlab.data.shot_report``
+and ``impactlab.data.fitting`` are imported inside ``validate`` and ``fit`` only, so no other command pays for
+them.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import numpy as np
+
+from impactlab.data.session import describe as describe_session
+from impactlab.data.session import read_session, write_normalised
+from impactlab.data.validation import DATASETS, get_dataset, load_dataset_study
+from impactlab.data.validation import errors as dataset_errors
+from impactlab.data.validation.benchmark_report import describe as describe_benchmark
+from impactlab.data.validation.benchmark_report import format_table, over_budget
+from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
+from impactlab.errors import FieldError, StudyError
+from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.scene.catalogue import user_clubs
+from impactlab.study.club_specs import read_club_spec
+from impactlab.vocabulary import OUTPUTS
+
+
+def _print_benchmarks(keys) -> list[str]:
+    """Run the Chung & Ooi / Kharaz benchmarks for every model, print the table; return what is over budget."""
+    keys = None if not keys or "all" in keys else keys
+    for key in keys or ():
+        if key not in BENCHMARKS:
+            raise FieldError("benchmark", "a benchmark of impactlab validate", key, choices=sorted(BENCHMARKS))
+    errors = benchmark_errors(keys)
+    if keys:
+        print("\n".join(describe_benchmark(key) for key in keys))
+    print(format_table(errors))
+    print()
+    return over_budget(errors)
+
+
+def _cmd_validate(args) -> int:
+    # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
+    from impactlab.data.shot_report import (
+        OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
+    )
+
+    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+    if args.plot:  # refused before the models run, not after
+        check_output(args.plot, what="--plot file", suffix=".png")
+    if args.csv:
+        check_output(args.csv, what="--csv file", suffix=".csv")
+    over: list[str] = []
+    rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
+
+    for name in names:
+        if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
+            print_observations(args.model or SHOT_MODELS)
+            continue
+        with user_clubs(read_club_spec(path) for path in args.club or ()):
+            table = shot_table(name, args.include_flagged)
+            if table is not None:
+                over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
+                continue
+        data = get_dataset(name)
+        units = OUTPUTS[data.quantity].units
+        print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
+        print(f"  measured  {'  '.join(f'{v:8.3f}' for v in data.values)}"
+              + (f"   (+- {', '.join(f'{s:g}' for s in data.sigma)})" if data.sigma else ""))
+        print(f"  source: {data.source}")
+        print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
+        for model, error in dataset_errors(data).items():
+            budget = data.budgets.get(model)
+            # two different statements: the data's own uncertainty says whether the model agrees with the
+            # measurement; the budget only says the model has not got worse since it was set
+            if data.sigma is not None:
+                agreement = ("within the data's sigma" if error["rms"] <= float(np.sqrt(np.mean(np.square(
+                    data.sigma)))) else "outside the data's sigma")
+            else:
+                agreement = "no uncertainty stated"
+            if error["unused"]:
+                over.append(f"{name}/{model}")
+                verdict = f"COULD NOT PREDICT {', '.join(error['unused'])} (not used in rms and max); {agreement}"
+            elif budget is not None and error["rms"] > budget:
+                over.append(f"{name}/{model}")
+                verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
+            else:
+                verdict = f"{agreement} (regression budget kept)" if budget is not None else agreement
+            predicted = " ".join(f"{v:8.3f}" for v in error["predicted"])
+            print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
+                  f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")
+        print()
+    if args.benchmark or not args.dataset:
+        over += _print_benchmarks(args.benchmark)
+    if args.csv:
+        from impactlab.data.shot_report import write_prediction_rows
+
+        if not rows:
+            raise StudyError("--csv: no shot table was validated (the per-shot table holds shot tables' rows: "
+                             "give --dataset FILE.csv, a shot-table .yaml or trackman_tour)")
+        write_prediction_rows(rows, args.csv)
+        print(f"wrote {args.csv} ({len(rows)} shot-model row(s), measured beside predicted)", file=sys.stderr)
+    if over:
+        print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _cmd_fit(args) -> int:
+    # scipy.optimize (about 0.2 s) is imported by the fits: only validate and fit pay for it
+    from impactlab.data.fitting import describe, fit
+    from impactlab.data.shot_report import fit_shots, shot_table
+
+    if args.json:  # refused before minutes of fitting, not after
+        check_output(args.json, what="--json file", suffix=".json")
+
+    with user_clubs(read_club_spec(path) for path in args.club or ()):
+        table = shot_table(args.dataset, args.include_flagged)
+        if table is not None:
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
+    data = get_dataset(args.dataset)
+    known = [entry.id for entry in load_dataset_study(data).models]
+    models = args.model or known
+    for model in models:
+        if model not in known:
+            raise FieldError("--model", "a model of the dataset's study", model, choices=known)
+    results = []
+    print(f"{data.name}: fitting {data.quantity} at {', '.join(data.labels)} "
+          f"({'weights 1/sigma^2' if data.sigma else 'no stated uncertainty: unit weights, scaled covariance'})")
+    for model in models:
+        result = fit(data, model, args.parameter)
+        results.append(result.as_dict())
+        residuals = " ".join(f"{r:+.3f}" for r in result.residuals)
+        print(f"  {model:<16} {describe(result)}")
+        print(f"  {'':<16} residuals {residuals}; rms {result.rms:.4f} (before the fit {result.start_rms:.4f})")
+    if args.json:
+        write_atomically(args.json, json.dumps(results, indent=1).encode())
+        print(f"wrote {args.json}", file=sys.stderr)
+    return 0
+
+
+def _cmd_shots(args) -> int:
+    if args.csv:
+        check_output(args.csv, what="--csv file", suffix=".csv")
+
+    session = read_session(args.file, args.vendor)
+    with user_clubs(read_club_spec(path) for path in args.club or ()):
+        print(describe_session(session, args.include_flagged))
+    if args.csv:
+        write_normalised(session, args.csv)
+        print(f"wrote {args.csv} ({session.size} shot(s), the vocabulary's names and units)", file=sys.stderr)
+    return 0
