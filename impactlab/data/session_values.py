@@ -12,13 +12,13 @@ import csv
 import io
 import math
 import re
-import stat
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from impactlab.errors import StudyError
+from impactlab.study.yaml_lines import checked_bytes
 from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
 
 #: the largest file read as a session [bytes]
@@ -28,18 +28,7 @@ PROGRESS_ROWS = 20_000
 
 
 def _read_bytes(path: Path) -> str:
-    try:
-        info = path.stat()
-    except FileNotFoundError:
-        raise StudyError(f"{path}: no such shot table (a launch-monitor export, .csv or .yaml)") from None
-    except OSError as exc:
-        raise StudyError(f"{path}: cannot read this shot table: {exc.strerror}") from None
-    if stat.S_ISDIR(info.st_mode):
-        raise StudyError(f"{path}: is a folder, not a shot table")
-    if info.st_size > MAX_SESSION_BYTES:
-        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a shot table (at most "
-                         f"{MAX_SESSION_BYTES:,})")
-    data = path.read_bytes()
+    data = checked_bytes(path, "shot table", MAX_SESSION_BYTES, missing=" (a launch-monitor export, .csv or .yaml)")
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
         try:
             return data.decode("utf-16")
@@ -154,21 +143,29 @@ def _to_numbers(raw, layout: VendorMap, decimal: str):
     return numbers * signs, missing.to_numpy(), bad.tolist()
 
 
-def _flag_estimated(layout, header, columns, values, flags, used, unused) -> None:
-    rule = layout.estimated
+def _rule_marks(rule, header, columns, used, unused, meaning: str):
+    """Rows whose cell in a layout rule's column is one of its values (None: no rule or no such column); the
+    column is counted as used, for ``meaning``."""
     if not rule:
-        return
+        return None
     names = [_norm(split_header(c)[0]) for c in header]
     if _norm(rule["column"]) not in names:
-        return
+        return None
     column = names.index(_norm(rule["column"]))
-    cells = columns[column]
     if header[column] in unused:
         unused.remove(header[column])
-        used.append((header[column], "estimated flag: " + " or ".join(map(str, rule["values"])) + " marks "
-                     + ", ".join(rule["fields"]) + " as estimated", "", 1.0))
+        used.append((header[column], meaning, "", 1.0))
     marks = {_norm(v) for v in rule["values"]}
-    estimated = np.array([_norm(cell) in marks for cell in cells])
+    return np.array([_norm(cell) in marks for cell in columns[column]])
+
+
+def _flag_estimated(layout, header, columns, values, flags, used, unused) -> None:
+    rule = layout.estimated
+    estimated = _rule_marks(rule, header, columns, used, unused, rule and (
+        "estimated flag: " + " or ".join(map(str, rule["values"])) + " marks " + ", ".join(rule["fields"])
+        + " as estimated"))
+    if estimated is None:
+        return
     if estimated.any():
         for field in rule["fields"]:
             present = estimated & np.isfinite(values[field])
@@ -178,18 +175,9 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused) -> Non
 
 def _flag_excluded(layout, header, columns, flags, used, unused) -> None:
     rule = layout.excluded
-    if not rule:
-        return
-    names = [_norm(split_header(c)[0]) for c in header]
-    if _norm(rule["column"]) not in names:
-        return
-    column = names.index(_norm(rule["column"]))
-    if header[column] in unused:
-        unused.remove(header[column])
-        used.append((header[column], "rows marked not to use: " + " or ".join(map(str, rule["values"])), "", 1.0))
-    marks = {_norm(v) for v in rule["values"]}
-    excluded = np.array([_norm(cell) in marks for cell in columns[column]])
-    if excluded.any():
+    excluded = _rule_marks(rule, header, columns, used, unused,
+                           rule and "rows marked not to use: " + " or ".join(map(str, rule["values"])))
+    if excluded is not None and excluded.any():
         flags[("row", "excluded")] = excluded
 
 

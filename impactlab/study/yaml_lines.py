@@ -17,21 +17,31 @@ _BOMS = {b"\xff\xfe\x00\x00": "UTF-32", b"\x00\x00\xfe\xff": "UTF-32", b"\xff\xf
          b"\xfe\xff": "UTF-16"}
 
 
-def read_text_file(path: FilePath, what: str = "study file") -> str:
-    """The UTF-8 text of a regular file, or a StudyError that says what the file is instead."""
+def checked_bytes(path: FilePath, what: str, limit: int, missing: str = "", folder: str = "") -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes, or a StudyError that says what the file is instead.
+
+    ``what`` names the file in messages (``study file``, ``shot table``); ``missing`` and ``folder`` add advice to
+    the messages of a path that does not exist or is a folder.
+    """
     try:
         info = path.stat()
     except FileNotFoundError:
-        raise StudyError(f"{path}: no such {what}") from None
+        raise StudyError(f"{path}: no such {what}{missing}") from None
     except OSError as exc:
         raise StudyError(f"{path}: cannot read this {what}: {exc.strerror}") from None
     if stat.S_ISDIR(info.st_mode):
-        raise StudyError(f"{path}: is a folder, not a {what}; give the .yaml file(s) inside it (e.g. {path}/*.yaml)")
+        raise StudyError(f"{path}: is a folder, not a {what}{folder}")
     if not stat.S_ISREG(info.st_mode):
-        raise StudyError(f"{path}: is not a regular file (a device or pipe); give a YAML {what}")
-    if info.st_size > MAX_TEXT_BYTES:
-        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a {what} (at most {MAX_TEXT_BYTES:,})")
-    data = path.read_bytes()
+        raise StudyError(f"{path}: is not a regular file (a device or pipe); give a {what}")
+    if info.st_size > limit:
+        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a {what} (at most {limit:,})")
+    return path.read_bytes()
+
+
+def read_text_file(path: FilePath, what: str = "study file") -> str:
+    """The UTF-8 text of a regular file, or a StudyError that says what the file is instead."""
+    data = checked_bytes(path, what, MAX_TEXT_BYTES,
+                         folder=f"; give the .yaml file(s) inside it (e.g. {path}/*.yaml)")
     for bom, encoding in _BOMS.items():
         if data.startswith(bom):
             raise StudyError(f"{path}: is {encoding} text; save the {what} as UTF-8")
