@@ -247,10 +247,6 @@ MUTANTS = [
     ("derive-lateral-impulse-ignored", "impactlab/model/derive.py",
      'raw["tangential_impulse"], raw.get("lateral_impulse"))', 'raw["tangential_impulse"], None)',
      T_3D, "derived launch and spin ignore the lateral impulse (the slip that turns)"),
-    ("delivery-backspin-axis-sign", "impactlab/physics/delivery.py",
-     "backspin_axis = np.stack([np.sin(horizontal), -np.cos(horizontal)",
-     "backspin_axis = np.stack([np.sin(horizontal), np.cos(horizontal)",
-     T_3D, "1-D launch: backspin axis to the right of the launch instead of the left (spin axis wrong)"),
     ("delivery-handedness-path", "impactlab/physics/delivery.py",
      "return _unit(path, attack_angle, sign), _unit(face_angle, dynamic_loft, sign)",
      "return _unit(path, attack_angle, 1.0), _unit(face_angle, dynamic_loft, sign)",
@@ -281,9 +277,6 @@ MUTANTS = [
 
 #: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out
 EQUIVALENT: dict[str, str] = {
-    "delivery-backspin-axis-sign": "on no path: physics/delivery.launch (the 1-D launch of the first golf outputs) "
-                                   "has no caller since derived outputs went through contact.ground_outputs; it "
-                                   "changes no result impactlab computes",
     "maw-annuli-steps": "equivalent to the contract: the annular method's error is set by its ring count; 200 "
                         "steps instead of 10 per annulus stay within its tolerance (measured against an "
                         "independent MDR: 0.83 of the bound at 40 and 85 annuli, against 0.82 unmutated)",

@@ -44,60 +44,6 @@ def spin_loft(path, face_angle, attack_angle, dynamic_loft, handedness=1.0):
     return np.arccos(np.clip(np.sum(velocity * normal, axis=-1), -1.0, 1.0))
 
 
-def launch(normal_impulse, tangential_impulse, spin_rate, *, ball_mass, path, face_angle, attack_angle, dynamic_loft,
-           handedness=1.0):
-    """Launch direction and spin axis in the ground frame from the 2-D impulses (SI, radians).
-
-    Parameters
-    ----------
-    normal_impulse, tangential_impulse : array_like
-        J_n along the face normal and J_t opposing the slip, in the impact plane [N s].
-    spin_rate : array_like
-        Ball spin after impact about the impact plane's normal, backspin positive [rad/s].
-
-    Returns
-    -------
-    dict
-        ``vertical_launch_angle``, ``horizontal_launch_angle`` (right positive),
-        ``vertical_launch_ratio`` = (VLA - attack)/(loft - attack),
-        ``horizontal_launch_ratio`` = (HLA - path)/(face - path) (absolute
-        angles), ``spin_axis`` (tilt of the spin axis from horizontal, positive
-        for a ball that curves right) and ``spin_loft`` [rad].
-    """
-    velocity, normal = club_directions(path, face_angle, attack_angle, dynamic_loft, handedness)
-    cos_loft = np.clip(np.sum(velocity * normal, axis=-1), -1.0, 1.0)
-    loft = np.arccos(cos_loft)
-    # unit vector in the face along the incoming slip: p = cos(a) n - sin(a) x
-    sin_loft = np.sin(loft)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        slip_direction = np.where(sin_loft[..., None] > 1e-12,
-                                  (cos_loft[..., None] * normal - velocity) / sin_loft[..., None], 0.0)
-    jn = np.asarray(normal_impulse, dtype=float)[..., None]
-    jt = np.asarray(tangential_impulse, dtype=float)[..., None]
-    ball_velocity = (jn * normal - jt * slip_direction) / np.asarray(ball_mass, dtype=float)[..., None]
-    spin_vector = np.asarray(spin_rate, dtype=float)[..., None] * np.cross(normal, slip_direction)
-
-    horizontal = np.arctan2(ball_velocity[..., 1], ball_velocity[..., 0])
-    vertical = np.arctan2(ball_velocity[..., 2], np.hypot(ball_velocity[..., 0], ball_velocity[..., 1]))
-    # backspin axis: horizontal, perpendicular to the launch direction, to its left
-    backspin_axis = np.stack([np.sin(horizontal), -np.cos(horizontal), np.zeros_like(horizontal)], axis=-1)
-    spin_axis = np.arctan2(spin_vector[..., 2], np.sum(spin_vector * backspin_axis, axis=-1))
-
-    sign = np.sign(np.asarray(handedness, dtype=float))
-    path_abs, face_abs = sign * np.asarray(path, dtype=float), sign * np.asarray(face_angle, dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        vertical_ratio = (vertical - attack_angle) / (dynamic_loft - attack_angle)
-        horizontal_ratio = (horizontal - path_abs) / (face_abs - path_abs)
-    return {
-        "spin_loft": loft,
-        "vertical_launch_angle": vertical,
-        "horizontal_launch_angle": horizontal,
-        "vertical_launch_ratio": np.where(np.abs(dynamic_loft - attack_angle) > 1e-12, vertical_ratio, np.nan),
-        "horizontal_launch_ratio": np.where(np.abs(face_abs - path_abs) > 1e-12, horizontal_ratio, np.nan),
-        "spin_axis": spin_axis,
-    }
-
-
 def contact_face(dynamic_loft, face_angle, strike_toe, strike_high, bulge_radius, roll_radius):
     """Dynamic loft and face angle of the face at the strike point, from those at the face centre [rad].
 
