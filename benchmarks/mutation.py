@@ -250,7 +250,7 @@ MUTANTS = [
     ("delivery-handedness-path", "impactlab/physics/delivery.py",
      "return _unit(path, attack_angle, sign), _unit(face_angle, dynamic_loft, sign)",
      "return _unit(path, attack_angle, 1.0), _unit(face_angle, dynamic_loft, sign)",
-     T_3D, "a left-hander's club path not mirrored"),
+     T_3D + ["tests/test_delivery_definitions.py"], "a left-hander's club path not mirrored"),
     # --- glue outside physics/models that the issue names
     ("study-poisson-override", "impactlab/study/scene_blocks.py",
      "ratio = base.poisson_ratio if ratio is None else ratio", "ratio = base.poisson_ratio",

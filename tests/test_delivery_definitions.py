@@ -388,3 +388,25 @@ def test_a_turning_rate_without_its_unit_is_refused_not_guessed():
                               "delivery": {"club_speed": "100 mph", "dynamic_loft": "14 deg"},
                               "sweep": {"delivery.head_rotation.up": [0, 1000]}, "models": ["rigid_coulomb"]})
     assert error.value.path == "sweep.delivery.head_rotation.up[1]"
+
+
+def test_a_left_handers_spin_loft_is_the_mirror_of_a_right_handers():
+    """Mirror symmetry: a left-hander's path and face are counted in the golfer's own words, so the angle between
+    club velocity and face normal is the right-hander's for the same numbers. Hand-built vectors, y to the
+    golfer's right mirrored for the left-hander: both vectors flip their y, their dot product does not."""
+    from impactlab.physics.delivery import spin_loft
+    from impactlab.scene.core import Delivery
+
+    path, face, attack, loft = map(math.radians, (4.0, -2.0, -1.5, 12.0))
+
+    def unit(horizontal, vertical, sign):
+        return np.array([math.cos(vertical) * math.cos(horizontal), sign * math.cos(vertical) * math.sin(horizontal),
+                         math.sin(vertical)])
+
+    for sign in (1.0, -1.0):
+        expected = math.acos(float(unit(path, attack, sign) @ unit(face, loft, sign)))
+        assert float(spin_loft(path, face, attack, loft, sign)) == pytest.approx(expected, abs=1e-12)
+    right = Delivery(50.0, path=path, face_angle=face, attack_angle=attack, dynamic_loft=loft, handedness="right")
+    left = Delivery(50.0, path=path, face_angle=face, attack_angle=attack, dynamic_loft=loft, handedness="left")
+    assert left.spin_loft == pytest.approx(right.spin_loft, abs=1e-12)
+    assert math.degrees(right.spin_loft) == pytest.approx(math.degrees(expected), abs=1e-9)
