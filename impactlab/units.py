@@ -46,8 +46,7 @@ EXAMPLE_UNITS: dict[str, tuple[str, float]] = {
     "length": ("mm", 1e-3), "mass": ("g", 1e-3), "pressure": ("MPa", 1e6), "speed": ("mph", 0.44704),
     "angle": ("deg", math.pi / 180.0), "angular_speed": ("rpm", math.pi / 30.0), "time": ("ms", 1e-3),
     "inertia": ("g*cm**2", 1e-7), "inverse_speed": ("s/m", 1.0),
-    # kelvin, not degC: the example multiplies, and an offset unit does not scale
-    "temperature": ("K", 1.0),
+    "temperature": ("degC", 1.0),  # an offset unit: _example adds its zero, 273.15 K, instead of multiplying
 }
 
 
@@ -61,6 +60,8 @@ def _example(value: float, dimension: str) -> str:
     """``200`` as a mass -> "200 g or 0.2 kg": the number in the usual unit, and what that is in SI."""
     unit, size = EXAMPLE_UNITS[dimension]
     si_unit = DIMENSIONS[dimension][0]
+    if dimension == "temperature":  # 0 degC is 273.15 K by definition (SI Brochure, 9th ed., 2.3.1)
+        return f"{value:g} {unit} or {value + 273.15:.6g} {si_unit}"
     if unit == si_unit:
         return f"{value:g} {unit}"
     if size < 1.0 and 0.0 < abs(value) < 1.0 and dimension != "angle":  # 0.021335 as a radius: metres, likely

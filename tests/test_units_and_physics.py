@@ -28,6 +28,7 @@ def test_quantities_convert_to_si(value, dimension, expected):
     (35, "speed", "35 mph or 15.6464 m/s"), (15, "angle", "15 deg or 0.261799 rad"),
     (2500, "angular_speed", "2500 rpm or 261.799 rad/s"), ("200", "mass", "200 g or 0.2 kg"),
     (0.021335, "length", "0.021335 m or 21.335 mm"), (136, "pressure", "136 MPa or 1.36e+08 Pa"),
+    (25, "temperature", "25 degC or 298.15 K"),
 ])
 def test_a_bare_number_of_a_dimension_is_never_given_a_unit(value, dimension, example):
     with pytest.raises(FieldError, match=f"x.y: expected .* with its unit, e.g. {re.escape(example)}"):

@@ -30,11 +30,8 @@ Inertia = NewType("Inertia", float)
 Number = NewType("Number", float)
 #: a restitution slope de/dv: a quantity of inverse speed ('-0.002 s/m')
 InverseSpeed = NewType("InverseSpeed", float)
-#: quantities whose unit must be written (a bare number is refused): the air conditions
+#: an air temperature (the ball flight's conditions): '25 degC', '298 K'
 Temperature = NewType("Temperature", float)
-UnitPressure = NewType("UnitPressure", float)
-UnitLength = NewType("UnitLength", float)
-UnitSpeed = NewType("UnitSpeed", float)
 #: true or false, nothing else ("yes" and 1 are refused, where plain ``bool`` would accept them)
 Flag = NewType("Flag", bool)
 #: a whole number >= 1 (the length of a sweep range)
@@ -70,8 +67,7 @@ def rate_with_unit(value, where: str = "") -> float:
     return to_si(value, "angular_speed", where)
 
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
-               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless"}
-_WITH_UNIT = {Temperature: "temperature", UnitPressure: "pressure", UnitLength: "length", UnitSpeed: "speed"}
+               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature"}
 
 
 class SI(float):
@@ -238,11 +234,11 @@ class ConditionsBlock:
 
     _what = "the air conditions"
     temperature: Temperature | None = None
-    pressure: UnitPressure | None = None
+    pressure: Pressure | None = None
     relative_humidity: Number | None = None
-    altitude: UnitLength | None = None
-    headwind: UnitSpeed | None = None
-    crosswind: UnitSpeed | None = None
+    altitude: Length | None = None
+    headwind: Speed | None = None
+    crosswind: Speed | None = None
 
 
 @attrs.frozen

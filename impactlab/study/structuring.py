@@ -29,7 +29,7 @@ from cattrs.errors import AttributeValidationNote, BaseValidationError, Forbidde
 from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
-from impactlab.study.schema import (_DIMENSIONS, _WITH_UNIT, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
+from impactlab.study.schema import (_DIMENSIONS, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
                                     InverseSpeed, Name, Rate, Restitution, RestitutionBlock, keys_of,
                                     rate_with_unit)
 from impactlab.study.yaml_lines import format_path, parse_path
@@ -42,23 +42,6 @@ def _quantity_hook(dimension: str):
             return float(value)
         return to_si(value, dimension)
     return structure
-
-
-def _unit_required_hook(dimension: str):
-    """A quantity whose unit must be written: a bare number is refused, its unit never guessed."""
-    def structure(value, _):
-        if isinstance(value, SI):
-            return float(value)
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            example = {"temperature": "15 degC", "pressure": "1013 hPa", "length": "1600 m", "speed": "5 mph"}
-            raise FieldError("", f"{DIMENSIONS_WORDS[dimension]} with its unit, e.g. '{example[dimension]}' (a bare "
-                                 "number's unit is never guessed)", value)
-        return to_si(value, dimension)
-    return structure
-
-
-DIMENSIONS_WORDS = {"temperature": "a temperature", "pressure": "a pressure", "length": "a length",
-                    "speed": "a speed"}
 
 
 def _inverse_speed(value, _) -> float:
@@ -146,8 +129,6 @@ def _converter() -> Converter:
     converter = Converter()
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
-    for type_, dimension in _WITH_UNIT.items():
-        converter.register_structure_hook(type_, _unit_required_hook(dimension))
     hooks: tuple[tuple[Any, Any], ...] = ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count),
                                           (Name, lambda v, _: v), (Restitution, _restitution),
                                           (InertiaSpec, _inertia_spec), (Rate, lambda v, _: rate_with_unit(v)))
