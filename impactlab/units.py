@@ -37,6 +37,8 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "time": ("s", "s", "a time"),
     "inertia": ("kg*m**2", "kg*m**2", "a moment of inertia"),
     "inverse_speed": ("s/m", "s/m", "a slope per speed"),
+    # the air of the ball flight's conditions: "15 degC" and "59 degF" are read as temperatures (registry below)
+    "temperature": ("K", "K", "a temperature"),
     "dimensionless": ("dimensionless", "dimensionless", "a number"),
 }
 
@@ -151,29 +153,9 @@ def _quantity_to_si(value, dimension: str, path: str, expected: str) -> float:
     return converted
 
 
-def converter(dimension: str):
-    """An attrs converter for a value object's field of ``dimension``: a bare number is SI (as the object's
-    docstring says), a string with a unit or a pint quantity is converted, anything else passes to the
-    validators (which say what was expected).
-
-    Parameters
-    ----------
-    dimension : str
-        A key of :data:`DIMENSIONS`.
-
-    Returns
-    -------
-    callable
-    """
-    def convert(value):
-        return _convert(value, dimension)
-    convert.__doc__ = f"attrs converter: {DIMENSIONS[dimension][2]} as SI float (bare numbers are SI)."
-    return convert
-
-
 def _convert(value: Any, dimension: str) -> Any:
-    """What :func:`converter` does: a bare number is SI, text with a unit or a pint quantity is converted, anything
-    else (None, a bool, a list) is passed on for the validators to refuse."""
+    """The value objects' converters (``si_length``...): a bare number is SI, text with a unit or a pint quantity is
+    converted, anything else (None, a bool, a list) is passed on for the validators to refuse."""
     if isinstance(value, bool) or value is None:
         return value
     if isinstance(value, int):
@@ -183,9 +165,8 @@ def _convert(value: Any, dimension: str) -> Any:
     return value
 
 
-# The converters of the value objects' fields, one named function per dimension (what ``converter(dimension)``
-# returns): attrs' mypy plugin reads a named converter's signature, so ``Ball(mass="45.93 g")`` type-checks, where
-# a converter made by a call is opaque to it.
+# The converters of the value objects' fields, one named function per dimension: attrs' mypy plugin reads a named
+# converter's signature, so ``Ball(mass="45.93 g")`` type-checks, where a converter made by a call is opaque to it.
 def si_length(value: Any) -> Any:
     """attrs converter: a length as an SI float [m] (a bare number is SI; text with a unit or pint converted)."""
     return _convert(value, "length")
@@ -279,6 +260,3 @@ RADS_TO_RPM = 60.0 / (2.0 * math.pi)
 #: metres per second in a mile per hour (exact: the international mile)
 MPH = 0.44704
 
-
-#: air temperature (the ball flight's conditions): K; "15 degC" and "59 degF" are read as temperatures
-DIMENSIONS["temperature"] = ("K", "K", "a temperature")

@@ -97,7 +97,7 @@ class ClubHead:
     """A club head: a free rigid body with a (possibly curved) face.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------
@@ -217,7 +217,7 @@ class Strike:
     """Where the ball meets the face, from the face centre along the face axes [m].
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------

@@ -44,7 +44,7 @@ class Impact:
     """How the ball meets the face.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------
@@ -104,7 +104,7 @@ class Delivery:
     """A golf delivery: how the club head meets the ball, as a golfer or launch monitor describes it.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------

@@ -26,7 +26,7 @@ class Material:
     """Isotropic linear-elastic material.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------
@@ -66,7 +66,7 @@ class RestitutionLaw:
     """Normal coefficient of restitution of a ball against a steel face as a function of the normal impact speed.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------
@@ -128,7 +128,7 @@ class Ball:
     """A sphere: radius R [m], mass m [kg], inertia factor K^2 = I/(m R^2) and, for compliant models, its material.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
     """
 
     radius: float = attrs.field(converter=si_length, validator=positive("a positive, finite radius in m"))
@@ -160,7 +160,7 @@ class Face:
     """The striking face: a material, or rigid; and the club-head mass behind it.
 
     Physical values are SI floats; a bare number given is read as SI (angles in rad, spin in rad/s), and a string
-    with a unit (``"45.93 g"``) or a pint quantity is converted (:func:`impactlab.units.converter`).
+    with a unit (``"45.93 g"``) or a pint quantity is converted (the ``si_*`` converters of :mod:`impactlab.units`).
 
     Parameters
     ----------
