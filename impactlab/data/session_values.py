@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from impactlab.errors import StudyError
-from impactlab.study.yaml_lines import checked_bytes
+from impactlab.study.yaml_lines import checked_bytes, utf8_text
 from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
 
 #: the largest file read as a session [bytes]
@@ -36,12 +36,7 @@ def _read_bytes(path: Path) -> str:
             raise StudyError(f"{path}: is not UTF-16 text after its UTF-16 byte-order mark") from None
     if b"\0" in data:
         raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a shot table")
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = data[:exc.start].count(b"\n") + 1
-        raise StudyError(f"{path}:{line}: is not UTF-8 text (byte 0x{data[exc.start]:02x}); save the shot table "
-                         "as UTF-8") from None
+    return utf8_text(data, path, "shot table")
 
 
 def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str]]:

@@ -47,6 +47,11 @@ def read_text_file(path: FilePath, what: str = "study file") -> str:
             raise StudyError(f"{path}: is {encoding} text; save the {what} as UTF-8")
     if b"\0" in data:
         raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a YAML {what}")
+    return utf8_text(data, path, what)
+
+
+def utf8_text(data: bytes, path: FilePath, what: str) -> str:
+    """``data`` decoded as UTF-8 (a byte-order mark dropped), or a StudyError at the line of the first bad byte."""
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
