@@ -154,7 +154,7 @@ class Session:
         # a field no layout of this vendor maps (the 3-D spin loft) is absent: NaN, as an empty cell
         delivery = {key: (self.values[key][index].copy() if key in self.values else np.full(index.size, np.nan))
                     for key in DELIVERY_FIELDS}
-        problems = _resolve_spin_loft(delivery, [{"_line": self.lines[i]} for i in index], self.file)
+        problems = _resolve_spin_loft(delivery, self.lines[index], self.file)
         if problems:
             raise StudyError("; ".join(problems))
         square = ~(np.isfinite(delivery["face_angle"]) & np.isfinite(delivery["path"]))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from typing import Any
 
 import attrs
@@ -128,16 +129,17 @@ def _field_of(header: str) -> tuple[str | None, str | None]:
     return (f"{key}_sigma" if sigma else key), unit
 
 
-def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]:
+def _resolve_spin_loft(delivery: dict, lines: Sequence | np.ndarray, file: str) -> list[str]:
     """Rows that give the face to path instead of the face angle, or the 3-D spin loft instead of the dynamic loft
     (TrackMan exports both, "Face To Path" and "Spin Loft"): the missing angle follows, in place; where both are
-    given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). Returns the problems found."""
+    given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). ``lines``: each row's file line, for
+    messages. Returns the problems found."""
     problems = []
     path = np.nan_to_num(delivery["path"])
     f2p, face = delivery["face_to_path"], delivery["face_angle"]
     disagree = np.isfinite(f2p) & np.isfinite(face) & (np.abs(face - path - f2p) > SPIN_LOFT_TOLERANCE)
-    for index in np.nonzero(disagree)[0]:
-        problems.append(f"{file}:{rows[index].get('_line', '?')}: face_to_path: expected face_angle - path "
+    for index in np.flatnonzero(disagree).tolist():
+        problems.append(f"{file}:{lines[index]}: face_to_path: expected face_angle - path "
                         f"({math.degrees(face[index] - path[index]):.2f} deg), got {math.degrees(f2p[index]):.2f} deg")
     delivery["face_angle"] = np.where(np.isnan(face) & np.isfinite(f2p), path + f2p, face)
     given = delivery["spin_loft"]
@@ -145,8 +147,8 @@ def _resolve_spin_loft(delivery: dict, rows: list[dict], file: str) -> list[str]
     implied = loft_for_spin_loft(given, path, face, attack)
     with np.errstate(invalid="ignore"):
         made = spin_loft(path, face, attack, loft)
-    for index in np.nonzero(np.isfinite(given))[0]:
-        where = f"{file}:{rows[index].get('_line', '?')}: spin_loft"
+    for index in np.flatnonzero(np.isfinite(given)).tolist():
+        where = f"{file}:{lines[index]}: spin_loft"
         if np.isnan(loft[index]) and np.isnan(implied[index]) and np.isfinite(attack[index]):
             problems.append(f"{where}: expected a spin loft at least the angle between face and path, got "
                             f"{math.degrees(given[index]):.2f} deg")

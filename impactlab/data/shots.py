@@ -72,7 +72,7 @@ def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, s
     sigma = {key: np.array([row.get(f"{key}_sigma", math.nan) for row in rows], float) for key in MEASURED_FIELDS}
     for key in MEASURED_FIELDS:
         sigma[key] = np.where(np.isnan(sigma[key]), sigma_defaults.get(key, DEFAULT_SIGMA[key]), sigma[key])
-    problems = _resolve_spin_loft(delivery, rows, file)
+    problems = _resolve_spin_loft(delivery, [row.get("_line", "?") for row in rows], file)
     for key in ("path", "face_angle", "strike_toe", "strike_high"):
         delivery[key] = np.nan_to_num(delivery[key])  # square face and path, centred strike unless given
     for index, row in enumerate(rows):
