@@ -4,60 +4,19 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from impactlab.units import MPH
 from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 from impactlab.study.datasets import DATASETS
-from impactlab.plot.style import _MARKERS, _STYLES, _axis_label, _display, _save
+from impactlab.plot.style import _MARKERS, _STYLES, _axis_label, _display, _save, conditions
 # the ball-flight figure has its own module; the CLI and users import it from here
 from impactlab.plot.trajectories import (MAX_TRAJECTORIES as MAX_TRAJECTORIES,
                                          TRAJECTORY_LAUNCH as TRAJECTORY_LAUNCH,
                                          plot_trajectories as plot_trajectories)
-
-
-def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:
-    """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
-    try:
-        scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
-    except ValueError:
-        return ""
-    # swept fields (dimensions, fields a labelled dimension sets) vary between the lines, and a selected value
-    # is named in the title or legend: only what no coordinate carries is a condition of the whole figure
-    swept = set(dataset.dims) | set(dataset.coords) | set(skip)
-    if "club_speed" in swept:  # a delivery's impact speed follows its club speed
-        swept.add("speed")
-    words = []
-
-    def value(key):
-        item = scene.get(key)
-        if key in swept or item is None:
-            return None
-        return float(item) if not isinstance(item, str) else float(item)
-
-    if (speed := value("club_speed")) is not None:
-        words.append(f"club speed {speed / MPH:.0f} mph")
-    elif (speed := value("speed")) is not None:
-        words.append(f"{speed / MPH:.0f} mph")
-    for key, text in (("friction", "friction {:g}"), ("restitution", "e {:g}"),
-                      ("tangential_loss", "cover loss {:g}")):
-        item = value(key)
-        if item is not None and not (key == "tangential_loss" and item == 0.0):
-            words.append(text.format(item))
-    face, club = value("face_youngs_modulus"), value("club_mass")
-    stiffness = None if face is None else "rigid" if np.isinf(face) else f"E {face / 1e9:.0f} GPa"
-    if club is not None and np.isinf(club):
-        words.append(f"fixed face ({stiffness})" if stiffness else "fixed face")
-    else:
-        if stiffness:
-            words.append(f"{stiffness} face")
-        if club is not None:
-            words.append(f"{club * 1e3:.0f} g head")
-    return ", ".join(words)
 
 
 def _draw_measured(axis, output: str, names, xs) -> None:

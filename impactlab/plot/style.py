@@ -3,12 +3,17 @@ figure (empty panels, legend entries with nothing drawn) run before it is saved.
 
 from __future__ import annotations
 
+import json
 import textwrap
 import warnings
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+import xarray as xr
+
+from impactlab.units import MPH
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -66,3 +71,48 @@ def _save(figure, path) -> Path:
     path = Path(path)
     figure.savefig(path, dpi=110)
     return path
+
+
+def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:
+    """The scene's fixed conditions in words (speed, friction, restitution, face, club), leaving out swept ones."""
+    try:
+        scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
+    except ValueError:
+        return ""
+    # swept fields (dimensions, fields a labelled dimension sets) vary between the lines, and a selected value
+    # is named in the title or legend: only what no coordinate carries is a condition of the whole figure
+    swept = set(dataset.dims) | set(dataset.coords) | set(skip)
+    if "club_speed" in swept:  # a delivery's impact speed follows its club speed
+        swept.add("speed")
+    words = []
+
+    def value(key):
+        item = scene.get(key)
+        if key in swept or item is None:
+            return None
+        return float(item) if not isinstance(item, str) else float(item)
+
+    if (speed := value("club_speed")) is not None:
+        words.append(f"club speed {speed / MPH:.0f} mph")
+    elif (speed := value("speed")) is not None:
+        words.append(f"{speed / MPH:.0f} mph")
+    # a golf delivery's angles: loft and attack, and path and face where the club is not square
+    for key, label in (("dynamic_loft", "loft"), ("attack_angle", "attack"), ("path", "path"), ("face_angle", "face")):
+        angle = value(key)
+        if angle is not None and (angle != 0.0 or key in ("dynamic_loft", "attack_angle")):
+            words.append(f"{label} {np.degrees(angle):.3g} deg")
+    for key, text in (("friction", "friction {:g}"), ("restitution", "e {:g}"),
+                      ("tangential_loss", "cover loss {:g}")):
+        item = value(key)
+        if item is not None and not (key == "tangential_loss" and item == 0.0):
+            words.append(text.format(item))
+    face, club = value("face_youngs_modulus"), value("club_mass")
+    stiffness = None if face is None else "rigid" if np.isinf(face) else f"E {face / 1e9:.0f} GPa"
+    if club is not None and np.isinf(club):
+        words.append(f"fixed face ({stiffness})" if stiffness else "fixed face")
+    else:
+        if stiffness:
+            words.append(f"{stiffness} face")
+        if club is not None:
+            words.append(f"{club * 1e3:.0f} g head")
+    return ", ".join(words)

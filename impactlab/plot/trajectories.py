@@ -15,7 +15,7 @@ from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS
 from impactlab.physics.flight import fly
 from impactlab.scene.flight import air_arrays
 from impactlab.model.derive import FLIGHT_INPUTS
-from impactlab.plot.style import _MARKERS, _STYLES, _save
+from impactlab.plot.style import _MARKERS, _STYLES, _save, conditions
 
 #: the launch a trajectory figure needs in a result file (a golf study that asks for them)
 TRAJECTORY_LAUNCH = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin",
@@ -125,8 +125,10 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if np.any(wind):
         air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
+    scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
-                    f"Smits & Smith (1994) aerodynamics, {air_words}{count}", fontsize=9)
+                    + (f"{scene}\n" if scene else "") + f"Smits & Smith (1994) aerodynamics, {air_words}{count}",
+                    fontsize=9)
     figure.tight_layout(rect=(0.0, 0.0, 0.80, 1.0))
     return _save(figure, path)
 
