@@ -1,8 +1,9 @@
 """The shot table: its fields, their units and aliases, and :class:`ShotTable` (rows of measured shots in SI).
 
 The definitions the readers share: :mod:`impactlab.data.shots` (impactlab's YAML and CSV tables, predictions and
-their errors) and :mod:`impactlab.data.session` (launch-monitor exports as exported) both build a
-:class:`ShotTable` from these fields; neither reader imports the other's internals.
+their errors) and :mod:`impactlab.data.session` (launch-monitor exports as exported) read their files into these
+fields; :meth:`impactlab.data.session.Session.shot_table` is the one place a :class:`ShotTable` is assembled from
+them (a YAML table's rows become a session first).
 """
 
 from __future__ import annotations
