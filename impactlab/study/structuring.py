@@ -30,8 +30,7 @@ from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
 from impactlab.study.schema import (_DIMENSIONS, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
-                                    InverseSpeed, Name, Rate, Restitution, RestitutionBlock, keys_of,
-                                    rate_with_unit)
+                                    InverseSpeed, Name, Restitution, RestitutionBlock, keys_of)
 from impactlab.study.yaml_lines import format_path, parse_path
 from impactlab.units import to_si
 
@@ -131,7 +130,7 @@ def _converter() -> Converter:
         converter.register_structure_hook(type_, _quantity_hook(dimension))
     hooks: tuple[tuple[Any, Any], ...] = ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count),
                                           (Name, lambda v, _: v), (Restitution, _restitution),
-                                          (InertiaSpec, _inertia_spec), (Rate, lambda v, _: rate_with_unit(v)))
+                                          (InertiaSpec, _inertia_spec))
     for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
