@@ -321,3 +321,13 @@ def test_a_yaml_row_is_square_unless_it_says_otherwise_and_an_exports_row_is_not
     # a YAML sigma block that is no uncertainty is refused at its line, once, not once per row
     with pytest.raises(StudyError, match=r"t.yaml:2: sigma.spin_rate: expected a positive uncertainty, got 0"):
         read_yaml(text.replace("rows:", "sigma: {spin_rate: 0 rpm}\nrows:"), "t.yaml")
+
+
+def test_a_yaml_rows_bare_zero_is_read_and_any_other_bare_number_refused():
+    row = ("name: t\nrows:\n  - {club: driver, club_speed: 50 m/s, attack_angle: 0, path: 0, dynamic_loft: 12 deg, "
+           "ball_speed: 70 m/s}\n")
+    table = read_yaml(row, "t.yaml")
+    assert table.delivery["attack_angle"][0] == 0.0 and table.delivery["path"][0] == 0.0
+    with pytest.raises(StudyError, match=r"t.yaml:3: rows\[0\].path: expected a value with its unit \(in the column "
+                                         r"header, the units: block or the value\), got 1"):
+        read_yaml(row.replace("path: 0", "path: 1"), "t.yaml")

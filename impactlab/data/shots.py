@@ -56,11 +56,15 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
                 pass
     elif unit is not None and value is not None and not isinstance(value, bool):
         value = f"{value} {unit}"
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        raise FieldError(where, "a value with its unit (in the column header, the units: block or the value)", value)
     if value is None:
         return math.nan
-    return to_si(value, dimension, where)
+    try:
+        return to_si(value, dimension, where)  # which bare numbers are refused (all but 0) is to_si's to say
+    except FieldError:
+        if isinstance(value, (int, float)) and not isinstance(value, bool):  # worded for a shot table
+            raise FieldError(where, "a value with its unit (in the column header, the units: block or the value)",
+                             value) from None
+        raise
 
 
 def _session_of_rows(rows: list[dict], file: str, name: str, units: dict, loft_at: str,
