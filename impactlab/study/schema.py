@@ -41,7 +41,8 @@ Restitution = NewType("Restitution", object)
 #: a head's inertia: a :class:`InertiaBlock` or a 3x3 list of lists
 InertiaSpec = NewType("InertiaSpec", object)
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
-               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature"}
+               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature",
+               InverseSpeed: "inverse_speed"}
 
 
 class SI(float):
