@@ -22,7 +22,7 @@ from impactlab.scene.core import SPIN_LOFT_TOLERANCE
 #: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
     "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle", "dynamic_loft": "angle",
-    "strike_toe": "length", "strike_high": "length", "spin_loft": "angle", "face_to_path": "angle",
+    "face_to_path": "angle", "spin_loft": "angle", "strike_toe": "length", "strike_high": "length",
 }
 MEASURED_FIELDS = {
     "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
