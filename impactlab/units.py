@@ -4,7 +4,9 @@ No unit is ever guessed. A dimensional quantity in a study (a YAML file or a map
 string with a unit that pint understands (``"80 mph"``, ``"21.335 mm"``, ``"136 MPa"``, ``"20 deg"``) or a
 pint quantity; a bare number there is refused with the field, the quantity and an example
 (``club.mass: expected a mass with its unit, e.g. 200 g or 0.2 kg ..., got 200``), as shot tables refuse one:
-``115`` could be mph or m/s, ``200`` g or kg, ``20`` degrees or radians. Dimensionless quantities (friction,
+``115`` could be mph or m/s, ``200`` g or kg, ``20`` degrees or radians. A bare ``0`` is read: zero is the same
+in every unit of a length, a speed, an angle or a spin (0 mph = 0 m/s), so no unit is guessed, except where units
+have offsets (:data:`ZERO_DEPENDS_ON_UNIT`: 0 degC is 273.15 K). Dimensionless quantities (friction,
 restitution, inertia factor, Poisson ratio) stay bare numbers.
 
 Python value objects (``Ball(mass=...)``, ``Delivery(club_speed=...)``) take a bare number as SI (angles in
@@ -52,6 +54,16 @@ EXAMPLE_UNITS: dict[str, tuple[str, float]] = {
 }
 
 
+#: Dimensions whose zero depends on the unit (pint's offset units: 0 degC = 273.15 K, 0 degF = 255.37 K): a bare 0
+#: is refused for these as any bare number is; for every other dimension zero is zero in every unit and is read.
+ZERO_DEPENDS_ON_UNIT = frozenset({"temperature"})
+#: Why a bare number of a dimension is ambiguous beyond its scale, said after the example of its unit
+UNIT_NOTES = {
+    "angular_speed": "spin is quoted in rpm, a club head's turning (closure rate) in deg/s",
+    "temperature": "not even 0: 0 degC is 273.15 K and 0 degF 255.37 K",
+}
+
+
 @functools.lru_cache(maxsize=64)
 def unit_factor(unit: str, si_unit: str) -> float:
     """SI per ``unit``: how many ``si_unit`` one ``unit`` is (``unit_factor("mph", "m/s")`` = 0.44704)."""
@@ -74,8 +86,9 @@ def _example(value: float, dimension: str) -> str:
 def unit_missing(value: float, dimension: str) -> str:
     """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed)."""
     words = DIMENSIONS[dimension][2]
+    note = f"; {UNIT_NOTES[dimension]}" if dimension in UNIT_NOTES else ""
     return (f"{words} with its unit, e.g. {_example(float(value), dimension)} (a bare number's unit is never "
-            "guessed)")
+            f"guessed{note})")
 
 
 @functools.cache
@@ -88,7 +101,7 @@ def registry() -> pint.UnitRegistry:
 
 
 def to_si(value: object, dimension: str, path: str = "", bare: str | None = None) -> float:
-    """Convert a user quantity to an SI float; a bare number of a dimensional quantity is refused.
+    """Convert a user quantity to an SI float; a bare number of a dimensional quantity is refused (0 excepted).
 
     Parameters
     ----------
@@ -101,7 +114,9 @@ def to_si(value: object, dimension: str, path: str = "", bare: str | None = None
         Field path for error messages.
     bare : {None, "si"}
         What a bare number of a dimensional quantity is: None (a study, a shot table): refused, its unit is not
-        guessed; ``"si"`` (a Python value object's argument): SI, angles in radians, spin in rad/s.
+        guessed, except an exact 0 (number or text) where zero is the same in every unit (every dimension but
+        those of :data:`ZERO_DEPENDS_ON_UNIT`); ``"si"`` (a Python value object's argument): SI, angles in
+        radians, spin in rad/s.
 
     Returns
     -------
@@ -121,17 +136,26 @@ def to_si(value: object, dimension: str, path: str = "", bare: str | None = None
     if isinstance(value, Real):
         if dimension == "dimensionless" or bare == "si":
             return float(value)
-        raise FieldError(path, unit_missing(float(value), dimension), value)
+        return _bare_zero(value, dimension, path)
     if _is_pint(value):
         return _quantity_to_si(value, dimension, path, expected)
     if not isinstance(value, str):
         raise FieldError(path, expected, value)
     converted = _string_to_si(value.strip(), dimension)
     if converted is _Bare.BARE:  # a bare number written as text: its unit would be guessed as well (in Python too)
-        raise FieldError(path, unit_missing(float(value), dimension), value)
+        return _bare_zero(value, dimension, path)
     if isinstance(converted, str):  # why the text is not a quantity of this dimension
         raise FieldError(path, f"{expected}{converted}", value)
     return converted
+
+
+def _bare_zero(value, dimension: str, path: str) -> float:
+    """0.0 for a bare exact zero of a dimension whose zero is the same in every unit; FieldError for any other bare
+    number of a dimensional quantity (its unit would be guessed)."""
+    number = float(value)
+    if number == 0.0 and dimension not in ZERO_DEPENDS_ON_UNIT:
+        return 0.0
+    raise FieldError(path, unit_missing(number, dimension), value)
 
 
 def _is_pint(value) -> bool:

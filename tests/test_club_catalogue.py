@@ -131,3 +131,11 @@ def test_validate_uses_a_users_club_for_the_rows_that_name_it(tmp_path, capsys):
                  "--csv", str(tmp_path / "p.csv")]) == 0
     text = (tmp_path / "p.csv").read_text()
     assert ",user_1," in text and ",8_iron," in text
+
+
+def test_a_spec_sheets_bare_zero_is_read_and_any_other_bare_number_refused():
+    # zero is zero in every unit (units.to_si decides): a centred CG needs no unit, a CG 2 mm high does
+    head, _ = club_from_spec({"base": "driver", "cg": {"toe": 0, "high": "2 mm", "depth": "38 mm"}})
+    assert head.center_of_mass[0] == 0.0 and head.center_of_mass[1] == pytest.approx(0.002)
+    with pytest.raises(FieldError, match=r"club spec.cg.high: expected a value with its unit \(e.g. 2 mm\)"):
+        club_from_spec({"base": "driver", "cg": {"toe": 0, "high": 2, "depth": "38 mm"}})

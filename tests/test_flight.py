@@ -466,6 +466,7 @@ def test_study_conditions_sweep_and_no_delivery():
 
 @pytest.mark.parametrize("conditions, words", [
     ({"temperature": 25}, "with its unit"),
+    ({"temperature": 0}, "not even 0: 0 degC is 273.15 K"),  # an offset unit: a bare 0 would be a guess too
     ({"altitude": 1600}, "with its unit"),
     ({"humidity": "50 %"}, "conditions.humidity"),
     ({"pressure": "1000 hPa", "altitude": "100 m"}, "not both"),

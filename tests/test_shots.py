@@ -243,3 +243,91 @@ def test_a_yaml_shot_table_block_of_the_wrong_shape_is_one_message_at_its_line(t
     assert main(["validate", "--dataset", str(path)]) == 2
     err = capsys.readouterr().err
     assert f"t.yaml:{line}: {key}: expected" in err and "internal error" not in err and "Traceback" not in err
+
+
+# the same three shots, as a hand-written YAML table and as launch-monitor exports: one assembly, one table
+SAME_YAML = """name: session
+units: {club_speed: mph, attack_angle: deg, path: deg, face_angle: deg, face_to_path: deg, dynamic_loft: deg,
+        strike_toe: mm, strike_high: mm, ball_speed: mph, vertical_launch_angle: deg, horizontal_launch_angle: deg,
+        spin_rate: rpm, spin_axis: deg}
+rows:
+  - {label: s1, club: Driver, club_speed: 115, attack_angle: -0.9, path: 2, face_angle: 1, face_to_path: -1,
+     dynamic_loft: 12.8, strike_toe: 10, strike_high: 3, ball_speed: 171, vertical_launch_angle: 10.4,
+     horizontal_launch_angle: 1.2, spin_rate: 2545, spin_axis: -2.5}
+  - {label: s2, club: 7 Iron, club_speed: 90, attack_angle: -4.2, path: -1.5, face_to_path: 3, dynamic_loft: 22,
+     ball_speed: 120, vertical_launch_angle: 16.3, horizontal_launch_angle: 0.4, spin_rate: 7097, spin_axis: 4}
+  - {label: s3, club: PW, club_speed: 83, attack_angle: -5, path: 0, face_angle: 0, dynamic_loft: 30,
+     ball_speed: 102, spin_rate: 9304}
+"""
+SAME_TRACKMAN = """sep=,
+Date,Club,Club Speed,Attack Angle,Club Path,Dyn. Loft,Face Angle,Face To Path,Ball Speed,Smash Factor,\
+Launch Angle,Launch Direction,Spin Rate,Spin Rate Type,Spin Axis,Impact Offset,Impact Height
+[],[],[mph],[deg],[deg],[deg],[deg],[deg],[mph],[],[deg],[deg],[rpm],[],[deg],[mm],[mm]
+s1,Driver,115,-0.9,2,12.8,1,-1,171,1.49,10.4,1.2,2545,Measured,-2.5,10,3
+s2,7 Iron,90,-4.2,-1.5,22,-,3,120,1.33,16.3,0.4,7097,Measured,4,-,-
+s3,PW,83,-5,0,30,0,-,102,1.23,-,-,9304,Measured,-,-,-
+"""
+
+
+def _assert_same_shots(one, other):
+    assert (one.labels, one.clubs, one.handedness, one.loft_at) == (other.labels, other.clubs, other.handedness,
+                                                                    other.loft_at)
+    for part in ("delivery", "measured", "sigma"):
+        mine, theirs = getattr(one, part), getattr(other, part)
+        assert mine.keys() == theirs.keys()
+        for key in mine:
+            np.testing.assert_array_equal(mine[key], theirs[key], err_msg=f"{part}.{key}")
+
+
+def test_the_same_shots_as_a_yaml_table_and_as_an_export_give_the_same_table():
+    yaml_table = read_yaml(SAME_YAML, "session.yaml")
+    _assert_same_shots(yaml_table, read_csv(SAME_TRACKMAN, "session.csv"))
+    # by hand: the face angle that s2 leaves out is club path + face to path; its strike is centred
+    assert yaml_table.clubs == ("driver", "7_iron", "pitching_wedge")
+    assert yaml_table.delivery["club_speed"][0] == pytest.approx(115 * MPH, rel=1e-15)
+    assert yaml_table.delivery["face_angle"][1] == pytest.approx(math.radians(1.5), rel=1e-12)
+    assert yaml_table.delivery["strike_toe"].tolist() == [pytest.approx(0.010, rel=1e-12), 0.0, 0.0]
+    assert np.isnan(yaml_table.measured["vertical_launch_angle"][2])
+    assert yaml_table.sigma["ball_speed"].tolist() == [0.5] * 3  # no uncertainty given: the default
+    # impactlab's own CSV layout, with per-row uncertainties (the YAML's sigma block: every row's unless it gives
+    # its own) and the spin loft instead of the dynamic loft
+    with_sigma = SAME_YAML.replace("ball_speed: 120,", "ball_speed: 120, ball_speed_sigma: 1.5 mph,").replace(
+        "dynamic_loft: 30,", "spin_loft: 30,").replace("dynamic_loft: deg,", "dynamic_loft: deg, spin_loft: deg,"
+                                                       ).replace("rows:", "sigma: {ball_speed: 2 mph}\nrows:")
+    generic = """label,club,club_speed [mph],attack_angle [deg],path [deg],face_angle [deg],face_to_path [deg],\
+dynamic_loft [deg],spin_loft [deg],strike_toe [mm],strike_high [mm],ball_speed [mph],ball_speed_sigma [mph],\
+vertical_launch_angle [deg],horizontal_launch_angle [deg],spin_rate [rpm],spin_axis [deg]
+s1,Driver,115,-0.9,2,1,-1,12.8,,10,3,171,2,10.4,1.2,2545,-2.5
+s2,7 Iron,90,-4.2,-1.5,,3,22,,,,120,1.5,16.3,0.4,7097,4
+s3,PW,83,-5,0,0,,,30,,,102,2,,,9304,
+"""
+    table = read_yaml(with_sigma, "session.yaml")
+    _assert_same_shots(table, read_csv(generic, "session.csv"))
+    assert table.sigma["ball_speed"].tolist() == pytest.approx(np.array([2, 1.5, 2]) * MPH, rel=1e-15)
+    # square and straight: the spin loft of s3 is its dynamic loft less the attack angle (30 = loft + 5)
+    assert table.delivery["dynamic_loft"][2] == pytest.approx(math.radians(25.0), rel=1e-12)
+
+
+def test_a_yaml_row_is_square_unless_it_says_otherwise_and_an_exports_row_is_not_guessed_square():
+    # a hand-written row states its delivery: no path or face angle is a square one, so its launch direction is
+    # compared; an export's empty face angle is no measurement, and the launch direction is left out
+    text = ("name: t\nrows:\n  - {club: driver, club_speed: 50 m/s, attack_angle: 0 deg, dynamic_loft: 12 deg, "
+            "ball_speed: 70 m/s, horizontal_launch_angle: 0.5 deg}\n")
+    table = read_yaml(text, "t.yaml")
+    assert table.delivery["face_angle"][0] == 0.0 and table.delivery["path"][0] == 0.0
+    assert table.measured["horizontal_launch_angle"][0] == pytest.approx(math.radians(0.5), rel=1e-12)
+    export = read_csv(CSV.replace("115,-0.9,12.8,0,0,171,10.4,,2545,", "115,-0.9,12.8,,,171,10.4,0.5,2545,"))
+    assert export.delivery["face_angle"][0] == 0.0 and np.isnan(export.measured["horizontal_launch_angle"][0])
+    # a YAML sigma block that is no uncertainty is refused at its line, once, not once per row
+    with pytest.raises(StudyError, match=r"t.yaml:2: sigma.spin_rate: expected a positive uncertainty, got 0"):
+        read_yaml(text.replace("rows:", "sigma: {spin_rate: 0 rpm}\nrows:"), "t.yaml")
+
+
+def test_a_yaml_rows_bare_zero_is_read_and_any_other_bare_number_refused():
+    row = ("name: t\nrows:\n  - {club: driver, club_speed: 50 m/s, attack_angle: 0, path: 0, dynamic_loft: 12 deg, "
+           "ball_speed: 70 m/s}\n")
+    table = read_yaml(row, "t.yaml")
+    assert table.delivery["attack_angle"][0] == 0.0 and table.delivery["path"][0] == 0.0
+    with pytest.raises(StudyError, match=r"t.yaml:3: rows\[0\].path: expected a value with its unit \(in the column "
+                                         r"header, the units: block or the value\), got 1"):
+        read_yaml(row.replace("path: 0", "path: 1"), "t.yaml")

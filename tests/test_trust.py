@@ -66,6 +66,35 @@ def test_sweeps_sensitivity_ranges_and_restitution_slopes_want_units():
     assert "ball.restitution.reference_speed: expected a speed with its unit" in _refused({**BASE, "ball": ball})
 
 
+@pytest.mark.parametrize("value", [0, 0.0, "0", "-0.0"])
+def test_a_bare_zero_is_read_where_zero_is_the_same_in_every_unit(value):
+    # 0 mph = 0 m/s, 0 deg = 0 rad, 0 mm = 0 in: an exact zero needs no unit, so none is guessed
+    from impactlab.units import to_si
+
+    for dimension in ("length", "mass", "pressure", "speed", "angle", "angular_speed", "time", "inertia",
+                      "inverse_speed"):
+        assert to_si(value, dimension, "x") == 0.0
+    study = impactlab.load_study({**BASE, "impact": {"speed": "80 mph", "angle": value, "spin": value}})
+    assert study.scene.impact.angle == 0.0 and study.scene.impact.spin == 0.0
+    document = {**BASE, "sweep": {"impact.angle": [value, "10 deg"]}}
+    assert list(impactlab.load_study(document).sweep[0].fields[0].values) == pytest.approx([0.0, math.radians(10.0)])
+
+
+@pytest.mark.parametrize("value", [0, "0", 1e-300, "0.0001"])
+def test_a_bare_temperature_is_refused_even_zero_and_a_bare_number_near_zero_is_no_zero(value):
+    # degC and degF are offset units: a bare 0 could be 273.15 K, 255.37 K or 0 K; any other bare number is refused
+    # as before (1e-300 m is not 0)
+    from impactlab.units import to_si
+
+    with pytest.raises(FieldError, match=r"t: expected a temperature with its unit, e.g. \S+ degC or \S+ K "
+                                         r"\(a bare number's unit is never guessed; not even 0: 0 degC is 273.15 K"):
+        to_si(value, "temperature", "t")
+    if value not in (0, "0"):
+        with pytest.raises(FieldError, match="expected a length with its unit"):
+            to_si(value, "length", "x")
+    assert to_si("0 degC", "temperature") == pytest.approx(273.15, abs=1e-12)
+
+
 def test_dimensionless_quantities_stay_bare():
     study = impactlab.load_study({**BASE, "ball": {"preset": "urethane_tour", "inertia_factor": 0.38,
                                                    "poisson_ratio": 0.46},

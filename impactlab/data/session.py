@@ -58,7 +58,8 @@ class Session:
     values : dict of ndarray
         Field -> per-row SI values (NaN: not in the file or no data).
     text : dict of tuple of str
-        ``label``, ``club`` and ``handedness`` per row ('' where not given).
+        ``label``, ``club`` and ``handedness`` per row ('' where not given); a YAML table whose rows name their
+        sources also ``source`` (every row's, the table's name where a row names none).
     lines : ndarray of int
         The file line of each row.
     flags : dict of ndarray of bool
@@ -122,14 +123,15 @@ class Session:
                 given |= np.isfinite(self.values["spin_loft"])
             for index in np.flatnonzero(~given).tolist():
                 reasons[index].append(f"no {DESCRIPTIONS[field]}")
-        measured = np.zeros(self.size, bool)
+        measured, given = np.zeros(self.size, bool), np.zeros(self.size, bool)
         for field in PREDICTED:
             ok = np.isfinite(self.values[field])
+            given |= ok
             if not include_flagged:
                 ok &= ~self.flagged(field)
             measured |= ok
         for index in np.flatnonzero(~measured).tolist():
-            reasons[index].append("no measured launch quantity that is not flagged")
+            reasons[index].append("no measured launch quantity" + (" that is not flagged" if given[index] else ""))
         out = []
         for index, why in enumerate(reasons):
             if why:
@@ -137,15 +139,24 @@ class Session:
                 out.append((int(self.lines[index]), "; ".join(why)))
         return keep, out
 
-    def shot_table(self, include_flagged: bool = False):
+    def shot_table(self, include_flagged: bool = False, every_row: bool = False):
         """The :class:`~impactlab.data.shots.ShotTable` of the rows the impact models can use.
 
-        Flagged values (estimated, clamped) are left out of the comparison unless ``include_flagged``; a row
-        without face angle or club path keeps its ball speed, launch angle and spin but not its launch direction
-        and spin axis (a square face would be a guess). Raises StudyError when no row is usable, with the reasons.
+        The one assembly of a shot table: launch-monitor exports and impactlab's YAML tables
+        (:func:`impactlab.data.shots.read_yaml`) both come here as a session. Flagged values (estimated, clamped)
+        are left out of the comparison unless ``include_flagged``; a row without face angle or club path keeps its
+        ball speed, launch angle and spin but not its launch direction and spin axis (a square face would be a
+        guess). A row the models cannot use (:meth:`usable`) is skipped with its reason, or, with ``every_row`` (a
+        table written by hand, where such a row is the author's slip), refused. Raises StudyError, listing every
+        problem at its file:line: no usable row, a spin loft or face to path that disagrees with the row's angles,
+        a magnitude below zero, an uncertainty that is not positive.
         """
         keep, skipped = self.usable(include_flagged)
-        if not keep.any():
+        problems = []
+        if every_row:
+            problems = [f"{self.file}:{line}: a row the impact models cannot use: {why}" for line, why in skipped]
+            keep, skipped = np.ones(self.size, bool), []
+        elif not keep.any():
             reasons = "; ".join(f"{self.file}:{line}: {why}" for line, why in skipped[:10])
             more = f" (and {len(skipped) - 10} more)" if len(skipped) > 10 else ""
             raise StudyError(f"{self.file}: no row the impact models can use ({self.size} shot(s) read): "
@@ -154,9 +165,7 @@ class Session:
         # a field no layout of this vendor maps (the 3-D spin loft) is absent: NaN, as an empty cell
         delivery = {key: (self.values[key][index].copy() if key in self.values else np.full(index.size, np.nan))
                     for key in DELIVERY_FIELDS}
-        problems = _resolve_spin_loft(delivery, self.lines[index], self.file)
-        if problems:
-            raise StudyError("; ".join(problems))
+        problems += _resolve_spin_loft(delivery, self.lines[index], self.file)
         square = ~(np.isfinite(delivery["face_angle"]) & np.isfinite(delivery["path"]))
         for key in ("path", "face_angle", "strike_toe", "strike_high"):
             delivery[key] = np.nan_to_num(delivery[key])
@@ -169,19 +178,19 @@ class Session:
                 values[square] = np.nan
             measured[key] = values
         # a magnitude below zero is no measurement (a ball speed of -70 mph): refused, naming each row
-        signs = [problem for row in range(index.size)
-                 for problem in wrong_sign(measured, row, f"{self.file}:{self.lines[index[row]]}")]
-        if signs:
-            raise StudyError("; ".join(signs))
+        problems += [problem for row in range(index.size)
+                     for problem in wrong_sign(measured, row, f"{self.file}:{self.lines[index[row]]}")]
         sigma = {}
         for key in MEASURED_FIELDS:
             given = self.values[f"{key}_sigma"][index]
             bad = np.isfinite(given) & ~(given > 0)
             if bad.any():
                 lines = ", ".join(f"{self.file}:{self.lines[index[i]]}" for i in np.flatnonzero(bad)[:10])
-                raise StudyError(f"{lines}: {key}_sigma: expected a positive uncertainty, got "
-                                 f"{given[np.flatnonzero(bad)[0]]:g}")
+                problems.append(f"{lines}: {key}_sigma: expected a positive uncertainty, got "
+                                f"{given[np.flatnonzero(bad)[0]]:g}")
             sigma[key] = np.where(np.isfinite(given), given, DEFAULT_SIGMA[key])
+        if problems:
+            raise StudyError("; ".join(problems))
         labels = tuple(self.text["label"][i] or f"line {self.lines[i]}" for i in index)
         # every kept row's club is in the catalogue (usable() refuses the others)
         keys = {name: known for name in {self.text["club"][i] for i in index} if (known := club_key(name)) is not None}
@@ -194,7 +203,8 @@ class Session:
                          labels=labels, clubs=tuple(keys[self.text["club"][i]] for i in index),
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
-                         skipped=tuple(skipped))
+                         skipped=tuple(skipped),
+                         row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
 
 
 def read_session(path, vendor: str | None = None) -> Session:

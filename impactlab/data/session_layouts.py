@@ -16,25 +16,20 @@ import attrs
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import to_si
-from impactlab.data.shot_table import _field_of
+from impactlab.data.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
 #: impactlab.vocabulary (inputs: club_speed is the delivery's speed; outputs: ball_speed, back_spin...) and the ball
 #: flight's outputs (carry_distance, apex_height, landing_angle, offline_distance, flight_time)
 FIELDS = {
-    "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle",
-    "dynamic_loft": "angle", "face_to_path": "angle", "spin_loft": "angle", "strike_toe": "length",
-    "strike_high": "length", "ball_speed": "speed", "vertical_launch_angle": "angle",
-    "horizontal_launch_angle": "angle",
-    "spin_rate": "angular_speed", "spin_axis": "angle", "back_spin": "angular_speed", "side_spin": "angular_speed",
-    "smash_factor": "dimensionless",
+    **DELIVERY_FIELDS, **MEASURED_FIELDS,  # a shot table's fields, with their dimensions as the shot table has them
+    "back_spin": "angular_speed", "side_spin": "angular_speed", "smash_factor": "dimensionless",
     "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",
     "landing_angle": "angle", "flight_time": "time",
 }
 TEXT_FIELDS = ("label", "club", "handedness")
 #: per-row one-sigma uncertainties of the predicted quantities (impactlab's own layout: ``ball_speed_sigma [mph]``)
-SIGMA_FIELDS = {f"{key}_sigma": FIELDS[key] for key in
-                ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "spin_rate", "spin_axis")}
+SIGMA_FIELDS = {f"{key}_sigma": dimension for key, dimension in MEASURED_FIELDS.items()}
 FIELDS.update(SIGMA_FIELDS)
 #: what each field is, for reports
 DESCRIPTIONS = {

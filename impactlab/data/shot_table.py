@@ -1,8 +1,9 @@
 """The shot table: its fields, their units and aliases, and :class:`ShotTable` (rows of measured shots in SI).
 
 The definitions the readers share: :mod:`impactlab.data.shots` (impactlab's YAML and CSV tables, predictions and
-their errors) and :mod:`impactlab.data.session` (launch-monitor exports as exported) both build a
-:class:`ShotTable` from these fields; neither reader imports the other's internals.
+their errors) and :mod:`impactlab.data.session` (launch-monitor exports as exported) read their files into these
+fields; :meth:`impactlab.data.session.Session.shot_table` is the one place a :class:`ShotTable` is assembled from
+them (a YAML table's rows become a session first).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from impactlab.scene.core import SPIN_LOFT_TOLERANCE
 #: field -> physical dimension (a value always comes with its unit: a bare mph/m/s mix-up is the classic misreading)
 DELIVERY_FIELDS = {
     "club_speed": "speed", "attack_angle": "angle", "path": "angle", "face_angle": "angle", "dynamic_loft": "angle",
-    "strike_toe": "length", "strike_high": "length", "spin_loft": "angle", "face_to_path": "angle",
+    "face_to_path": "angle", "spin_loft": "angle", "strike_toe": "length", "strike_high": "length",
 }
 MEASURED_FIELDS = {
     "ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",

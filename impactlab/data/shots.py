@@ -26,7 +26,6 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, StudyError
-from impactlab.scene.plausibility import wrong_sign
 from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
 from impactlab.scene.clubs import Strike
@@ -35,10 +34,11 @@ from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, com
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 from impactlab.data.documents import ShotTableBlock, structure_document
-from impactlab.data.session import GENERIC, read_session, read_session_text
+from impactlab.data.session import GENERIC, Session, read_session, read_session_text
+from impactlab.data.session_layouts import FIELDS
 # the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
-from impactlab.data.shot_table import (ALIASES as ALIASES, DEFAULT_SIGMA, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS,
-                                       TEXT_FIELDS, ShotTable, _field_of, _resolve_spin_loft)
+from impactlab.data.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
+                                       ShotTable, _field_of)
 
 def _convert(value, field: str, unit: str | None, where: str) -> float:
     base = field[:-6] if field.endswith("_sigma") else field
@@ -56,49 +56,45 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
                 pass
     elif unit is not None and value is not None and not isinstance(value, bool):
         value = f"{value} {unit}"
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        raise FieldError(where, "a value with its unit (in the column header, the units: block or the value)", value)
     if value is None:
         return math.nan
-    return to_si(value, dimension, where)
+    try:
+        return to_si(value, dimension, where)  # which bare numbers are refused (all but 0) is to_si's to say
+    except FieldError:
+        if isinstance(value, (int, float)) and not isinstance(value, bool):  # worded for a shot table
+            raise FieldError(where, "a value with its unit (in the column header, the units: block or the value)",
+                             value) from None
+        raise
 
 
-def _assemble(rows: list[dict], name: str, source: str, file: str, ball: dict, sigma_defaults: dict,
-              loft_at: str = "contact", budgets: dict | None = None) -> ShotTable:
-    if not rows:
-        raise StudyError(f"{file}: the shot table has no rows")
-    delivery = {key: np.array([row.get(key, math.nan) for row in rows], float) for key in DELIVERY_FIELDS}
-    measured = {key: np.array([row.get(key, math.nan) for row in rows], float) for key in MEASURED_FIELDS}
-    sigma = {key: np.array([row.get(f"{key}_sigma", math.nan) for row in rows], float) for key in MEASURED_FIELDS}
-    for key in MEASURED_FIELDS:
-        sigma[key] = np.where(np.isnan(sigma[key]), sigma_defaults.get(key, DEFAULT_SIGMA[key]), sigma[key])
-    problems = _resolve_spin_loft(delivery, [row.get("_line", "?") for row in rows], file)
-    for key in ("path", "face_angle", "strike_toe", "strike_high"):
-        delivery[key] = np.nan_to_num(delivery[key])  # square face and path, centred strike unless given
-    for index, row in enumerate(rows):
-        where = f"{file}:{row.get('_line', '?')}"
-        for key in ("club_speed", "attack_angle", "dynamic_loft"):
-            if not np.isfinite(delivery[key][index]):
-                problems.append(f"{where}: {key}: expected the delivery's {key.replace('_', ' ')}"
-                                f"{' (or its spin loft)' if key == 'dynamic_loft' else ''}, got nothing")
-        if "club" not in row:
-            problems.append(f"{where}: club: expected a club preset name, got nothing")
-        for key in MEASURED_FIELDS:
-            if not sigma[key][index] > 0:
-                problems.append(f"{where}: {key}_sigma: expected a positive uncertainty, got {sigma[key][index]:g}")
-        problems.extend(wrong_sign(measured, index, where))  # a negative ball speed or total spin
-        if all(np.isnan(measured[key][index]) for key in MEASURED_FIELDS):
-            problems.append(f"{where}: expected at least one measured quantity ({', '.join(MEASURED_FIELDS)})")
-    if problems:
-        raise StudyError("; ".join(problems))
-    return ShotTable(name=name, source=source, labels=tuple(str(row.get("label", f"row {i + 1}"))
-                                                             for i, row in enumerate(rows)),
-                     clubs=tuple(str(row.get("club")) for row in rows),
-                     handedness=tuple(str(row.get("handedness", "right")) for row in rows),
-                     delivery=delivery, measured=measured, sigma=sigma, ball=ball, loft_at=loft_at,
-                     budgets=budgets or {},
-                     row_sources=(tuple(str(row.get("source", name)) for row in rows)
-                                  if any("source" in row for row in rows) else ()))
+def _session_of_rows(rows: list[dict], file: str, name: str, units: dict, loft_at: str,
+                     sigma_defaults: dict) -> Session:
+    """A YAML table's parsed rows (SI values, text, ``_line``) as a :class:`~impactlab.data.session.Session`, so
+    that :meth:`~impactlab.data.session.Session.shot_table` is the one assembly of every shot table.
+
+    What the YAML format says and an export does not is settled here: a row's uncertainty defaults to the table's
+    ``sigma:`` block; a row that gives neither club path nor face angle (nor face to path) is square, as the table's
+    author wrote it (a launch monitor's missing face angle is no measurement and stays missing); a row without a
+    label is ``row N``; where any row names its ``source``, every other row's is the table's ``name``.
+    """
+    values = {field: np.array([row.get(field, math.nan) for row in rows], float) for field in FIELDS}
+    for key, default in sigma_defaults.items():
+        values[f"{key}_sigma"] = np.where(np.isnan(values[f"{key}_sigma"]), default, values[f"{key}_sigma"])
+    values["path"] = np.nan_to_num(values["path"])
+    values["face_angle"] = np.where(np.isnan(values["face_angle"]) & np.isnan(values["face_to_path"]), 0.0,
+                                    values["face_angle"])
+    text = {"label": tuple(str(row.get("label", f"row {i + 1}")) for i, row in enumerate(rows)),
+            "club": tuple(str(row.get("club", "")) for row in rows),
+            "handedness": tuple(str(row.get("handedness", "right")) for row in rows)}
+    if any("source" in row for row in rows):
+        text["source"] = tuple(str(row.get("source", name)) for row in rows)
+    given = [field for field in FIELDS if any(field in row for row in rows)]
+    return Session(file=file, vendor=attrs.evolve(GENERIC, id="impactlab_yaml", name="impactlab YAML shot table",
+                                                  loft_at=loft_at),
+                   values=values, text=text, lines=np.array([row["_line"] for row in rows], dtype=np.int64),
+                   flags={}, used=[(field, field, units.get(field, "the unit written with each value"), 1.0)
+                                   for field in given],
+                   unused=[], skipped=[], notes=[])
 
 
 def _check_text(row: dict, where: str, problems: list) -> None:
@@ -158,6 +154,10 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
             sigma_defaults[key] = _convert(value, key, None, f"{file}: sigma.{key}")
         except FieldError as exc:
             problems.append(str(exc))
+            continue
+        if not sigma_defaults[key] > 0:  # the default of every row: said once, at the block's line
+            problems.append(f"{file}:{line_of(lines, ('sigma', key))}: sigma.{key}: expected a positive "
+                            f"uncertainty, got {sigma_defaults[key]:g} (SI)")
     budgets = block.budgets or {}
     for model, entry in budgets.items():
         if not set(entry) <= set(ERROR_KEYS):
@@ -189,8 +189,12 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
         rows.append(row)
     if problems:
         raise StudyError(f"{file}: {len(problems)} problem(s): " + "; ".join(problems))
-    return _assemble(rows, block.name if block.name is not None else Path(file).stem, block.source or "", file,
-                     dict(block.ball or {}), sigma_defaults, loft_at, budgets)
+    if not rows:
+        raise StudyError(f"{file}: the shot table has no rows")
+    name = block.name if block.name is not None else Path(file).stem
+    # a table written by hand is refused whole for a row the models cannot use (an export skips that row)
+    table = _session_of_rows(rows, file, name, units, loft_at, sigma_defaults).shot_table(every_row=True)
+    return attrs.evolve(table, name=name, source=block.source or "", ball=dict(block.ball or {}), budgets=budgets)
 
 
 def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:

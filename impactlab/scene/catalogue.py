@@ -298,10 +298,13 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
             raise FieldError(f"{where}.{key}", "a key of a club spec", key, choices=SPEC_KEYS)
 
     def quantity(value, dimension, path):
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and dimension != "dimensionless":
-            example = {"angle": "deg", "mass": "g", "inertia": "g cm^2", "length": "mm"}[dimension]
-            raise FieldError(path, f"a value with its unit (e.g. {value} {example})", value)
-        return to_si(value, dimension, path)
+        try:
+            return to_si(value, dimension, path)  # which bare numbers are refused (all but 0) is to_si's to say
+        except FieldError:
+            if isinstance(value, (int, float)) and not isinstance(value, bool):  # worded for a spec sheet
+                example = {"angle": "deg", "mass": "g", "inertia": "g cm^2", "length": "mm"}[dimension]
+                raise FieldError(path, f"a value with its unit (e.g. {value} {example})", value) from None
+            raise
 
     base = club_preset(document["base"]) if "base" in document else None
     fields = {}

@@ -16,8 +16,6 @@ from typing import Any, NewType
 
 import attrs
 
-from impactlab.errors import FieldError
-from impactlab.units import to_si
 
 # Field types: a user quantity converted to an SI float with the dimension the name says
 Length = NewType("Length", float)
@@ -42,32 +40,9 @@ Name = NewType("Name", str)
 Restitution = NewType("Restitution", object)
 #: a head's inertia: a :class:`InertiaBlock` or a 3x3 list of lists
 InertiaSpec = NewType("InertiaSpec", object)
-#: an angular velocity that must carry its unit (0 excepted): a head's turning rate is quoted in deg/s by launch
-#: monitors (closure rate) and spin in rpm by impactlab, so a bare number would be a guess between them
-Rate = NewType("Rate", float)
-RATE_EXPECTED = ("an angular velocity with its unit, e.g. '2000 deg/s' or '35 rad/s' (a bare number is ambiguous: "
-                 "closure rates are quoted in deg/s, spin in rpm)")
-
-
-def rate_with_unit(value, where: str = "") -> float:
-    """An angular velocity [rad/s] from a quantity with its unit; a bare number other than 0 is refused."""
-    if isinstance(value, SI):
-        return float(value)
-    bare = isinstance(value, (int, float)) and not isinstance(value, bool)
-    if isinstance(value, str):
-        try:
-            float(value)
-            bare = True
-        except ValueError:
-            pass
-    if bare:
-        if float(value) == 0.0:
-            return 0.0
-        raise FieldError(where, RATE_EXPECTED, value)
-    return to_si(value, "angular_speed", where)
-
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
-               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature"}
+               Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature",
+               InverseSpeed: "inverse_speed"}
 
 
 class SI(float):
@@ -201,9 +176,9 @@ class HeadRotationBlock:
     """``delivery.head_rotation``: the head's angular velocity at first contact about its toe, up and target axes."""
 
     _what = "the head's angular velocity"
-    toe: Rate | None = None
-    up: Rate | None = None
-    target: Rate | None = None
+    toe: Spin | None = None
+    up: Spin | None = None
+    target: Spin | None = None
 
 
 @attrs.frozen

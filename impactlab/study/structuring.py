@@ -30,8 +30,7 @@ from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
 from impactlab.study.schema import (_DIMENSIONS, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
-                                    InverseSpeed, Name, Rate, Restitution, RestitutionBlock, keys_of,
-                                    rate_with_unit)
+                                    Name, Restitution, RestitutionBlock, keys_of)
 from impactlab.study.yaml_lines import format_path, parse_path
 from impactlab.units import to_si
 
@@ -42,12 +41,6 @@ def _quantity_hook(dimension: str):
             return float(value)
         return to_si(value, dimension)
     return structure
-
-
-def _inverse_speed(value, _) -> float:
-    if isinstance(value, SI):
-        return float(value)
-    return to_si(value, "inverse_speed")
 
 
 def _flag(value, _) -> bool:
@@ -129,9 +122,9 @@ def _converter() -> Converter:
     converter = Converter()
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
-    hooks: tuple[tuple[Any, Any], ...] = ((InverseSpeed, _inverse_speed), (Flag, _flag), (Count, _count),
+    hooks: tuple[tuple[Any, Any], ...] = ((Flag, _flag), (Count, _count),
                                           (Name, lambda v, _: v), (Restitution, _restitution),
-                                          (InertiaSpec, _inertia_spec), (Rate, lambda v, _: rate_with_unit(v)))
+                                          (InertiaSpec, _inertia_spec))
     for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,

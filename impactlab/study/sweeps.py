@@ -15,7 +15,7 @@ import numpy as np
 from impactlab.errors import FieldError
 from impactlab.study.limits import check_cases
 from impactlab.study.scene_blocks import build_scene
-from impactlab.study.schema import SI, RangeBlock, keys_of, rate_with_unit
+from impactlab.study.schema import SI, RangeBlock, keys_of
 from impactlab.study.structuring import structure
 from impactlab.units import to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM
@@ -58,10 +58,8 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         block = structure(spec, RangeBlock, where)
         num = block.num
         check_cases(num, f"{where}.num")  # before the values are generated
-        convert = ((lambda value, _, at: rate_with_unit(value, at)) if path.startswith("delivery.head_rotation.")
-                   else to_si)
-        start = convert(block.start, dimension, f"{where}.start")
-        stop = convert(block.stop, dimension, f"{where}.stop")
+        start = to_si(block.start, dimension, f"{where}.start")
+        stop = to_si(block.stop, dimension, f"{where}.stop")
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
@@ -70,8 +68,6 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         if not spec:
             raise FieldError(where, "a non-empty list of values", spec)
         check_cases(len(spec), where)
-        if path.startswith("delivery.head_rotation."):  # a turning rate carries its unit (deg/s or rpm?)
-            return [rate_with_unit(item, f"{where}[{index}]") for index, item in enumerate(spec)]
         return [to_si(item, dimension, f"{where}[{index}]") for index, item in enumerate(spec)]
     raise FieldError(where, "a list of values or {start, stop, num}", spec)
 
