@@ -57,7 +57,8 @@ OZ_IN2 = 28.349523125 * 6.4516  # g cm^2 per ounce (mass) inch^2 (1 oz = 28.3495
 INCH = 25.4  # mm
 #: one patent embodiment's set of irons, its 2- and 9-iron (CAMPAU_SOURCE): CG depth behind the striking face [in]
 #: and moment of inertia [oz in^2]; the radius of gyration "between 1.271 and 1.291 inch" for the whole set
-CAMPAU_1983 = {"cg_depth_in": {2: 0.171, 9: 0.114}, "moi_oz_in2": {2: 13.619, 9: 16.423}, "gyration_in": (1.271, 1.291)}
+CAMPAU_1983: dict[str, Any] = {"cg_depth_in": {2: 0.171, 9: 0.114}, "moi_oz_in2": {2: 13.619, 9: 16.423},
+                               "gyration_in": (1.271, 1.291)}
 CAMPAU_SOURCE = (
     "D. N. Campau (Pepsico), 'Iron-type golf clubs', US 4,420,156 (1983), abstract: 'In one specific embodiment the "
     "center of gravity for clubs 2 through 9 varied from 0.171 to 0.114 inch behind the striking face, the moment of "
