@@ -17,7 +17,8 @@ import attrs
 from impactlab.data.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate, model_with
 from impactlab.data.shot_report import shot_table
 from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
-from impactlab.data.validation.observations import cover_effect, gear_effect, load_observations
+from impactlab.data.validation.observations import (cover_effect, gear_effect, load_observations,
+                                                    vertical_gear_effect)
 from impactlab.model.registry import get_model
 
 KEYS = ("ball_speed [%]", "launch angle [deg]", "spin [%]")
@@ -70,6 +71,9 @@ def measure(model_name: str, config: dict) -> dict:
               for o in observations["gear_effect"]}
     ratios.update({o.name: cover_effect(model, o, config["loft_at"], config["club_reference"], hook)["ratio"]
                    for o in observations["cover"]})
+    for o in observations["vertical_gear_effect"]:  # one swing struck higher: the observation's own loft_at
+        vertical = vertical_gear_effect(model, o, None, config["club_reference"], hook)
+        ratios[o.name] = (vertical["ratio"], vertical["ratio_launch"])
     return {"by_source": by_source, "ratios": ratios, "flags": flags}
 
 
@@ -80,15 +84,17 @@ def main() -> None:
     for model_name in args.models:
         print(f"\n#### {model_name}\n")
         print("| configuration | source | ball speed % | launch deg | spin % | driver axis ratio | 6-iron axis ratio "
-              "| wedge cover ratio |")
-        print("|---|---|---|---|---|---|---|---|")
+              "| driver higher strike: spin, launch ratio | wedge cover ratio |")
+        print("|---|---|---|---|---|---|---|---|---|")
         flags = []
         for config in CONFIGURATIONS:
             result = measure(model_name, config)
             ratios = result["ratios"]
             for index, (source, rms) in enumerate(result["by_source"].items()):
+                spin, launch = ratios["clydebank2014_driver"]
                 tail = (f" {ratios['trackman2009_driver']:.2f} | {ratios['trackman2009_6_iron']:.2f} | "
-                        f"{ratios['titleist_wedgecraft_58']:.3f} |") if index == 0 else " | | |"
+                        f"{spin:.2f}, {launch:.2f} | {ratios['titleist_wedgecraft_58']:.3f} |") if index == 0 \
+                    else " | | | |"
                 print(f"| {config['name'] if index == 0 else ''} | {source} | "
                       + " | ".join(f"{rms[k]:.2f}{'' if rms[k] <= TARGETS[k] else ' x'}" for k in KEYS) + " |" + tail)
             if result["flags"]:

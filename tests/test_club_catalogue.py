@@ -52,6 +52,51 @@ def test_iron_lies_span_the_published_set():
     assert all(b > a for a, b in zip(lies, lies[1:]))  # longer clubs lie flatter
 
 
+def test_iron_heads_carry_campaus_patent_numbers_as_typed():
+    """US 4,420,156 (Campau 1983), abstract: 'the center of gravity for clubs 2 through 9 varied from 0.171 to 0.114
+    inch behind the striking face, the moment of inertia varied from 13.619 to 16.423 ounce (wt.)-in.2, and the
+    radius of gyration varied between 1.271 and 1.291 inch' (typed in here, not read from the code)."""
+    from impactlab.scene.catalogue import CAMPAU_1983, CAMPAU_SOURCE, GOLF_DIGEST_IRON_MOI, campau_iron
+
+    assert CAMPAU_1983["cg_depth_in"] == {2: 0.171, 9: 0.114}
+    assert CAMPAU_1983["moi_oz_in2"] == {2: 13.619, 9: 16.423}
+    assert CAMPAU_1983["gyration_in"] == (1.271, 1.291)
+    assert "0.171 to 0.114 inch" in CAMPAU_SOURCE and "13.619 to 16.423" in CAMPAU_SOURCE
+    # Golf Digest (2010, 2008): Ping S56 7-iron 2400, K15 3000, Eye2 about 2600 g cm^2 (manufacturers' figures)
+    assert GOLF_DIGEST_IRON_MOI == {"Ping S56 7-iron": 2400.0, "Ping K15 7-iron": 3000.0, "Ping Eye2 (1983)": 2600.0}
+    # by hand: 1 oz in^2 = 28.349523125 g x 6.4516 cm^2 = 182.8997 g cm^2; the 2-iron 13.619 -> 2490.91, the 9-iron
+    # 16.423 -> 3003.76 g cm^2; depths 0.171 in = 4.3434 mm, 0.114 in = 2.8956 mm
+    assert campau_iron(2) == pytest.approx((4.3434, 2490.91), abs=0.01)
+    assert campau_iron(9) == pytest.approx((2.8956, 3003.76), abs=0.01)
+    # the 6-iron, 4/7 of the way: 0.171 - 4/7 x 0.057 = 0.138429 in = 3.5161 mm; 13.619 + 4/7 x 2.804 = 15.2213
+    # oz in^2 = 2783.97 g cm^2 (an interpolation between the patent's two ends: an estimate)
+    assert campau_iron(6) == pytest.approx((3.5161, 2783.97), abs=0.01)
+    with pytest.raises(FieldError):
+        campau_iron(10)  # the patent has no wedges: no extrapolation
+    # the heads use them: the 6-iron's CG 3.516 mm behind the face, 2784 g cm^2 about its vertical axis; the moment
+    # lies inside Golf Digest's manufacturer range for 7-irons (2400-3000)
+    six = CLUB_CATALOGUE["6_iron"]
+    assert six.center_of_mass[2] == pytest.approx(3.5161e-3, abs=1e-7)
+    assert six.inertia_components()["up"] == pytest.approx(2783.97e-7, abs=1e-9)
+    for key in [f"{n}_iron" for n in range(3, 10)]:
+        up = CLUB_CATALOGUE[key].inertia_components()["up"] * 1e7
+        assert 2400 <= up <= 3010, key
+    depths = [CLUB_CATALOGUE[f"{n}_iron"].center_of_mass[2] for n in range(3, 10)]
+    assert all(b < a for a, b in zip(depths, depths[1:]))  # deeper CG the longer the iron (the patent's words)
+    # the wedges carry the 9-iron's values (the patent has no wedges), said in their source
+    assert CLUB_CATALOGUE["lob_wedge"].center_of_mass[2] == pytest.approx(2.8956e-3, abs=1e-7)
+    assert "9-iron's values" in CLUB_CATALOGUE["lob_wedge"].source
+
+
+def test_campaus_moments_and_gyration_radii_imply_maltbys_head_masses():
+    # an independent check of reading the patent's pairs (2-iron: 13.619 oz in^2, k = 1.271 in): m = I / k^2 in
+    # ounces, 13.619 / 1.271^2 = 8.430 oz = 239.0 g, 16.423 / 1.291^2 = 9.854 oz = 279.3 g, against Maltby's standard
+    # 240 g 3-iron and 282 g 9-iron (the 2-iron one step lighter still: 233 g)
+    assert 13.619 / 1.271**2 * 28.349523125 == pytest.approx(239.0, abs=0.1)
+    assert 16.423 / 1.291**2 * 28.349523125 == pytest.approx(279.3, abs=0.1)
+    assert CLUB_CATALOGUE["9_iron"].mass * 1e3 == pytest.approx(279.3, rel=0.01)
+
+
 def test_a_more_lofted_iron_sends_the_ball_off_slower_and_higher():
     # one delivery (40 m/s, level, face at its static loft) through the irons: physics, not numbers from the code:
     # more loft means a smaller normal speed, hence a slower, higher-launched ball with more spin

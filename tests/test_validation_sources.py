@@ -118,6 +118,28 @@ def test_observations_say_what_was_assumed():
     assert cover_effect(model, cover)["ratio"] == pytest.approx(0.0, abs=1e-3)
 
 
+def test_the_vertical_gear_effect_observation_is_loaded_as_published_and_compared():
+    from impactlab.data.validation.observations import describe, load_observations, vertical_gear_effect
+
+    clydebank = load_observations()["vertical_gear_effect"][0]
+    # Clydebank Post (2014-11-23): "just 15mm higher on the face", "four degrees higher", "800 rpm less backspin"
+    assert clydebank.offsets[1] - clydebank.offsets[0] == pytest.approx(0.015)
+    assert clydebank.published == pytest.approx(-800 * 2 * math.pi / 60)
+    assert clydebank.published_launch == pytest.approx(math.radians(4.0))
+    assert clydebank.kind == "measurement" and clydebank.loft_at == "centre" and "ASSUMED" in describe(clydebank)
+    model = get_model("rigid_coulomb")()
+    result = vertical_gear_effect(model, clydebank)
+    # physics, not numbers from the code: a strike higher on a rolled face (loft held at the face centre) has more
+    # loft where it lands and sits above the centre of mass: it launches higher and spins less
+    assert result["launch_change"] > 0 > result["spin_change"]
+    assert result["ratio"] == pytest.approx(result["spin_change"] / -800.0)
+    assert result["ratio_launch"] == pytest.approx(result["launch_change"] / 4.0)
+    # held at the contact point instead, the roll's extra loft is taken out: the launch barely changes (the
+    # definition matters; the observation's own is the face centre's)
+    held = vertical_gear_effect(model, clydebank, loft_at="contact")
+    assert held["launch_change"] < 0.5 * result["launch_change"]
+
+
 def test_rolling_hysteresis_is_fitted_as_a_model_option():
     from impactlab.data.calibration import apply
     from impactlab.data.shot_report import shot_table
@@ -145,6 +167,7 @@ def test_cli_per_source_table_and_leave_one_source_out(capsys, tmp_path):
     out = capsys.readouterr().out
     assert "per source" in out and "TrackMan PGA Tour" in out and "TrackMan LPGA Tour" in out
     assert "trackman2009_driver spin-axis change" in out and "ASSUMED" in out
+    assert "clydebank2014_driver spin change" in out and "clydebank2014_driver launch change" in out
     assert (tmp_path / "rows.csv").read_text().count("\n") == 5  # header + four shots, --csv still works
     assert main(["fit", "trackman_tour", "--cross-validate", "--model", "restitution",
                  "--parameter", "restitution"]) == 0

@@ -25,7 +25,8 @@ from impactlab.data.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, read_shots, read_yaml, shot_errors, summary,
     table_inputs,
 )
-from impactlab.data.validation.observations import cover_effect, describe, gear_effect, load_observations
+from impactlab.data.validation.observations import (cover_effect, describe, gear_effect, load_observations,
+                                                    vertical_gear_effect)
 from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
@@ -353,10 +354,13 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
     for members in observations.values():
         for observation in members:
             print(f"  {describe(observation)}")
-    print(f"  {'observation':<46}" + "".join(f"{model:>16}" for model in models))
-    for family, compute in (("gear_effect", gear_effect), ("cover", cover_effect)):
+    print(f"  {'observation':<50}" + "".join(f"{model:>16}" for model in models))
+    rows = (("gear_effect", gear_effect, "spin-axis change", "ratio"),
+            ("vertical_gear_effect", vertical_gear_effect, "spin change", "ratio"),
+            ("vertical_gear_effect", vertical_gear_effect, "launch change", "ratio_launch"),
+            ("cover", cover_effect, "wedge cover difference", "ratio"))
+    for family, compute, what, key in rows:
         for observation in observations[family]:
-            what = "spin-axis change" if family == "gear_effect" else "wedge cover difference"
-            cells = [compute(get_model(m)(**(options or {}).get(m, {})), observation)["ratio"] for m in models]
-            print(f"  {observation.name + ' ' + what:<46}" + "".join(f"{c:16.3f}" for c in cells))
+            cells = [compute(get_model(m)(**(options or {}).get(m, {})), observation)[key] for m in models]
+            print(f"  {observation.name + ' ' + what:<50}" + "".join(f"{c:16.3f}" for c in cells))
     print()

@@ -52,6 +52,75 @@ _ESTIMATE = ("Estimate, not a measurement: {what}. Moments: {moments}. Mass: {ma
              "Club Design, Fitting, Alteration and Repair; ralphmaltby.com) gives a standard 5-iron head of 254 g "
              "with 7 g steps through the set. Lofts and lies: typical manufacturer specifications.")
 
+# -- published iron-head numbers, typed in from their sources (tests/test_club_catalogue.py pins them) -----------
+OZ_IN2 = 28.349523125 * 6.4516  # g cm^2 per ounce (mass) inch^2 (1 oz = 28.349523125 g, 1 in^2 = 6.4516 cm^2)
+INCH = 25.4  # mm
+#: one patent embodiment's set of irons, its 2- and 9-iron (CAMPAU_SOURCE): CG depth behind the striking face [in]
+#: and moment of inertia [oz in^2]; the radius of gyration "between 1.271 and 1.291 inch" for the whole set
+CAMPAU_1983: dict[str, Any] = {"cg_depth_in": {2: 0.171, 9: 0.114}, "moi_oz_in2": {2: 13.619, 9: 16.423},
+                               "gyration_in": (1.271, 1.291)}
+CAMPAU_SOURCE = (
+    "D. N. Campau (Pepsico), 'Iron-type golf clubs', US 4,420,156 (1983), abstract: 'In one specific embodiment the "
+    "center of gravity for clubs 2 through 9 varied from 0.171 to 0.114 inch behind the striking face, the moment of "
+    "inertia varied from 13.619 to 16.423 ounce (wt.)-in.2, and the radius of gyration varied between 1.271 and "
+    "1.291 inch'; the CG lies 'progressively farther behind the striking face ... as the loft angle ... decreases' and "
+    "the moment 'progressively decreases as the loft angle ... decreases', so 0.171 in and 13.619 oz in^2 are the "
+    "2-iron's. A patent embodiment: a design's values, not a measurement of a production head. The moment's axis "
+    "is not in the abstract: read here as the vertical through the CG, the axis of heel-toe twisting that the "
+    "patent's gear effect turns on (our reading). Its masses I/k^2 (239 g and 279 g at k = 1.271 and 1.291 in) agree "
+    "with Maltby's standard 240 g 3-iron and 282 g 9-iron within 1 %.")
+#: manufacturers' statements of one iron's moment about the vertical axis [g cm^2] (GOLF_DIGEST_SOURCE)
+GOLF_DIGEST_IRON_MOI = {"Ping S56 7-iron": 2400.0, "Ping K15 7-iron": 3000.0, "Ping Eye2 (1983)": 2600.0}
+GOLF_DIGEST_SOURCE = (
+    "Golf Digest: B. Schweigert (Ping) quoted in 'Can an iron be forgiving and aesthetically pleasing?' (2010-09-01): "
+    "a Ping S56 7-iron 2,400 g cm^2, a K15 7-iron 3,000; M. Stachura, 'New Looks: Irons MOI' (2008-03-13): Ping's Eye2 "
+    "about 2,600, 'only slightly below where the typical cavity-back iron is today': manufacturers' statements, "
+    "not independent measurements.")
+
+
+def campau_iron(number: float) -> tuple[float, float]:
+    """CG depth behind the face [mm] and moment of inertia about the vertical axis [g cm^2] of iron ``number``.
+
+    Linear in the club number between the 2- and 9-iron of Campau's patent embodiment (:data:`CAMPAU_1983`), which
+    gives the two ends and says both progress through the set: the ends are the patent's, the steps between are
+    interpolated (an estimate). ``number`` outside 2-9 is refused (the patent has no wedges).
+
+    References
+    ----------
+    D. N. Campau, US 4,420,156 (1983), abstract (:data:`CAMPAU_SOURCE`).
+    """
+    if not 2 <= number <= 9:
+        raise FieldError("iron number", "an iron of Campau's set, 2 to 9", number)
+    fraction = (number - 2) / 7.0
+    depth, moi = CAMPAU_1983["cg_depth_in"], CAMPAU_1983["moi_oz_in2"]
+    return ((depth[2] + fraction * (depth[9] - depth[2])) * INCH,
+            (moi[2] + fraction * (moi[9] - moi[2])) * OZ_IN2)
+
+
+def iron_moments(toe: float, number: float) -> tuple[float, float, float]:
+    """Moments about the toe, up and target axes [g cm^2] of iron ``number`` (2-9): ``up`` Campau's
+    (:func:`campau_iron`), ``toe`` given (an estimate) and ``target`` = up + toe - 200, a perimeter-weighted plate's
+    perpendicular-axis sum less a thickness term (an estimate)."""
+    up = campau_iron(number)[1]
+    return toe, up, up + toe - 200.0
+
+
+_IRON_HEAD = (
+    "CG depth behind the face and the moment about the vertical (up) axis: Campau's patent embodiment (US 4,420,156, "
+    "1983; a design's values, not a measured production head), its 2- and 9-iron typed in, the irons between "
+    "interpolated in the club number{wedge}; inside Golf Digest's manufacturer figures of 2400-3000 g cm^2 for "
+    "7-irons (Ping S56 2400, K15 3000). Estimates: the moments about the toe axis ({toe}) and the target axis (up + "
+    "toe - 200 g cm^2, a perimeter-weighted plate), the CG 2 mm towards the heel and {low} mm low. ")
+
+
+def _iron_source(what: str, number: float, toe: float, low: float, mass: str, wedge: str = "") -> str:
+    depth, up = campau_iron(number)
+    return (f"Cited and estimated, each said: {what}. Mass {mass}. " + _IRON_HEAD.format(wedge=wedge, toe=f"{toe:g} "
+            f"g cm^2", low=f"{low:g}") + f"(CG depth {depth:.2f} mm, up {up:.0f} g cm^2.) " + CAMPAU_SOURCE + " "
+            + GOLF_DIGEST_SOURCE)
+
+
+_CARRIED = "; the wedges carry the 9-iron's values, the patent having no wedges (an estimate)"
 CLUB_SOURCES = {
     "driver": (
         "Measured head (measurement): Proceedings 49 (2020) 47, https://www.mdpi.com/2504-3900/49/1/47, Table 1: "
@@ -75,19 +144,11 @@ CLUB_SOURCES = {
         ) + (" Bulge 300 mm, roll 280 mm: typical specifications. Face 17-4PH steel. Restitution gain 0.083: the "
              "calibration's gain of a bulged (wood) face, fitted on driver rows only (no fairway-wood shots with a "
              "published dynamic loft were found): an assumption for this club."),
-    "6_iron": _ESTIMATE.format(
-        what="a cavity-back 6-iron, 30 deg, lie 62 deg",
-        moments="up 2600 (the typical cavity back above), toe 800 and target 3200 from a perimeter-weighted plate "
-                "75 x 45 mm (the perpendicular-axis theorem: I_target ~ I_up + I_toe less the thickness term)",
-        mass="261 g (Maltby: 254 g + 7 g)", cg="6 mm behind the face, 2 mm towards the heel and 2 mm low"),
-    "7_iron": _ESTIMATE.format(
-        what="a cavity-back 7-iron, 34 deg, lie 62.5 deg",
-        moments="up 2650 (between Ping's 2400 and 3000), toe 820, target 3250 (plate, as for the 6-iron)",
-        mass="268 g (Maltby: 254 g + 2 x 7 g)", cg="6 mm behind the face, 2 mm towards the heel and 2 mm low"),
-    "pitching_wedge": _ESTIMATE.format(
-        what="a cavity-back pitching wedge, 46 deg, lie 64 deg",
-        moments="up 2800, toe 900, target 3500 (plate, as for the 6-iron; the wedge's head is taller)",
-        mass="289 g (Maltby: 254 g + 5 x 7 g)", cg="5 mm behind the face, 2 mm towards the heel and 1 mm low"),
+    "6_iron": _iron_source("a cavity-back 6-iron, 30 deg, lie 62 deg", 6, 800.0, 2.0, "261 g (Maltby: 254 g + 7 g)"),
+    "7_iron": _iron_source("a cavity-back 7-iron, 34 deg, lie 62.5 deg", 7, 820.0, 2.0,
+                           "268 g (Maltby: 254 g + 2 x 7 g)"),
+    "pitching_wedge": _iron_source("a cavity-back pitching wedge, 46 deg, lie 64 deg", 9, 900.0, 1.0,
+                                   "289 g (Maltby: 254 g + 5 x 7 g)", _CARRIED),
 }
 
 
@@ -122,10 +183,12 @@ CLUB_PRESETS: dict[str, ClubHead] = {
         loft=math.radians(15.0), lie=math.radians(57.0), bulge_radius=0.300, roll_radius=0.280,
         material=MATERIAL_PRESETS["steel"], name="3-wood (estimate)", source=CLUB_SOURCES["fairway_wood"],
         restitution_gain=0.083, **_face("fairway_wood")),
-    "6_iron": _iron(0.261, (800.0, 2600.0, 3200.0), 30.0, 62.0, (-2.0, -2.0, 6.0), "6-iron (estimate)", "6_iron"),
-    "7_iron": _iron(0.268, (820.0, 2650.0, 3250.0), 34.0, 62.5, (-2.0, -2.0, 6.0), "7-iron (estimate)", "7_iron"),
-    "pitching_wedge": _iron(0.289, (900.0, 2800.0, 3500.0), 46.0, 64.0, (-2.0, -1.0, 5.0), "pitching wedge (estimate)",
-                            "pitching_wedge"),
+    "6_iron": _iron(0.261, iron_moments(800.0, 6), 30.0, 62.0, (-2.0, -2.0, campau_iron(6)[0]),
+                    "6-iron (patent CG depth and MOI, rest estimate)", "6_iron"),
+    "7_iron": _iron(0.268, iron_moments(820.0, 7), 34.0, 62.5, (-2.0, -2.0, campau_iron(7)[0]),
+                    "7-iron (patent CG depth and MOI, rest estimate)", "7_iron"),
+    "pitching_wedge": _iron(0.289, iron_moments(900.0, 9), 46.0, 64.0, (-2.0, -1.0, campau_iron(9)[0]),
+                            "pitching wedge (the 9-iron's patent values, rest estimate)", "pitching_wedge"),
 }
 
 
@@ -151,12 +214,10 @@ CATALOGUE_LOFTS = {"3_wood": 15.0, "5_wood": 19.0, "7_wood": 22.0, "3_hybrid": 2
 #: the irons' place in Maltby's 7 g ladder, 5-iron = 0
 _IRON_STEP = {"3_iron": -2, "4_iron": -1, "5_iron": 0, "6_iron": 1, "7_iron": 2, "8_iron": 3, "9_iron": 4,
               "pitching_wedge": 5, "gap_wedge": 6, "sand_wedge": 7, "lob_wedge": 7}
-_IRON_ESTIMATE = ("Estimate, not a measurement: a cavity-back head. Moments about the toe, up and target axes: the "
-                  "6-iron's (800, 2600, 3200 g cm^2: Golf Digest's manufacturer figures of 2400-3000 about the "
-                  "vertical axis; a perimeter-weighted plate for the others) shifted by (20, 50, 50) g cm^2 a club, "
-                  "the gap, sand and lob wedge the same steps from the pitching wedge's (900, 2800, 3500); CG 6 mm "
-                  "(wedges 5 mm) behind the face, 2 mm towards the heel. Face: "
-                  "flat steel (17-4PH), rigid-faced (no spring-like gain). ")
+_IRON_ESTIMATE = ("Cited and estimated, each said. " + _IRON_HEAD.format(
+    wedge=_CARRIED, toe="the 6-iron's 800 g cm^2 shifted by 20 a club, the wedges from the pitching wedge's 900",
+    low="2 (wedges 1)") + "Face: flat steel (17-4PH), rigid-faced (no spring-like gain). " + CAMPAU_SOURCE + " "
+    + GOLF_DIGEST_SOURCE + " ")
 _WOOD_ESTIMATE = ("Estimate, not a measurement: the 3-wood preset's head (see fairway_wood) with {mass} g; moments "
                   "scaled by the mass; CG 25 mm behind the face and 5 mm low; bulge 300 mm, roll 280 mm; face "
                   "17-4PH; restitution gain 0.083 as the driver's (an assumption for a hollow wood face). ")
@@ -192,20 +253,19 @@ def _catalogue() -> dict[str, ClubHead]:
     for key, step in _IRON_STEP.items():
         mass = 254.0 + 7.0 * step
         wedge = key.endswith("wedge")
-        if wedge:  # from the pitching wedge's taller head, the same step a club
-            shift = min(step, 7) - 5
-            moments = (900.0 + 20.0 * shift, 2800.0 + 50.0 * shift, 3500.0 + 50.0 * shift)
-        else:  # from the 6-iron
-            shift = step - 1
-            moments = (800.0 + 20.0 * shift, 2600.0 + 50.0 * shift, 3200.0 + 50.0 * shift)
+        number = min(step + 5, 9)  # Maltby's step 0 is the 5-iron; the wedges carry the 9-iron's values
+        toe = 900.0 + 20.0 * (min(step, 7) - 5) if wedge else 800.0 + 20.0 * (step - 1)
+        moments = iron_moments(toe, number)
         name = key.replace("_", " ").replace(" iron", "-iron")
         clubs[key] = ClubHead(
             mass=mass * 1e-3, inertia=tuple(m * G_CM2 for m in moments),
-            center_of_mass=(-0.002, -0.001 if wedge else -0.002, 0.005 if wedge else 0.006),
+            center_of_mass=(-0.002, -0.001 if wedge else -0.002, campau_iron(number)[0] * MM),
             loft=math.radians(CATALOGUE_LOFTS[key]), lie=math.radians(lie_iron[key]),
-            material=MATERIAL_PRESETS["steel"], name=f"{name} (estimate)",
+            material=MATERIAL_PRESETS["steel"],
+            name=f"{name} (the 9-iron's patent values, rest estimate)" if wedge
+            else f"{name} (patent CG depth and MOI, rest estimate)",
             source=" ".join((_IRON_ESTIMATE, LOFT_SOURCE, LIE_SOURCE, MASS_SOURCE)))
-    # the presets that predate the catalogue keep their numbers (their own sources; studies and budgets use them)
+    # the presets that predate the catalogue: the same numbers, their own source texts
     for key in ("6_iron", "7_iron", "pitching_wedge"):
         clubs[key] = CLUB_PRESETS[key]
     return clubs

@@ -1,5 +1,5 @@
-"""Published observations that are differences between shots: a heel or toe strike's spin-axis change, and the
-cover's effect on a wedge's spin (``observations.yaml``).
+"""Published observations that are differences between shots: a heel or toe strike's spin-axis change, a higher
+strike's change of spin and launch, and the cover's effect on a wedge's spin (``observations.yaml``).
 
 Each observation carries its source, whether it is a measurement, exactly what the source publishes, and the
 delivery impactlab must assume to reproduce it (the sources give none); the assumption is said in the data file
@@ -34,12 +34,18 @@ class Observation:
     assumption : str
         What was assumed, in words.
     published : float
-        The published difference: a spin-axis change [rad] for ``gear_effect``, the relative spin difference
-        spin(urethane)/spin(ionomer) - 1 for ``cover``.
+        The published difference: a spin-axis change [rad] for ``gear_effect``, a spin change [rad/s] for
+        ``vertical_gear_effect``, the relative spin difference spin(urethane)/spin(ionomer) - 1 for ``cover``.
     offsets : tuple of float
-        Gear effect: the inner and outer strike offsets from the face centre [m].
+        Gear effect: the inner and outer strike offsets from the face centre [m] (towards the toe and the heel);
+        vertical gear effect: the lower and the upper strike, up the face [m].
     balls : dict
         Cover: ``urethane`` and ``ionomer`` ball presets.
+    published_launch : float
+        Vertical gear effect: the published change of launch angle [rad] (NaN elsewhere).
+    loft_at : str or None
+        The delivery's definition the observation needs (``centre``: the same swing struck elsewhere), or None
+        (the caller's, ``contact`` by default).
     """
 
     name: str
@@ -51,6 +57,8 @@ class Observation:
     published: float
     offsets: tuple = ()
     balls: dict = attrs.field(factory=dict)
+    published_launch: float = math.nan
+    loft_at: str | None = None
 
 
 def load_observations() -> dict[str, list[Observation]]:
@@ -58,7 +66,7 @@ def load_observations() -> dict[str, list[Observation]]:
     import yaml
 
     document = yaml.safe_load(resources.files(__package__).joinpath("observations.yaml").read_text())
-    out: dict[str, list[Observation]] = {"gear_effect": [], "cover": []}
+    out: dict[str, list[Observation]] = {"gear_effect": [], "vertical_gear_effect": [], "cover": []}
     for item in document["gear_effect"]:
         delivery = {key: to_si(value, DELIVERY_FIELDS[key], f"{item['name']}.{key}")
                     for key, value in item["assumed_delivery"].items()}
@@ -66,6 +74,15 @@ def load_observations() -> dict[str, list[Observation]]:
             item["name"], item["kind"], " ".join(item["source"].split()), item["club"], delivery,
             " ".join(item["assumption"].split()), to_si(item["spin_axis_change"], "angle", item["name"]),
             (to_si(item["inner_offset"], "length", item["name"]), to_si(item["outer_offset"], "length", item["name"]))))
+    for item in document["vertical_gear_effect"]:
+        name = item["name"]
+        delivery = {key: to_si(value, DELIVERY_FIELDS[key], f"{name}.{key}")
+                    for key, value in item["assumed_delivery"].items()}
+        out["vertical_gear_effect"].append(Observation(
+            name, item["kind"], " ".join(item["source"].split()), item["club"], delivery,
+            " ".join(item["assumption"].split()), to_si(item["spin_change"], "angular_speed", name),
+            (to_si(item["lower_high"], "length", name), to_si(item["upper_high"], "length", name)),
+            published_launch=to_si(item["launch_change"], "angle", name), loft_at=item["loft_at"]))
     for item in document["cover"]:
         delivery = {key: to_si(value, DELIVERY_FIELDS[key], f"{item['name']}.{key}")
                     for key, value in item["assumed_delivery"].items()}
@@ -77,18 +94,20 @@ def load_observations() -> dict[str, list[Observation]]:
     return out
 
 
-def strike_table(observation: Observation, strikes_toe, loft_at: str = "contact") -> ShotTable:
-    """Shots of the observation's assumed delivery at the strike offsets ``strikes_toe`` [m] (+ toe), nothing
-    measured (a table to predict, not to compare)."""
+def strike_table(observation: Observation, strikes_toe, loft_at: str = "contact", strikes_high=None) -> ShotTable:
+    """Shots of the observation's assumed delivery at the strike offsets ``strikes_toe`` [m] (+ toe) and
+    ``strikes_high`` [m] (+ up the face; default 0), nothing measured (a table to predict, not to compare)."""
     strikes_toe = np.asarray(strikes_toe, dtype=float)
     n = strikes_toe.size
     delivery = {key: np.full(n, observation.delivery.get(key, 0.0)) for key in DELIVERY_FIELDS}
     delivery["strike_toe"] = strikes_toe
+    delivery["strike_high"] = np.zeros(n) if strikes_high is None else np.asarray(strikes_high, dtype=float)
     delivery["spin_loft"] = np.full(n, math.nan)
     delivery["face_to_path"] = np.full(n, math.nan)
     nothing = {key: np.full(n, math.nan) for key in MEASURED_FIELDS}
     return ShotTable(name=observation.name, source=observation.source,
-                     labels=tuple(f"{x * 1e3:+.1f} mm" for x in strikes_toe), clubs=(observation.club,) * n,
+                     labels=tuple(f"toe {x * 1e3:+.1f} mm, high {y * 1e3:+.1f} mm"
+                                  for x, y in zip(strikes_toe, delivery["strike_high"])), clubs=(observation.club,) * n,
                      handedness=("right",) * n, delivery=delivery, measured=nothing,
                      sigma={key: np.ones(n) for key in MEASURED_FIELDS}, loft_at=loft_at)
 
@@ -116,6 +135,37 @@ def gear_effect(model, observation: Observation, loft_at: str = "contact", club_
     published = math.degrees(observation.published)
     return {"toe": float(toe), "heel": float(heel), "predicted": float(predicted), "published": published,
             "ratio": float(predicted / published)}
+
+
+def vertical_gear_effect(model, observation: Observation, loft_at: str | None = None,
+                         club_reference: str = "centre_of_mass", inputs_hook=None) -> dict:
+    """The model's change of spin and launch angle from the lower to the upper strike against the published ones.
+
+    ``loft_at`` defaults to the observation's own definition (``centre`` for one swing struck at two heights:
+    the head's delivery is the same, the roll changes the loft at the contact point).
+
+    Returns
+    -------
+    dict
+        ``spin`` [rpm] and ``launch`` [deg] at the lower and upper strike; ``spin_change`` [rpm] and
+        ``launch_change`` [deg], upper minus lower; ``published_spin`` [rpm], ``published_launch`` [deg];
+        ``ratio`` (spin) and ``ratio_launch``, predicted / published.
+    """
+    lower, upper = observation.offsets
+    table = strike_table(observation, [0.0, 0.0], loft_at or observation.loft_at or "contact", [lower, upper])
+    inputs = table_inputs(table, club_reference=club_reference)
+    if inputs_hook is not None:
+        inputs = inputs_hook(inputs)
+    out = predict(model, inputs)
+    spin = out["spin_rate"] * 60.0 / (2.0 * math.pi)
+    launch = np.degrees(out["vertical_launch_angle"])
+    published_spin = observation.published * 60.0 / (2.0 * math.pi)
+    published_launch = math.degrees(observation.published_launch)
+    spin_change, launch_change = float(spin[1] - spin[0]), float(launch[1] - launch[0])
+    return {"spin": (float(spin[0]), float(spin[1])), "launch": (float(launch[0]), float(launch[1])),
+            "spin_change": spin_change, "launch_change": launch_change, "published_spin": published_spin,
+            "published_launch": published_launch, "ratio": spin_change / published_spin,
+            "ratio_launch": launch_change / published_launch}
 
 
 def cover_effect(model, observation: Observation, loft_at: str = "contact", club_reference: str = "centre_of_mass",
