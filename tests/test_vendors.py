@@ -361,3 +361,52 @@ def test_trackman_impact_offset_is_toe_positive_by_the_gear_effect_of_real_drive
     assert np.isnan(v["face_angle"][wedge]) and np.isnan(v["dynamic_loft"][wedge])
     keep, skipped = session.usable()
     assert keep.tolist() == [True] * 6 + [False] and "no dynamic loft" in dict(skipped)[10]
+
+
+def test_square_golf_leading_left_right_summary_rows_and_its_all_zero_club_data_marker():
+    # rows copied verbatim from real Square Golf exports (esabine/wedgematrix): the oracles are typed from them
+    session = read_session(DATA / "square_golf.csv")
+    assert session.vendor.id == "square_golf" and session.size == 7
+    assert [line for line, _ in session.skipped] == [6, 7]  # ',Average' and ',Deviation' (label in Index)
+    assert list(session.lines) == [4, 5, 8, 9, 10, 11, 12]
+    v = session.values
+    # Driver 0 of 03-08-2026: 138.2 mph, R8.5, Spin Axis L34.8, Back 1267, Side L880, Carry 217.0 yd, Offline L3.3
+    assert v["ball_speed"][0] == pytest.approx(138.2 * MPH)
+    assert v["horizontal_launch_angle"][0] == pytest.approx(8.5 * DEG)
+    assert v["spin_axis"][0] == pytest.approx(-34.8 * DEG) and v["side_spin"][0] == pytest.approx(-880 * RPM)
+    assert v["back_spin"][0] == pytest.approx(1267 * RPM) and v["spin_rate"][0] == pytest.approx(1543 * RPM)
+    assert v["carry_distance"][0] == pytest.approx(217.0 * YD) and v["apex_height"][0] == pytest.approx(21.4 * YD)
+    assert v["offline_distance"][0] == pytest.approx(-3.3 * YD)
+    assert v["path"][0] == pytest.approx(9.6 * DEG) and v["face_angle"][0] == pytest.approx(8.3 * DEG)
+    assert v["attack_angle"][0] == pytest.approx(2.6 * DEG) and v["dynamic_loft"][0] == pytest.approx(17.3 * DEG)
+    # the angles' unit is degrees and the spins' rpm by the file itself: spin = hypot(back, side) and
+    # axis = atan(side/back) within the file's rounding (0.1 deg, 1 rpm), in every row with back spin
+    ok = np.isfinite(v["back_spin"])
+    assert np.allclose(np.hypot(v["back_spin"], v["side_spin"])[ok], v["spin_rate"][ok], atol=1.0 * RPM)
+    assert np.allclose(np.arctan2(v["side_spin"], np.abs(v["back_spin"]))[ok], v["spin_axis"][ok], atol=0.06 * DEG)
+    # starting right and curving left to finish left (Driver 0): L is left for direction, axis, side spin and offline
+    assert v["horizontal_launch_angle"][0] > 0 > v["offline_distance"][0] and v["spin_axis"][0] < 0
+    # 'L0.0,L0.0,0.0,0.0' (5 Iron 7) and '0.0,0.0,0.0,0.0' (G-Wedge 17): the camera saw no club: missing, flagged
+    for row in (2, 5):
+        for field in ("path", "face_angle", "attack_angle", "dynamic_loft"):
+            assert np.isnan(v[field][row]) and session.flags[(field, "no data")][row], (row, field)
+        assert np.isfinite(v["ball_speed"][row])
+    # a single 0.0 is a measurement (L-Wedge 10: path L1.7, face 0.0)
+    assert v["face_angle"][6] == 0.0 and v["path"][6] == pytest.approx(-1.7 * DEG)
+    assert not session.flags[("face_angle", "no data")][6]
+    assert np.isnan(v["landing_angle"][4])  # 'NaN' in the export (G-Wedge 5)
+    from impactlab.scene.catalogue import club_key
+    assert [club_key(c) for c in session.text["club"]] == [
+        "driver", "driver", "5_iron", "sand_wedge", "gap_wedge", "gap_wedge", "lob_wedge"]
+    keep, skipped = session.usable()
+    assert not keep.any() and all("no club speed" in why for _, why in skipped)  # no club-speed column
+
+
+def test_a_layout_writes_left_right_one_way():
+    from impactlab.data.session_layouts import _vendor_from_document
+    document = {"id": "x", "name": "x", "source": "x", "recognise": ["a"], "units": "header", "columns": {},
+                "left_right_suffix": True, "left_right_prefix": True}
+    with pytest.raises(StudyError, match="L/R one way"):
+        _vendor_from_document(document, "x.yaml")
+    with pytest.raises(StudyError, match="not a numeric session field"):
+        _vendor_from_document({**document, "left_right_suffix": False, "no_data_when_all_zero": ["club"]}, "x.yaml")

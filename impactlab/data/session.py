@@ -35,8 +35,9 @@ from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_F
 from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, ColumnRule, VendorMap,
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
-from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_estimated,
-                                           _flag_excluded, _progress, _read_bytes, _read_flags, _rows_of, _to_numbers)
+from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
+                                           _flag_estimated, _flag_excluded, _progress, _read_bytes, _read_flags,
+                                           _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -282,9 +283,13 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         plan.append((column, cell, field, unit, rule.sign, factor))
     if problems:
         raise StudyError(f"{file}: " + "; ".join(problems))
-    if layout.units == "implied" and any(unit and split_header(cell)[1] is None
-                                         for _, cell, field, unit, _, factor in plan if factor is not None):
-        notes.append(f"units not in the file: taken from the {layout.name} layout ({layout.source})")
+    in_row = set() if units_row is None else {column for column, cell in enumerate(units_row) if cell}
+    implied = [f"{cell} [{unit}]" for column, cell, field, unit, _, factor in plan
+               if layout.units == "implied" and factor is not None and unit and split_header(cell)[1] is None
+               and column not in in_row]
+    if implied:
+        notes.append(f"units not in the file for {', '.join(implied)}: taken from the {layout.name} layout "
+                     f"({layout.source})")
 
     # summary rows and ragged rows
     skipped = []
@@ -358,6 +363,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         clamped = np.abs(values[field]) >= limit * (1 - 1e-5)
         if clamped.any():
             flags[(field, "clamped")] = clamped
+    _flag_all_zero(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
     handedness = text_values["handedness"]

@@ -93,6 +93,12 @@ class VendorMap:
     clamped: dict = attrs.field(factory=dict, eq=False)
     summary_rows: dict | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
+    #: directions written with a leading L/R (Square Golf: ``L34.8`` is -34.8, ``R8.5`` is +8.5)
+    left_right_prefix: bool = False
+    #: fields that together mark "no club data" when every one of them reads exactly 0 in a row (Square Golf writes
+    #: ``L0.0,L0.0,0.0,0.0`` for path, face, attack angle and dynamic loft when its camera saw no club): read as
+    #: missing and flagged ``no data``
+    no_data_when_all_zero: tuple[str, ...] = ()
     #: True: the file's spin-axis sign is checked against its side spin (whose sign the layout states) and turned
     #: when every row disagrees (Garmin Golf app versions write the axis with either sign)
     spin_axis_follows_side_spin: bool = False
@@ -118,7 +124,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
-            "excluded", "spin_axis_follows_side_spin"}
+            "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -130,6 +136,12 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             raise StudyError(f"{where}: columns.{header}: {field!r} is not a session field "
                              f"({', '.join((*FIELDS, *TEXT_FIELDS))})")
         columns[_norm(header)] = None if field is None else ColumnRule(field, float(rule.get("sign", 1)))
+    all_zero = tuple(document.get("no_data_when_all_zero") or ())
+    for field in all_zero:
+        if field not in FIELDS:
+            raise StudyError(f"{where}: no_data_when_all_zero: {field!r} is not a numeric session field")
+    if document.get("left_right_suffix") and document.get("left_right_prefix"):
+        raise StudyError(f"{where}: left_right_suffix and left_right_prefix: a layout writes L/R one way")
     if document.get("units") not in ("row", "header", "implied"):
         raise StudyError(f"{where}: units: expected row, header or implied")
     clamped = {}
@@ -145,6 +157,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
         summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)),
+        left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
         excluded=document.get("excluded"),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 

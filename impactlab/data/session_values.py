@@ -124,11 +124,16 @@ def _to_numbers(raw, layout: VendorMap, decimal: str):
     series = pd.Series(raw, dtype=object).astype(str).str.strip()
     missing = series.isin(list(layout.missing)) | series.str.upper().isin(["NAN", "N/A", "NA"])
     cleaned = series
-    if layout.left_right_suffix:
-        side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
-        has = side[1].notna()
-        cleaned = cleaned.where(~has, side[0])
-        signs: np.ndarray | float = np.where(has & side[1].str.upper().eq("L"), -1.0, 1.0)
+    if layout.left_right_suffix or layout.left_right_prefix:
+        if layout.left_right_suffix:
+            side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
+            letter, number = side[1], side[0]
+        else:
+            side = cleaned.str.extract(r"^([LRlr])\s*(.*?)$")
+            letter, number = side[0], side[1]
+        has = letter.notna()
+        cleaned = cleaned.where(~has, number)
+        signs: np.ndarray | float = np.where(has & letter.str.upper().eq("L"), -1.0, 1.0)
     else:
         signs = 1.0
     if decimal == ",":
@@ -242,6 +247,24 @@ def _check_spin_signs(layout, values, used, notes, flags) -> None:
         flags[(field, "inconsistent")] = disagree
     notes.append(f"side spin and spin axis disagree in sign in {int(disagree.sum())} of {int(clear.sum())} row(s) "
                  f"with clear spin: those rows' spin axis and side spin are flagged inconsistent and left out")
+
+
+def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
+    """Rows where every field of ``layout.no_data_when_all_zero`` reads exactly 0: the monitor's "no club data"
+    marker (no club is delivered with zero loft, path, face and attack angle at once); read as missing, flagged."""
+    fields = [field for field in layout.no_data_when_all_zero if np.isfinite(values[field]).any()]
+    if not fields:
+        return
+    zero = np.ones(len(values[fields[0]]), bool)
+    for field in fields:
+        zero &= values[field] == 0.0
+    if not zero.any():
+        return
+    for field in fields:
+        values[field] = np.where(zero, np.nan, values[field])
+        flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(zero)) | zero
+    notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-club-data "
+                 f"marker): read as missing")
 
 
 def _inherit(flags: dict, field: str, sources) -> None:
