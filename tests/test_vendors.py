@@ -410,3 +410,47 @@ def test_a_layout_writes_left_right_one_way():
         _vendor_from_document(document, "x.yaml")
     with pytest.raises(StudyError, match="not a numeric session field"):
         _vendor_from_document({**document, "left_right_suffix": False, "no_data_when_all_zero": ["club"]}, "x.yaml")
+
+
+def test_gspro_open_connect_messages_back_to_back_placeholders_and_heartbeats():
+    # six clients' messages (transcribed from their code in PinPoint-Golf/libgspro, the vendor's example last),
+    # concatenated as GSPro receives them: compact and indented, no delimiter
+    session = read_session(DATA / "gspro_open_connect.json")
+    assert session.vendor.id == "gspro_open_connect" and session.size == 5
+    assert [line for line, _ in session.skipped] == [2]  # the Open-Birdie heartbeat (ContainsBallData false)
+    assert "heartbeat" in session.skipped[0][1]
+    v = session.values
+    # MLM2PRO connector: 'Backspin' spelled with a lower-case s is still the back spin; its CarryDistance 0 and
+    # Loft 0 are placeholders, its club speed, attack angle, face and path are measurements
+    assert v["ball_speed"][0] == pytest.approx(132.4 * MPH) and v["back_spin"][0] == pytest.approx(6184.1 * RPM)
+    assert v["spin_rate"][0] == pytest.approx(6200 * RPM) and v["spin_axis"][0] == pytest.approx(-4.1 * DEG)
+    assert np.isnan(v["carry_distance"][0]) and np.isnan(v["dynamic_loft"][0])
+    assert v["club_speed"][0] == pytest.approx(92.3 * MPH) and v["attack_angle"][0] == pytest.approx(-3.2 * DEG)
+    assert v["face_angle"][0] == pytest.approx(1.4 * DEG) and v["path"][0] == pytest.approx(-0.6 * DEG)
+    # PiTrac: TotalSpin 0.0 beside BackSpin 5300 and SideSpin 372.4: the spin is their hypot, not 0 rpm
+    assert v["spin_rate"][1] == pytest.approx(math.hypot(5300, 372.4) * RPM)
+    assert session.flags[("spin_rate", "no data")][1]
+    assert all(np.isnan(v[f][1]) for f in ("club_speed", "attack_angle", "face_angle", "dynamic_loft", "path"))
+    # OpenFlight: ContainsClubData true with dataclass defaults 0.0: club speed 110 mph and path 0.5 are read,
+    # the 0.0 attack angle, face and loft are not (a square face would be invented)
+    assert v["club_speed"][2] == pytest.approx(110 * MPH) and v["path"][2] == pytest.approx(0.5 * DEG)
+    assert np.isnan(v["face_angle"][2]) and np.isnan(v["attack_angle"][2])
+    assert v["carry_distance"][2] == pytest.approx(255 * YD)
+    # the vendor's own example: SpinAxis -13.2 with SideSpin -800 (one sign: positive tilted right); its TotalSpin
+    # 3250 is kept as given though hypot(2500, 800) = 2625, and the report says they differ
+    assert v["spin_axis"][4] == pytest.approx(-13.2 * DEG) and v["side_spin"][4] == pytest.approx(-800 * RPM)
+    assert v["spin_rate"][4] == pytest.approx(3250 * RPM)
+    assert v["horizontal_launch_angle"][4] == pytest.approx(2.3 * DEG)
+    assert any("differs from hypot(back spin, side spin)" in note for note in session.notes)
+    assert not any(kind == "inconsistent" for _, kind in session.flags)
+    assert session.text["label"][3] == "GSPRO-R10"
+
+
+def test_gspro_units_other_than_yards_and_the_vendors_commented_example_are_refused():
+    text = (DATA / "gspro_open_connect.json").read_text(encoding="utf-8")
+    with pytest.raises(StudyError, match=r"Units: expected 'Yards' or '', got .*:6 \('Meters'\).*not guessed"):
+        read_session_text(text.replace('"Units": "Yards",\n"ShotNumber": 13', '"Units": "Meters",\n"ShotNumber": 13'),
+                          "capture.json")
+    # the vendor page's example carries // comments: not JSON, refused at its line
+    with pytest.raises(StudyError, match=r"capture.json:2: not readable as JSON"):
+        read_session_text('{\n"DeviceID": "GSPro LM 1.1",  //required\n"Units": "Yards"}', "capture.json")

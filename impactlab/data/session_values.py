@@ -173,6 +173,21 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused) -> Non
                 flags[(field, "estimated")] = present
 
 
+def _flag_no_data(layout, header, columns, values, flags, used, unused) -> None:
+    """Fields a row says it does not carry (GSPro's ContainsClubData = false): missing, flagged ``no data``."""
+    rule = layout.no_data
+    marked = _rule_marks(rule, header, columns, used, unused, rule and (
+        "no-data flag: " + " or ".join(map(str, rule["values"])) + " marks " + ", ".join(rule["fields"])
+        + " as not carried"))
+    if marked is None or not marked.any():
+        return
+    for field in rule["fields"]:
+        present = marked & np.isfinite(values[field])
+        if present.any():
+            values[field] = np.where(marked, np.nan, values[field])
+            flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(marked)) | present
+
+
 def _flag_excluded(layout, header, columns, flags, used, unused) -> None:
     rule = layout.excluded
     excluded = _rule_marks(rule, header, columns, used, unused,
@@ -206,10 +221,20 @@ def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
         values["spin_rate"] = np.hypot(back, side)
         notes.append("spin rate = hypot(back spin, side spin) (no spin-rate column)")
         _inherit(flags, "spin_rate", ("back_spin", "side_spin"))
+    elif (fill := np.isnan(values["spin_rate"]) & np.isfinite(back) & np.isfinite(side)).any():
+        values["spin_rate"] = np.where(fill, np.hypot(back, side), values["spin_rate"])
+        notes.append(f"spin rate = hypot(back spin, side spin) in {int(fill.sum())} row(s) without one")
+        _inherit(flags, "spin_rate", ("back_spin", "side_spin"))
     if "spin_axis" not in given and np.isfinite(back).any() and np.isfinite(side).any():
         values["spin_axis"] = np.arctan2(side, back)
         notes.append("spin axis = atan(side spin / back spin) (no spin-axis column; both positive curving right)")
         _inherit(flags, "spin_axis", ("back_spin", "side_spin"))
+    elif {"spin_rate", "back_spin", "side_spin"} <= given:
+        with np.errstate(invalid="ignore"):
+            off = np.abs(values["spin_rate"] / np.hypot(back, side) - 1) > 0.02
+        if off.any():
+            notes.append(f"spin rate differs from hypot(back spin, side spin) by more than 2 % in {int(off.sum())} "
+                         f"row(s) (kept as given)")
     if "face_angle" not in given and "face_to_path" in given and "path" in given:
         values["face_angle"] = values["path"] + values["face_to_path"]
         notes.append("face angle = club path + face to path (no face-angle column)")
