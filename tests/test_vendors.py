@@ -454,3 +454,46 @@ def test_gspro_units_other_than_yards_and_the_vendors_commented_example_are_refu
     # the vendor page's example carries // comments: not JSON, refused at its line
     with pytest.raises(StudyError, match=r"capture.json:2: not readable as JSON"):
         read_session_text('{\n"DeviceID": "GSPro LM 1.1",  //required\n"Units": "Yards"}', "capture.json")
+
+
+def test_uneekor_report_json_sessions_sentinels_units_and_one_sign_convention():
+    # verbatim shot objects of a real my.uneekor.com report response (Redeemedduck/GolfDataApp), two sessions
+    path = DATA / "uneekor_report.json"
+    session = read_session(path)
+    assert session.vendor.id == "uneekor_report" and session.size == 5
+    text_lines = path.read_text(encoding="utf-8").splitlines()
+    assert text_lines[session.lines[1] - 1].strip() == "{" and text_lines[session.lines[1]].strip() == '"id": 1298334,'
+    from impactlab.scene.catalogue import club_key
+    assert [club_key(c) for c in session.text["club"]] == ["6_iron"] * 3 + ["8_iron"] * 2  # the session's club_name
+    v = session.values
+    # shot 1298334, typed from the file (m/s, m, deg, rpm, s)
+    assert session.text["label"][1] == "1298334"
+    assert v["ball_speed"][1] == pytest.approx(55.62) and v["club_speed"][1] == pytest.approx(42.3)
+    assert v["face_angle"][1] == pytest.approx(-1.28 * DEG) and v["path"][1] == pytest.approx(-2.74 * DEG)
+    assert v["dynamic_loft"][1] == pytest.approx(16.37 * DEG) and v["attack_angle"][1] == pytest.approx(-0.76 * DEG)
+    assert v["horizontal_launch_angle"][1] == pytest.approx(-1.4 * DEG)
+    assert v["side_spin"][1] == pytest.approx(622 * RPM) and v["back_spin"][1] == pytest.approx(5928 * RPM)
+    assert v["spin_rate"][1] == pytest.approx(math.hypot(5928, 622) * RPM)
+    assert v["spin_axis"][1] == pytest.approx(math.atan2(622, 5928))
+    assert v["carry_distance"][1] == pytest.approx(176.51) and v["offline_distance"][1] == pytest.approx(5.06)
+    assert v["apex_height"][1] == pytest.approx(27.39) and v["flight_time"][1] == pytest.approx(6.1)
+    assert v["landing_angle"][1] == pytest.approx(41.25 * DEG)
+    # 99999 is no data: shot 1298333 has no loft or attack angle, 1298359 no face angle (its attack angle 0.79 is kept)
+    assert np.isnan(v["dynamic_loft"][0]) and np.isnan(v["attack_angle"][0])
+    assert session.flags[("dynamic_loft", "no data")].tolist() == [True, False, False, False, True]
+    assert np.isnan(v["face_angle"][4]) and v["attack_angle"][4] == pytest.approx(0.79 * DEG)
+    keep, _ = session.usable()
+    assert keep.tolist() == [False, True, True, True, False]
+    # the distances are metres, not yards: an independent flight model (impactlab.fly, Smits & Smith 1994; 5 % RMS
+    # on TrackMan's tour carries) carries each measured launch to within 3 % of the file's number read as metres,
+    # 7-11 % beyond it read as yards
+    from impactlab import fly
+    carry = np.asarray(fly(ball_speed=v["ball_speed"], launch_angle=v["vertical_launch_angle"],
+                           spin_rate=v["spin_rate"], spin_axis=v["spin_axis"]).carry_distance)
+    assert np.all(np.abs(carry / v["carry_distance"] - 1) < 0.03)
+    assert np.all(carry / (v["carry_distance"] * YD) - 1 > 0.06)
+    # one sign convention throughout: where the face is clearly open or closed to the path, the side spin has the
+    # sign of face - path (the D-plane: the ball curves towards the face)
+    f2p = v["face_angle"] - v["path"]
+    clear = np.abs(f2p) > math.radians(1)
+    assert clear.sum() >= 2 and np.all(np.sign(v["side_spin"][clear]) == np.sign(f2p[clear]))
