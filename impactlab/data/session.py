@@ -1,11 +1,14 @@
 """Launch-monitor sessions read as exported: vendor layouts as data, one normalised table out.
 
 A session file is a table a launch monitor's software wrote (TrackMan, Garmin Golf, Foresight FSX, Rapsodo,
-FlightScope) or a table in impactlab's own vocabulary (``Club Speed [mph]``, ``ball_speed (m/s)``). Each vendor's
+FlightScope, Square Golf), JSON shot records (GSPro Open Connect messages, Uneekor's report; read as rows by
+:mod:`impactlab.data.session_json`) or a table in impactlab's own vocabulary (``Club Speed [mph]``,
+``ball_speed (m/s)``). Each vendor's
 layout is a YAML column map in ``impactlab/data/vendors/`` (:func:`vendor_maps`): the header names that recognise
 it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
 column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
-clamped values, summary rows, and the point of the club head its club data describe. A map key ``Name [unit]``
+clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
+requires, and the point of the club head its club data describe. A map key ``Name [unit]``
 matches the column ``Name`` only when the header gives it a unit (FlightScope's ``Club`` is the club's name,
 ``Club (mph)`` its speed).
 
