@@ -497,3 +497,34 @@ def test_uneekor_report_json_sessions_sentinels_units_and_one_sign_convention():
     f2p = v["face_angle"] - v["path"]
     clear = np.abs(f2p) > math.radians(1)
     assert clear.sum() >= 2 and np.all(np.sign(v["side_spin"][clear]) == np.sign(f2p[clear]))
+
+
+@pytest.mark.parametrize("name, vendor, says", [
+    ("square_golf.csv", "square_golf", ["line 6 skipped: a summary row ('Average')", "no club speed",
+                                        "units not in the file for Launch Direction [deg]"]),
+    ("gspro_open_connect.json", "gspro_open_connect", ["a heartbeat or status message, not a shot",
+                                                       "spin rate = hypot(back spin, side spin) in 1 row(s)"]),
+    ("uneekor_report.json", "uneekor_report", ["in 2 session(s)", "impact models: 3 of 5 row(s) usable",
+                                               "unverified"]),
+    ("trackman_tps_drivers.csv", "trackman_tps", ["impact models: 6 of 7 row(s) usable", "toe"]),
+])
+def test_shots_reports_each_new_layout_and_its_normalised_table_reads_back(name, vendor, says, tmp_path, capsys):
+    out = tmp_path / "normal.csv"
+    assert main(["shots", str(DATA / name), "--csv", str(out)]) == 0
+    report = capsys.readouterr().out
+    assert f"({vendor})" in report.splitlines()[0]
+    for text in says:
+        assert text in report, text
+    session, again = read_session(DATA / name), read_session(out)
+    for field in ("ball_speed", "spin_rate", "spin_axis", "horizontal_launch_angle", "face_angle", "carry_distance"):
+        np.testing.assert_allclose(again.values[field], session.values[field], rtol=1e-9, equal_nan=True)
+    assert {key: rows.tolist() for key, rows in again.flags.items()} == \
+        {key: rows.tolist() for key, rows in session.flags.items()}
+
+
+def test_a_refused_gspro_capture_is_one_message_and_exit_2(tmp_path, capsys):
+    path = tmp_path / "capture.json"
+    path.write_text('{"DeviceID": "X", "Units": "Meters", "BallData": {"Speed": 60.0, "HLA": 1.0, "VLA": 12.0}}')
+    assert main(["shots", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "capture.json:1 ('Meters')" in err and "not guessed" in err and "Traceback" not in err

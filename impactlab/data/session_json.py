@@ -95,10 +95,31 @@ def _shot_lists(item: dict) -> list[str]:
 
 
 def json_rows(text: str, file: str) -> tuple[list[list[str]], list[int], list[str]]:
-    """(rows, file lines, notes) of the shot records of a JSON text; row 0 is the header (see the module).
+    """The shot records of a JSON text as table rows (see the module docstring).
 
-    Raises StudyError naming the line of a JSON syntax error, and when a top-level value is neither an object nor
-    a list of objects, or an object holds two lists of objects (which of them holds the shots is not guessed).
+    Parameters
+    ----------
+    text : str
+        The file's text: JSON values back to back (a message stream), or one value.
+    file : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    rows : list of list of str
+        Row 0 is the header (dotted keys, a session's keys prefixed ``../``); then one row per shot, every cell a
+        string as written (``true``/``false`` for booleans, empty for null or an absent key).
+    lines : list of int
+        The file line each row's object starts on (1 for the header); the objects' order numbers instead when
+        several start on one line (said in the notes).
+    notes : list of str
+        What the reader inferred, for the report.
+
+    Raises
+    ------
+    StudyError
+        At the line of a JSON syntax error; when a top-level value is neither an object nor a list of objects; when
+        an object holds two lists of objects (which of them holds the shots is not guessed).
     """
     records: list[dict[str, str]] = []
     lines: list[int] = []
