@@ -528,3 +528,30 @@ def test_a_refused_gspro_capture_is_one_message_and_exit_2(tmp_path, capsys):
     assert main(["shots", str(path)]) == 2
     err = capsys.readouterr().err
     assert "capture.json:1 ('Meters')" in err and "not guessed" in err and "Traceback" not in err
+
+
+def test_foresight_fsx_session_json_units_in_key_suffixes_and_its_no_data_values():
+    # shot objects of a real FSX 2020 .session file (bs7280/fsx-golf-shot-viewer), re-serialised compact as FSX does
+    path = DATA / "foresight_fsx.session"
+    session = read_session(path)
+    assert session.vendor.id == "foresight_fsx_session" and session.size == 4
+    v = session.values
+    assert session.text["handedness"] == ("right",) * 4  # the session's PlayerHandedness
+    from impactlab.scene.catalogue import club_key
+    assert [club_key(c) for c in session.text["club"]] == ["lob_wedge", "lob_wedge", "gap_wedge", "pitching_wedge"]
+    # shot 2851: starts left (Azimuth -4.92294 deg) and curves further left (SideSpin -1260 rpm, SpinAxis -7.184988
+    # deg, OfflineDistance -13.732677 m): negative is left for all four
+    assert v["ball_speed"][1] == pytest.approx(37.461617) and v["horizontal_launch_angle"][1] == pytest.approx(
+        -4.92294 * DEG)
+    assert v["side_spin"][1] == pytest.approx(-1260 * RPM) and v["spin_axis"][1] == pytest.approx(-7.184988 * DEG)
+    assert v["spin_rate"][1] == pytest.approx(10074 * RPM) and v["carry_distance"][1] == pytest.approx(92.748665)
+    assert v["offline_distance"][1] == pytest.approx(-13.732677) and v["apex_height"][1] == pytest.approx(21.067627)
+    # shot 2871 (PW): club speed and paths measured, FaceToPath 16777216 and the 0 of shots without club data: no data
+    assert v["club_speed"][3] == pytest.approx(37.948196) and v["attack_angle"][3] == pytest.approx(-6.629985 * DEG)
+    assert v["path"][3] == pytest.approx(-0.9894 * DEG)
+    assert np.all(np.isnan(v["face_to_path"])) and session.flags[("face_to_path", "no data")].all()
+    assert np.isnan(v["dynamic_loft"][3])
+    # a shot deleted in FSX ("Enabled": false) is skipped with that reason
+    deleted = read_session_text(path.read_text().replace('"Enabled":true', '"Enabled":false', 1), "x.session")
+    keep, skipped = deleted.usable()
+    assert "marked not to use in the file (Enabled = false)" in dict(skipped)[1]
