@@ -555,3 +555,19 @@ def test_foresight_fsx_session_json_units_in_key_suffixes_and_its_no_data_values
     deleted = read_session_text(path.read_text().replace('"Enabled":true', '"Enabled":false', 1), "x.session")
     keep, skipped = deleted.usable()
     assert "marked not to use in the file (Enabled = false)" in dict(skipped)[1]
+
+
+def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
+    # a session whose name holds escaped quotes, braces, brackets and a backslash: the shot objects' lines are found
+    # by a string-aware scan, and impactlab's own names with units read as in a CSV header
+    text = ('[{"name": "a \\"quoted\\" {brace} [x] \\\\", "shots": [\n'
+            '{"ball_speed (m/s)": 60.0, "vertical_launch_angle (deg)": 12.0},\n'
+            '{"ball_speed (m/s)": 61.5, "vertical_launch_angle (deg)": 11.0}]}]')
+    session = read_session_text(text, "s.json")
+    assert list(session.lines) == [2, 3]
+    assert session.values["ball_speed"].tolist() == [60.0, 61.5]
+    assert session.values["vertical_launch_angle"][1] == pytest.approx(11 * DEG)
+    with pytest.raises(StudyError, match="several lists of objects"):
+        read_session_text('{"a": [{"x": 1}], "b": [{"y": 2}]}', "s.json")
+    with pytest.raises(StudyError, match="expected JSON objects"):
+        read_session_text("[1, 2]", "s.json")

@@ -12,9 +12,13 @@ the reader's column maps, units, sentinels and flags apply unchanged.
 from __future__ import annotations
 
 import json
+import re
 from typing import Any
 
 from impactlab.errors import StudyError
+
+
+_SPECIAL = re.compile(r'["\\{}\[\]]')
 
 
 def looks_like_json(text: str) -> bool:
@@ -44,14 +48,15 @@ def _object_starts(text: str, start: int) -> list[tuple[int, int, str]]:
     """(offset, depth, parent bracket) of every ``{`` of the JSON value at ``start`` (string-aware)."""
     out = []
     stack: list[str] = []
-    in_string = escaped = False
-    for offset in range(start, len(text)):
-        char = text[offset]
+    in_string = False
+    skip = -1  # the offset of a character escaped by a backslash
+    for match in _SPECIAL.finditer(text, start):  # only quotes, backslashes and brackets matter
+        offset, char = match.start(), match.group()
+        if offset == skip:
+            continue
         if in_string:
-            if escaped:
-                escaped = False
-            elif char == "\\":
-                escaped = True
+            if char == "\\":
+                skip = offset + 1
             elif char == '"':
                 in_string = False
             continue
