@@ -571,3 +571,15 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
         read_session_text('{"a": [{"x": 1}], "b": [{"y": 2}]}', "s.json")
     with pytest.raises(StudyError, match="expected JSON objects"):
         read_session_text("[1, 2]", "s.json")
+
+
+def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):
+    out = tmp_path / "pred.csv"
+    assert main(["validate", "--dataset", str(DATA / "uneekor_report.json"), "--model", "rigid_coulomb",
+                 "--csv", str(out)]) == 0
+    report = capsys.readouterr().out
+    assert "uneekor_report: 3 row(s) (1298334, 1298341, 1298353)" in report
+    assert len(out.read_text().splitlines()) == 1 + 3  # header and one row per usable shot
+    # GSPro messages carry no club: refused with the reason, not fitted on a guessed club
+    assert main(["validate", "--dataset", str(DATA / "gspro_open_connect.json"), "--model", "rigid_coulomb"]) == 2
+    assert "no club named" in capsys.readouterr().err

@@ -18,6 +18,8 @@ from typing import Any
 from impactlab.errors import StudyError
 
 
+#: file suffixes read as JSON shot records by ``validate --dataset`` and ``fit`` (``shots`` reads any file)
+JSON_SESSIONS = (".json", ".jsonl", ".session")
 _SPECIAL = re.compile(r'["\\{}\[\]]')
 
 
