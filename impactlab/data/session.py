@@ -1,11 +1,14 @@
 """Launch-monitor sessions read as exported: vendor layouts as data, one normalised table out.
 
 A session file is a table a launch monitor's software wrote (TrackMan, Garmin Golf, Foresight FSX, Rapsodo,
-FlightScope) or a table in impactlab's own vocabulary (``Club Speed [mph]``, ``ball_speed (m/s)``). Each vendor's
+FlightScope, Square Golf), JSON shot records (GSPro Open Connect messages, Uneekor's report; read as rows by
+:mod:`impactlab.data.session_json`) or a table in impactlab's own vocabulary (``Club Speed [mph]``,
+``ball_speed (m/s)``). Each vendor's
 layout is a YAML column map in ``impactlab/data/vendors/`` (:func:`vendor_maps`): the header names that recognise
 it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
 column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
-clamped values, summary rows, and the point of the club head its club data describe. A map key ``Name [unit]``
+clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
+requires, and the point of the club head its club data describe. A map key ``Name [unit]``
 matches the column ``Name`` only when the header gives it a unit (FlightScope's ``Club`` is the club's name,
 ``Club (mph)`` its speed).
 
@@ -35,8 +38,10 @@ from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_F
 from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, ColumnRule, VendorMap,
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
-from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_estimated,
-                                           _flag_excluded, _progress, _read_bytes, _read_flags, _rows_of, _to_numbers)
+from impactlab.data.session_json import json_rows, looks_like_json
+from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
+                                           _flag_estimated, _flag_excluded, _flag_no_data, _progress, _read_bytes,
+                                           _read_flags, _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -223,7 +228,7 @@ def read_session(path, vendor: str | None = None) -> Session:
 
 def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None) -> Session:
     """A :class:`Session` from the text of an export (see :func:`read_session`)."""
-    rows, lines, notes = _rows_of(text, file)
+    rows, lines, notes = json_rows(text, file) if looks_like_json(text) else _rows_of(text, file)
     start = _header_index(rows, vendor)
     if not rows or not any(cell.strip() for cell in rows[start]):
         raise StudyError(f"{file}: empty file; expected a header row of columns")
@@ -292,32 +297,49 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         plan.append((column, cell, field, unit, rule.sign, factor))
     if problems:
         raise StudyError(f"{file}: " + "; ".join(problems))
-    if layout.units == "implied" and any(unit and split_header(cell)[1] is None
-                                         for _, cell, field, unit, _, factor in plan if factor is not None):
-        notes.append(f"units not in the file: taken from the {layout.name} layout ({layout.source})")
+    in_row = set() if units_row is None else {column for column, cell in enumerate(units_row) if cell}
+    implied = [f"{cell} [{unit}]" for column, cell, field, unit, _, factor in plan
+               if layout.units == "implied" and factor is not None and unit and split_header(cell)[1] is None
+               and column not in in_row]
+    if implied:
+        notes.append(f"units not in the file for {', '.join(implied)}: taken from the {layout.name} layout "
+                     f"({layout.source})")
 
-    # summary rows and ragged rows
+    # summary rows (and heartbeats), values a layout requires, ragged rows
     skipped = []
     width = len(header)
-    summary_column = None
-    if layout.summary_rows:
-        names = [_norm(split_header(c)[0]) for c in header]
-        if _norm(layout.summary_rows["column"]) in names:
-            summary_column = names.index(_norm(layout.summary_rows["column"]))
-    summary_values = {_norm(v) for v in (layout.summary_rows or {}).get("values", [])}
+    names = [_norm(split_header(c)[0]) for c in header]
+    summary = [(names.index(_norm(rule["column"])), {_norm(v) for v in rule["values"]}, rule.get("why"))
+               for rule in layout.summary_rows or [] if _norm(rule["column"]) in names]
+    required = layout.required or {"column": None, "values": []}
+    required_column = names.index(_norm(required["column"])) if required["column"] and \
+        _norm(required["column"]) in names else None
+    refused = []
     shots, shot_lines = [], []
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
-        if summary_column is not None and summary_column < len(cells) and _norm(cells[summary_column]) in \
-                summary_values:
-            skipped.append((line, f"a summary row ({cells[summary_column].strip()!r}), not a shot"))
+        summary_row = next(((column, why) for column, values, why in summary
+                            if column < len(cells) and _norm(cells[column]) in values), None)
+        if summary_row is not None:
+            column, why = summary_row
+            skipped.append((line, f"{why} ({header[column]} = {cells[column].strip()!r})" if why else
+                            f"a summary row ({cells[column].strip()!r}), not a shot"))
+            continue
+        if required_column is not None and required_column < len(cells) and \
+                cells[required_column].strip() not in [str(v) for v in required["values"]]:
+            refused.append((line, cells[required_column].strip()))
             continue
         if len(cells) != width:
             problems.append(f"{file}:{line}: expected {width} columns, got {len(cells)}")
             continue
         shots.append(cells)
         shot_lines.append(line)
+    if refused and required_column is not None:
+        shown = ", ".join(f"{file}:{line} ({value!r})" for line, value in refused[:10])
+        raise StudyError(f"{file}: {header[required_column]}: expected "
+                         f"{' or '.join(repr(str(v)) for v in required['values'])}, got {shown}"
+                         f"{' and more' if len(refused) > 10 else ''}: {required.get('why', '')}".rstrip(": "))
     size = len(shots)
     if size == 0 and problems:
         raise StudyError(f"{file}: {len(problems)} bad row(s): " + "; ".join(problems[:20]))
@@ -352,6 +374,9 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             if sentinel.any():
                 flags[(field, "no data")] = sentinel
                 numbers = np.where(sentinel, np.nan, numbers)
+        if field in layout.zero_is_no_data and (placeholder := numbers == 0.0).any():
+            flags[(field, "no data")] = flags.get((field, "no data"), np.zeros(size, bool)) | placeholder
+            numbers = np.where(placeholder, np.nan, numbers)
         assert factor is not None, "every numeric column of the plan has its unit's factor"
         values[field] = sign * factor * numbers
         used.append((cell, field, unit or "", sign))
@@ -362,12 +387,14 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
 
     _flag_estimated(layout, header, columns, values, flags, used, unused)
     _flag_excluded(layout, header, columns, flags, used, unused)
+    _flag_no_data(layout, header, columns, values, flags, used, unused)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
         _read_flags(header, columns, flags, used, unused, file, shot_lines)
     for field, limit in layout.clamped.items():
         clamped = np.abs(values[field]) >= limit * (1 - 1e-5)
         if clamped.any():
             flags[(field, "clamped")] = clamped
+    _flag_all_zero(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
     handedness = text_values["handedness"]

@@ -86,8 +86,24 @@ class VendorMap:
     sentinel_at_least: float | None = None
     estimated: dict | None = attrs.field(default=None, eq=False)
     clamped: dict = attrs.field(factory=dict, eq=False)
-    summary_rows: dict | None = attrs.field(default=None, eq=False)
+    #: [{column, values, why}]: rows that are no shot (summary rows, heartbeats), skipped with ``why``
+    summary_rows: list | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
+    #: directions written with a leading L/R (Square Golf: ``L34.8`` is -34.8, ``R8.5`` is +8.5)
+    left_right_prefix: bool = False
+    #: fields that together mark "no club data" when every one of them reads exactly 0 in a row (Square Golf writes
+    #: ``L0.0,L0.0,0.0,0.0`` for path, face, attack angle and dynamic loft when its camera saw no club): read as
+    #: missing and flagged ``no data``
+    no_data_when_all_zero: tuple[str, ...] = ()
+    #: fields whose exact 0 is a placeholder, not a measurement (GSPro Open Connect clients send 0.0 for what their
+    #: monitor did not measure: a 0 rpm TotalSpin beside real back and side spin, a 0 deg loft): missing, flagged
+    zero_is_no_data: tuple[str, ...] = ()
+    #: {column, values, fields}: rows whose column holds one of the values carry no data in those fields (GSPro's
+    #: ContainsClubData = false): missing, flagged ``no data``
+    no_data: dict | None = attrs.field(default=None, eq=False)
+    #: {column, values, why}: every row's column must hold one of the values (an empty cell counts as ""); a file
+    #: with another value is refused, naming its lines and ``why`` (GSPro's Units: only Yards is documented)
+    required: dict | None = attrs.field(default=None, eq=False)
     #: True: the file's spin-axis sign is checked against its side spin (whose sign the layout states) and turned
     #: when every row disagrees (Garmin Golf app versions write the axis with either sign)
     spin_axis_follows_side_spin: bool = False
@@ -113,7 +129,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
-            "excluded", "spin_axis_follows_side_spin"}
+            "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
+            "zero_is_no_data", "no_data", "required"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -125,6 +142,21 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             raise StudyError(f"{where}: columns.{header}: {field!r} is not a session field "
                              f"({', '.join((*FIELDS, *TEXT_FIELDS))})")
         columns[_norm(header)] = None if field is None else ColumnRule(field, float(rule.get("sign", 1)))
+    all_zero = tuple(document.get("no_data_when_all_zero") or ())
+    zero = tuple(document.get("zero_is_no_data") or ())
+    for key, fields in (("no_data_when_all_zero", all_zero), ("zero_is_no_data", zero),
+                        ("no_data.fields", tuple((document.get("no_data") or {}).get("fields", ()))),
+                        ("estimated.fields", tuple((document.get("estimated") or {}).get("fields", ())))):
+        for field in fields:
+            if field not in FIELDS:
+                raise StudyError(f"{where}: {key}: {field!r} is not a numeric session field")
+    summary = document.get("summary_rows")
+    summary = [] if summary is None else (summary if isinstance(summary, list) else [summary])
+    for rule in (*summary, document.get("no_data"), document.get("required")):
+        if rule is not None and not ({"column", "values"} <= set(rule)):
+            raise StudyError(f"{where}: {rule!r}: a row rule needs a column and its values")
+    if document.get("left_right_suffix") and document.get("left_right_prefix"):
+        raise StudyError(f"{where}: left_right_suffix and left_right_prefix: a layout writes L/R one way")
     if document.get("units") not in ("row", "header", "implied"):
         raise StudyError(f"{where}: units: expected row, header or implied")
     clamped = {}
@@ -139,7 +171,9 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         club_reference=" ".join(str(document.get("club_reference", "")).split()),
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
-        summary_rows=document.get("summary_rows"), left_right_suffix=bool(document.get("left_right_suffix", False)),
+        summary_rows=summary or None, left_right_suffix=bool(document.get("left_right_suffix", False)),
+        left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
+        zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
         excluded=document.get("excluded"),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 

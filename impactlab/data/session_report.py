@@ -77,12 +77,14 @@ def describe(session: Session, include_flagged: bool = False) -> str:
     if session.flags:
         out.append("  values flagged:")
         for (field, kind), rows in sorted(session.flags.items()):
-            what = {"excluded": "marked not to use in the file", "no data": "no-data sentinel, read as missing",
+            what = {"excluded": "marked not to use in the file",
+                    "no data": "no-data marker (a sentinel, placeholder or flag), read as missing",
                     "inconsistent": "whose sign disagrees with the other spin column's",
                     "estimated": "estimated by the monitor, not measured",
                     "clamped": "at the monitor's limit (clamped)"}[kind]
             out.append(f"    {field}: {int(rows.sum())} row(s) {what}")
-        if not include_flagged:
+        if not include_flagged and any(kind in ("estimated", "clamped", "inconsistent")
+                                       for _, kind in session.flags):
             out.append("    (estimated and clamped values are left out of fits and comparisons; "
                        "--include-flagged uses them)")
     for line, why in session.skipped:

@@ -124,11 +124,16 @@ def _to_numbers(raw, layout: VendorMap, decimal: str):
     series = pd.Series(raw, dtype=object).astype(str).str.strip()
     missing = series.isin(list(layout.missing)) | series.str.upper().isin(["NAN", "N/A", "NA"])
     cleaned = series
-    if layout.left_right_suffix:
-        side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
-        has = side[1].notna()
-        cleaned = cleaned.where(~has, side[0])
-        signs: np.ndarray | float = np.where(has & side[1].str.upper().eq("L"), -1.0, 1.0)
+    if layout.left_right_suffix or layout.left_right_prefix:
+        if layout.left_right_suffix:
+            side = cleaned.str.extract(r"^(.*?)\s*([LRlr])$")
+            letter, number = side[1], side[0]
+        else:
+            side = cleaned.str.extract(r"^([LRlr])\s*(.*?)$")
+            letter, number = side[0], side[1]
+        has = letter.notna()
+        cleaned = cleaned.where(~has, number)
+        signs: np.ndarray | float = np.where(has & letter.str.upper().eq("L"), -1.0, 1.0)
     else:
         signs = 1.0
     if decimal == ",":
@@ -168,6 +173,21 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused) -> Non
                 flags[(field, "estimated")] = present
 
 
+def _flag_no_data(layout, header, columns, values, flags, used, unused) -> None:
+    """Fields a row says it does not carry (GSPro's ContainsClubData = false): missing, flagged ``no data``."""
+    rule = layout.no_data
+    marked = _rule_marks(rule, header, columns, used, unused, rule and (
+        "no-data flag: " + " or ".join(map(str, rule["values"])) + " marks " + ", ".join(rule["fields"])
+        + " as not carried"))
+    if marked is None or not marked.any():
+        return
+    for field in rule["fields"]:
+        present = marked & np.isfinite(values[field])
+        if present.any():
+            values[field] = np.where(marked, np.nan, values[field])
+            flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(marked)) | present
+
+
 def _flag_excluded(layout, header, columns, flags, used, unused) -> None:
     rule = layout.excluded
     excluded = _rule_marks(rule, header, columns, used, unused,
@@ -201,10 +221,20 @@ def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
         values["spin_rate"] = np.hypot(back, side)
         notes.append("spin rate = hypot(back spin, side spin) (no spin-rate column)")
         _inherit(flags, "spin_rate", ("back_spin", "side_spin"))
+    elif (fill := np.isnan(values["spin_rate"]) & np.isfinite(back) & np.isfinite(side)).any():
+        values["spin_rate"] = np.where(fill, np.hypot(back, side), values["spin_rate"])
+        notes.append(f"spin rate = hypot(back spin, side spin) in {int(fill.sum())} row(s) without one")
+        _inherit(flags, "spin_rate", ("back_spin", "side_spin"))
     if "spin_axis" not in given and np.isfinite(back).any() and np.isfinite(side).any():
         values["spin_axis"] = np.arctan2(side, back)
         notes.append("spin axis = atan(side spin / back spin) (no spin-axis column; both positive curving right)")
         _inherit(flags, "spin_axis", ("back_spin", "side_spin"))
+    elif {"spin_rate", "back_spin", "side_spin"} <= given:
+        with np.errstate(invalid="ignore"):
+            off = np.abs(values["spin_rate"] / np.hypot(back, side) - 1) > 0.02
+        if off.any():
+            notes.append(f"spin rate differs from hypot(back spin, side spin) by more than 2 % in {int(off.sum())} "
+                         f"row(s) (kept as given)")
     if "face_angle" not in given and "face_to_path" in given and "path" in given:
         values["face_angle"] = values["path"] + values["face_to_path"]
         notes.append("face angle = club path + face to path (no face-angle column)")
@@ -242,6 +272,24 @@ def _check_spin_signs(layout, values, used, notes, flags) -> None:
         flags[(field, "inconsistent")] = disagree
     notes.append(f"side spin and spin axis disagree in sign in {int(disagree.sum())} of {int(clear.sum())} row(s) "
                  f"with clear spin: those rows' spin axis and side spin are flagged inconsistent and left out")
+
+
+def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
+    """Rows where every field of ``layout.no_data_when_all_zero`` reads exactly 0: the monitor's "no club data"
+    marker (no club is delivered with zero loft, path, face and attack angle at once); read as missing, flagged."""
+    fields = [field for field in layout.no_data_when_all_zero if np.isfinite(values[field]).any()]
+    if not fields:
+        return
+    zero = np.ones(len(values[fields[0]]), bool)
+    for field in fields:
+        zero &= values[field] == 0.0
+    if not zero.any():
+        return
+    for field in fields:
+        values[field] = np.where(zero, np.nan, values[field])
+        flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(zero)) | zero
+    notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-club-data "
+                 f"marker): read as missing")
 
 
 def _inherit(flags: dict, field: str, sources) -> None:

@@ -30,6 +30,7 @@ from impactlab.data.validation.observations import (cover_effect, describe, gear
 from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.session_json import JSON_SESSIONS
 from impactlab.data.calibration import cross_validate as leave_one_out
 from impactlab.data.least_squares import usable_rows
 
@@ -53,13 +54,25 @@ def _is_shot_yaml(path: Path) -> bool:
     return re.search(r"^rows\s*:", text, flags=re.MULTILINE) is not None
 
 
+def _is_shot_json(path: Path) -> bool:
+    """Whether a JSON file holds shots (GSPro messages, a Uneekor report, an FSX session) rather than measured data
+    (a mapping with ``points:``)."""
+    try:
+        value, _ = json.JSONDecoder().raw_decode(path.read_text(encoding="utf-8").lstrip("\ufeff \t\r\n"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        return True  # the session reader says what is wrong with it, at its line
+    return not (isinstance(value, dict) and "points" in value)
+
+
 def shot_table(name: str, include_flagged: bool = False) -> ShotTable | None:
-    """A shot table: a .csv file (a launch-monitor export as exported, or impactlab's layout), a .yaml file with
+    """A shot table: a .csv file (a launch-monitor export as exported, or impactlab's layout), a JSON session
+    (.json, .jsonl, .session: GSPro Open Connect messages, a Uneekor report, an FSX session), a .yaml file with
     ``rows:``, or a shipped table by name; None otherwise. ``include_flagged`` keeps estimated and clamped values
     in the comparison (left out by default)."""
     path = Path(name)
     suffix = path.suffix.lower()
-    if suffix == ".csv" or (suffix in (".yaml", ".yml") and _is_shot_yaml(path)):
+    if suffix == ".csv" or (suffix in (".yaml", ".yml") and _is_shot_yaml(path)) or (
+            suffix in JSON_SESSIONS and _is_shot_json(path)):
         return read_shots(path, include_flagged)
     if name in SHOT_TABLES:
         text = resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text()

@@ -35,6 +35,7 @@ from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 from impactlab.data.documents import ShotTableBlock, structure_document
 from impactlab.data.session import GENERIC, Session, read_session, read_session_text
+from impactlab.data.session_json import JSON_SESSIONS
 from impactlab.data.session_layouts import FIELDS
 # the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
 from impactlab.data.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
@@ -202,13 +203,13 @@ def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> S
     file; ``include_flagged`` keeps estimated and clamped values in the comparison."""
     path = Path(path)
     if not path.exists():
-        raise StudyError(f"{path}: no such shot table (a .csv or .yaml file)")
-    if path.suffix.lower() == ".csv":
+        raise StudyError(f"{path}: no such shot table (a .csv, .yaml or JSON session file)")
+    if path.suffix.lower() in (".csv", *JSON_SESSIONS):
         return read_session(path).shot_table(include_flagged)
     text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() in (".yaml", ".yml"):
         return read_yaml(text, str(path))
-    raise StudyError(f"{path}: expected a .csv or .yaml shot table")
+    raise StudyError(f"{path}: expected a .csv, .yaml or JSON (.json, .jsonl, .session) shot table")
 
 
 # -- predictions -----------------------------------------------------------------------------------------------

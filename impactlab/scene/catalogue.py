@@ -289,7 +289,9 @@ _WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven
 _WEDGES = {"pw": "pitching_wedge", "pitchingwedge": "pitching_wedge", "pitching": "pitching_wedge",
            "p": "pitching_wedge", "gw": "gap_wedge", "gapwedge": "gap_wedge", "aw": "gap_wedge",
            "approachwedge": "gap_wedge", "uw": "gap_wedge", "sw": "sand_wedge", "sandwedge": "sand_wedge",
-           "lw": "lob_wedge", "lobwedge": "lob_wedge"}
+           "lw": "lob_wedge", "lobwedge": "lob_wedge",
+           # Square Golf's names (real exports: esabine/wedgematrix *-DrivingRange.csv)
+           "pwedge": "pitching_wedge", "gwedge": "gap_wedge", "swedge": "sand_wedge", "lwedge": "lob_wedge"}
 #: a wedge named by its loft [deg] -> the catalogue wedge nearest that loft (catalogue lofts: 46, 52, 56, 60)
 _WEDGE_LOFTS = ((44, 48, "pitching_wedge"), (49, 53, "gap_wedge"), (54, 57, "sand_wedge"), (58, 64, "lob_wedge"))
 
@@ -298,9 +300,10 @@ def club_key(name: str) -> str | None:
     """The catalogue key of a club as launch monitors name it, or None when it names no club of the catalogue.
 
     Understood: catalogue keys (``7_iron``), ``Driver``/``Dr``/``1w``/``1 Wood``, ``3 Wood``/``3w``/``W3``,
-    ``4 Hybrid``/``4h``/``H4``, ``8 Iron``/``8i``/``I8``/``Eisen 8``, ``PW``/``Pitching Wedge``/``P``,
-    ``GW``/``AW``/``Gap Wedge``, ``SW``, ``LW`` and wedges by loft (``56°``, ``56 Degree``, ``58``: 44-48 deg
-    pitching, 49-53 gap, 54-57 sand, 58-64 lob wedge), case, spaces, dashes and underscores aside.
+    ``4 Hybrid``/``4h``/``H4``, ``8 Iron``/``8i``/``I8``/``Eisen 8``, ``PW``/``Pitching Wedge``/``P``/``P-Wedge``,
+    ``GW``/``AW``/``Gap Wedge``/``G-Wedge``, ``SW``/``S-Wedge``, ``LW``/``L-Wedge`` and wedges by loft (``56°``,
+    ``56 Degree``, ``58``: 44-48 deg pitching, 49-53 gap, 54-57 sand, 58-64 lob wedge), case, spaces, dashes and
+    underscores aside.
     """
     if not isinstance(name, str):
         return None
