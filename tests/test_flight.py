@@ -152,6 +152,13 @@ def test_measured_fit_constants_are_the_fit_of_the_measurements_file():
     values.update(zip(("re_l", "sigma", "beta", "s_l", "re_d", "w_d", "d"), fitted["crisis"]))
     for key, value in values.items():
         assert aerodynamics.MEASURED_FIT[key] == pytest.approx(value, rel=2e-5), key
+    for index, group in enumerate(aero_fit.GROUPS):
+        assert aerodynamics.MEASURED_FIT_OFFSETS[group] == pytest.approx(fitted["drag"][index], rel=2e-5), group
+    # the USGA-ball variant differs only by that offset
+    cd, cl = aerodynamics.aero_coefficients(0.15, [7e4, 1.5e5], model="measured_fit")
+    cd_u, cl_u = aerodynamics.aero_coefficients(0.15, [7e4, 1.5e5], model="measured_fit_usga_ball")
+    np.testing.assert_allclose(cl_u, cl, rtol=1e-15)
+    np.testing.assert_allclose(cd_u - cd, fitted["drag"][1] - fitted["drag"][0], rtol=1e-4)
     # the file's rows, read independently: the fit reproduces the USGA ITR lift within its residual
     usga = _measured("usga_itr_example")
     assert usga.shape == (42, 4)

@@ -42,6 +42,7 @@ __all__ = [
     "MODELS",
     "MEASUREMENT_FITS",
     "MEASURED_FIT",
+    "MEASURED_FIT_OFFSETS",
     "MODEL_REFERENCES",
     "PUBLISHED_MODELS",
     "aero_coefficients",
@@ -180,18 +181,27 @@ def _cd_cl_lyu_induced(s, re):
 MEASURED_FIT = {"a": 2.09576, "b": 3.94900, "c0": 0.207212, "c_re": -0.00879406, "k": 1.02322,
                 "re_l": 57884.1, "sigma": 0.149139, "beta": 2.06177, "s_l": 0.265221,
                 "re_d": 61807.6, "w_d": 1275.04, "d": 0.213415}
+#: the supercritical drag offset c0 the same fit gives each measured ball group (the model takes ``modern``)
+MEASURED_FIT_OFFSETS = {"modern": 0.207212, "usga_1998": 0.229943, "bh_1976": 0.273578}
 
 
-def _cd_cl_measured_fit(s, re):
+def _cd_cl_measured_fit(s, re, c0=None):
     # Fitted by impactlab (impactlab.data.aero_fit) to measured CD and CL of golf balls: Lyu, Kensrud & Smith 2020
     # and Lyu et al. 2018 (modern balls, free flight), the USGA ITR example table (US 6,186,002), Bridgestone's
     # patent tables, Bearman & Harvey 1976 (wind tunnel, the only S > 0.36). Never fitted to TrackMan's tables.
-    c = MEASURED_FIT
+    c = dict(MEASURED_FIT) if c0 is None else {**MEASURED_FIT, "c0": c0}
     lift_sc = c["a"] * s / (1.0 + c["b"] * s)
     crisis = 0.5 * (1.0 - np.tanh(0.5 * (re - c["re_d"]) / c["w_d"]))  # 1 / (1 + exp((Re - Re_d) / w_d))
     cd = c["c0"] + c["c_re"] * re / 1.0e5 + c["k"] * lift_sc**2 + c["d"] * crisis
     loss = c["beta"] * np.exp(-0.5 * (np.log(np.maximum(re, 1.0) / c["re_l"]) / c["sigma"]) ** 2 - s / c["s_l"])
     return cd, lift_sc * (1.0 - loss)
+
+
+def _cd_cl_measured_fit_usga_ball(s, re):
+    # NOT a validated choice: measured_fit with the drag level the fit gives the 1998 USGA ITR ball instead of the
+    # modern balls'. Shipped because it is the sensitivity that decides the carry (docs/flight.md); the ball was
+    # chosen after seeing the TrackMan tables.
+    return _cd_cl_measured_fit(s, re, c0=MEASURED_FIT_OFFSETS["usga_1998"])
 
 
 def _cd_cl_vacuum(s, re):
@@ -207,6 +217,7 @@ MODELS = {
     "smits_smith_lift_capped": (_cd_cl_smits_smith_capped, 2.0e-5),
     "lyu_2018_induced_drag": (_cd_cl_lyu_induced, 2.0e-5),
     "measured_fit": (_cd_cl_measured_fit, 2.0e-5),
+    "measured_fit_usga_ball": (_cd_cl_measured_fit_usga_ball, 2.0e-5),
     "vacuum": (_cd_cl_vacuum, 0.0),
 }
 #: the models whose coefficients are published as they are (the others combine published pieces; docs/flight.md)
@@ -229,6 +240,9 @@ MODEL_REFERENCES = {
     "measured_fit": "fitted by impactlab to measured golf-ball CD and CL (Lyu, Kensrud & Smith 2020; Lyu et al. 2018; "
                     "USGA ITR example table of US 6,186,002; Bridgestone US 7,238,121; Bearman & Harvey 1976), "
                     "impactlab/data/validation/aero_coefficients.yaml; spin decay lambda = 2e-5 (Smits & Smith 1994)",
+    "measured_fit_usga_ball": "measured_fit with the drag level of the 1998 USGA ITR ball (c0 0.2299 for 0.2072); "
+                              "the ball was chosen after seeing the TrackMan tables: a sensitivity, not a validated "
+                              "model",
     "vacuum": "no air (a test limit)",
 }
 
@@ -286,6 +300,10 @@ def aero_coefficients(s, re, model=DEFAULT_MODEL):
 
         The last factor is the lift lost in the drag crisis (reverse Magnus
         below Re ~6.5e4 at S < 0.2, [Ly20]_); c0 is the modern balls' drag.
+
+        ``"measured_fit_usga_ball"`` -- the same with the drag level the fit
+        gives the 1998 USGA ITR ball (c0 = 0.2299); a sensitivity, chosen after
+        seeing the TrackMan tables, not a validated model.
 
         ``"vacuum"`` -- zero drag and lift (for tests).
 
