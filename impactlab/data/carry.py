@@ -150,9 +150,26 @@ def format_validation(model: str = DEFAULT_MODEL, table: str = "trackman_carry",
     return "\n".join(lines)
 
 
+def format_summary(models) -> str:
+    """One Markdown row per model: RMS (mean) carry error on each of :data:`TABLES`, and the mean height and land-angle
+    differences over all their rows (model minus measurement)."""
+    lines = ["| model | " + " | ".join(f"{name} RMS (mean) carry" for name in TABLES) + " | height (mean) | land "
+             "angle (mean) |", "|---" * (len(TABLES) + 3) + "|"]
+    for model in models:
+        checks = [validate_carry(model, carry_table(name)) for name in TABLES]
+        cells = [f"{100 * c['rms_carry_error']:.1f} % ({100 * float(np.nanmean(c['carry_error'])):+.1f} %)"
+                 for c in checks]
+        height = np.concatenate([c["apex_height"] - c["table"].max_height for c in checks]) / YARD
+        land = np.degrees(np.concatenate([c["landing_angle"] - c["table"].land_angle for c in checks]))
+        lines.append(f"| `{model}` | " + " | ".join(cells) + f" | {np.nanmean(height):+.1f} yd | "
+                     f"{np.nanmean(land):+.1f} deg |")
+    return "\n".join(lines)
+
+
 if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
     import sys
 
+    print(format_summary(sys.argv[1:] or [key for key in MODELS if key != "vacuum"]), end="\n\n")
     for table_name in TABLES:
         print(f"## {table_name}", end="\n\n")
         for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
