@@ -21,6 +21,9 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "flight_trajectories": ("Ball flight after each model's launch, side and top view: driver struck heel, "
                                  "centre and toe (studies/flight.yaml)",
                                  "impactlab run studies/flight.yaml --plot (or impactlab plot RESULT --trajectories)"),
+         "aero_coefficients": ("Measured golf-ball lift and drag against spin ratio (every ball group, above and in "
+                               "its drag crisis) beside measured_fit at Re 6e4, 1e5, 2e5 and smits_smith_1994",
+                               "python docs/aero_coefficients.py"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form beside TrackMan's tour rows and bands, and the wedge cover "
                                      "difference", "python docs/ball_laws.py (studies/ball_laws.yaml)"),

@@ -1,9 +1,9 @@
-"""The ball-flight model against TrackMan's published tour carries (impactlab/data/validation/trackman_carry.yaml).
+"""The ball-flight model against TrackMan's published tour carries (impactlab/data/validation/trackman_carry*.yaml).
 
 :func:`carry_table` reads the measured rows (launch in, max height, land angle and carry out, per club) with their
 citation; :func:`validate_carry` flies each row's launch with a model of :data:`impactlab.physics.aerodynamics.MODELS`
-and gives model beside measurement. ``python -m impactlab.data.carry [MODEL ...]`` prints the tables of
-docs/flight.md.
+and gives model beside measurement; :func:`session_carry` does the same for the shots of a launch-monitor export that
+carry the vendor's carry. ``python -m impactlab.data.carry [MODEL ...]`` prints the tables of docs/flight.md.
 """
 
 from __future__ import annotations
@@ -15,11 +15,14 @@ import attrs
 import numpy as np
 import yaml
 
+from impactlab.data.session import read_session
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS
 from impactlab.units import MPH
 
 YARD = 0.9144  #: m (exact, the international yard)
+#: the measured carry tables shipped (TrackMan PGA classic, PGA 2023 season, LPGA 2023 season)
+TABLES = ("trackman_carry", "trackman_carry_pga_2023", "trackman_carry_lpga_2023")
 RPM = np.pi / 30.0  #: rad/s per rpm
 
 
@@ -94,25 +97,80 @@ def validate_carry(model: str = DEFAULT_MODEL, table: CarryTable | None = None, 
             "rms_carry_error": float(np.sqrt(np.mean(np.square(error)))), "table": table}
 
 
-def format_validation(model: str = DEFAULT_MODEL, **options) -> str:
-    """The validation of ``model`` as a Markdown table (yards, degrees), with its RMS carry error."""
-    check = validate_carry(model, **options)
-    table = check["table"]
+def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
+    """Fly the launch of every shot of a launch-monitor export that has the vendor's carry; model beside vendor.
+
+    Parameters
+    ----------
+    path : path-like
+        An export :func:`impactlab.data.session.read_session` reads.
+    model : str
+        A key of :data:`impactlab.physics.aerodynamics.MODELS`.
+    **options
+        Passed to :func:`impactlab.physics.flight.fly` (default the standard air: exports state no weather).
+
+    Returns
+    -------
+    dict
+        ``vendor`` (name), ``club``, ``ball_speed`` [m/s], ``launch_angle`` [rad], ``spin_rate`` [rad/s], ``spin_axis``
+        [rad] (0 where the export has none),
+        ``vendor_carry`` and ``carry`` [m], ``carry_error`` (model over vendor minus 1), for the shots with ball
+        speed, launch angle, spin (total, or back and side) and carry.
+    """
+    session = read_session(path)
+    v = session.values
+    spin = v["spin_rate"]
+    spin = np.where(np.isfinite(spin), spin, np.hypot(v["back_spin"], v["side_spin"]))
+    axis = np.nan_to_num(v["spin_axis"])
+    keep = np.isfinite(v["ball_speed"]) & np.isfinite(v["vertical_launch_angle"]) & np.isfinite(spin) & np.isfinite(
+        v["carry_distance"])
+    result = flight.fly(v["ball_speed"][keep], v["vertical_launch_angle"][keep], spin[keep], axis[keep], model=model,
+                        **options)
+    return {"vendor": session.vendor.name, "club": [c for c, k in zip(session.text["club"], keep) if k],
+            "ball_speed": v["ball_speed"][keep], "launch_angle": v["vertical_launch_angle"][keep],
+            "spin_rate": spin[keep], "spin_axis": axis[keep], "vendor_carry": v["carry_distance"][keep],
+            "carry": result["carry_distance"],
+            "carry_error": result["carry_distance"] / v["carry_distance"][keep] - 1.0}
+
+
+def format_validation(model: str = DEFAULT_MODEL, table: str = "trackman_carry", **options) -> str:
+    """The validation of ``model`` on the shipped table ``table`` as Markdown (yards, degrees), with its RMS error."""
+    check = validate_carry(model, carry_table(table), **options)
+    rows = check["table"]
     lines = [f"{model}: RMS carry error {100 * check['rms_carry_error']:.1f} %, mean "
              f"{100 * float(np.nanmean(check['carry_error'])):+.1f} %", "",
              "| club | carry TM yd | model yd | error | height TM yd | model yd | land TM deg | model deg |",
              "|---|---|---|---|---|---|---|---|"]
-    for index, club in enumerate(table.clubs):
+    for index, club in enumerate(rows.clubs):
         lines.append(
-            f"| {club} | {table.carry[index] / YARD:.0f} | {check['carry'][index] / YARD:.1f} | "
-            f"{100 * check['carry_error'][index]:+.1f} % | {table.max_height[index] / YARD:.0f} | "
-            f"{check['apex_height'][index] / YARD:.1f} | {np.degrees(table.land_angle[index]):.0f} | "
+            f"| {club} | {rows.carry[index] / YARD:.0f} | {check['carry'][index] / YARD:.1f} | "
+            f"{100 * check['carry_error'][index]:+.1f} % | {rows.max_height[index] / YARD:.0f} | "
+            f"{check['apex_height'][index] / YARD:.1f} | {np.degrees(rows.land_angle[index]):.0f} | "
             f"{np.degrees(check['landing_angle'][index]):.1f} |")
+    return "\n".join(lines)
+
+
+def format_summary(models) -> str:
+    """One Markdown row per model: RMS (mean) carry error on each of :data:`TABLES`, and the mean height and land-angle
+    differences over all their rows (model minus measurement)."""
+    lines = ["| model | " + " | ".join(f"{name} RMS (mean) carry" for name in TABLES) + " | height (mean) | land "
+             "angle (mean) |", "|---" * (len(TABLES) + 3) + "|"]
+    for model in models:
+        checks = [validate_carry(model, carry_table(name)) for name in TABLES]
+        cells = [f"{100 * c['rms_carry_error']:.1f} % ({100 * float(np.nanmean(c['carry_error'])):+.1f} %)"
+                 for c in checks]
+        height = np.concatenate([c["apex_height"] - c["table"].max_height for c in checks]) / YARD
+        land = np.degrees(np.concatenate([c["landing_angle"] - c["table"].land_angle for c in checks]))
+        lines.append(f"| `{model}` | " + " | ".join(cells) + f" | {np.nanmean(height):+.1f} yd | "
+                     f"{np.nanmean(land):+.1f} deg |")
     return "\n".join(lines)
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
     import sys
 
-    for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
-        print(format_validation(name), end="\n\n")
+    print(format_summary(sys.argv[1:] or [key for key in MODELS if key != "vacuum"]), end="\n\n")
+    for table_name in TABLES:
+        print(f"## {table_name}", end="\n\n")
+        for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
+            print(format_validation(name, table_name), end="\n\n")

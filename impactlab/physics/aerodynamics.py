@@ -19,6 +19,13 @@ References
    D. Winfield (USGA), "Method for determining coefficients of lift and drag
    of a golf ball", US Patent 6,186,002 B1 (2001); regression "model 3" and
    its example coefficients.
+.. [Ly20] B. Lyu, J. Kensrud, L. Smith, "The reverse Magnus effect in golf
+   balls", Sports Engineering 23:3 (2020), doi:10.1007/s12283-020-0318-1
+   (CC BY): lift and drag of a Pro V1, a Chrome Soft and a B330-RX across
+   their drag crisis (free flight, light gates).
+.. [BH76] P. W. Bearman and J. K. Harvey, "Golf ball aerodynamics",
+   Aeronautical Quarterly 27:112-122 (1976): wind tunnel, spinning model,
+   S up to 1.0.
 .. [Na08] A. M. Nathan, "The spin decay of a baseball" (2008),
    baseball.physics.illinois.edu/spindown-rev1.pdf -- restates the Smits &
    Smith and Tavares et al. golf spin-decay fits, SRD = -lambda S.
@@ -33,6 +40,9 @@ __all__ = [
     "BALL_RADIUS",
     "DEFAULT_MODEL",
     "MODELS",
+    "MEASUREMENT_FITS",
+    "MEASURED_FIT",
+    "MEASURED_FIT_OFFSETS",
     "MODEL_REFERENCES",
     "PUBLISHED_MODELS",
     "aero_coefficients",
@@ -164,6 +174,36 @@ def _cd_cl_lyu_induced(s, re):
     return cd + INDUCED_DRAG_FACTOR * cl**2, cl
 
 
+#: ``measured_fit`` constants: least squares on the measurements of impactlab/data/validation/aero_coefficients.yaml
+#: only (:func:`impactlab.data.aero_fit.fit`; tests/test_flight.py refits and compares). Supercritical lift
+#: a S / (1 + b S); supercritical drag c0 + c_re Re/1e5 + k CL_sc^2 (c0 of the modern balls); drag crisis
+#: d / (1 + exp((Re - Re_d) / w_d)); lift in the crisis times 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l).
+MEASURED_FIT = {"a": 2.09576, "b": 3.94900, "c0": 0.207212, "c_re": -0.00879406, "k": 1.02322,
+                "re_l": 57884.1, "sigma": 0.149139, "beta": 2.06177, "s_l": 0.265221,
+                "re_d": 61807.6, "w_d": 1275.04, "d": 0.213415}
+#: the supercritical drag offset c0 the same fit gives each measured ball group (the model takes ``modern``)
+MEASURED_FIT_OFFSETS = {"modern": 0.207212, "usga_1998": 0.229943, "bh_1976": 0.273578}
+
+
+def _cd_cl_measured_fit(s, re, c0=None):
+    # Fitted by impactlab (impactlab.data.aero_fit) to measured CD and CL of golf balls: Lyu, Kensrud & Smith 2020
+    # and Lyu et al. 2018 (modern balls, free flight), the USGA ITR example table (US 6,186,002), Bridgestone's
+    # patent tables, Bearman & Harvey 1976 (wind tunnel, the only S > 0.36). Never fitted to TrackMan's tables.
+    c = dict(MEASURED_FIT) if c0 is None else {**MEASURED_FIT, "c0": c0}
+    lift_sc = c["a"] * s / (1.0 + c["b"] * s)
+    crisis = 0.5 * (1.0 - np.tanh(0.5 * (re - c["re_d"]) / c["w_d"]))  # 1 / (1 + exp((Re - Re_d) / w_d))
+    cd = c["c0"] + c["c_re"] * re / 1.0e5 + c["k"] * lift_sc**2 + c["d"] * crisis
+    loss = c["beta"] * np.exp(-0.5 * (np.log(np.maximum(re, 1.0) / c["re_l"]) / c["sigma"]) ** 2 - s / c["s_l"])
+    return cd, lift_sc * (1.0 - loss)
+
+
+def _cd_cl_measured_fit_usga_ball(s, re):
+    # NOT a validated choice: measured_fit with the drag level the fit gives the 1998 USGA ITR ball instead of the
+    # modern balls'. Shipped because it is the sensitivity that decides the carry (docs/flight.md); the ball was
+    # chosen after seeing the TrackMan tables.
+    return _cd_cl_measured_fit(s, re, c0=MEASURED_FIT_OFFSETS["usga_1998"])
+
+
 def _cd_cl_vacuum(s, re):
     z = np.zeros(np.broadcast(s, re).shape)
     return z, z
@@ -176,10 +216,14 @@ MODELS = {
     "usga_patent_2001": (_cd_cl_usga, 2.0e-5),
     "smits_smith_lift_capped": (_cd_cl_smits_smith_capped, 2.0e-5),
     "lyu_2018_induced_drag": (_cd_cl_lyu_induced, 2.0e-5),
+    "measured_fit": (_cd_cl_measured_fit, 2.0e-5),
+    "measured_fit_usga_ball": (_cd_cl_measured_fit_usga_ball, 2.0e-5),
     "vacuum": (_cd_cl_vacuum, 0.0),
 }
 #: the models whose coefficients are published as they are (the others combine published pieces; docs/flight.md)
 PUBLISHED_MODELS = ("smits_smith_1994", "lyu_2018", "usga_patent_2001")
+#: the models impactlab fitted itself to published measurements of CD and CL (never to the carry tables)
+MEASUREMENT_FITS = ("measured_fit",)
 DEFAULT_MODEL = "smits_smith_1994"
 #: citation of each model's coefficients, and whether they are fits to measurements
 MODEL_REFERENCES = {
@@ -193,6 +237,12 @@ MODEL_REFERENCES = {
                                "the peak of Lyu et al. (2018)'s measured lift fit",
     "lyu_2018_induced_drag": "composite, not a published model: Lyu et al. (2018) fits plus induced drag 1.44 CL^2 "
                              "fitted on the USGA ITR example data of US 6,186,002 B1",
+    "measured_fit": "fitted by impactlab to measured golf-ball CD and CL (Lyu, Kensrud & Smith 2020; Lyu et al. 2018; "
+                    "USGA ITR example table of US 6,186,002; Bridgestone US 7,238,121; Bearman & Harvey 1976), "
+                    "impactlab/data/validation/aero_coefficients.yaml; spin decay lambda = 2e-5 (Smits & Smith 1994)",
+    "measured_fit_usga_ball": "measured_fit with the drag level of the 1998 USGA ITR ball (c0 0.2299 for 0.2072); "
+                              "the ball was chosen after seeing the TrackMan tables: a sensitivity, not a validated "
+                              "model",
     "vacuum": "no air (a test limit)",
 }
 
@@ -238,6 +288,22 @@ def aero_coefficients(s, re, model=DEFAULT_MODEL):
         ``"lyu_2018_induced_drag"`` -- NOT a published model: Lyu et al.
         (2018) plus an induced drag ``k CL**2`` with ``k = 1.437`` fitted on
         the USGA ITR example data of [US01]_.
+
+        ``"measured_fit"`` -- fitted by impactlab to measured CD and CL only
+        (impactlab/data/validation/aero_coefficients.yaml: [Ly20]_, [Ly18]_,
+        [US01]_'s ITR table, Bridgestone's patent tables, [BH76]_), never to
+        a carry table; constants :data:`MEASURED_FIT`::
+
+            CL_sc = a S / (1 + b S)                        (saturates at a/b = 0.53)
+            CD    = c0 + c_re Re/1e5 + k CL_sc^2 + d / (1 + exp((Re - Re_d)/w_d))
+            CL    = CL_sc (1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l))
+
+        The last factor is the lift lost in the drag crisis (reverse Magnus
+        below Re ~6.5e4 at S < 0.2, [Ly20]_); c0 is the modern balls' drag.
+
+        ``"measured_fit_usga_ball"`` -- the same with the drag level the fit
+        gives the 1998 USGA ITR ball (c0 = 0.2299); a sensitivity, chosen after
+        seeing the TrackMan tables, not a validated model.
 
         ``"vacuum"`` -- zero drag and lift (for tests).
 

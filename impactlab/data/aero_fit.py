@@ -1,0 +1,138 @@
+"""The coefficients of the ``measured_fit`` aerodynamic model, fitted to measured golf-ball lift and drag only.
+
+The measurements are impactlab/data/validation/aero_coefficients.yaml: wind-tunnel, indoor-test-range and free-flight
+CD and CL of golf balls against the spin ratio S and the Reynolds number Re, with their sources. TrackMan's carry
+tables are never used here: they are what the model is validated on (:mod:`impactlab.data.carry`).
+
+The fit has three least-squares stages, each on the rows its physics concerns:
+
+1. supercritical lift of every ball (Re above its drag crisis): ``CL = a S / (1 + b S)``, zero at S = 0 and
+   saturating at ``a / b`` (Bearman & Harvey's rows carry the saturation, S up to 0.64 at Re >= 5.5e4);
+2. supercritical drag: ``CD = c_ball + c_re Re/1e5 + k CL_sc(S)^2``, one offset ``c_ball`` per ball group (the 1976,
+   1998 and modern balls differ by 0.03-0.07 in drag at equal S), the Re slope and the spin (induced) drag ``k`` shared;
+   the model takes the modern balls' offset;
+3. the drag crisis and the lift lost in it (reverse Magnus), on the modern balls' rows below Re 7.4e4 together with
+   their supercritical rows: ``CD += d / (1 + exp((Re - Re_d) / w_d))`` and
+   ``CL *= 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S / s_l)``.
+
+``python -m impactlab.data.aero_fit`` prints the fitted constants and the residuals of each stage; the constants
+written in :mod:`impactlab.physics.aerodynamics` are these (tests/test_flight.py refits and compares).
+"""
+
+from __future__ import annotations
+
+import functools
+from importlib import resources
+
+import numpy as np
+import yaml
+
+#: the model's drag level is the offset of this ball group
+MODEL_GROUP = "modern"
+GROUPS = ("modern", "usga_1998", "bh_1976")
+
+
+@functools.cache
+def measurements() -> dict:
+    """The measured rows: ``re``, ``s``, ``cd``, ``cl`` (NaN where not measured), ``group`` (index into
+    :data:`GROUPS`), ``block`` (the source block's key) and ``supercritical`` (Re at or above the group's crisis end),
+    plus the document's ``blocks`` (citations)."""
+    document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath(
+        "aero_coefficients.yaml").read_text())
+    assert document["kind"] == "measurement", document["kind"]
+    rows, groups, blocks = [], [], []
+    for key, block in document["blocks"].items():
+        for row in block["rows"]:
+            rows.append([np.nan if value is None else float(value) for value in row])
+            groups.append(GROUPS.index(block["group"]))
+            blocks.append(key)
+    data = np.array(rows)
+    group = np.array(groups)
+    limit = np.array([document["supercritical_re"][name] for name in GROUPS])[group]
+    # a row without Re (Lyu 2018 Fig. 4a) was measured at 32-91 m/s, Re above 9e4: supercritical
+    supercritical = np.where(np.isnan(data[:, 0]), True, data[:, 0] >= limit)
+    return {"re": data[:, 0], "s": data[:, 1], "cd": data[:, 2], "cl": data[:, 3], "group": group,
+            "block": np.array(blocks), "supercritical": supercritical, "blocks": document["blocks"]}
+
+
+def lift_supercritical(s, a, b):
+    """``a S / (1 + b S)``: the lift above the drag crisis."""
+    return a * s / (1.0 + b * s)
+
+
+def crisis_terms(s, re, re_l, sigma, beta, s_l, re_d, w_d, d):
+    """(added drag, lift factor) of the drag crisis at ``re`` and ``s``."""
+    drag = d * 0.5 * (1.0 - np.tanh(0.5 * (re - re_d) / w_d))  # d / (1 + exp((Re - Re_d) / w_d)), no overflow
+    lift = 1.0 - beta * np.exp(-0.5 * (np.log(re / re_l) / sigma) ** 2) * np.exp(-s / s_l)
+    return drag, lift
+
+
+def fit() -> dict:
+    """Fit the three stages (module docstring) to :func:`measurements`.
+
+    Returns
+    -------
+    dict
+        ``lift`` (a, b), ``drag`` (offsets per group in :data:`GROUPS` order, c_re, k), ``crisis`` (Re_l, sigma,
+        beta, s_l, Re_d, w_d, d), and ``rms`` residuals per stage and quantity.
+    """
+    from scipy.optimize import least_squares  # scipy-heavy: only when fitting
+
+    m = measurements()
+    re, s, cd, cl, group, sc = m["re"], m["s"], m["cd"], m["cl"], m["group"], m["supercritical"]
+    lift_rows = sc & np.isfinite(cl)
+    lift = least_squares(lambda p: lift_supercritical(s[lift_rows], *p) - cl[lift_rows], [2.0, 4.0]).x
+
+    drag_rows = sc & np.isfinite(cd)
+
+    def drag_model(p, rows):
+        return p[group[rows]] + p[3] * re[rows] / 1e5 + p[4] * lift_supercritical(s[rows], *lift) ** 2
+
+    drag = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.2, 0.2, 0.25, 0.0, 1.0]).x
+    offset = drag[GROUPS.index(MODEL_GROUP)]
+
+    modern = group == GROUPS.index(MODEL_GROUP)
+    low_cd = modern & ~sc & np.isfinite(cd)
+    low_cl = modern & ~sc & np.isfinite(cl)
+    high_cd = modern & sc & np.isfinite(cd)
+
+    def coefficients(p, rows):
+        # rows without Re are supercritical (above 9e4): the crisis terms vanish there, take 1e6
+        r = np.where(np.isnan(re[rows]), 1e6, re[rows])
+        extra, factor = crisis_terms(s[rows], r, *p)
+        return (offset + drag[3] * r / 1e5 + drag[4] * lift_supercritical(s[rows], *lift) ** 2 + extra,
+                lift_supercritical(s[rows], *lift) * factor)
+
+    def residuals(p):
+        return np.concatenate([coefficients(p, low_cd)[0] - cd[low_cd], coefficients(p, low_cl)[1] - cl[low_cl],
+                               coefficients(p, high_cd)[0] - cd[high_cd],
+                               coefficients(p, lift_rows)[1] - cl[lift_rows]])
+
+    crisis = least_squares(residuals, [6.3e4, 0.1, 1.5, 0.2, 5.8e4, 5e3, 0.3],
+                           x_scale=[1e4, 0.05, 0.5, 0.1, 1e4, 1e3, 0.1],
+                           bounds=([4e4, 0.02, 0, 0.02, 3e4, 500, 0], [1e5, 0.5, 5, 2, 1e5, 3e4, 1])).x
+
+    def rms(x):
+        return float(np.sqrt(np.mean(np.square(x))))
+
+    return {"lift": tuple(float(v) for v in lift), "drag": tuple(float(v) for v in drag),
+            "crisis": tuple(float(v) for v in crisis),
+            "rms": {"lift supercritical": rms(lift_supercritical(s[lift_rows], *lift) - cl[lift_rows]),
+                    "drag supercritical": rms(drag_model(drag, drag_rows) - cd[drag_rows]),
+                    "drag crisis (modern, Re < 7.4e4)": rms(coefficients(crisis, low_cd)[0] - cd[low_cd]),
+                    "lift crisis (modern, Re < 7.4e4)": rms(coefficients(crisis, low_cl)[1] - cl[low_cl]),
+                    "lift crisis without the crisis terms": rms(
+                        lift_supercritical(s[low_cl], *lift) - cl[low_cl])},
+            "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(drag_rows.sum()),
+                     "drag crisis": int(low_cd.sum()), "lift crisis": int(low_cl.sum())}}
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the constants of docs/flight.md
+    result = fit()
+    print("lift a, b:", ", ".join(f"{v:.4g}" for v in result["lift"]))
+    print("drag offsets", dict(zip(GROUPS, (round(v, 4) for v in result["drag"][:3]))),
+          f"c_re {result['drag'][3]:.4g}, k {result['drag'][4]:.4g}")
+    print("crisis Re_l, sigma, beta, s_l, Re_d, w_d, d:", ", ".join(f"{v:.4g}" for v in result["crisis"]))
+    for key, value in result["rms"].items():
+        print(f"rms {key}: {value:.4f}")
+    print(result["rows"])
