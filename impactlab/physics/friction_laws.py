@@ -94,13 +94,16 @@ def area_fraction(k):
 
     Phi(k) = int_0^1 2 w erf(k w) dw = erf(k) (1 - 1/(2 k^2)) + exp(-k^2) / (k sqrt(pi)), k = sqrt(2) p_0 /
     (E_c* s) (module docstring; Persson 2001). Phi(inf) = 1 (a smooth face: the whole Hertz area), Phi(k) ->
-    4 k / (3 sqrt(pi)) as k -> 0 (series used below k = 1e-3, where the closed form loses digits).
+    4 k / (3 sqrt(pi)) as k -> 0. Below k = 0.05, where the closed form cancels, the series of erf integrated term
+    by term: 4 k / (3 sqrt(pi)) (1 - k^2/5 + 3 k^4/70 - k^6/126).
     """
     k = np.asarray(k, float)
-    small = k < 1e-3
+    small = k < 0.05
     safe = np.where(small, 1.0, k)
     closed = special.erf(safe) * (1.0 - 0.5 / safe**2) + np.exp(-safe**2) / (safe * np.sqrt(np.pi))
-    series = 4.0 * k / (3.0 * np.sqrt(np.pi)) * (1.0 - 0.3 * k**2)
+    k2 = np.where(small, k, 0.0) ** 2
+    series = 4.0 * np.where(small, k, 0.0) / (3.0 * np.sqrt(np.pi)) * (
+        1.0 - k2 / 5.0 + 3.0 * k2**2 / 70.0 - k2**3 / 126.0)
     return np.where(np.isinf(k), 1.0, np.where(small, series, closed))
 
 
@@ -155,45 +158,111 @@ def adhesion_friction(shear_strength, cover_modulus, cover_poisson, roughness_sl
     wet_fraction : ndarray
         The fraction of the normal impulse during which the film still separates cover and face [1].
     """
-    shape = np.broadcast(shear_strength, cover_modulus, roughness_slope, normal_speed, water_film).shape
-    tau_s, h, weight = _history()
+    shape = np.broadcast(shear_strength, cover_modulus, roughness_slope, normal_speed, water_film, roughness,
+                         groove_land).shape
+
+    def column(value):
+        return np.broadcast_to(np.asarray(value, float), shape).copy()
+
     a_max, p0, _, _ = hertz_means(effective_mass, radius, modulus, normal_speed)
-    a_max, p0 = np.broadcast_to(a_max, shape)[..., None], np.broadcast_to(p0, shape)[..., None]
-    stiffness = np.asarray(cover_modulus, float) / (1.0 - np.asarray(cover_poisson, float) ** 2)
-    slope = np.broadcast_to(np.asarray(roughness_slope, float), shape)[..., None]
+    a_max, p0 = column(a_max), column(p0)
+    stiffness = column(cover_modulus) / (1.0 - column(cover_poisson) ** 2)
+    slope, film = column(roughness_slope), column(water_film)
     with np.errstate(divide="ignore"):
-        k = np.where(slope > 0.0, np.sqrt(2.0) * p0 * np.sqrt(h) / (np.broadcast_to(stiffness, shape)[..., None]
-                                                                       * slope), np.inf)
-    area = h * area_fraction(k)  # A_r / (pi a_max^2) at each instant
-    force = h**1.5  # F / F_max
-    dry = _dry(h, weight, a_max, p0, np.broadcast_to(np.asarray(water_film, float), shape)[..., None],
-               np.broadcast_to(np.asarray(roughness, float), shape)[..., None],
-               np.broadcast_to(np.asarray(groove_land, float), shape)[..., None],
-               np.broadcast_to(np.asarray(normal_speed, float), shape)[..., None],
-               np.broadcast_to(np.asarray(radius, float), shape)[..., None])
+        load = np.where(slope > 0.0, np.sqrt(2.0) * p0 / (stiffness * slope), np.inf)  # k at the peak, h = 1
+    _, h, weight = _history()
+    force_integral = np.sum(h**1.5 * weight)
+    area = dry_area_integral(load)  # int A_r dt / (pi a_max^2 T), dry
+    wet = np.zeros(shape)
+    rows = film > 0.0
+    if np.any(rows):  # the squeeze film: adhesion from the instant it clears, for the wet cases only
+        col = (lambda value: column(value)[rows][:, None])
+        first = _clearing_index(h, weight, a_max[rows][:, None], p0[rows][:, None], film[rows][:, None],
+                                col(roughness), col(groove_land), col(normal_speed), col(radius))
+        force_before, area_before, area_total = _cumulative_tables(load[rows], first)
+        area[rows] = area_total - area_before
+        wet[rows] = force_before / force_integral
     # pi a_max^2 / F_max = 1 / p_mean,max = (3/2) / p0
-    ratio = np.sum(area * dry * weight, -1) / np.sum(force * weight)
-    mu = np.asarray(shear_strength, float) * 1.5 / p0[..., 0] * ratio
-    wet = 1.0 - np.sum(force * dry * weight, -1) / np.sum(force * weight)
+    mu = column(shear_strength) * 1.5 / p0 * area / force_integral
     return mu, wet
 
 
-def _dry(h, weight, a_max, p0, film, roughness, land, normal_speed, radius):
-    """1 where the squeezed water film is thinner than the roughness (adhesion acts), else 0; per history point.
+#: log-spaced peak loads k of the tabulated dry area integral; below the first: the series, above the last: Phi = 1
+_TABLE_RANGE, _TABLE_POINTS = (1e-3, 1e4), 3000
 
-    All arguments but ``h`` and ``weight`` (the scaled history) are columns (n, 1) in SI.
+
+@functools.lru_cache(maxsize=1)
+def _area_table():
+    """(log k, log int h Phi(k sqrt h) dtau) on the history's midpoints, and the moments int h^(n/2) dtau."""
+    _, h, weight = _history()
+    loads = np.geomspace(*_TABLE_RANGE, _TABLE_POINTS)
+    values = np.array([np.sum(h * area_fraction(k * np.sqrt(h)) * weight) for k in loads])
+    moments = {n: float(np.sum(h ** (n / 2.0) * weight)) for n in (2, 3, 5, 7)}
+    return np.log(loads), np.log(values), moments
+
+
+def dry_area_integral(load):
+    """int h Phi(k sqrt(h)) dtau over the Hertz history (the dry real area's time integral, scaled) [1].
+
+    ``load`` is k at the peak, sqrt(2) p_0,max / (E_c* s). Tabulated once on 3000 log-spaced loads (1e-3 to 1e4;
+    linear in the logarithms, relative error below 3e-6); below, the series of :func:`area_fraction` integrated
+    term by term over the history (exact to k^8); above, Phi = 1 (the Hertz area, error below 1e-8).
     """
-    if not np.any(film > 0.0):
-        return np.ones(np.broadcast_shapes(h.shape, film.shape))
+    log_k, log_value, moments = _area_table()
+    k = np.asarray(load, float)
+    low, high = k < _TABLE_RANGE[0], k > _TABLE_RANGE[1]
+    inner = np.exp(np.interp(np.log(np.clip(k, *_TABLE_RANGE)), log_k, log_value))
+    small = np.where(low, k, 0.0)
+    series = 4.0 * small / (3.0 * np.sqrt(np.pi)) * (moments[3] - small**2 / 5.0 * moments[5]
+                                                     + 3.0 * small**4 / 70.0 * moments[7])
+    return np.where(low, series, np.where(high, moments[2], inner))
+
+
+def _clearing_index(h, weight, a_max, p0, film, roughness, land, normal_speed, radius):
+    """Index of the first history point at which the squeezed water film is thinner than the roughness (adhesion
+    acts from there on: the film only thins), or the number of points if it never is. Columns (n, 1) in SI."""
     # scaled time -> seconds: t = tau delta_max / V, delta_max = a_max^2 / R
     seconds = weight * a_max**2 / radius / normal_speed
-    a = a_max * np.sqrt(h)
-    mean_pressure = (2.0 / 3.0) * p0 * np.sqrt(h)
-    drain = np.maximum(2.0 / (3.0 * a**2), 1.0 / (4.0 * land**2))
-    growth = np.cumsum(2.0 * mean_pressure * drain / WATER_VISCOSITY * seconds, -1)  # int d(h^-2)/dt dt
-    with np.errstate(divide="ignore"):
-        thickness = 1.0 / np.sqrt(np.where(film > 0.0, film**-2.0, np.inf) + growth)
-    return np.where((film <= 0.0) | (thickness <= roughness), 1.0, 0.0)
+    root = np.sqrt(h)
+    # d(h^-2)/dt = 2 p_m k_d / eta, p_m = (2/3) p0 sqrt(h), k_d the faster of disc (2 / (3 a^2)) and strips (1/(4 b^2))
+    drain = np.maximum(2.0 / (3.0 * a_max**2) / root, root / (4.0 * land**2))
+    growth = np.cumsum((4.0 / 3.0) * p0 / WATER_VISCOSITY * drain * seconds, -1)
+    with np.errstate(divide="ignore", over="ignore"):
+        needed = np.where(roughness > 0.0, roughness**-2.0, np.inf) - film**-2.0  # growth at which h = R_q
+    cleared = growth >= needed
+    return np.where(np.any(cleared, -1), np.argmax(cleared, -1), h.size)
+
+
+#: log-spaced peak loads k of the cumulative tables of the wet cases
+_CUMULATIVE_POINTS = 600
+
+
+@functools.lru_cache(maxsize=1)
+def _cumulative():
+    """(log k, area (K, N + 1), force (N + 1)): int_0^tau_i of h Phi(k sqrt h) and of h^(3/2) over the history."""
+    _, h, weight = _history()
+    loads = np.geomspace(*_TABLE_RANGE, _CUMULATIVE_POINTS)
+    area = np.concatenate([np.zeros((loads.size, 1)), np.cumsum(
+        h * area_fraction(loads[:, None] * np.sqrt(h)) * weight, -1)], -1)
+    force = np.concatenate([[0.0], np.cumsum(h**1.5 * weight)])
+    return np.log(loads), area, force
+
+
+def _cumulative_tables(load, first):
+    """Per case: int_0^tau_first h^(3/2) dtau, int_0^tau_first h Phi(k sqrt h) dtau and the latter over the whole
+    contact (the force and the dry real area before the film clears, and the area's total). Linear in log k
+    between table rows; proportional to k below the table (Phi linear in k), the last row above it (Phi = 1)."""
+    log_k, area, force = _cumulative()
+    k = np.asarray(load, float)
+    position = np.interp(np.log(np.clip(k, *_TABLE_RANGE)), log_k, np.arange(log_k.size))
+    low = np.minimum(np.floor(position).astype(int), log_k.size - 2)
+    fraction = position - low
+
+    def at(index):
+        value = (1.0 - fraction) * area[low, index] + fraction * area[low + 1, index]
+        return np.where(k < _TABLE_RANGE[0], area[0, index] * k / _TABLE_RANGE[0], value)
+
+    return force[first], at(first), at(np.full_like(first, force.size - 1))
 
 
 def ploughing_friction(roughness_slope, restitution):
