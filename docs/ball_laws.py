@@ -26,7 +26,7 @@ import impactlab  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.scene.catalogue import CLUB_PRESETS  # noqa: E402
 from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs  # noqa: E402
-from impactlab.scene.materials import BALL_PRESETS  # noqa: E402
+from impactlab.scene.materials import ball_preset  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 MPH = 0.44704
@@ -50,7 +50,7 @@ def scene_inputs(rows):
     """Model inputs of (ball preset, club preset, club speed mph, attack deg, dynamic loft deg) rows."""
     scenes = []
     for ball_name, club_name, speed, attack, loft in rows:
-        ball, club = BALL_PRESETS[ball_name], CLUB_PRESETS[club_name]
+        ball, club = ball_preset(ball_name), CLUB_PRESETS[club_name]
         delivery = Delivery(speed * MPH, path=0.0, face_angle=0.0, attack_angle=np.radians(attack),
                             dynamic_loft=np.radians(loft))
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), Contact(ball.friction, None), delivery, 0.0,
