@@ -322,12 +322,13 @@ def effective_friction(law, inputs, state, restitution=None):
         The contact state (:func:`impactlab.physics.contact.contact_state`): mobility, normal and slip speed,
         relative radius.
     restitution : array_like, optional
-        e of each case (the ploughing's loss fraction 1 - e^2 of the ball's own e); default 1 (no loss).
+        e of each case; the ball's own e = e - ``club_restitution_gain`` (a wood face's spring-like gain is not
+        the cover's) sets the ploughing's loss fraction 1 - e^2. Default 1 (no loss).
 
     Returns
     -------
     ndarray
-        mu per case [1], >= 0.
+        mu per case [1], >= 0. The cover's Poisson ratio is taken as the ball's.
     """
     if law == "coulomb":
         return np.asarray(inputs["friction"], float)
