@@ -23,7 +23,8 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                                  "impactlab run studies/flight.yaml --plot (or impactlab plot RESULT --trajectories)"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
-                                     "the wedge cover difference, and a wet face's spin loss", "python docs/ball_laws.py (studies/ball_laws.yaml)"),
+                                     "the wedge cover difference, and a wet face's spin loss",
+                                     "python docs/ball_laws.py (studies/ball_laws.yaml)"),
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),
