@@ -294,10 +294,11 @@ _COVERS = {
     "urethane": (68.9e6, math.inf, 657.0,
                  "Cover modulus 68.9 MPa: flexural modulus of a Shore D 43 thermoplastic urethane (Texin 245 "
                  "datasheet, 9990 psi at 73 degF; urethane covers are Shore D 40-53, physics_lit 5.5), a "
-                 "representative cover material, not the ball's measured cover. Melting: none (a cast thermoset "
-                 "urethane cover does not melt; a thermoplastic urethane would soften from its Vicat point, "
-                 "104 degC for Estane 2103-55D). Effusivity from typical TPU values (k 0.2 W/m K, rho 1200 "
-                 "kg/m^3, c 1800 J/kg K)."),
+                 "representative cover material, not the ball's measured cover. Melting: none (the Pro V1's "
+                 "cover is cast thermoset urethane that 'will not re-melt', Titleist Learning Lab, 'Surlyn and "
+                 "urethane in golf balls', titleist.com; a thermoplastic urethane cover would soften from its "
+                 "Vicat point, 104 degC for Estane 2103-55D). Effusivity from typical TPU values (k 0.2 W/m K, "
+                 "rho 1200 kg/m^3, c 1800 J/kg K)."),
     "ionomer": (330e6, 66.0, 718.0,
                 "Cover modulus 330 MPa: flexural modulus of Surlyn 9910, a zinc ionomer the datasheet names for golf "
                 "ball covers (73 degF; 731 MPa at -4 degF); melting point 86 degC (DSC, same datasheet), 66 K above "
