@@ -239,3 +239,21 @@ WITH_LAW = [get_model("rigid_coulomb")(friction_law="adhesion"),
 def test_conformance_with_the_friction_law(model, check):
     """The shipped conformance suite with the friction law on in every model."""
     check(model)
+
+
+def test_a_study_selects_the_law_per_model_entry_and_sweeps_the_balls():
+    """A study's model entry takes friction_law; a ball-preset sweep carries each cover's data to it. The wedge
+    observation's delivery: the law separates the covers, the constant mu (0.40 and 0.35, both gripping) does not."""
+    import impactlab
+
+    study = impactlab.load_study({
+        "ball": {"preset": "urethane_tour"}, "club": {"preset": "lob_wedge"},
+        "delivery": {"club_speed": "65 mph", "attack_angle": "-4 deg", "dynamic_loft": "34 deg"},
+        "sweep": {"ball.preset": ["urethane_tour", "two_piece_ionomer"]},
+        "models": ["rigid_coulomb", {"name": "rigid_coulomb", "id": "rigid_friction", "friction_law": "adhesion"}],
+        "outputs": ["spin_rate"]})
+    spin = impactlab.run_study(study)["spin_rate"]
+    plain, law = spin.sel(model="rigid_coulomb").values, spin.sel(model="rigid_friction").values
+    assert plain[0] == pytest.approx(plain[1], rel=1e-6)  # both balls roll off the face
+    assert law[0] == pytest.approx(plain[0], rel=1e-6)  # urethane still rolls (mu 0.17)
+    assert law[1] < 0.7 * law[0]  # the ionomer slides (mu 0.08 with its flash temperature)
