@@ -26,9 +26,9 @@ TARGETS = {"ball_speed [%]": 1.0, "launch angle [deg]": 0.7, "spin [%]": 7.0}
 
 
 def configuration(name, loft_at="centre", club_reference="centre_of_mass", rolling=False, fitted=False,
-                  fit_rolling=False):
+                  fit_rolling=False, friction=False):
     return {"name": name, "loft_at": loft_at, "club_reference": club_reference, "rolling": rolling,
-            "fitted": fitted, "fit_rolling": fit_rolling}
+            "fitted": fitted, "fit_rolling": fit_rolling, "friction": friction}
 
 
 CONFIGURATIONS = [
@@ -40,11 +40,18 @@ CONFIGURATIONS = [
     configuration("AFTER: contact + rolling + calibration", loft_at="contact", rolling=True, fitted=True),
     configuration("AFTER, alpha fitted: contact + calibration with rolling_hysteresis", loft_at="contact",
                   fitted=True, fit_rolling=True),
+    # the friction law of the ball-face pair (impactlab.physics.friction_laws), not fitted: it replaces the friction
+    # a calibration fits, so it is measured with the presets' parameters only
+    configuration("+ friction_law adhesion (not fitted)", loft_at="contact", friction=True),
+    configuration("contact + rolling + friction_law adhesion (not fitted)", loft_at="contact", rolling=True,
+                  friction=True),
 ]
 
 
 def measure(model_name: str, config: dict) -> dict:
     options = {"rolling_hysteresis": "restitution"} if config["rolling"] else {}
+    if config["friction"]:
+        options["friction_law"] = "adhesion"
     model = get_model(model_name)(**options)
     table = attrs.evolve(shot_table("trackman_tour"), loft_at=config["loft_at"])
     names = [p for p in DEFAULT_PARAMETERS if p != "tangential_loss" or "tangential_loss" in model.optional_inputs]

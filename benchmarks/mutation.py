@@ -42,6 +42,8 @@ T_CLUB = ["tests/test_clubs.py", "tests/test_delivery.py", "tests/test_mutation_
 #: the 3-D contact, club data, the 3-D kernel, derivation and deliveries (issue 23): with the oracles written
 #: independently of that code (tests/test_oracles_3d.py)
 T_3D = T_CLUB + ["tests/test_oracles_3d.py"]
+#: the friction law of the ball-face pair (issue 21 item 3b)
+T_FRICTION = ["tests/test_friction_laws.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
 MUTANTS = [
@@ -279,6 +281,27 @@ MUTANTS = [
     ("gspro-braces-in-strings", "impactlab/io/gspro_connect.py",
      'elif char == b\'"\':\n                self._in_string = True', "elif False:\n                pass",
      T_GSPRO, "GSPro replies split by braces without regard to string literals"),
+    # --- physics/friction_laws.py: the friction law of the ball-face pair
+    ("friction-cover-plane-strain", "impactlab/physics/friction_laws.py",
+     "stiffness = column(cover_modulus) / (1.0 - column(cover_poisson) ** 2)",
+     "stiffness = column(cover_modulus)",
+     T_FRICTION, "the cover's E used for Persson's E* (the plane-strain 1 - nu^2 dropped)"),
+    ("friction-peak-not-mean-pressure", "impactlab/physics/friction_laws.py",
+     "mu = column(shear_strength) * 1.5 / p0 * area / force_integral",
+     "mu = column(shear_strength) * 1.0 / p0 * area / force_integral",
+     T_FRICTION, "adhesion over the peak pressure p0 instead of the mean pressure (2/3) p0"),
+    ("friction-disc-drain-radius", "impactlab/physics/friction_laws.py",
+     "drain = np.maximum(2.0 / (3.0 * a_max**2) / root, root / (4.0 * land**2))",
+     "drain = np.maximum(2.0 / (3.0 * a_max**2), root / (4.0 * land**2))",
+     T_FRICTION, "the squeeze film drained over the largest contact, not the growing one"),
+    ("friction-flash-heat-partition", "impactlab/physics/friction_laws.py",
+     "np.sqrt(np.pi) * (np.asarray(cover_effusivity, float) + np.asarray(face_effusivity, float)))\n    with",
+     "np.sqrt(np.pi) * np.asarray(face_effusivity, float))\n    with",
+     T_FRICTION, "the frictional heat all taken by the face (the cover's effusivity dropped)"),
+    ("friction-law-ignored", "models/_common.py",
+     "    if law == \"coulomb\":\n        return np.broadcast_to",
+     "    if True:\n        return np.broadcast_to",
+     T_FRICTION, "the models' friction_law option read but never applied"),
     ("gspro-201-answers", "impactlab/io/gspro_connect.py",
      "if reply.code in UNSOLICITED:\n                    self._note(reply)\n                    continue",
      "if False:\n                    continue",

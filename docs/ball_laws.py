@@ -1,14 +1,15 @@
-"""Ball laws against launch data: spin per unit of club speed x sin(spin loft), and the wedge cover difference.
+"""Ball laws against launch data: spin per unit of club speed x sin(spin loft), the wedge cover difference, a wet face.
 
 Runs studies/ball_laws.yaml (spin loft swept for the driver, 6-iron and pitching-wedge presets), the four TrackMan
 tour rows of the physics brief (section 12: PGA and LPGA driver and 6-iron; club speed, attack angle, dynamic loft,
 measured spin; their spin lofts 14.7, 15.0, 24.3, 25.9 deg from TrackMan's spin-loft pages) and the Titleist
-WedgeCraft wedge test (physics_lit.md section 4: 58 deg wedge, 75 yd, Pro V1 8,300 rpm against a two-piece Surlyn
-ball 5,600 rpm, measured by the manufacturer; club speed and loft not stated, so 62 mph, dynamic loft 48 deg and
-attack -4 deg are assumed here), for each combination of forms; prints the tables and draws
-docs/figures/ball_laws_spin_per_unit.png.
+WedgeCraft observation (impactlab/data/validation/observations.yaml: 58 deg wedge, 75 yd, Pro V1 8,300 rpm against
+a two-piece Surlyn ball 5,600 rpm, measured by the manufacturer; the delivery, 65 mph, loft 34 deg, attack -4 deg,
+is that file's assumption), for each combination of forms; prints the tables and draws
+docs/figures/ball_laws_spin_per_unit.png, whose third panel is the friction law's wet-face spin loss on that wedge
+shot against the face's roughness, with and without grooves, beside the published wet-wedge losses.
 
-Run from the project root: ``.venv/bin/python docs/ball_laws.py`` (about 30 s).
+Run from the project root: ``.venv/bin/python docs/ball_laws.py`` (about 40 s).
 """
 
 from __future__ import annotations
@@ -23,10 +24,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import impactlab  # noqa: E402
+from impactlab.data.shots import predict, table_inputs  # noqa: E402
+from impactlab.data.validation.observations import cover_effect, load_observations, strike_table  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.scene.catalogue import CLUB_PRESETS  # noqa: E402
 from impactlab.scene.core import Contact, Delivery, Scene, complete_inputs  # noqa: E402
-from impactlab.scene.materials import BALL_PRESETS  # noqa: E402
+from impactlab.scene.materials import ball_preset  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 MPH = 0.44704
@@ -36,21 +39,27 @@ ROWS = [("PGA driver", "driver", 115, -0.9, 12.8, 2545, 14.7), ("LPGA driver", "
 #: the measured bands of the physics brief, section 13 (rpm per mph)
 BANDS = {"tour drivers": (87.0, 101.0), "irons and wedges": (160.0, 179.0)}
 #: Titleist WedgeCraft (measured): urethane (Pro V1) and two-piece Surlyn spin on a 75-yd shot with a 58 deg wedge
-WEDGE_MEASURED = {"tour_urethane": 8300.0, "two_piece_ionomer": 5600.0}
-WEDGE_DELIVERY = (62.0, 48.0, -4.0)  # mph, dynamic loft deg, attack deg: assumed (the test does not state them)
+#: published wet-wedge spin losses, measurements of sprayed or wet faces (film thickness not stated): tablehopping.com
+#: (SkyTrak, lob wedge, 25/50/89 yd), exactgolf.com (55 m), windmillleisure.co.uk (56 deg, 50-60 yd),
+#: peterfieldgolf.co.uk citing a study (average 35 %, best 10 %, worst 60 %)
+WET_LOSSES = (0.13, 0.175, 0.11, 0.42, 0.47, 0.35, 0.10, 0.60)
 FORMS = [("rigid_coulomb", "rigid_coulomb", {}),
          ("rigid_rolling", "rigid_coulomb", {"rolling_hysteresis": "restitution"}),
          ("maw", "maw", {}),
          ("maw_rolling", "maw", {"rolling_hysteresis": "restitution"}),
          ("maw_rolling_bound", "maw", {"rolling_hysteresis": 1.0}),
-         ("maw_hysteretic_rolling", "maw", {"inelastic": "hysteretic", "rolling_hysteresis": "restitution"})]
+         ("maw_hysteretic_rolling", "maw", {"inelastic": "hysteretic", "rolling_hysteresis": "restitution"}),
+         ("rigid_friction", "rigid_coulomb", {"friction_law": "adhesion"}),
+         ("rigid_rolling_friction", "rigid_coulomb", {"rolling_hysteresis": "restitution", "friction_law": "adhesion"}),
+         ("maw_friction", "maw", {"friction_law": "adhesion"}),
+         ("maw_rolling_friction", "maw", {"rolling_hysteresis": "restitution", "friction_law": "adhesion"})]
 
 
 def scene_inputs(rows):
     """Model inputs of (ball preset, club preset, club speed mph, attack deg, dynamic loft deg) rows."""
     scenes = []
     for ball_name, club_name, speed, attack, loft in rows:
-        ball, club = BALL_PRESETS[ball_name], CLUB_PRESETS[club_name]
+        ball, club = ball_preset(ball_name), CLUB_PRESETS[club_name]
         delivery = Delivery(speed * MPH, path=0.0, face_angle=0.0, attack_angle=np.radians(attack),
                             dynamic_loft=np.radians(loft))
         scenes.append(Scene.from_delivery(ball, Scene.face_of(club), Contact(ball.friction, None), delivery, 0.0,
@@ -63,41 +72,67 @@ def per_unit(spin_rpm, speed_mph, spin_loft_deg):
     return spin_rpm / (speed_mph * np.sin(np.radians(spin_loft_deg)))
 
 
+def wet_losses(roughness_values, lands, film=20e-6):
+    """The friction law's spin loss on the wedge observation's shot (urethane ball, maw) with a film on the face."""
+    observation = load_observations()["cover"][0]
+    model = get_model("maw")(friction_law="adhesion")
+    base = table_inputs(strike_table(observation, [0.0]), {"preset": "urethane_tour"})
+
+    def spin(**changes):
+        inputs = dict(base, **{key: np.full(1, value) for key, value in changes.items()})
+        return float(predict(model, inputs)["spin_rate"][0])
+
+    dry = spin()
+    return {land: [1.0 - spin(face_water_film=film, face_roughness=rq, face_groove_land=land) / dry
+                   for rq in roughness_values] for land in lands}
+
+
 def main(out=ROOT / "docs" / "figures" / "ball_laws_spin_per_unit.png"):
     result = impactlab.run_study(impactlab.load_study(ROOT / "studies" / "ball_laws.yaml"))
     speeds = result["club_speed"].values / MPH
     sweep = per_unit(result["spin_rate"], speeds[None, :, None], result["spin_loft"])
 
     measured = np.array([per_unit(row[5], row[2], row[6]) for row in ROWS])
-    tour = scene_inputs([("tour_urethane", *row[1:5]) for row in ROWS])
-    print("TrackMan tour rows: spin per (club speed mph x sin spin loft), rpm/mph (measured: physics brief s12)")
-    print(f"  {'form':24s}" + "".join(f"{row[0]:>13s}" for row in ROWS))
-    print(f"  {'measured':24s}" + "".join(f"{value:13.1f}" for value in measured))
+    tour = scene_inputs([("urethane_tour", *row[1:5]) for row in ROWS])
+    print("TrackMan tour rows: spin per (club speed mph x sin spin loft), rpm/mph (measured: physics brief s12), and "
+          "the iron/driver ratio of the means")
+    print(f"  {'form':24s}" + "".join(f"{row[0]:>13s}" for row in ROWS) + f"{'iron/driver':>13s}")
+    print(f"  {'measured':24s}" + "".join(f"{value:13.1f}" for value in measured)
+          + f"{measured[2:].mean() / measured[:2].mean():13.2f}")
     rows_model = {}
     for form, name, options in FORMS:
         out_ = get_model(name)(**options).compute(tour, ["spin_rate", "spin_loft"])
         values = per_unit(out_["spin_rate"].values, np.array([row[2] for row in ROWS]), out_["spin_loft"].values)
         rows_model[form] = values
-        print(f"  {form:24s}" + "".join(f"{value:13.1f}" for value in values))
+        print(f"  {form:24s}" + "".join(f"{value:13.1f}" for value in values)
+              + f"{values[2:].mean() / values[:2].mean():13.2f}")
 
-    speed, loft, attack = WEDGE_DELIVERY
-    wedge = scene_inputs([(ball, "pitching_wedge", speed, attack, loft) for ball in WEDGE_MEASURED])
-    ratio_measured = WEDGE_MEASURED["tour_urethane"] / WEDGE_MEASURED["two_piece_ionomer"]
-    print(f"\nWedge cover test (Titleist WedgeCraft, measured urethane/ionomer spin {ratio_measured:.2f}; "
-          f"delivery assumed {speed:.0f} mph, loft {loft:.0f}, attack {attack:.0f} deg)")
+    observation = load_observations()["cover"][0]
+    ratio_measured = observation.published + 1.0
+    print(f"\nWedge cover test ({observation.name}: measured urethane/ionomer spin {ratio_measured:.2f}; delivery "
+          f"assumed in observations.yaml)")
     wedge_ratio = {}
     for form, name, options in FORMS:
-        spin = get_model(name)(**options).compute(wedge, ["spin_rate"])["spin_rate"].values
-        wedge_ratio[form] = spin[0] / spin[1]
-        print(f"  {form:24s} urethane {spin[0]:7.0f}  ionomer {spin[1]:7.0f}  ratio {spin[0] / spin[1]:.3f}")
+        effect = cover_effect(get_model(name)(**options), observation)
+        wedge_ratio[form] = effect["predicted"] + 1.0
+        print(f"  {form:24s} urethane {effect['spin']['urethane']:7.0f}  ionomer {effect['spin']['ionomer']:7.0f}  "
+              f"ratio {wedge_ratio[form]:.3f}  (difference {effect['ratio']:.2f}x the published)")
 
-    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.2), gridspec_kw={"width_ratios": [2.2, 1]})
-    colors = dict(zip([form for form, _, _ in FORMS], plt.cm.tab10.colors))
+    roughness = np.array([0.4, 0.7, 1.0, 1.5, 2.0, 3.0, 4.0, 5.7]) * 1e-6
+    losses = wet_losses(roughness, (1.35e-3, np.inf))
+    print("\nWet face (20 um of water), urethane ball, maw with the friction law: spin loss against the face's R_q")
+    for land, values in losses.items():
+        words = "grooved (half-land 1.35 mm)" if np.isfinite(land) else "no grooves"
+        print(f"  {words:28s}" + "".join(f"  {rq * 1e6:.1f} um {v:4.0%}" for rq, v in zip(roughness, values)))
+
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(17, 5.4), gridspec_kw={"width_ratios": [2.2, 1.1, 1]})
+    colors = dict(zip([form for form, _, _ in FORMS], plt.cm.tab10.colors + plt.cm.Dark2.colors))
+    styles = {form: "--" if "friction" in form else "-" for form, _, _ in FORMS}
     markers = {"driver": "o", "6_iron": "s", "pitching_wedge": "^"}
     for form in result["model"].values:
         for club in result["club"].values:
             left.plot(result["spin_loft"].sel(model=form, club=club), sweep.sel(model=form, club=club),
-                      marker=markers[club], markersize=3.5, lw=1.2, color=colors[form],
+                      marker=markers[club], markersize=3.5, lw=1.2, color=colors[form], ls=styles[form],
                       label=form if club == "driver" else None)
     for (label, (low, high)), (x0, x1) in zip(BANDS.items(), [(12, 17), (20, 50)]):
         left.fill_between([x0, x1], low, high, color="0.8", alpha=0.6, zorder=0)
@@ -108,19 +143,39 @@ def main(out=ROOT / "docs" / "figures" / "ball_laws_spin_per_unit.png"):
     left.text(42, 136, "rigid rolling, 200 g head: 134", fontsize=8, color="0.4")
     left.set_xlabel("spin loft [deg]")
     left.set_ylabel("spin / (club speed x sin spin loft) [rpm/mph]")
-    left.set_title("Driver (o), 6-iron (s), PW (^) presets, tour urethane ball; alpha = 1 - e^2 unless 'bound'",
+    left.set_title("Driver (o), 6-iron (s), PW (^) presets, urethane tour ball; alpha = 1 - e^2 unless 'bound';\n"
+                   "dashed: with the friction law (driver: smooth titanium face, irons: grooved, blasted steel)",
                    fontsize=9)
-    left.legend(fontsize=7.5, loc="lower right")
+    left.legend(fontsize=7, loc="lower right", ncol=2)
     left.set_ylim(0, 260)
     forms = [form for form, _, _ in FORMS]
-    right.barh(range(len(forms)), [wedge_ratio[form] for form in forms], color=[colors[form] for form in forms])
-    right.axvline(ratio_measured, color="k", lw=2)
-    right.axvspan(0.5 * (ratio_measured - 1) + 1, 1.5 * (ratio_measured - 1) + 1, color="0.85", zorder=0)
-    right.text(ratio_measured + 0.01, len(forms) - 0.6, f"measured {ratio_measured:.2f}", fontsize=8)
-    right.set_yticks(range(len(forms)), forms, fontsize=8)
-    right.set_xlabel("wedge spin, urethane / two-piece ionomer")
-    right.set_xlim(0.9, 1.7)
-    right.set_title("Wedge cover difference (58 deg, 75 yd; band: 0.5-1.5x the\nmeasured difference)", fontsize=9)
+    middle.barh(range(len(forms)), [wedge_ratio[form] for form in forms], color=[colors[form] for form in forms])
+    middle.axvline(ratio_measured, color="k", lw=2)
+    middle.axvspan(0.5 * (ratio_measured - 1) + 1, 1.5 * (ratio_measured - 1) + 1, color="0.85", zorder=0)
+    middle.text(ratio_measured + 0.02, len(forms) - 0.6, f"measured {ratio_measured:.2f}", fontsize=8)
+    middle.set_yticks(range(len(forms)), forms, fontsize=8)
+    middle.set_xlabel("wedge spin, urethane / two-piece ionomer")
+    middle.set_xlim(0.8, 2.6)
+    for index, form in enumerate(forms):
+        middle.text(wedge_ratio[form] + 0.02, index, f"{wedge_ratio[form]:.2f}", va="center", fontsize=7.5)
+    middle.set_title(f"Wedge cover difference ({observation.name};\nshaded: 0.5-1.5x the measured difference)",
+                     fontsize=9)
+    for land, marker in ((1.35e-3, "s"), (np.inf, "o")):
+        right.plot(roughness * 1e6, 100 * np.array(losses[land]), marker=marker, color="C0" if marker == "s" else "C3",
+                   label="grooved (half-land 1.35 mm)" if np.isfinite(land) else "no grooves")
+    right.axhspan(100 * min(WET_LOSSES), 100 * max(WET_LOSSES), color="0.85", zorder=0)
+    right.text(0.45, 100 * max(WET_LOSSES) + 1.5, "published wet-wedge losses (measured, film not stated)",
+               fontsize=7.5, color="0.3")
+    right.axvline(5.7, color="0.5", ls=":", lw=1)
+    right.text(5.55, 80, "Rules' limit\n(the preset)", fontsize=7.5, color="0.4", ha="right")
+    right.set_xscale("log")
+    right.set_xticks([0.4, 0.7, 1.0, 2.0, 4.0, 5.7], ["0.4", "0.7", "1", "2", "4", "5.7"])
+    right.minorticks_off()
+    right.set_xlabel("face roughness R_q [um]")
+    right.set_ylabel("spin lost to a 20 um water film [%]")
+    right.set_ylim(-2, 100)
+    right.set_title("Wet face, urethane ball, maw + friction law\n(the wedge observation's delivery)", fontsize=9)
+    right.legend(fontsize=8, loc="upper right")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     print(f"\nwrote {out}")

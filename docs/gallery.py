@@ -25,8 +25,9 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                                "its drag crisis) beside measured_fit at Re 6e4, 1e5, 2e5 and smits_smith_1994",
                                "python docs/aero_coefficients.py"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
-                                     "ball-law form beside TrackMan's tour rows and bands, and the wedge cover "
-                                     "difference", "python docs/ball_laws.py (studies/ball_laws.yaml)"),
+                                     "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
+                                     "the wedge cover difference, and a wet face's spin loss",
+                                     "python docs/ball_laws.py (studies/ball_laws.yaml)"),
          "trackman_tour_validation": ("TrackMan tour averages (measured, +- the assumed 1 sigma) beside every model "
                                       "with the calibrated ball and club presets",
                                       "impactlab validate --dataset trackman_tour --plot FILE"),

@@ -71,6 +71,14 @@ def _attr(part: str, attribute: str):
     return lambda scene: getattr(getattr(scene, part), attribute)
 
 
+def _surface_value(attribute: str):
+    def getter(scene):
+        surface = getattr(scene.face, "surface", None)
+        return None if surface is None else getattr(surface, attribute)
+
+    return getter
+
+
 INPUTS: dict[str, InputSpec] = {
     "ball_radius": InputSpec("ball.radius", "m", "length", "ball radius R", _attr("ball", "radius"), low=0.0,
                              low_open=True, high_open=True),
@@ -100,6 +108,31 @@ INPUTS: dict[str, InputSpec] = {
     "tangential_loss": InputSpec("ball.tangential_loss", "1", "dimensionless",
                                  "loss factor of the ball's cover in tangential shear (0: elastic)",
                                  _attr("ball", "tangential_loss"), low=0.0, high=2.0),
+    # the friction law's inputs (impactlab.physics.friction_laws): the cover's and the face surface's
+    "ball_shear_strength": InputSpec("ball.shear_strength", "Pa", "pressure",
+                                     "interfacial shear strength tau of the ball's cover on the face",
+                                     _attr("ball", "shear_strength"), low=0.0, high_open=True),
+    "ball_cover_modulus": InputSpec("ball.cover_modulus", "Pa", "pressure", "Young's modulus of the ball's cover",
+                                    _attr("ball", "cover_modulus"), low=0.0, low_open=True, high_open=True),
+    "ball_cover_melt_rise": InputSpec("ball.cover_melt_rise", "K", "temperature",
+                                      "rise of the interface's temperature at which the cover melts (inf: never)",
+                                      _attr("ball", "cover_melt_rise"), low=0.0, low_open=True),
+    "ball_cover_effusivity": InputSpec("ball.cover_effusivity", "J m-2 K-1 s-1/2", "dimensionless",
+                                       "thermal effusivity sqrt(k rho c) of the ball's cover",
+                                       _attr("ball", "cover_effusivity"), low=0.0, low_open=True, high_open=True),
+    "face_roughness_slope": InputSpec("face.surface.roughness_slope", "1", "dimensionless",
+                                      "r.m.s. slope of the face's texture (0: smooth)",
+                                      _surface_value("roughness_slope"), low=0.0, high=2.0),
+    "face_roughness": InputSpec("face.surface.roughness", "m", "length", "r.m.s. roughness of the face",
+                                _surface_value("roughness"), low=0.0, high=1e-3),
+    "face_groove_land": InputSpec("face.surface.groove_land", "m", "length",
+                                  "half the land between grooves, where water drains (inf: no grooves)",
+                                  _surface_value("groove_land"), low=0.0, low_open=True),
+    "face_water_film": InputSpec("face.surface.water_film", "m", "length", "water film on the face (0: dry)",
+                                 _surface_value("water_film"), low=0.0, high=1e-3),
+    "face_effusivity": InputSpec("face.surface.effusivity", "J m-2 K-1 s-1/2", "dimensionless",
+                                 "thermal effusivity sqrt(k rho c) of the face", _surface_value("effusivity"),
+                                 low=0.0, low_open=True, high_open=True),
     "speed": InputSpec("impact.speed", "m/s", "speed", "impact speed V along the path", _attr("impact", "speed"),
                        low=0.0, low_open=True, high_open=True),
     "angle": InputSpec("impact.angle", "rad", "angle", "face normal relative to path alpha",
@@ -248,6 +281,11 @@ INPUT_BY_PATH["delivery.club_speed"] = "speed"
 INPUT_BY_PATH["club.mass"] = "club_mass"
 #: words, not numbers: a study says them once (a swept definition would mix two meanings of one number)
 for _path in ("delivery.loft_at", "delivery.club_reference"):
+    del INPUT_BY_PATH[_path]
+#: the face surface comes with the club (materials.FACE_SURFACES) and the cover's melting and effusivity with the
+#: ball preset: no study key sets them (a temperature rise is not a temperature, and effusivity has no unit here)
+for _path in [path for path in INPUT_BY_PATH if path.startswith("face.surface.")] + [
+        "ball.cover_melt_rise", "ball.cover_effusivity"]:
     del INPUT_BY_PATH[_path]
 #: swept paths a study may not set (they are parts of a tensor or vector checked as a whole)
 for _path in [path for path in INPUT_BY_PATH if path.startswith(("club.inertia.", "club.center_of_mass."))]:

@@ -2,7 +2,10 @@
 
 import numpy as np
 
+from impactlab.errors import ModelInputError
 from impactlab.validators import check
+
+from impactlab.physics import friction_laws
 
 from impactlab.physics.contact import GEOMETRY_INPUTS
 from impactlab.physics.delivery import DELIVERY_INPUTS
@@ -63,3 +66,37 @@ ROLLING_HYSTERESIS_DOC = """rolling_hysteresis : float or str
 def rolling_on(value) -> bool:
     """Whether a ``rolling_hysteresis`` option switches the rolling law on."""
     return isinstance(value, str) or float(value) > 0.0
+
+
+#: validator of the option ``friction_law`` (impactlab.physics.friction_laws)
+FRICTION_LAW = check(lambda v: v in friction_laws.FRICTION_LAWS,
+                     f"one of {', '.join(friction_laws.FRICTION_LAWS)} (impactlab.physics.friction_laws)")
+FRICTION_LAW_DOC = """friction_law : str
+        Which Coulomb coefficient the impact sees (:mod:`impactlab.physics.friction_laws`). ``"coulomb"`` (default):
+        the ``friction`` input, today's model exactly. ``"adhesion"``: Bowden & Tabor's adhesion on the real
+        contact area (Persson's area on the face's texture, set by the cover's modulus) plus ploughing, over the
+        case's Hertz history; a water film squeezed out through the grooves; the cover's shear strength softened by
+        its flash temperature where the ball gives a melting cover. Reads the ball's ``shear_strength`` and
+        ``cover_modulus`` and the face's surface (club presets carry one)."""
+#: inputs the friction law reads when it is switched on (besides the ball's and face's elastic constants)
+FRICTION_INPUTS = frozenset(friction_laws.LAW_INPUTS)
+
+
+def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
+    """The friction coefficient of each case under the model's ``friction_law`` option (a model's Options may lack
+    it: then the ``friction`` input, as before the law existed)."""
+    law = getattr(options, "friction_law", "coulomb")
+    n = state["normal_speed"].size
+    if law == "coulomb":
+        return np.broadcast_to(np.asarray(inputs["friction"], float), (n,))
+    needed = {"ball_shear_strength", "ball_cover_modulus"} | MATERIAL_OPTIONAL
+    melting = "ball_cover_melt_rise" in inputs and np.any(np.isfinite(inputs["ball_cover_melt_rise"]))
+    if melting:
+        needed |= {"ball_cover_effusivity", "face_effusivity"}
+    missing = sorted(needed - set(inputs))
+    if missing:
+        raise ModelInputError(
+            f"friction_law: {law} needs the ball's cover (shear_strength, cover_modulus: the tour_urethane and "
+            f"two_piece_ionomer presets carry them), the ball's and face's elastic constants"
+            f"{' and both thermal effusivities (a melting cover)' if melting else ''}; missing: {', '.join(missing)}")
+    return friction_laws.effective_friction(law, inputs, state, restitution)

@@ -16,7 +16,8 @@ from impactlab.physics import compliant3d, coupling, hertz
 from impactlab.physics import ball_laws
 from impactlab.physics.contact import couple_mobility
 
-from ._common import IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS, rolling_on
+from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
+                      law_friction, rolling_on)
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -82,7 +83,8 @@ class HertzTangentialModel(ImpactModel):
 
     requires = RIGID_BODY_INPUTS | {"friction", "ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                     "face_poisson_ratio"}
-    optional_inputs = RIGID_BODY_OPTIONAL | {"restitution", "tangential_loss", "club_restitution_gain"}
+    optional_inputs = RIGID_BODY_OPTIONAL | FRICTION_INPUTS | {"restitution", "tangential_loss",
+                                                              "club_restitution_gain"}
     provides = IMPULSES_3D | {"contact_time", "normal_force", "tangential_force", "stick_radius",
                               "contact_radius_ratio", "coupling_estimate", "steps", "energy_error", "validity",
                               "face_rotation"} | ROLLING_OUTPUTS
@@ -104,7 +106,7 @@ class HertzTangentialModel(ImpactModel):
 
     def _compute(self, inputs, outputs):
         p = inputs
-        ball_mass, friction = p["ball_mass"], p["friction"]
+        ball_mass = p["ball_mass"]
         moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"], p["face_poisson_ratio"])
         modulus = hertz.effective_modulus(*moduli)
         kappa = hertz.tangential_modulus(*moduli) / modulus
@@ -115,6 +117,8 @@ class HertzTangentialModel(ImpactModel):
         m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
         normal_speed, slip, radius = state["normal_speed"], state["slip_speed"], state["contact_radius"]
         restitution = p.get("restitution", np.ones_like(normal_speed))
+        # the friction law's coefficient per case (option friction_law; "coulomb": the friction input)
+        friction = law_friction(self.options, p, state, restitution)
         if self.options.inelastic == "adjusted_speed":
             # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
             scale_speed = 0.5 * (1.0 + restitution) * normal_speed

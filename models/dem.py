@@ -9,7 +9,7 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._common import ROLLING_HYSTERESIS
+from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -31,6 +31,8 @@ class _SpringOptions(CompliantOptions):
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
     #: rolling resistance of the cover (models._common.ROLLING_HYSTERESIS_DOC); 0: none
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    #: the friction law (models._common.FRICTION_LAW_DOC); "coulomb": the friction input
+    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""

@@ -10,7 +10,7 @@ from impactlab.validators import check, in_range, to_float
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._common import ROLLING_HYSTERESIS
+from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -72,6 +72,9 @@ class MawOptions(CompliantOptions):
         a cover of thickness t [m] and Young's modulus E_c [Pa] (the ball's Poisson ratio) over a core of the
         ball's equivalent material, a shear spring in series with Mindlin's; it changes kappa and with it the
         grip. Default t = 0 (and E_c the ball's): the paper's homogeneous ball.
+    friction_law : str
+        ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the ball-face pair's friction law
+        (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -88,6 +91,7 @@ class MawOptions(CompliantOptions):
         0.0, 0.005, "a cover thickness in m between 0 and 0.005 (5 mm)"))
     cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
         1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
+    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
 
     @tolerance.default
     def _default_tolerance(self):

@@ -10,8 +10,9 @@ import numpy as np
 from impactlab.model import ImpactModel
 from impactlab.physics.rigid import restitution_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
-                      RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics, impulse_outputs)
+from ._common import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
+                      RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics,
+                      impulse_outputs, law_friction)
 
 
 @attrs.frozen
@@ -24,11 +25,15 @@ class RestitutionOptions:
         Contact-point tangential restitution beta, -1 <= beta <= 1 (-1:
         frictionless, 0: leaves rolling, > 0: the ball grips and the contact
         point reverses). Default 0.
+    friction_law : str
+        The Coulomb cap's coefficient: ``"coulomb"`` (default), the ``friction`` input (none given: no cap);
+        ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (models._common.FRICTION_LAW_DOC).
     """
 
     tangential_restitution: float = attrs.field(
         default=0.0, converter=to_float,
         validator=in_range(-1.0, 1.0, "a tangential restitution with -1 <= beta <= 1"))
+    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
 
 
 class RestitutionModel(ImpactModel):
@@ -65,16 +70,18 @@ class RestitutionModel(ImpactModel):
     references = ("R. Cross and P. Dewhurst, Launch speed, angle and spin in golf, Eur. J. Phys. 39 (2018) 065003",
                   "R. Cross, Grip-slip behavior of a bouncing ball, Am. J. Phys. 70 (2002) 1093", STRONGE)
     requires = RIGID_BODY_INPUTS | {"restitution"}
-    optional_inputs = RIGID_BODY_OPTIONAL | {"friction"}
+    optional_inputs = RIGID_BODY_OPTIONAL | {"friction", "club_restitution_gain"} | MATERIAL_OPTIONAL | FRICTION_INPUTS
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()
+        cap = (inputs.get("friction", np.inf) if self.options.friction_law == "coulomb"
+               else law_friction(self.options, inputs, state, inputs["restitution"]))
         impulse, _, energy_capped = restitution_impulses(
             state["initial_velocity"], state["mobility"], inputs["restitution"], self.options.tangential_restitution,
-            inputs.get("friction", np.inf))
+            cap)
         diagnostics = closed_form_diagnostics(impulse.shape[0])
         diagnostics["validity"] = np.where(energy_capped, 32.0, 0.0)
         return {**impulse_outputs(impulse), **diagnostics}

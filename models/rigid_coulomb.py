@@ -14,7 +14,8 @@ from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_
 
 from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, RIGID_BODY_INPUTS,
                       RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE,
-                      closed_form_diagnostics, impulse_outputs, rolling_on)
+                      FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs, law_friction,
+                      rolling_on)
 
 
 @attrs.frozen
@@ -35,11 +36,15 @@ class RigidCoulombOptions:
         ``"restitution"`` for 1 - e_ball^2 (the normal impact is that cycle: no free parameter; e_ball = e -
         club_restitution_gain, the ball's own e against a rigid face, without a wood face's spring-like gain).
         Default 0: no couple, the model unchanged.
+    friction_law : str
+        ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the coefficient of the ball-face pair's
+        friction law (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
     """
 
     steps: int = attrs.field(default=STRONGE_STEPS, validator=attrs.validators.and_(
         attrs.validators.instance_of(int), attrs.validators.ge(10), attrs.validators.le(10**6)))
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
 
 
 class RigidCoulombModel(ImpactModel):
@@ -68,7 +73,7 @@ class RigidCoulombModel(ImpactModel):
     label = "rigid body, Coulomb friction"
     references = (STRONGE, "R. M. Brach, Mechanical Impact Dynamics, Wiley (1991)")
     requires = RIGID_BODY_INPUTS | {"friction", "restitution"}
-    optional_inputs = RIGID_BODY_OPTIONAL | MATERIAL_OPTIONAL | {"club_restitution_gain"}
+    optional_inputs = RIGID_BODY_OPTIONAL | MATERIAL_OPTIONAL | FRICTION_INPUTS | {"club_restitution_gain"}
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS | ROLLING_OUTPUTS
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
@@ -76,8 +81,8 @@ class RigidCoulombModel(ImpactModel):
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()
         n = state["normal_speed"].size
-        friction = np.broadcast_to(inputs["friction"], (n,))
         restitution = np.broadcast_to(inputs["restitution"], (n,))
+        friction = law_friction(self.options, inputs, state, restitution)
         impulse = np.zeros((n, 3))
         diagnostics = closed_form_diagnostics(n)
         zero = np.zeros(n)

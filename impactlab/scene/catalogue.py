@@ -20,7 +20,7 @@ import numpy as np
 
 from impactlab.errors import FieldError
 from impactlab.scene.clubs import INERTIA_AXES, INERTIA_COMPONENTS, ClubHead
-from impactlab.scene.materials import MATERIAL_PRESETS
+from impactlab.scene.materials import FACE_SURFACES, MATERIAL_PRESETS
 from impactlab.units import to_si
 
 
@@ -169,7 +169,8 @@ def _face(key):
 def _iron(mass, moments, loft, lie, center, name, key):
     return ClubHead(mass=mass, inertia=tuple(m * G_CM2 for m in moments),
                     center_of_mass=tuple(c * MM for c in center), loft=math.radians(loft), lie=math.radians(lie),
-                    material=MATERIAL_PRESETS["steel"], name=name, source=CLUB_SOURCES[key], **_face(key))
+                    material=MATERIAL_PRESETS["steel"], name=name, source=CLUB_SOURCES[key],
+                    surface=FACE_SURFACES["grooved_blasted_steel"], **_face(key))
 
 
 CLUB_PRESETS: dict[str, ClubHead] = {
@@ -177,11 +178,13 @@ CLUB_PRESETS: dict[str, ClubHead] = {
         mass=DRIVER_2020["mass"], inertia=_driver_2020_tensor(),
         center_of_mass=tuple(c * MM for c in DRIVER_2020["center"]), loft=math.radians(9.8), lie=math.radians(58.0),
         bulge_radius=0.305, roll_radius=0.254, material=MATERIAL_PRESETS["titanium"],
+        surface=FACE_SURFACES["smooth_titanium"],
         name="driver (measured head, 2020)", source=CLUB_SOURCES["driver"], restitution_gain=0.083, **_face("driver")),
     "fairway_wood": ClubHead(
         mass=0.212, inertia=tuple(m * G_CM2 for m in (1800.0, 3300.0, 1700.0)), center_of_mass=(0.0, -0.005, 0.025),
         loft=math.radians(15.0), lie=math.radians(57.0), bulge_radius=0.300, roll_radius=0.280,
         material=MATERIAL_PRESETS["steel"], name="3-wood (estimate)", source=CLUB_SOURCES["fairway_wood"],
+        surface=FACE_SURFACES["smooth_steel"],
         restitution_gain=0.083, **_face("fairway_wood")),
     "6_iron": _iron(0.261, iron_moments(800.0, 6), 30.0, 62.0, (-2.0, -2.0, campau_iron(6)[0]),
                     "6-iron (patent CG depth and MOI, rest estimate)", "6_iron"),
@@ -249,7 +252,7 @@ def _catalogue() -> dict[str, ClubHead]:
             loft=math.radians(CATALOGUE_LOFTS[key]), lie=math.radians(59.0 + 0.5 * index), bulge_radius=0.300,
             roll_radius=0.300, material=MATERIAL_PRESETS["steel"], name=f"{key[0]}-hybrid (estimate)",
             source=" ".join((_HYBRID_ESTIMATE.format(mass=f"{mass:g}"), LOFT_SOURCE, LIE_SOURCE, MASS_SOURCE)),
-            restitution_gain=0.083)
+            restitution_gain=0.083, surface=FACE_SURFACES["smooth_steel"])
     for key, step in _IRON_STEP.items():
         mass = 254.0 + 7.0 * step
         wedge = key.endswith("wedge")
@@ -261,7 +264,7 @@ def _catalogue() -> dict[str, ClubHead]:
             mass=mass * 1e-3, inertia=tuple(m * G_CM2 for m in moments),
             center_of_mass=(-0.002, -0.001 if wedge else -0.002, campau_iron(number)[0] * MM),
             loft=math.radians(CATALOGUE_LOFTS[key]), lie=math.radians(lie_iron[key]),
-            material=MATERIAL_PRESETS["steel"],
+            material=MATERIAL_PRESETS["steel"], surface=FACE_SURFACES["grooved_blasted_steel"],
             name=f"{name} (the 9-iron's patent values, rest estimate)" if wedge
             else f"{name} (patent CG depth and MOI, rest estimate)",
             source=" ".join((_IRON_ESTIMATE, LOFT_SOURCE, LIE_SOURCE, MASS_SOURCE)))

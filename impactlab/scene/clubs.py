@@ -35,7 +35,7 @@ from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
 from impactlab.units import si_angle, si_length, si_mass
 from impactlab.scene.plausibility import HEAD_HEIGHT_LIMIT, HEAD_LENGTH_LIMIT
-from impactlab.scene.materials import Material
+from impactlab.scene.materials import FaceSurface, Material
 
 #: the order of the six independent tensor components as inputs and in :meth:`ClubHead.inertia_components`
 INERTIA_AXES = ("toe", "up", "target")
@@ -156,6 +156,8 @@ class ClubHead:
                                      validator=positive("a positive, finite face height in m"))
     #: a free sphere as the striker (:meth:`sphere`): the general contact scene, not a golf head
     is_sphere: bool = False
+    #: the face's texture, grooves and water for the friction law (materials.FACE_SURFACES); None: not given
+    surface: FaceSurface | None = None
 
     def inertia_components(self) -> dict[str, float]:
         """The six independent tensor components by input suffix (``toe``, ``up``, ..., ``up_target``) [kg m^2]."""

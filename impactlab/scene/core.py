@@ -262,7 +262,7 @@ class Scene:
     def face_of(club: ClubHead) -> Face:
         """The face a club head presents: its material (rigid without one) and its mass."""
         return Face(material=club.material, rigid=club.material is None, mass=club.mass, name=club.name,
-                    source=club.source)
+                    source=club.source, surface=club.surface)
 
     def inputs(self) -> dict[str, float]:
         """The model inputs this scene can supply, by vocabulary name (SI).

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
 from impactlab.units import si_inverse_speed, si_length, si_mass, si_pressure, si_speed
+from impactlab.physics.friction_laws import shear_strength_from_sled
 
 #: Largest possible I/(m R^2) of a sphere whose mass lies within its radius
 #: (all mass in a thin shell at R).
@@ -148,11 +149,78 @@ class Ball:
     #: loss factor (tan delta) of the ball's cover in tangential shear; 0: elastic (the paper's model)
     tangential_loss: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
         0.0, 2.0, "a loss factor 0 <= eta <= 2"))
+    #: the cover as the friction law sees it (impactlab.physics.friction_laws; None: not given): the interfacial
+    #: shear strength tau of cover and face [Pa], the cover's Young's modulus [Pa], the rise of the interface's
+    #: temperature at which the cover melts [K] (inf: it does not) and its thermal effusivity [J m^-2 K^-1 s^-1/2]
+    shear_strength: float | None = attrs.field(default=None, converter=si_pressure, validator=in_range(
+        0.0, 1e9, "an interfacial shear strength in Pa between 0 and 1 GPa", high_open=True, optional=True))
+    cover_modulus: float | None = attrs.field(default=None, converter=si_pressure, validator=in_range(
+        1e6, 1e10, "a cover Young's modulus in Pa between 1 MPa and 10 GPa", optional=True))
+    cover_melt_rise: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        0.0, math.inf, "a temperature rise in K > 0 (inf: the cover does not melt)", low_open=True, optional=True))
+    cover_effusivity: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
+        0.0, math.inf, "a thermal effusivity sqrt(k rho c) > 0 in J m^-2 K^-1 s^-1/2", low_open=True,
+        high_open=True, optional=True))
 
     @property
     def moment_of_inertia(self) -> float:
         """I = K^2 m R^2 [kg m^2]."""
         return self.inertia_factor * self.mass * self.radius**2
+
+
+@attrs.frozen
+class FaceSurface:
+    """The face's surface as the friction law sees it (:mod:`impactlab.physics.friction_laws`).
+
+    Parameters
+    ----------
+    roughness_slope : float
+        r.m.s. slope s of the face's texture [1]; 0: smooth (the real contact area is the Hertz area).
+    roughness : float
+        r.m.s. roughness R_q [m]: a water film thinner than it no longer separates cover and face.
+    groove_land : float
+        Half the land between grooves, the distance water drains to a groove [m]; inf: no grooves.
+    water_film : float
+        Water on the face before impact [m]; 0: dry.
+    effusivity : float
+        Thermal effusivity sqrt(k rho c) of the face's material [J m^-2 K^-1 s^-1/2].
+    """
+
+    roughness_slope: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
+        0.0, 2.0, "an r.m.s. slope 0 <= s <= 2"))
+    roughness: float = attrs.field(default=0.0, converter=si_length, validator=in_range(
+        0.0, 1e-3, "an r.m.s. roughness in m between 0 and 1 mm"))
+    groove_land: float = attrs.field(default=math.inf, converter=si_length, validator=in_range(
+        0.0, math.inf, "half a groove land in m > 0 (inf: no grooves)", low_open=True))
+    water_film: float = attrs.field(default=0.0, converter=si_length, validator=in_range(
+        0.0, 1e-3, "a water film in m between 0 and 1 mm"))
+    effusivity: float = attrs.field(default=8000.0, converter=to_float, validator=in_range(
+        0.0, math.inf, "a thermal effusivity > 0", low_open=True, high_open=True))
+    name: str = ""
+    source: str = ""
+
+
+_EFFUSIVITY = ("Thermal effusivity sqrt(k rho c) from typical handbook values ({what}), not measured on a club.")
+_SLOPE = ("The r.m.s. slope of a blasted or milled wedge face is not published; s = 0.2 is an assumption (docs/"
+          "models.md shows 0.1 and 0.4).")
+#: face surfaces by kind of club (:class:`FaceSurface`)
+FACE_SURFACES: dict[str, FaceSurface] = {
+    "grooved_blasted_steel": FaceSurface(
+        0.2, 5.7e-6, 1.35e-3, 0.0, 8030.0, "grooved, blasted steel iron face",
+        "Grooves: the Rules' limits, width <= 0.9 mm and edges >= 3 widths apart, give a land of 2.7 mm (half 1.35 mm; "
+        "USGA Equipment Rules, Part 2, 5c). Roughness: the Rules allow no more than decorative sandblasting or fine "
+        "milling (Part 2, 5b); R_q 5.7 um is R_a 4.57 um (180 microinch, the figure usually quoted for that limit; "
+        "not found in the stored text) times 1.25 (a Gaussian surface). " + _SLOPE + " "
+        + _EFFUSIVITY.format(what="17-4PH: k 18 W/m K, rho 7800 kg/m^3, c 460 J/kg K")),
+    "smooth_titanium": FaceSurface(
+        0.0, 0.4e-6, math.inf, 0.0, 3950.0, "smooth titanium driver face",
+        "A driver face taken as smooth (s = 0: the real contact area is the Hertz area) and without grooves; R_q "
+        "0.4 um assumed. " + _EFFUSIVITY.format(what="Ti-6Al-4V: k 6.7 W/m K, rho 4430 kg/m^3, c 526 J/kg K")),
+    "smooth_steel": FaceSurface(
+        0.0, 0.4e-6, math.inf, 0.0, 8030.0, "smooth steel wood face",
+        "A fairway-wood face taken as smooth and without grooves; R_q 0.4 um assumed. "
+        + _EFFUSIVITY.format(what="17-4PH: k 18 W/m K, rho 7800 kg/m^3, c 460 J/kg K")),
+}
 
 
 @attrs.frozen
@@ -170,6 +238,8 @@ class Face:
         True for a face that does not deform; excludes ``material``.
     mass : float
         Club-head mass M [kg]; ``inf`` (default) for a face fixed in space.
+    surface : FaceSurface, optional
+        Texture, grooves, water and effusivity for the friction law (:data:`FACE_SURFACES`).
     """
 
     material: Material | None = None
@@ -178,6 +248,8 @@ class Face:
                               validator=positive_or_inf("a positive club-head mass in kg (inf: a fixed face)"))
     name: str = ""
     source: str = ""
+    #: the surface the friction law reads (None: not given; the law then takes a smooth, dry face)
+    surface: FaceSurface | None = None
 
     def __attrs_post_init__(self):
         if self.rigid and self.material is not None:
@@ -216,14 +288,49 @@ _FITTED = ("Restitution: e = 0.787 at any normal speed against a rigid steel fac
            "(docs/validation.md). Tangential loss 0: the same fit leaves it unidentified (0.08 +- 0.25 with "
            "hertz_mindlin), so the paper's elastic cover is kept.")
 
+#: the covers as the friction law sees them: Young's modulus [Pa] (datasheet, 23 degC, quasi-static), melting
+#: point's rise above 20 degC [K] and thermal effusivity [J m^-2 K^-1 s^-1/2]; tau from the sled (below)
+_COVERS = {
+    "urethane": (68.9e6, math.inf, 657.0,
+                 "Cover modulus 68.9 MPa: flexural modulus of a Shore D 43 thermoplastic urethane (Texin 245 "
+                 "datasheet, 9990 psi at 73 degF; urethane covers are Shore D 40-53, physics_lit 5.5), a "
+                 "representative cover material, not the ball's measured cover. Melting: none (the Pro V1's "
+                 "cover is cast thermoset urethane that 'will not re-melt', Titleist Learning Lab, 'Surlyn and "
+                 "urethane in golf balls', titleist.com; a thermoplastic urethane cover would soften from its "
+                 "Vicat point, 104 degC for Estane 2103-55D). Effusivity from typical TPU values (k 0.2 W/m K, "
+                 "rho 1200 kg/m^3, c 1800 J/kg K)."),
+    "ionomer": (330e6, 66.0, 718.0,
+                "Cover modulus 330 MPa: flexural modulus of Surlyn 9910, a zinc ionomer the datasheet names for golf "
+                "ball covers (73 degF; 731 MPa at -4 degF); melting point 86 degC (DSC, same datasheet), 66 K above "
+                "20 degC. Effusivity from its density 970 kg/m^3 and typical ionomer k 0.24 W/m K, c 2200 J/kg K."),
+}
+#: the face texture the sled's grooved, blasted plate is taken to have (FACE_SURFACES' iron face)
+_SLED_SLOPE = 0.2
+
+
+def _cover(kind: str, sled_friction: float, poisson: float) -> dict:
+    """The friction law's fields of a ball with this cover: tau from the sled friction (friction_laws)."""
+    modulus, melt, effusivity, _ = _COVERS[kind]
+    tau = shear_strength_from_sled(sled_friction, modulus, poisson, _SLED_SLOPE, FITTED_RESTITUTION.value)
+    return {"shear_strength": tau, "cover_modulus": modulus, "cover_melt_rise": melt,
+            "cover_effusivity": effusivity}
+
+
+_TAU = ("Interfacial shear strength from the sled friction {mu} by the friction law's light-load limit, tau = "
+        "(mu - (3/16)(1 - e^2) s) E_c* s / sqrt(8/pi) with the plate's slope s = 0.2 (assumed; "
+        "impactlab.physics.friction_laws.shear_strength_from_sled): {tau:.2f} MPa, fitted on the sled, not on "
+        "impact data.")
+
 BALL_PRESETS: dict[str, Ball] = {
     # the tour urethane ball with its contact data against a steel face (a study may leave out contact:; a
     # study's contact: block overrides them)
     "urethane_tour": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["urethane_cover"],
                           "urethane tour ball (calibrated contact data)",
                           " ".join([MATERIAL_PRESETS["urethane_cover"].source, _BALL_INERTIA,
-                                    _SLED.format(mu=0.40, cover="urethane"), _FITTED]),
-                          friction=0.40, restitution=FITTED_RESTITUTION, tangential_loss=0.0),
+                                    _SLED.format(mu=0.40, cover="urethane"), _FITTED, _COVERS["urethane"][3],
+                                    _TAU.format(mu=0.40, tau=_cover("urethane", 0.40, 0.45)["shear_strength"] / 1e6)]),
+                          friction=0.40, restitution=FITTED_RESTITUTION, tangential_loss=0.0,
+                          **_cover("urethane", 0.40, 0.45)),
     "surlyn_distance": Ball(0.021335, 0.04593, 0.4, MATERIAL_PRESETS["surlyn_cover"], "surlyn distance ball",
                             MATERIAL_PRESETS["surlyn_cover"].source),
     "two_piece_ionomer": Ball(0.021335, 0.04593, 0.400, MATERIAL_PRESETS["surlyn_cover"],
@@ -232,8 +339,11 @@ BALL_PRESETS: dict[str, Ball] = {
                                         _SLED.format(mu=0.35, cover="surlyn"),
                                         "Restitution: no shot data of this ball with a stated delivery were found; "
                                         "the tour urethane ball's fitted e = 0.787 is taken (an assumption). "
-                                        "Tangential loss 0."]),
-                              friction=0.35, restitution=FITTED_RESTITUTION, tangential_loss=0.0),
+                                        "Tangential loss 0.", _COVERS["ionomer"][3],
+                                        _TAU.format(mu=0.35, tau=_cover("ionomer", 0.35, 0.45)["shear_strength"]
+                                                    / 1e6)]),
+                              friction=0.35, restitution=FITTED_RESTITUTION, tangential_loss=0.0,
+                              **_cover("ionomer", 0.35, 0.45)),
 }
 
 FACE_PRESETS: dict[str, Face] = {

@@ -77,8 +77,11 @@ def build_ball(value: Any, path: str = "ball") -> Ball:
     """A ball from a study block: a preset, its keys overridden, or every key given."""
     block = structure(value, BallBlock, path)
     base = _preset(block, path, ball_preset, None)
-    fields = _given(block, base, ("radius", "mass", "inertia_factor", "friction", "tangential_loss"),
-                    {"inertia_factor": 0.4, "tangential_loss": 0.0})
+    fields = _given(block, base, ("radius", "mass", "inertia_factor", "friction", "tangential_loss", "shear_strength",
+                                  "cover_modulus"), {"inertia_factor": 0.4, "tangential_loss": 0.0})
+    for key in ("cover_melt_rise", "cover_effusivity"):  # the friction law's cover data no study key sets
+        if base is not None and getattr(base, key) is not None:
+            fields[key] = getattr(base, key)
     for key in ("radius", "mass"):
         if key not in fields:
             raise FieldError(f"{path}.{key}", f"the ball {key} (or a preset)", "nothing")
@@ -180,7 +183,7 @@ def build_club(value: Any, path: str = "club") -> ClubHead:
     if block.rigid and (block.youngs_modulus is not None or block.material is not None):
         raise FieldError(f"{path}.rigid", "either rigid: true or a face material, not both", "both")
     return _construct(ClubHead, path, material=material, name=base.name if base else "",
-                      source=base.source if base else "", **fields)
+                      source=base.source if base else "", surface=base.surface if base else None, **fields)
 
 
 def build_strike(value: Any, path: str = "strike") -> Strike:

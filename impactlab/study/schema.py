@@ -68,6 +68,8 @@ class BallBlock:
     friction: Number | None = None
     restitution: Restitution | None = None
     tangential_loss: Number | None = None
+    shear_strength: Pressure | None = None
+    cover_modulus: Pressure | None = None
 
 
 @attrs.frozen
