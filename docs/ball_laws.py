@@ -125,28 +125,36 @@ def main(out=ROOT / "docs" / "figures" / "ball_laws_spin_per_unit.png"):
         words = "grooved (half-land 1.35 mm)" if np.isfinite(land) else "no grooves"
         print(f"  {words:28s}" + "".join(f"  {rq * 1e6:.1f} um {v:4.0%}" for rq, v in zip(roughness, values)))
 
-    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(17, 5.4), gridspec_kw={"width_ratios": [2.2, 1.1, 1]})
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(17, 6.6), gridspec_kw={"width_ratios": [2.2, 1.1, 1]})
     colors = dict(zip([form for form, _, _ in FORMS], plt.cm.tab10.colors + plt.cm.Dark2.colors))
     styles = {form: "--" if "friction" in form else "-" for form, _, _ in FORMS}
     markers = {"driver": "o", "6_iron": "s", "pitching_wedge": "^"}
-    for form in result["model"].values:
+    drawn = list(result["model"].values)
+    # a form whose curves lie on an earlier form's (within 1 rpm/mph everywhere) is hidden under it: say so
+    hidden_under = {form: next((other for other in drawn[:index]
+                                if float(np.nanmax(np.abs(sweep.sel(model=form) - sweep.sel(model=other)))) < 1.0),
+                               None) for index, form in enumerate(drawn)}
+    for form in drawn:
+        label = form if hidden_under[form] is None else f"{form} (under {hidden_under[form]})"
         for club in result["club"].values:
             left.plot(result["spin_loft"].sel(model=form, club=club), sweep.sel(model=form, club=club),
                       marker=markers[club], markersize=3.5, lw=1.2, color=colors[form], ls=styles[form],
-                      label=form if club == "driver" else None)
-    for (label, (low, high)), (x0, x1) in zip(BANDS.items(), [(12, 17), (20, 50)]):
+                      label=label if club == "driver" else None)
+    for (label, (low, high)), (x0, x1), above in zip(BANDS.items(), [(12, 17), (20, 50)], (False, True)):
         left.fill_between([x0, x1], low, high, color="0.8", alpha=0.6, zorder=0)
-        left.text(x0 + 0.3, high + 2, f"measured band, {label}", fontsize=8, color="0.3")
+        left.text(x0 + 0.3, high + 2 if above else low - 8, f"measured band, {label}", fontsize=8, color="0.2",
+                  bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1})
     left.scatter([row[6] for row in ROWS], measured, color="k", marker="*", s=110, zorder=5,
                  label="TrackMan tour rows (measured)")
     left.axhline(134.0, color="0.5", ls=":", lw=1)
-    left.text(42, 136, "rigid rolling, 200 g head: 134", fontsize=8, color="0.4")
+    left.text(42, 137, "rigid rolling, 200 g head: 134", fontsize=8, color="0.3",
+              bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1})
     left.set_xlabel("spin loft [deg]")
     left.set_ylabel("spin / (club speed x sin spin loft) [rpm/mph]")
     left.set_title("Driver (o), 6-iron (s), PW (^) presets, urethane tour ball; alpha = 1 - e^2 unless 'bound';\n"
                    "dashed: with the friction law (driver: smooth titanium face, irons: grooved, blasted steel)",
                    fontsize=9)
-    left.legend(fontsize=7, loc="lower right", ncol=2)
+    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4)
     left.set_ylim(0, 260)
     forms = [form for form, _, _ in FORMS]
     middle.barh(range(len(forms)), [wedge_ratio[form] for form in forms], color=[colors[form] for form in forms])
@@ -164,7 +172,7 @@ def main(out=ROOT / "docs" / "figures" / "ball_laws_spin_per_unit.png"):
         right.plot(roughness * 1e6, 100 * np.array(losses[land]), marker=marker, color="C0" if marker == "s" else "C3",
                    label="grooved (half-land 1.35 mm)" if np.isfinite(land) else "no grooves")
     right.axhspan(100 * min(WET_LOSSES), 100 * max(WET_LOSSES), color="0.85", zorder=0)
-    right.text(0.45, 100 * max(WET_LOSSES) + 1.5, "published wet-wedge losses (measured, film not stated)",
+    right.text(0.45, 100 * max(WET_LOSSES) + 1.5, "published wet-wedge losses\n(measured, film not stated)",
                fontsize=7.5, color="0.3")
     right.axvline(5.7, color="0.5", ls=":", lw=1)
     right.text(5.55, 80, "Rules' limit\n(the preset)", fontsize=7.5, color="0.4", ha="right")
@@ -175,7 +183,7 @@ def main(out=ROOT / "docs" / "figures" / "ball_laws_spin_per_unit.png"):
     right.set_ylabel("spin lost to a 20 um water film [%]")
     right.set_ylim(-2, 100)
     right.set_title("Wet face, urethane ball, maw + friction law\n(the wedge observation's delivery)", fontsize=9)
-    right.legend(fontsize=8, loc="upper right")
+    right.legend(fontsize=8, loc="center right")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     print(f"\nwrote {out}")
