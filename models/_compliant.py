@@ -11,10 +11,10 @@ from impactlab.validators import check
 from impactlab.model.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.errors import ModelContractError
 from impactlab.model import ImpactModel
-from impactlab.physics import compliant3d, coupling, hertz
+from impactlab.physics import compliant3d, coupling, hertz, mdr
 
 from impactlab.physics import ball_laws
-from impactlab.physics.contact import couple_mobility
+from impactlab.physics.contact import DIAGONAL_TOLERANCE, couple_mobility
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
                       law_friction, rolling_on)
@@ -23,6 +23,25 @@ from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BOD
 MAX_DAMPED_LAWS = 8
 #: how a restitution e < 1 enters the compliant models (option ``inelastic``)
 INELASTIC = ("adjusted_speed", "hysteretic")
+
+
+def planar_couple(coupling, rotation, rate, tolerance: float = DIAGONAL_TOLERANCE):
+    """Whether a rolling couple stays on the line of a 1-D case: couple and rolling about the lateral axis alone.
+
+    On a case whose mobility is diagonal (the slip along s, the normal uncoupled), the couple of
+    :func:`impactlab.physics.contact.couple_mobility` keeps to the line when it moves neither the normal
+    (B_n = 0) nor the slip through its own axis (B_ss = B_ll = 0), a couple along l turns nothing along s
+    (D_sl = 0) and nothing rolls along s before impact: then the friction along s drives the rolling along l
+    only, and the couple along l the slip along s only (a sphere on a fixed face or a point-mass head; a head
+    struck on its centre-of-mass line with principal axes along the face). Zero to ``tolerance`` of the
+    largest entry of B, D and the rolling rate.
+    """
+    scale_b = np.abs(coupling).max(axis=(1, 2))
+    scale_d = np.abs(rotation).max(axis=(1, 2))
+    return ((np.abs(coupling[:, 2, :]).max(axis=1) <= tolerance * scale_b)
+            & (np.abs(coupling[:, 0, 0]) <= tolerance * scale_b) & (np.abs(coupling[:, 1, 1]) <= tolerance * scale_b)
+            & (np.abs(rotation[:, 0, 1]) <= tolerance * scale_d)
+            & (np.abs(rate[:, 0]) <= tolerance * np.maximum(np.abs(rate[:, 1]), 1.0)))
 
 
 def int_at_least(low: int):
@@ -143,18 +162,26 @@ class HertzTangentialModel(ImpactModel):
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
-        # rolling resistance (ball_laws): a couple the 1-D solvers do not carry, so those cases take the 3-D kernel
+        # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
+        # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
+        # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
         hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
         arm_factor = np.zeros(slip.size)
+        rolling, planar = None, np.zeros(slip.size, dtype=bool)
         if rolling_on(hysteresis):
             arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
                 hysteresis, restitution, p.get("club_restitution_gain", 0.0))
-            three_d |= (arm_factor > 0.0) & (friction > 0.0)
+            rolls = (arm_factor > 0.0) & (friction > 0.0)
+            rolling = self._rolling_inputs(p, state, arm_factor)
+            if self._planar_rolling and rolling is not None:
+                planar = rolls & ~three_d & (slip != 0.0) & planar_couple(*rolling[:3])
+            three_d |= rolls & ~planar
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)
         turning_head = state["head_inverse_inertia"] is not None
         if "face_rotation" in outputs and turning_head:
             three_d = np.ones(slip.size, dtype=bool)
+        planar &= ~three_d
         self._check_dimensions(three_d)
         line = ~three_d
         chi = 0.5 * kappa * m_normal / m_tangential
@@ -170,13 +197,22 @@ class HertzTangentialModel(ImpactModel):
         resolution[three_d], capped[three_d] = springs_3d, capped_3d
         solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
         limit_broken = np.zeros(slip.size, dtype=bool)  # MDR broke the 3-D Coulomb limit (a damped law)
+        approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
+        couple = self._planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach_scale,
+                                     scale_speed) if np.any(planar) else None
+        moment, rolling_work, dissipation = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
                 members = line & sliding & (law_of_case == index) & (resolution == count)
                 steps_wanted = self.options.resolution_steps(int(count))
+                extra = {} if couple is None else {"rolling": [part[members] for part in couple]}
                 solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
-                                     kappa=kappa[members])
+                                     kappa=kappa[members], **extra)
                 slip_change[members] = solved.slip_change
+                if couple is not None:  # the slip change of the friction alone, and the couple's own results
+                    moment[members], rolling_work[members] = solved.moment, solved.rolling_work
+                    dissipation[members] = solved.dissipation
+                    slip_change[members] -= couple[0][members] * solved.moment
                 if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
                     capped[members] |= solved.capped
                 if getattr(solved, "breaks_3d_limit", None) is not None:
@@ -190,7 +226,6 @@ class HertzTangentialModel(ImpactModel):
         slip_change *= velocity_unit
         initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
             p["ball_radius"] * p.get("spin", 0.0)) ** 2
-        approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed \
             if not isinstance(laws[0], hertz.CaseNormals) else laws[0].tau_end * approach_scale / scale_speed
         contact_ratio = np.sqrt(approach_scale / radius)
@@ -223,8 +258,7 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss,
-                           self._rolling_inputs(p, state, arm_factor))
+                           record, result, solution_of_case, initial_energy, loss, rolling)
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
             # answer is one continuous function of the strike position (issue 21, item 5)
@@ -244,6 +278,12 @@ class HertzTangentialModel(ImpactModel):
                     result["tangential_impulse"][members] += -np.sign(slip[members]) * m_tangential[members] \
                         * change * velocity_unit[members]
                     limit_broken[members] |= broken
+        if couple is not None:
+            # the friction's work on the slip [J] (the 1-D solvers' dissipation, TangentialSolution)
+            friction_work = -m_tangential * velocity_unit**2 * mdr.TANGENTIAL_GAIN * chi * dissipation
+            self._planar_results(result, rolling, planar, slip, moment, rolling_work, friction_work,
+                                 (m_normal, m_tangential), radius, modulus, approach_scale, scale_speed,
+                                 initial_energy)
         result["validity"] = (result["validity"].astype(int) | np.where(limit_broken, 64, 0)).astype(float)
         if histories:
             peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
@@ -275,6 +315,49 @@ class HertzTangentialModel(ImpactModel):
         shear = 1.0 / (2.0 * (1.0 + ball_poisson))
         return ball_laws.layered_kappa(kappa, kappa * modulus, ball_modulus * shear, radius, thickness,
                                        cover * shear)
+
+    #: whether :meth:`_solve` takes ``rolling`` (a couple on the line; see dem.solve_scaled)
+    _planar_rolling = False
+
+    @staticmethod
+    def _planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach, speed):
+        """The scaled couple of the 1-D solver (dem.solve_scaled's ``rolling``) per case; arm 0 off ``planar``.
+
+        The scales of the 3-D kernel (compliant3d.solve_once): couple C / (F_max a_max), rolling rate
+        Omega a_max / V_z, with b = m* a_max B_sl and r = m* a_max^2 D_ll; on the line the 1-D solver counts the
+        slip positive (psi1 = kappa |V_s| / (mu V_z)), so the rolling rate is counted with the slip's sign.
+        """
+        coupling, rotation, rate, factor = rolling
+        reach = np.sqrt(radius * approach)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            b = coupling[:, 0, 1] * m_normal * reach
+            r = np.where(planar, rotation[:, 1, 1] * m_normal * reach**2, 1.0)
+            slip_gain = np.where(planar, 1.25 * kappa * b / friction, 0.0)
+        start = np.where(planar, np.sign(slip) * rate[:, 1] * reach / speed, 0.0)
+        return slip_gain, np.where(planar, friction * b, 0.0), r, start, np.where(planar, factor, 0.0)
+
+    @staticmethod
+    def _planar_results(result, rolling, planar, slip, moment, rolling_work, friction_work, masses, radius,
+                        modulus, approach, speed, initial_energy):
+        """The couple's angular impulse and the energy residual of the cases solved with a couple on the line.
+
+        Residual as the 1-D solvers count it (energy lost minus work dissipated, over the initial kinetic energy),
+        on the tangential and rolling coordinates, which the normal problem does not couple to on the line: the
+        kinetic energy change J_s (v_s + dv_s / 2) + C (Omega + dOmega / 2) of the generalised mobility
+        (:func:`impactlab.physics.contact.couple_mobility`) against the work of the friction and the couple.
+        """
+        coupling, rotation, rate, _ = rolling
+        m_normal, m_tangential = masses
+        peak = hertz.peak_force(m_normal, radius, modulus, speed)
+        reach, unit = np.sqrt(radius * approach), peak * approach  # a_max [m], F_max delta_max [J]
+        couple = np.sign(slip) * moment * peak * reach * approach / speed  # on the ball, along l [N m s]
+        jt = -result["tangential_impulse"]  # on the ball, along s [N s]
+        b, d = coupling[:, 0, 1], rotation[:, 1, 1]
+        gained = jt * (slip + 0.5 * (jt / m_tangential + b * couple)) + couple * (rate[:, 1] + 0.5 * (b * jt
+                                                                                                   + d * couple))
+        work = friction_work + unit * rolling_work
+        result["rolling_moment"] = np.where(planar, couple, result["rolling_moment"])
+        result["energy_error"] = np.where(planar, (work - gained) / initial_energy, result["energy_error"])
 
     @staticmethod
     def _rolling_inputs(inputs, state, arm_factor):

@@ -137,8 +137,12 @@ class _SpringModel(HertzTangentialModel):
                 "store_force": law["history"] == "force" or law["law"] == "linear", "rescale": law["rescale"],
                 "tangential_damping": self.options.damping}
 
-    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa):
+    #: the one-spring kernel carries a rolling couple on the line (dem.solve_scaled, ``rolling``)
+    _planar_rolling = True
+
+    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa, rolling=None):
         change, dissipation = np.zeros_like(chi), np.zeros_like(chi)
+        moment, rolling_work = (None, None) if rolling is None else (np.zeros_like(chi), np.zeros_like(chi))
         force = stick = tau = None
         if record:
             force, stick = np.zeros((chi.size, steps + 1)), np.zeros((chi.size, steps + 1))
@@ -146,11 +150,15 @@ class _SpringModel(HertzTangentialModel):
         for value in groups:
             members = np.ones(chi.size, dtype=bool) if value is None else kappa == value
             solved = dem.solve_scaled(chi[members], psi1[members], steps=steps, record=record, normal=normal,
-                                      damping=self.options.damping, **self._law(value))
+                                      damping=self.options.damping, **self._law(value),
+                                      rolling=None if rolling is None else [part[members] for part in rolling])
             change[members], dissipation[members] = solved.slip_change, solved.dissipation
+            if rolling is not None:
+                moment[members], rolling_work[members] = solved.moment, solved.rolling_work
             if record:
                 force[members], stick[members], tau = solved.force, solved.stick_radius, solved.tau
-        return dem.TangentialSolution(change, tau, force, stick, steps, dissipation)
+        return dem.TangentialSolution(change, tau, force, stick, steps, dissipation, moment=moment,
+                                      rolling_work=rolling_work)
 
 
 class DemLinearModel(_SpringModel):

@@ -187,19 +187,106 @@ def test_rolling_integrator_matches_the_hand_solution_on_one_line():
     np.testing.assert_allclose(moment[:, 0], 0.0, atol=1e-15)
 
 
-def test_rolling_rigid_and_compliant_agree_in_gross_slip():
-    """Independent implementations (rigid: over the normal impulse with the mean arm; maw: in time with a(t)) give
-    the same spin where the ball slides throughout, since the couple's angular impulse is (3/16) alpha int a F dt in
-    both and the friction impulse is mu J_n. At e = 1: with e < 1 maw's default solves the elastic contact at
-    the adjusted speed (1 + e) V_n / 2, whose smaller contact gives a smaller couple (1.2 % less spin change)."""
+@pytest.mark.parametrize("name", ["maw", "hertz_mindlin"])
+def test_rolling_rigid_and_compliant_agree_in_gross_slip(name):
+    """Independent implementations (rigid: over the normal impulse with the mean arm; maw: in time with a(t) on the
+    3-D kernel; hertz_mindlin: in time on its 1-D solver, the couple on the line) give the same spin where the
+    ball slides throughout, since the couple's angular impulse is (3/16) alpha int a F dt in all and the friction
+    impulse is mu J_n. At e = 1: with e < 1 the compliant models' default solves the elastic contact at the
+    adjusted speed (1 + e) V_n / 2, whose smaller contact gives a smaller couple (1.2 % less spin change)."""
     inputs = _with(REFERENCE_1D, friction=0.1, spin=0.0, restitution=1.0)
     keep = inputs["angle"] > np.radians(45)
     inputs = {key: value[keep] for key, value in inputs.items()}
     rigid = get_model("rigid_coulomb")(rolling_hysteresis=0.3).compute(inputs, ["spin_rate"])["spin_rate"].values
-    maw = get_model("maw")(rolling_hysteresis=0.3, tolerance=1e-4).compute(inputs, ["spin_rate"])["spin_rate"].values
+    compliant = get_model(name)(rolling_hysteresis=0.3, tolerance=1e-4).compute(inputs, ["spin_rate"])
     plain = get_model("rigid_coulomb")().compute(inputs, ["spin_rate"])["spin_rate"].values
     assert np.all(plain - rigid > 300.0)  # the couple matters here
-    np.testing.assert_allclose(maw, rigid, rtol=1e-4)
+    np.testing.assert_allclose(compliant["spin_rate"].values, rigid, rtol=1e-4)
+
+
+PLANAR = ["normal_impulse", "tangential_impulse", "lateral_impulse", "rolling_moment", "rolling_moment_slip",
+          "energy_loss", "spin_rate", "energy_error", "steps"]
+
+
+def _centred_heads():
+    """Strikes on the centre-of-mass line of a flat face whose head's principal axes lie along the face (the
+    couple stays on the line there, as on a fixed face), lofts 4-35 deg, frictions 0.2 and 0.5, e = 0.8."""
+    from impactlab.scene.catalogue import CLUB_PRESETS
+    from impactlab.scene.clubs import ClubHead, Strike
+    from impactlab.scene.core import Contact, Delivery, Scene
+    from impactlab.scene.materials import BALL_PRESETS
+
+    head = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, 0.0, 0.035), loft=0.2,
+                    material=CLUB_PRESETS["driver"].material)
+    scenes = [Scene.from_delivery(BALL_PRESETS["urethane_tour"], Scene.face_of(head), Contact(friction, 0.8),
+                                  Delivery(51.4, dynamic_loft=np.radians(loft), loft_at="centre"), 0.0, head,
+                                  Strike(0.0, 0.0))
+              for loft in (4.0, 15.0, 35.0) for friction in (0.2, 0.5)]
+    return _complete({key: np.array([scene.inputs()[key] for scene in scenes]) for key in scenes[0].inputs()})
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("name", "options"), [("hertz_mindlin", {}), ("hertz_mindlin", {"history": "displacement",
+                                                                                          "rescale": False}),
+                                                ("dem_linear", {"damping": 0.2})])
+def test_the_couple_on_the_line_equals_the_3d_kernel(name, options):
+    """The one-spring models keep a centred case with a rolling couple on their 1-D solver (the couple on the line);
+    the 3-D kernel solves the same cases (on a fixed face by switching the 1-D couple off, on a free head by asking
+    for the head's rotation). Two discretisations of one problem (the 1-D solver on the exact Hertz history, the
+    3-D kernel integrating the normal problem, extrapolated): at tolerance 1e-6 they agree to 1e-6 of mu J_n in
+    the impulses, 1e-5 of the couple's largest angular impulse (measured 2e-6 for the total-displacement spring,
+    2e-8 for the incremental one), 1e-6 of the initial kinetic energy in the energy lost, and both close their
+    energy balance, the couple's work included (the 1-D solver to 1e-12 of the kinetic energy, the 3-D kernel's
+    extrapolation to 1e-9)."""
+    plate = _with(REFERENCE_1D)
+    for inputs in (plate, _centred_heads()):
+        state = contact_state(inputs)
+        assert np.all(state["one_dimensional"])
+        line = get_model(name)(rolling_hysteresis="restitution", tolerance=1e-6, **options)
+        one = line.compute(inputs, PLANAR)
+        if inputs is plate:
+            kernel = get_model(name)(rolling_hysteresis="restitution", tolerance=1e-6, **options)
+            kernel._planar_rolling = False  # the plan before the couple went on the line: the 3-D kernel
+            three = kernel.compute(inputs, PLANAR)
+        else:
+            three = line.compute(inputs, PLANAR + ["face_rotation"])
+            assert np.all(three["face_rotation"].values > 0.0)
+        rolls = one["rolling_moment"].values != 0.0
+        assert np.sum(rolls) >= 6  # with e = 1 (alpha = 0) there is no couple
+        # the plan: the couple's cases stayed on the 1-D solver (its uniform steps), the 3-D kernel ran N + 2N
+        steps_1d = line.options.resolution_steps(1)
+        assert np.all(one["steps"].values[rolls] == steps_1d)
+        assert np.all(three["steps"].values[rolls] != steps_1d)
+        scale = (inputs["friction"] * one["normal_impulse"].values).max()
+        for key in ("normal_impulse", "tangential_impulse", "lateral_impulse"):
+            np.testing.assert_allclose(one[key].values, three[key].values, rtol=0, atol=1e-6 * scale, err_msg=key)
+        couple = np.abs(three["rolling_moment"].values).max()
+        np.testing.assert_allclose(one["rolling_moment"].values, three["rolling_moment"].values, rtol=0,
+                                   atol=1e-5 * couple)
+        np.testing.assert_array_equal(one["rolling_moment_slip"].values, 0.0)
+        initial = kinetic_energy(inputs) if "club_mass" in inputs and inputs is not plate else \
+            0.5 * inputs["ball_mass"] * inputs["speed"] ** 2
+        np.testing.assert_allclose(one["energy_loss"].values, three["energy_loss"].values, rtol=0,
+                                   atol=1e-6 * initial.max())
+        assert np.all(one["energy_loss"].values[rolls] > 0.0)
+        assert np.abs(one["energy_error"].values).max() < 1e-12
+        assert np.abs(three["energy_error"].values).max() < 1e-9  # extrapolated, not exact to round-off
+
+
+def test_the_couple_stays_on_the_line_only_where_nothing_turns_it_off_it():
+    """planar_couple on hand-built B, D and rates: a fixed face's sphere (B = R/I_b [n x], D = 1/I_b) keeps the
+    couple on the line; a normal coupling, a product of inertia (D_sl) or rolling about the slip axis do not."""
+    from impactlab_models._compliant import planar_couple
+
+    b = np.zeros((4, 3, 2))
+    b[:, 0, 1], b[:, 1, 0] = -2551.2, 2551.2
+    d = np.tile(np.eye(2) * 1.2e5, (4, 1, 1))
+    rate = np.zeros((4, 2))
+    rate[:, 1] = 200.0
+    b[1, 2, 1] = 30.0          # the couple moves the normal (a lever off the normal)
+    d[2, 0, 1] = d[2, 1, 0] = 4e3  # a product of inertia of the head in the tangent plane
+    rate[3, 0] = 5.0           # the ball rolls about the slip axis before impact
+    assert planar_couple(b, d, rate).tolist() == [True, False, False, False]
 
 
 @given(alpha=st.floats(0.05, 1.0), friction=st.floats(0.05, 0.8), restitution=st.floats(0.5, 1.0),

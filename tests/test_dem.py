@@ -50,6 +50,15 @@ def test_compiled_kernel_equals_the_numpy_reference(law, history, rescale):
     fast, slow = dem.solve_scaled(chi, psi1, **kwargs), dem.solve_scaled(chi, psi1, _force_numpy=True, **kwargs)
     np.testing.assert_allclose(fast.slip_change, slow.slip_change, rtol=1e-13, atol=1e-14)
     np.testing.assert_allclose(fast.force, slow.force, rtol=1e-13, atol=1e-14)
+    # with a rolling couple on the line (every other case, rolling forwards or backwards before impact)
+    rng = np.random.default_rng(3)
+    rolling = (rng.uniform(-2.0, -0.5, 40), rng.uniform(-0.6, -0.1, 40), rng.uniform(0.5, 2.0, 40),
+               rng.uniform(-0.3, 0.3, 40), np.where(np.arange(40) % 2 == 0, 0.07, 0.0))
+    fast, slow = (dem.solve_scaled(chi, psi1, rolling=rolling, **kwargs),
+                  dem.solve_scaled(chi, psi1, rolling=rolling, _force_numpy=True, **kwargs))
+    assert np.all(fast.moment[::2] != 0.0) and np.all(fast.moment[1::2] == 0.0)
+    for name in ("slip_change", "force", "moment", "rolling_work", "dissipation"):
+        np.testing.assert_allclose(getattr(fast, name), getattr(slow, name), rtol=1e-13, atol=1e-14, err_msg=name)
 
 
 @pytest.mark.parametrize(("law", "history", "rescale"), [("linear", "force", False), ("mindlin", "force", True),

@@ -63,7 +63,7 @@ def stiffness_shape(law: str, h: np.ndarray, stiffness_factor: float) -> np.ndar
 
 def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1.0, history: str = "force",
                  rescale: bool = True, damping: float = 0.0, steps: int = 2000, record: bool = False,
-                 normal: NormalLaw | None = None, _force_numpy: bool = False) -> TangentialSolution:
+                 normal: NormalLaw | None = None, rolling=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact under a DEM spring law for each (chi, psi1) pair.
 
     Parameters
@@ -83,6 +83,23 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
         Tangential damping ratio zeta >= 0 (0: none).
     steps : int
         Uniform time steps over the contact.
+    rolling : tuple of array_like (cases,), optional
+        A rolling-resistance couple on the line (:mod:`.ball_laws`; the planar case of
+        :func:`impactlab.physics.compliant3d.solve`, whose scaled couple c = C / (F_max a_max) and rolling rate
+        w = Omega a_max / V_z it uses): (slip gain (5/4)(kappa/mu) b, rolling gain mu b, rotation r, rolling rate
+        before impact w_0, arm factor d / a), with b = m* a_max B_sl and r = m* a_max^2 D_ll from
+        :func:`impactlab.physics.contact.couple_mobility`, so that
+
+            psi' = -(5/2) chi f + (5/4)(kappa/mu) b c,    w' = (5/4)(-mu b f + r c),    |c| <= (d/a) h^0.5 f_n.
+
+        Each step takes the couple that stops the rolling by the step's end, put on its limit. None: no couple.
+
+    Returns
+    -------
+    TangentialSolution
+        With ``moment`` (the couple's angular impulse, integral c d tau) and ``rolling_work`` (its work on the
+        rolling, integral c w d tau [F_max delta_max]) when ``rolling`` is given; ``slip_change`` is then the
+        change of psi from the friction and the couple together.
     """
     if law not in LAWS or history not in HISTORIES:
         raise ValueError(f"law must be one of {LAWS} and history one of {HISTORIES}")
@@ -95,6 +112,10 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
         return nodes, np.maximum(normal.approach(nodes), 0.0), normal.load_factor(nodes)
 
     tau, h, load = cached_grid(normal, ("dem", steps), grid)
+    n = chi.size
+    # (slip gain, rolling gain, rotation, rolling rate, arm factor) per case; no couple: arm 0
+    parts = (0.0, 0.0, 1.0, 0.0, 0.0) if rolling is None else rolling
+    couple = [np.ascontiguousarray(np.broadcast_to(np.asarray(part, float), (n,))) for part in parts]
     cap = h**1.5 * load
     stiffness = stiffness_shape(law, h, stiffness_factor)
     # a_new / a_old when the contact shrinks, 1 otherwise
@@ -107,24 +128,30 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
     mean_stiffness = np.concatenate([[0.0], 0.5 * (stiffness[1:] + stiffness[:-1])])
     store_force = history == "force" or law == "linear"
     args = (chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, float(damping), SLIP_GAIN, record)
+    root = np.sqrt(h)
     if _kernels.HAVE_NUMBA and not _force_numpy:
         force = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stuck = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
-        change, work = _kernels.dem_cases(*args, force, stuck)
+        change, work, moment, rolling_work = _kernels.dem_cases(*args, force, stuck, root, *couple)
     else:
-        change, work, force, stuck = _numpy_cases(*args)
-    stick_radius = np.sqrt(h)[None, :] * stuck if record else None
+        change, work, force, stuck, moment, rolling_work = _numpy_cases(*args, root, *couple)
+    stick_radius = root[None, :] * stuck if record else None
     # the work of f on the slip, in the units of TangentialSolution.dissipation (f = 1.5 * integral u)
     dissipation = work * SLIP_GAIN / TANGENTIAL_GAIN
     return TangentialSolution(change, tau if record else None, force if record else None, stick_radius,
-                              steps, dissipation)
+                              steps, dissipation, moment=None if rolling is None else moment,
+                              rolling_work=None if rolling is None else rolling_work)
 
 
-def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record):
+def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record, root,
+                 couple_slip, couple_roll, rotation, rolling0, arm):
     """Reference implementation, vectorised over cases; same arithmetic as ``_kernels.dem_cases``."""
     n = chi.size
     spring = np.zeros(n)  # stored force (force history) or displacement (displacement history)
     change, acceleration, work, previous = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    rolls = arm > 0.0
+    rate, rate_change, couple, previous_couple = rolling0.copy(), np.zeros(n), np.zeros(n), np.zeros(n)
+    moment, rolling_work = np.zeros(n), np.zeros(n)
     force = np.zeros((n, tau.size)) if record else None
     stuck = np.zeros((n, tau.size)) if record else None
     for k in range(1, tau.size):
@@ -148,11 +175,23 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         work += 0.5 * (previous + total) * dt * velocity
         previous = total
         acceleration = -gain * chi * total
+        if np.any(rolls):  # the couple that stops the rolling by the step's end, on its limit (the kernel's rule)
+            middle = rate + 0.5 * dt * rate_change
+            drive = -couple_roll * total
+            wanted = -(middle / (0.625 * dt) + drive) / rotation
+            limit = arm * root[k] * cap[k]
+            couple = np.where(rolls, np.where(np.abs(wanted) > limit, np.sign(wanted) * limit, wanted), 0.0)
+            acceleration = acceleration + np.where(rolls, couple_slip * couple, 0.0)
+            rate_change = np.where(rolls, 1.25 * (drive + rotation * couple), 0.0)
+            rate = np.where(rolls, middle + 0.5 * dt * rate_change, rate)
+            rolling_work += np.where(rolls, dt * 0.5 * (previous_couple + couple) * middle, 0.0)
+            moment += np.where(rolls, 0.5 * dt * (previous_couple + couple), 0.0)
+            previous_couple = couple
         change = half + 0.5 * dt * acceleration
         if record:
             force[:, k] = total
             stuck[:, k] = np.where(over, 0.0, 1.0)
-    return change, work, force, stuck
+    return change, work, force, stuck, moment, rolling_work
 
 
 #: most uniform steps the rule may choose; a tolerance needing more is flagged tolerance_not_met

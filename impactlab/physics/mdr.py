@@ -86,6 +86,10 @@ class TangentialSolution:
     breaks_3d_limit: np.ndarray | None = None
     #: (cases,) bool: the resolution the tolerance asks for exceeds what the method allows (None: not set here)
     capped: np.ndarray | None = None
+    #: (cases,): a rolling couple's angular impulse, integral c d tau, and its work on the rolling, integral c w d tau
+    #: [F_max delta_max] (scaled as in impactlab.physics.compliant3d; None: no couple; dem.solve_scaled)
+    moment: np.ndarray | None = None
+    rolling_work: np.ndarray | None = None
 
     def energy_residual(self, chi, psi1):
         """Scaled energy-balance residual: tangential kinetic energy lost minus friction work."""

@@ -149,7 +149,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             if load < 0.0:
                 load = 0.0
             hp = h if h > 0.0 else 0.0
-            normal = hp ** 1.5 * load
+            root = np.sqrt(hp)  # a / a_max; h^1.5 as h sqrt(h): pow is a library call, sqrt an instruction
+            normal = hp * root * load
             d0 = dt * v0
             d1 = dt * v1
             ratio = dt / lag if lag > 0.0 else 1e300  # step over the dashpot's relaxation time
@@ -189,14 +190,13 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 f0 *= 1.5 * weight
                 f1 *= 1.5 * weight
                 radius = first_slip / springs
-                root = np.sqrt(hp)
                 stuck_to = radius if radius < root else root
             else:
                 if law == 1:
                     stiff = 1.5 * stiffness_factor
                     stiff_mean = stiff
                 else:
-                    stiff = 1.5 * stiffness_factor * np.sqrt(hp)
+                    stiff = 1.5 * stiffness_factor * root
                     stiff_mean = 0.5 * (stiff + 1.5 * stiffness_factor * np.sqrt(h_old if h_old > 0.0 else 0.0))
                 shrink = 1.0
                 if rescale and h < h_old and h_old > 0.0:
@@ -232,7 +232,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                         spring0 = r0 / stiff if stiff > 0.0 else 0.0
                         spring1 = r1 / stiff if stiff > 0.0 else 0.0
                 else:
-                    stuck_to = np.sqrt(hp)
+                    stuck_to = root
             if mu == 0.0:
                 f0 = 0.0
                 f1 = 0.0
@@ -250,7 +250,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 q1 = -(wm1 / (0.625 * dt) + g1)
                 c0 = (r11 * q0 - r01 * q1) / det
                 c1 = (-r10 * q0 + r00 * q1) / det
-                limit = rho * np.sqrt(hp) * normal
+                limit = rho * root * normal
                 size = np.sqrt(c0 * c0 + c1 * c1)
                 if size > limit:
                     c0 *= limit / size

@@ -8,12 +8,20 @@ from ._numba import compiled as _compiled
 
 
 def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record, force,
-               stuck):
-    """One-spring DEM time loop per case; see dem.solve_scaled and dem._numpy_cases (the reference)."""
+               stuck, root, couple_slip, couple_roll, rotation, rolling0, arm):
+    """One-spring DEM time loop per case; see dem.solve_scaled and dem._numpy_cases (the reference).
+
+    With ``arm[case]`` > 0 a rolling-resistance couple on the line (dem.solve_scaled, ``rolling``): per step the
+    couple that stops the rolling by the step's end, put on its limit arm sqrt(h) f_n, the arithmetic of
+    :func:`impactlab.physics.kernels.contact3d._contact3d_cases` on one line. Returns (slip change, work of the
+    spring's force on the slip, angular impulse of the couple, its work on the rolling).
+    """
     cases = chi.size
     nodes = tau.size
     change_out = np.zeros(cases)
     work_out = np.zeros(cases)
+    moment_out = np.zeros(cases)
+    rolling_work_out = np.zeros(cases)
     for case in range(cases):
         spring = 0.0
         change = 0.0
@@ -21,6 +29,16 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
         work = 0.0
         previous = 0.0
         p1 = psi1[case]
+        rho = arm[case]
+        slip_gain = couple_slip[case]
+        roll_gain = couple_roll[case]
+        r = rotation[case]
+        w = rolling0[case]
+        aw = 0.0
+        couple = 0.0
+        previous_couple = 0.0
+        moment = 0.0
+        rolling_work = 0.0
         for k in range(1, nodes):
             dt = tau[k] - tau[k - 1]
             half = change + 0.5 * dt * acceleration
@@ -42,13 +60,29 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             work += 0.5 * (previous + total) * dt * velocity
             previous = total
             acceleration = -gain * chi[case] * total
+            if rho > 0.0:
+                # rolling rate at the half step; the couple that stops it by the step's end, put on its limit
+                middle = w + 0.5 * dt * aw
+                drive = -roll_gain * total
+                couple = -(middle / (0.625 * dt) + drive) / r
+                limit = rho * root[k] * cap[k]
+                if abs(couple) > limit:
+                    couple = limit if couple > 0.0 else -limit
+                acceleration += slip_gain * couple
+                aw = 1.25 * (drive + r * couple)
+                w = middle + 0.5 * dt * aw
+                rolling_work += dt * 0.5 * (previous_couple + couple) * middle
+                moment += 0.5 * dt * (previous_couple + couple)
+                previous_couple = couple
             change = half + 0.5 * dt * acceleration
             if record:
                 force[case, k] = total
                 stuck[case, k] = 0.0 if over else 1.0
         change_out[case] = change
         work_out[case] = work
-    return change_out, work_out
+        moment_out[case] = moment
+        rolling_work_out[case] = rolling_work
+    return change_out, work_out, moment_out, rolling_work_out
 
 
 dem_cases = _compiled(_dem_cases)
