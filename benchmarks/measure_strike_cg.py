@@ -1,7 +1,7 @@
 """Issue 21: where the tour rows are struck and where the driver's centre of mass projects onto its face, measured
 as a sensitivity of the held-out errors (docs/validation.md, "Strike height and the driver's CG projection").
 
-    .venv/bin/python benchmarks/measure_strike_cg.py [--models hertz_mindlin rigid_coulomb]     (about 1 min)
+    .venv/bin/python benchmarks/measure_strike_cg.py [--models hertz_mindlin rigid_coulomb]     (about 30 s)
 
 No published tour-average strike location and no published CG projection of a modern driver were found (the
 searches are listed in docs/validation.md), so nothing here changes a shipped row or preset: every value below is a
@@ -15,8 +15,7 @@ point of a sensitivity sweep over the ranges the sources name, never a value cho
   preset +- 2.54 mm: "0.1 in is a fairly large movement of CG" (J. Summitt, Hireko's chief technical officer,
   quoted by D. Tutelman, "Placement of Center of Gravity for Best Spin and Launch Angle", 2013, page 3; a
   designer's statement).
-- The 6-iron's strike height [mm]: -5 to +5 (no published tour value; the range is this script's choice, about one
-  and a half groove pitches either way).
+- The 6-iron's strike height [mm]: -5 to +5 (no published tour value; the range is this script's choice).
 
 Configurations: "contact + rolling" (loft at the contact point, TrackMan's definition; the cover's rolling
 hysteresis alpha = 1 - e^2; no fit) and "AFTER" (the same plus the leave-one-source-out calibration of friction,
