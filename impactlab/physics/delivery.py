@@ -105,6 +105,46 @@ def centre_face(dynamic_loft, face_angle, strike_toe, strike_high, bulge_radius,
     return centre_loft, centre
 
 
+def cg_projection(cg_toe, cg_high, cg_depth, bulge_radius, roll_radius, iterations: int = 4):
+    """The point of the face whose normal passes through the head's centre of mass: its "CG projection" [m].
+
+    Club designers call this point the CG projection (or the balance point): a strike there drives the normal
+    impulse through the centre of mass, so the normal force turns the head neither about its toe axis (no vertical
+    gear effect from it) nor about its up axis; a strike above it lowers the spin, below it raises it. On the face
+    of :mod:`impactlab.physics.contact` (the osculating paraboloid of bulge R_b and roll R_r: the point
+    (toe s_t, high s_h) lies a sag z = (s_t^2/R_b + s_h^2/R_r)/2 behind the face-centre plane, its normal is
+    along (1, s_t/R_b, s_h/R_r) in the face-centre axes (normal, toe, up)), the normal through a point meets the
+    centre of mass (toe c_t, high c_h, depth c_d behind the face centre) where
+
+        s_t = c_t / (1 - (c_d - z)/R_b),    s_h = c_h / (1 - (c_d - z)/R_r),
+
+    solved by fixed-point iteration on the sag z (z is of order s^2/R: two iterations reach round-off for a
+    driver). A flat face (R = inf) projects the centre of mass straight along its normal: (c_t, c_h).
+
+    Parameters
+    ----------
+    cg_toe, cg_high, cg_depth : array_like
+        Centre of mass from the face centre towards the toe, up the face and behind it [m] (the face-centre axes of
+        :class:`impactlab.scene.clubs.ClubHead`).
+    bulge_radius, roll_radius : array_like
+        Face radii heel to toe and sole to crown [m] (``inf``: flat); each larger than the depth.
+    iterations : int
+        Fixed-point iterations on the sag.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        The strike point towards the toe and up the face [m], in the coordinates of a study's ``strike:``.
+    """
+    c_t, c_h, c_d = (np.asarray(v, dtype=float) for v in (cg_toe, cg_high, cg_depth))
+    bulge, roll = np.asarray(bulge_radius, dtype=float), np.asarray(roll_radius, dtype=float)
+    s_t, s_h = c_t, c_h
+    for _ in range(iterations):
+        sag = 0.5 * (s_t * s_t / bulge + s_h * s_h / roll)
+        s_t, s_h = c_t / (1.0 - (c_d - sag) / bulge), c_h / (1.0 - (c_d - sag) / roll)
+    return s_t, s_h
+
+
 def loft_for_spin_loft(spin_loft_angle, path, face_angle, attack_angle):
     """The dynamic loft whose face makes the 3-D spin loft ``spin_loft_angle`` with the club velocity [rad].
 

@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike
 from impactlab.validators import in_range, positive, positive_or_inf, to_float
 from impactlab.errors import FieldError
 from impactlab.units import si_angle, si_length, si_mass
+from impactlab.physics.delivery import cg_projection
 from impactlab.scene.plausibility import HEAD_HEIGHT_LIMIT, HEAD_LENGTH_LIMIT
 from impactlab.scene.materials import FaceSurface, Material
 
@@ -158,6 +159,16 @@ class ClubHead:
     is_sphere: bool = False
     #: the face's texture, grooves and water for the friction law (materials.FACE_SURFACES); None: not given
     surface: FaceSurface | None = None
+
+    @property
+    def cg_projection(self) -> tuple[float, float]:
+        """The strike point whose face normal passes through the centre of mass (toe, high) [m]: the "CG
+        projection" of club designers, where the normal impulse turns the head about neither face axis
+        (:func:`impactlab.physics.delivery.cg_projection`). The ``driver`` preset's is 3.5 mm up the face (its
+        2.9 mm CG, 42.3 mm deep, projected along the normals of its 254 mm roll)."""
+        toe, high, depth = self.center_of_mass
+        s_toe, s_high = cg_projection(toe, high, depth, self.bulge_radius, self.roll_radius)
+        return float(s_toe), float(s_high)
 
     def inertia_components(self) -> dict[str, float]:
         """The six independent tensor components by input suffix (``toe``, ``up``, ..., ``up_target``) [kg m^2]."""
