@@ -179,7 +179,7 @@ def fly(
         kg and m.  Defaults are the R&A/USGA limits (45.93 g, 42.67 mm).
     model : str, optional
         Aerodynamic model, a key of :data:`MODELS`.  Default
-        ``"smits_smith_1994"``.
+        ``"measured_fit"`` (:data:`impactlab.physics.aerodynamics.DEFAULT_MODEL`).
     spin_decay : float or None, optional
         Spin-decay constant ``lam`` of :func:`spin_decay_rate`; ``None`` uses
         the model's (2.0e-5, Smits & Smith); 0 disables spin decay.

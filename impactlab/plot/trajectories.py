@@ -10,8 +10,8 @@ import numpy as np
 import xarray as xr
 
 from impactlab.errors import FieldError
-from impactlab.vocabulary import MODEL_DIM
-from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS
+from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM
+from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS, DEFAULT_MODEL
 from impactlab.physics.flight import fly
 from impactlab.scene.flight import air_arrays
 from impactlab.model.derive import FLIGHT_INPUTS
@@ -70,6 +70,10 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if MODEL_DIM not in dataset.dims:
         dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
     air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
+    # the air model the result's flight outputs were computed with (they record it); a result holding only the
+    # launch is flown with today's default, and the title says which
+    aerodynamics = next((dataset[name].attrs["aerodynamic_model"] for name in FLIGHT_OUTPUTS
+                         if name in dataset.data_vars and "aerodynamic_model" in dataset[name].attrs), DEFAULT_MODEL)
     mass = float(scene.get("ball_mass", BALL_MASS))
     radius = float(scene.get("ball_radius", BALL_RADIUS))
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
@@ -90,7 +94,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
                             spin[finite], np.radians(row["spin_axis"].values[finite]),
                             np.radians(row["horizontal_launch_angle"].values[finite]), ball_mass=mass,
-                            ball_radius=radius, return_trajectories=True, **air)
+                            ball_radius=radius, model=aerodynamics, return_trajectories=True, **air)
         labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
         for k in range(result["x"].shape[0]):
             style = _STYLES[k % len(_STYLES)]
@@ -127,7 +131,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
     scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
-                    + (f"{scene}\n" if scene else "") + f"Smits & Smith (1994) aerodynamics, {air_words}{count}",
+                    + (f"{scene}\n" if scene else "") + f"{aerodynamics} aerodynamics, {air_words}{count}",
                     fontsize=9)
     figure.tight_layout(rect=(0.0, 0.0, 0.80, 1.0))
     return _save(figure, path)

@@ -16,9 +16,10 @@ import xarray as xr
 
 from impactlab._version import __version__
 from impactlab.io.results import CF_CONVENTIONS, RESULT_FORMAT
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.study.core import Study
-from impactlab.vocabulary import INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
+from impactlab.vocabulary import FLIGHT_OUTPUTS, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
 if TYPE_CHECKING:  # run.runner imports this module
     from impactlab.run.runner import StudyPlan
@@ -41,6 +42,9 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
         stacked = np.stack([_on_time(result, name, time, history) for result in results])
         stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
         attributes = {"units": spec.units, "long_name": spec.long_name}
+        if name in FLIGHT_OUTPUTS:  # which air model flew the ball: the default can change between versions
+            attributes.update(aerodynamic_model=DEFAULT_MODEL,
+                              aerodynamic_references=MODEL_REFERENCES[DEFAULT_MODEL])
         reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
                    if name in result["missing"]]
         if reasons:

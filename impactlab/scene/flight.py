@@ -206,7 +206,8 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
-        Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS` (default ``"smits_smith_1994"``).
+        Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS` (default
+        ``"measured_fit"``, impactlab's fit to measured lift and drag).
     trajectories : bool
         Also return the sampled paths ``x``, ``y`` (right positive), ``z`` [m] over ``t`` [s], on dims
         (``shot``, ``t``); each shot's path stops at its landing point (later samples repeat it).
@@ -227,13 +228,16 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     Notes
     -----
     Point-mass flight with drag, Magnus lift and spin decay (:func:`impactlab.physics.flight.fly`); the default
-    coefficients are Smits & Smith (1994), wind-tunnel fits, not tuned to any launch-monitor table. Against
-    TrackMan's PGA Tour averages they carry 5.0 % RMS off (docs/flight.md).
+    coefficients (``measured_fit``) are impactlab's fit to 232 measured lift and drag rows (wind tunnel, indoor
+    range, free flight; impactlab/data/validation/aero_coefficients.yaml), not tuned to any launch-monitor table.
+    Against TrackMan's tour averages they carry 5.1-5.4 % RMS off, drivers within 3 %, other clubs long
+    (docs/flight.md); ``model="smits_smith_1994"`` gives the published wind-tunnel model (5.0-8.4 %).
 
     References
     ----------
+    B. Lyu, J. Kensrud, L. Smith, "The reverse Magnus effect in golf balls", Sports Engineering 23 (2020) 3;
     A. J. Smits and D. R. Smith, "A new aerodynamic model of a golf ball in flight", Science and Golf II (1994)
-    340-347.
+    340-347; the other sources of the fit in docs/flight.md.
 
     Examples
     --------
