@@ -257,3 +257,64 @@ def test_a_study_selects_the_law_per_model_entry_and_sweeps_the_balls():
     assert plain[0] == pytest.approx(plain[1], rel=1e-6)  # both balls roll off the face
     assert law[0] == pytest.approx(plain[0], rel=1e-6)  # urethane still rolls (mu 0.17)
     assert law[1] < 0.7 * law[0]  # the ionomer slides (mu 0.08 with its flash temperature)
+
+
+def test_hertz_scales_of_the_law_against_the_ode():
+    """a_max, p_0, the impulse-weighted mean pressure int F (F / pi a^2) dt / int F dt and the contact time, from the
+    Hertz impact integrated here as an ODE (a = sqrt(R delta), p_0 = 2 E* a / (pi R)): what the flash temperature
+    heats with."""
+    t, delta = _hertz_ode(WEDGE["m"], WEDGE["radius"], WEDGE["modulus"], WEDGE["speed"])
+    area = np.pi * WEDGE["radius"] * np.clip(delta, 1e-30, None)
+    force = 4.0 / 3.0 * WEDGE["modulus"] * np.sqrt(WEDGE["radius"]) * delta**1.5
+    a_max = np.sqrt(WEDGE["radius"] * delta.max())
+    mean_oracle = np.trapezoid(force * force / area, t) / np.trapezoid(force, t)
+    a, p0, mean, duration = fl.hertz_means(WEDGE["m"], WEDGE["radius"], WEDGE["modulus"], WEDGE["speed"])
+    assert a == pytest.approx(a_max, rel=1e-6)
+    assert p0 == pytest.approx(2.0 * WEDGE["modulus"] * a_max / (np.pi * WEDGE["radius"]), rel=1e-6)
+    assert mean == pytest.approx(mean_oracle, rel=1e-4)
+    assert duration == pytest.approx(t[-1], rel=1e-4)
+
+
+def test_grooves_drain_the_film_as_strips_against_their_own_ode():
+    """Between grooves of half-land b the film drains sideways as from a long strip of width 2 b: Reynolds gives
+    p(x) = 6 eta (-dh/dt) (b^2 - x^2) / h^3, a mean pressure 4 eta (-dh/dt) b^2 / h^3, so d(h^-2)/dt = p_m / (2 eta
+    b^2) (Hamrock et al. 2004, ch. 16, derived here); the film drains by whichever of strip and disc is faster."""
+    h0, rq, land = 20e-6, 2.2e-6, 3e-3
+    t, delta = _hertz_ode(WEDGE["m"], WEDGE["radius"], WEDGE["modulus"], WEDGE["speed"])
+    a2 = WEDGE["radius"] * np.clip(delta, 1e-30, None)
+    force = 4.0 / 3.0 * WEDGE["modulus"] * np.sqrt(WEDGE["radius"]) * delta**1.5
+    pressure = force / (np.pi * a2)
+    rate = np.maximum(4.0 * pressure / (3.0 * fl.WATER_VISCOSITY * a2), pressure / (2.0 * fl.WATER_VISCOSITY * land**2))
+    growth = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])
+    film = 1.0 / np.sqrt(h0**-2 + growth)
+    wet_oracle = np.trapezoid(np.where(film > rq, force, 0.0), t) / np.trapezoid(force, t)
+    disc_only = np.trapezoid(np.where(1.0 / np.sqrt(h0**-2 + np.concatenate([[0.0], np.cumsum(
+        0.5 * (4.0 * pressure[1:] / (3.0 * fl.WATER_VISCOSITY * a2[1:]) + 4.0 * pressure[:-1] / (
+            3.0 * fl.WATER_VISCOSITY * a2[:-1])) * np.diff(t))])) > rq, force, 0.0), t) / np.trapezoid(force, t)
+    assert wet_oracle < disc_only - 0.1  # the strips, not the disc, decide here
+    _, wet = fl.adhesion_friction(3e6, 69e6, 0.45, 0.2, WEDGE["m"], WEDGE["radius"], WEDGE["modulus"],
+                                  WEDGE["speed"], rq, land, h0)
+    assert wet == pytest.approx(wet_oracle, abs=0.01)  # measured 0.0024 (400 midpoints against the ODE)
+
+
+@pytest.mark.parametrize(("name", "options"), [("rigid_coulomb", {}), ("maw", {"tolerance": 1e-3})])
+def test_the_law_on_a_mirrored_strike_mirrors(name, options):
+    """Mirror symmetry with every term of the law on (a melting ionomer cover heated by its slip, a grooved, wet
+    face): negating the angle and the spin keeps J_n and flips J_t, as a left-handed golfer's mirrored strike must.
+    The flash temperature heats with the slip's magnitude, whatever its sign."""
+    b = BALL_PRESETS["two_piece_ionomer"]
+    groove = FACE_SURFACES["grooved_blasted_steel"]
+    inputs = _with(REFERENCE_1D, ball_shear_strength=b.shear_strength, ball_cover_modulus=b.cover_modulus,
+                   ball_cover_melt_rise=b.cover_melt_rise, ball_cover_effusivity=b.cover_effusivity,
+                   face_roughness_slope=groove.roughness_slope, face_roughness=groove.roughness,
+                   face_groove_land=groove.groove_land, face_water_film=5e-6, face_effusivity=groove.effusivity)
+    mirrored = _with(inputs, angle=-inputs["angle"], spin=-inputs["spin"])
+    model = get_model(name)(friction_law="adhesion", **options)
+    a = model.compute(inputs, ["normal_impulse", "tangential_impulse"])
+    m = model.compute(mirrored, ["normal_impulse", "tangential_impulse"])
+    np.testing.assert_allclose(m["normal_impulse"].values, a["normal_impulse"].values, rtol=1e-10)
+    np.testing.assert_allclose(m["tangential_impulse"].values, -a["tangential_impulse"].values, rtol=1e-10,
+                               atol=1e-12)
+    # the mirrored cases soften as much as the right-handed ones: the law's mu is the same per case
+    plain = model.compute(_with(inputs, ball_cover_melt_rise=np.inf), ["tangential_impulse"])
+    assert np.any(np.abs(a["tangential_impulse"].values) < np.abs(plain["tangential_impulse"].values) - 1e-6)
