@@ -567,6 +567,12 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
     assert list(session.lines) == [2, 3]
     assert session.values["ball_speed"].tolist() == [60.0, 61.5]
     assert session.values["vertical_launch_angle"][1] == pytest.approx(11 * DEG)
+    # one escaped quote alone (a name in inches, 7\" {): a scan that let it end the string would count the brace
+    # and the rest of the file inside out
+    odd = ('[{"name": "7\\" {", "shots": [\n'
+           '{"ball_speed (m/s)": 60.0, "vertical_launch_angle (deg)": 12.0},\n\n'
+           '{"ball_speed (m/s)": 61.5, "vertical_launch_angle (deg)": 11.0}]}]')
+    assert list(read_session_text(odd, "s.json").lines) == [2, 4]
     with pytest.raises(StudyError, match="several lists of objects"):
         read_session_text('{"a": [{"x": 1}], "b": [{"y": 2}]}', "s.json")
     with pytest.raises(StudyError, match="expected JSON objects"):
