@@ -170,6 +170,21 @@ def test_measured_fit_constants_are_the_fit_of_the_measurements_file():
     assert rms["lift crisis (modern, Re < 7.4e4)"] < 0.5 * rms["lift crisis without the crisis terms"]
 
 
+def test_measured_fit_flies_the_function_that_was_fitted():
+    """aerodynamics writes the fitted model out a second time; across the drag crisis and beyond it, at any spin, its
+    CD and CL must be aero_fit's functions (the ones the constants were fitted with) at those constants."""
+    from impactlab.data import aero_fit
+
+    c = aerodynamics.MEASURED_FIT
+    s, re = np.meshgrid(np.linspace(0.0, 0.8, 17), np.geomspace(3e4, 2.5e5, 41))
+    extra, factor = aero_fit.crisis_terms(s, re, c["re_l"], c["sigma"], c["beta"], c["s_l"], c["re_d"], c["w_d"],
+                                          c["d"])
+    lift = aero_fit.lift_supercritical(s, c["a"], c["b"])
+    cd, cl = aerodynamics.aero_coefficients(s, re, model="measured_fit")
+    np.testing.assert_allclose(cd, c["c0"] + c["c_re"] * re / 1e5 + c["k"] * lift**2 + extra, rtol=1e-12)
+    np.testing.assert_allclose(cl, lift * factor, rtol=1e-12, atol=1e-15)
+
+
 def test_measurements_file_says_measurement_and_cites_every_block():
     from importlib import resources
 
