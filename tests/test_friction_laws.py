@@ -169,8 +169,12 @@ def test_adhesion_law_in_its_constant_limit_is_coulomb_with_that_mu(name, option
 
 def test_the_law_refuses_a_ball_without_cover_data():
     inputs = {key: value for key, value in REFERENCE_1D.items() if key != "ball_shear_strength"}
-    with pytest.raises(ModelInputError, match="shear_strength"):
+    with pytest.raises(ModelInputError, match="shear_strength") as refused:
         get_model("rigid_coulomb")(friction_law="adhesion").compute(inputs, ["spin_rate"])
+    # the presets the message offers are presets (not a former name a study would be warned about)
+    named = [word for word in str(refused.value).replace(",", " ").split() if "_" in word and word.islower()
+             and word.split("_")[0] in ("urethane", "two", "tour", "surlyn")]
+    assert named and all(name in BALL_PRESETS for name in named), named
 
 
 def test_the_cover_and_the_face_move_friction_the_way_the_physics_says():
