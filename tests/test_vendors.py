@@ -577,6 +577,10 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
         read_session_text('{"a": [{"x": 1}], "b": [{"y": 2}]}', "s.json")
     with pytest.raises(StudyError, match="expected JSON objects"):
         read_session_text("[1, 2]", "s.json")
+    for empty in ("{}", "[{}, {}]", '{"shots": []}'):  # objects, but no shot field: not an "empty file"
+        with pytest.raises(StudyError, match="none with a key|no shots") as refused:
+            read_session_text(empty, "s.json")
+        assert "empty file" not in str(refused.value)
 
 
 def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):

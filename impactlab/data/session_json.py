@@ -126,7 +126,7 @@ def json_rows(text: str, file: str) -> tuple[list[list[str]], list[int], list[st
     ------
     StudyError
         At the line of a JSON syntax error; when a top-level value is neither an object nor a list of objects; when
-        an object holds two lists of objects (which of them holds the shots is not guessed).
+        an object holds two lists of objects (which of them holds the shots is not guessed); when no object has a key.
     """
     records: list[dict[str, str]] = []
     lines: list[int] = []
@@ -170,6 +170,8 @@ def json_rows(text: str, file: str) -> tuple[list[list[str]], list[int], list[st
         for key in record:
             spelling.setdefault(key.lower(), key)
     names = list(spelling.values())
+    if not names:  # objects without a single key: the CSV reader would call the file empty, which it is not
+        raise StudyError(f"{file}: {len(records)} JSON object(s), none with a key: no shot fields to read")
     folded = [{key.lower(): value for key, value in record.items()} for record in records]
     rows = [names] + [[record.get(name.lower(), "") for name in names] for record in folded]
     notes = [f"JSON: {len(records)} object(s)" + (f" in {nested} session(s)" if nested else "")
