@@ -481,6 +481,25 @@ def test_session_carry_flies_each_exported_shot():
     assert abs(check["carry_error"][0]) < 0.10  # measured: +7.3 % (TrackMan's 7 Iron row, standard air)
 
 
+def test_session_carry_refuses_a_negative_magnitude_or_a_carry_that_is_not_positive(tmp_path):
+    """A spin of -2500 rpm flown would curve the other way and a carry of 0 would give an infinite error: each row is
+    named at its line instead."""
+    from impactlab.data.carry import session_carry
+    from impactlab.errors import StudyError
+
+    path = tmp_path / "s.csv"
+    path.write_text("ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],carry_distance [yd]\n"
+                    "140,12,2500,240\n140,12,-2500,240\n-140,12,2500,240\n140,12,2500,0\n")
+    with pytest.raises(StudyError) as refused:
+        session_carry(path, "measured_fit")
+    message = str(refused.value)
+    assert "s.csv:3: spin_rate" in message and "s.csv:4: ball_speed" in message
+    assert "s.csv:5: carry_distance" in message and "s.csv:2" not in message
+    path.write_text("ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],carry_distance [yd]\n"
+                    "140,12,2500,240\n")
+    assert session_carry(path, "measured_fit")["carry"][0] > 0
+
+
 def test_default_model_is_best_published_model():
     rms = {m: validate_carry(m)["rms_carry_error"] for m in aerodynamics.PUBLISHED_MODELS}
     rms = {m: (v if np.isfinite(v) else np.inf) for m, v in rms.items()}
