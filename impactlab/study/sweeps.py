@@ -135,7 +135,10 @@ def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
 CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_inertia_target", "club_inertia_toe_up",
                       "club_inertia_toe_target", "club_inertia_up_target", "club_cg_toe", "club_cg_high",
                       "club_cg_depth", "club_loft", "face_bulge_radius", "face_roll_radius", "face_youngs_modulus",
-                      "face_poisson_ratio", "club_restitution_gain")
+                      "face_poisson_ratio", "club_restitution_gain",
+                      # the face's surface (friction_law: adhesion): a wedge swept beside a driver keeps its grooves
+                      "face_roughness_slope", "face_roughness", "face_groove_land", "face_water_film",
+                      "face_effusivity")
 
 
 #: study path of a field set by a club preset sweep: "club.preset:" + the field's own path
