@@ -339,3 +339,23 @@ def test_a_club_preset_sweep_carries_each_presets_face_surface():
         return impactlab.run_study(study)["spin_rate"].values.ravel()
 
     np.testing.assert_allclose(spins("driver"), spins("lob_wedge"), rtol=1e-12)
+
+
+def test_a_ball_without_cover_data_still_sweeps_beside_one_with_it_unless_the_law_reads_them():
+    """surlyn_distance has no cover data for the friction law: sweeping it beside urethane_tour worked before the law
+    existed and must still work with Coulomb friction (same spin: the same contact); with friction_law: adhesion it
+    is refused, naming the missing cover, rather than given the other ball's cover."""
+    import impactlab
+    from impactlab.errors import FieldError
+
+    def study(models):
+        return {"ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+                "contact": {"friction": 0.4, "restitution": 0.78},
+                "delivery": {"club_speed": "100 mph", "attack_angle": "2 deg", "dynamic_loft": "12 deg"},
+                "sweep": {"ball.preset": ["urethane_tour", "surlyn_distance"]}, "models": models,
+                "outputs": ["spin_rate"]}
+
+    spin = impactlab.run_study(impactlab.load_study(study(["rigid_coulomb"])))["spin_rate"].values.ravel()
+    assert spin.size == 2 and spin[0] == pytest.approx(spin[1], rel=1e-12)
+    with pytest.raises(FieldError, match="shear_strength.*friction_law"):
+        impactlab.load_study(study([{"name": "rigid_coulomb", "friction_law": "adhesion"}]))
