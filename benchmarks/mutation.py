@@ -334,7 +334,7 @@ MUTANTS = [
      'if key != lists[0]}, "../")', 'if key != lists[0]}, "")',
      T_JSON, "a session's own keys (its club) not prefixed: they collide with the shots' keys"),
     ("json-line-off-by-one", "impactlab/data/session_json.py",
-     'lines += [text.count("\\n", 0, offset) + 1 for', 'lines += [text.count("\\n", 0, offset) for',
+     "lines += [bisect.bisect_left(breaks, offset) + 1 for", "lines += [bisect.bisect_left(breaks, offset) for",
      T_JSON, "shot lines counted from 0: every message names the line above the shot"),
     ("aero-crisis-width", "impactlab/physics/aerodynamics.py",
      'crisis = 0.5 * (1.0 - np.tanh(0.5 * (re - c["re_d"]) / c["w_d"]))',
