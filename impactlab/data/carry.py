@@ -133,7 +133,7 @@ def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
         v["carry_distance"])
     # a magnitude below zero or a carry that is not positive is a sign or column error (or a placeholder), never a
     # shot to fly: refused at its line, as the shot table refuses it, rather than flown or divided by
-    rows = np.flatnonzero(keep)
+    rows = np.flatnonzero(keep).tolist()
     problems = [problem for row in rows for problem in wrong_sign(
         {"ball_speed": v["ball_speed"], "spin_rate": spin}, row, f"{session.file}:{session.lines[row]}")]
     problems += [f"{session.file}:{session.lines[row]}: carry_distance: expected a carry > 0, got "
