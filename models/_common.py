@@ -96,7 +96,7 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
     missing = sorted(needed - set(inputs))
     if missing:
         raise ModelInputError(
-            f"friction_law: {law} needs the ball's cover (shear_strength, cover_modulus: the tour_urethane and "
+            f"friction_law: {law} needs the ball's cover (shear_strength, cover_modulus: the urethane_tour and "
             f"two_piece_ionomer presets carry them), the ball's and face's elastic constants"
             f"{' and both thermal effusivities (a melting cover)' if melting else ''}; missing: {', '.join(missing)}")
     return friction_laws.effective_friction(law, inputs, state, restitution)

@@ -170,6 +170,21 @@ def test_measured_fit_constants_are_the_fit_of_the_measurements_file():
     assert rms["lift crisis (modern, Re < 7.4e4)"] < 0.5 * rms["lift crisis without the crisis terms"]
 
 
+def test_measured_fit_flies_the_function_that_was_fitted():
+    """aerodynamics writes the fitted model out a second time; across the drag crisis and beyond it, at any spin, its
+    CD and CL must be aero_fit's functions (the ones the constants were fitted with) at those constants."""
+    from impactlab.data import aero_fit
+
+    c = aerodynamics.MEASURED_FIT
+    s, re = np.meshgrid(np.linspace(0.0, 0.8, 17), np.geomspace(3e4, 2.5e5, 41))
+    extra, factor = aero_fit.crisis_terms(s, re, c["re_l"], c["sigma"], c["beta"], c["s_l"], c["re_d"], c["w_d"],
+                                          c["d"])
+    lift = aero_fit.lift_supercritical(s, c["a"], c["b"])
+    cd, cl = aerodynamics.aero_coefficients(s, re, model="measured_fit")
+    np.testing.assert_allclose(cd, c["c0"] + c["c_re"] * re / 1e5 + c["k"] * lift**2 + extra, rtol=1e-12)
+    np.testing.assert_allclose(cl, lift * factor, rtol=1e-12, atol=1e-15)
+
+
 def test_measurements_file_says_measurement_and_cites_every_block():
     from importlib import resources
 
@@ -465,6 +480,25 @@ def test_session_carry_flies_each_exported_shot():
                        model="measured_fit")
     np.testing.assert_allclose(check["carry"], alone["carry_distance"], rtol=1e-12)
     assert abs(check["carry_error"][0]) < 0.10  # measured: +7.3 % (TrackMan's 7 Iron row, standard air)
+
+
+def test_session_carry_refuses_a_negative_magnitude_or_a_carry_that_is_not_positive(tmp_path):
+    """A spin of -2500 rpm flown would curve the other way and a carry of 0 would give an infinite error: each row is
+    named at its line instead."""
+    from impactlab.data.carry import session_carry
+    from impactlab.errors import StudyError
+
+    path = tmp_path / "s.csv"
+    path.write_text("ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],carry_distance [yd]\n"
+                    "140,12,2500,240\n140,12,-2500,240\n-140,12,2500,240\n140,12,2500,0\n")
+    with pytest.raises(StudyError) as refused:
+        session_carry(path, "measured_fit")
+    message = str(refused.value)
+    assert "s.csv:3: spin_rate" in message and "s.csv:4: ball_speed" in message
+    assert "s.csv:5: carry_distance" in message and "s.csv:2" not in message
+    path.write_text("ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],carry_distance [yd]\n"
+                    "140,12,2500,240\n")
+    assert session_carry(path, "measured_fit")["carry"][0] > 0
 
 
 def test_smits_smith_is_the_best_published_model_on_the_classic_table():

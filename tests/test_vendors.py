@@ -567,10 +567,38 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
     assert list(session.lines) == [2, 3]
     assert session.values["ball_speed"].tolist() == [60.0, 61.5]
     assert session.values["vertical_launch_angle"][1] == pytest.approx(11 * DEG)
+    # one escaped quote alone (a name in inches, 7\" {): a scan that let it end the string would count the brace
+    # and the rest of the file inside out
+    odd = ('[{"name": "7\\" {", "shots": [\n'
+           '{"ball_speed (m/s)": 60.0, "vertical_launch_angle (deg)": 12.0},\n\n'
+           '{"ball_speed (m/s)": 61.5, "vertical_launch_angle (deg)": 11.0}]}]')
+    assert list(read_session_text(odd, "s.json").lines) == [2, 4]
     with pytest.raises(StudyError, match="several lists of objects"):
         read_session_text('{"a": [{"x": 1}], "b": [{"y": 2}]}', "s.json")
     with pytest.raises(StudyError, match="expected JSON objects"):
         read_session_text("[1, 2]", "s.json")
+    for empty in ("{}", "[{}, {}]", '{"shots": []}'):  # objects, but no shot field: not an "empty file"
+        with pytest.raises(StudyError, match="none with a key|no shots") as refused:
+            read_session_text(empty, "s.json")
+        assert "empty file" not in str(refused.value)
+
+
+def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
+    """20,000 GSPro messages, one a line (a long simulator session, 3 MB): each row keeps its line, and the reader
+    does not count line breaks from the file's start for every shot (that took 17 s on the indented capture)."""
+    import time
+
+    from impactlab.data.session_json import json_rows
+
+    message = ('{"DeviceID": "X", "Units": "Yards", "ShotNumber": %d, "BallData": {"Speed": 140.0, "HLA": 1.5, '
+               '"VLA": 12.0, "TotalSpin": 2500.0}, "ShotDataOptions": {"ContainsBallData": true}}')
+    text = "\n".join(message % index for index in range(20000))
+    start = time.perf_counter()
+    rows, lines, _ = json_rows(text, "capture.json")
+    elapsed = time.perf_counter() - start
+    assert len(rows) == 20001 and lines[1:6] == [1, 2, 3, 4, 5] and lines[-1] == 20000
+    assert rows[-1][rows[0].index("ShotNumber")] == "19999"
+    assert elapsed < 4.0, elapsed  # linear: about 0.5 s on one shared core; quadratic: over 10 s
 
 
 def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):

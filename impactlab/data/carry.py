@@ -16,8 +16,10 @@ import numpy as np
 import yaml
 
 from impactlab.data.session import read_session
+from impactlab.errors import StudyError
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS
+from impactlab.scene.plausibility import wrong_sign
 from impactlab.units import MPH
 
 YARD = 0.9144  #: m (exact, the international yard)
@@ -116,6 +118,11 @@ def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
         [rad] (0 where the export has none),
         ``vendor_carry`` and ``carry`` [m], ``carry_error`` (model over vendor minus 1), for the shots with ball
         speed, launch angle, spin (total, or back and side) and carry.
+
+    Raises
+    ------
+    StudyError
+        A kept shot with a ball speed or spin below zero, or a carry that is not positive (each at its file:line).
     """
     session = read_session(path)
     v = session.values
@@ -124,6 +131,15 @@ def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
     axis = np.nan_to_num(v["spin_axis"])
     keep = np.isfinite(v["ball_speed"]) & np.isfinite(v["vertical_launch_angle"]) & np.isfinite(spin) & np.isfinite(
         v["carry_distance"])
+    # a magnitude below zero or a carry that is not positive is a sign or column error (or a placeholder), never a
+    # shot to fly: refused at its line, as the shot table refuses it, rather than flown or divided by
+    rows = np.flatnonzero(keep).tolist()
+    problems = [problem for row in rows for problem in wrong_sign(
+        {"ball_speed": v["ball_speed"], "spin_rate": spin}, row, f"{session.file}:{session.lines[row]}")]
+    problems += [f"{session.file}:{session.lines[row]}: carry_distance: expected a carry > 0, got "
+                 f"{v['carry_distance'][row]:.6g} m" for row in rows if not v["carry_distance"][row] > 0.0]
+    if problems:
+        raise StudyError("; ".join(problems))
     result = flight.fly(v["ball_speed"][keep], v["vertical_launch_angle"][keep], spin[keep], axis[keep], model=model,
                         **options)
     return {"vendor": session.vendor.name, "club": [c for c, k in zip(session.text["club"], keep) if k],

@@ -135,7 +135,10 @@ def _sweep_field_values(path: str, spec, where: str) -> tuple[str, list[float]]:
 CLUB_PRESET_INPUTS = ("club_mass", "club_inertia_toe", "club_inertia_up", "club_inertia_target", "club_inertia_toe_up",
                       "club_inertia_toe_target", "club_inertia_up_target", "club_cg_toe", "club_cg_high",
                       "club_cg_depth", "club_loft", "face_bulge_radius", "face_roll_radius", "face_youngs_modulus",
-                      "face_poisson_ratio", "club_restitution_gain")
+                      "face_poisson_ratio", "club_restitution_gain",
+                      # the face's surface (friction_law: adhesion): a wedge swept beside a driver keeps its grooves
+                      "face_roughness_slope", "face_roughness", "face_groove_land", "face_water_film",
+                      "face_effusivity")
 
 
 #: study path of a field set by a club preset sweep: "club.preset:" + the field's own path
@@ -150,6 +153,17 @@ def _ball_preset_inputs(document: Mapping) -> tuple[str, ...]:
     own = tuple(name for name, spec in INPUTS.items() if spec.path.startswith("ball."))
     contact = document.get("contact") or {}
     return own + (() if isinstance(contact, Mapping) and contact.get("friction") is not None else ("friction",))
+
+
+#: a ball's cover as the friction law sees it: inputs only some ball presets give
+COVER_INPUTS = ("ball_shear_strength", "ball_cover_modulus", "ball_cover_melt_rise", "ball_cover_effusivity")
+
+
+def _uses_friction_law(document: Mapping) -> bool:
+    """Whether a model entry of the study selects a friction law other than Coulomb's (which reads the cover)."""
+    models = document.get("models") or []
+    return isinstance(models, list) and any(isinstance(entry, Mapping) and entry.get("friction_law", "coulomb")
+                                            != "coulomb" for entry in models)
 
 
 def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list[tuple[str, str, list[float]]], list]:
@@ -172,9 +186,17 @@ def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list
             raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
         inputs = scene.inputs()
         missing = [name for name in wanted if name not in inputs]
+        if missing and block == "ball" and set(missing) <= set(COVER_INPUTS) and not _uses_friction_law(document):
+            # a ball without the friction law's cover data (surlyn_distance) beside one with it: nothing reads them
+            # unless a model's friction_law does, so they are left out of the sweep rather than refused
+            wanted = tuple(name for name in wanted if name not in COVER_INPUTS)
+            values = {name: values[name] for name in wanted}
+            missing = []
         if missing:
+            law = (" (friction_law: adhesion reads the ball's cover: urethane_tour and two_piece_ionomer carry it)"
+                   if set(missing) <= set(COVER_INPUTS) else "")
             raise FieldError(f"{where}[{index}]", f"a {block} preset that gives {INPUTS[missing[0]].path} like the "
-                             "others swept beside it", preset)
+                             f"others swept beside it{law}", preset)
         for name in wanted:
             values[name].append(inputs[name])
         scenes.append(scene)
