@@ -626,6 +626,26 @@ def test_study_flight_equals_fly_on_the_models_launch():
             np.testing.assert_allclose(row[name].values, alone[name].values, rtol=1e-9, err_msg=name)
     assert np.all(result.carry_distance.values > 150) and result.carry_distance.attrs["units"] == "m"
     assert result.landing_angle.attrs["units"] == "degree"
+    # each flight variable names the air model that flew it (the default can change between versions)
+    for name in FLIGHT:
+        assert result[name].attrs["aerodynamic_model"] == aerodynamics.DEFAULT_MODEL
+
+
+def test_trajectories_fly_with_the_air_model_the_result_names(tmp_path, monkeypatch):
+    """A result computed with another air model (an older file) is redrawn with that model, and says so."""
+    import impactlab
+    from impactlab.plot import trajectories
+    from impactlab.plot.style import conditions
+
+    result = impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]))
+    assert f"{aerodynamics.DEFAULT_MODEL} aerodynamics" in conditions(result)
+    result.carry_distance.attrs["aerodynamic_model"] = "smits_smith_1994"
+    used = []
+    original = trajectories.fly
+    monkeypatch.setattr(trajectories, "fly", lambda *a, **k: used.append(k["model"]) or original(*a, **k))
+    trajectories.plot_trajectories(result, tmp_path / "t.png")
+    assert used and set(used) == {"smits_smith_1994"}
+    assert "smits_smith_1994 aerodynamics" in conditions(result)
 
 
 def test_study_not_asking_for_the_flight_does_not_compute_it(monkeypatch):

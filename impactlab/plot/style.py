@@ -115,4 +115,9 @@ def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:
             words.append(f"{stiffness} face")
         if club is not None:
             words.append(f"{club * 1e3:.0f} g head")
+    # the air model that flew the ball, where the result holds a flight output (each names its model)
+    air_models = sorted({str(variable.attrs["aerodynamic_model"]) for variable in dataset.data_vars.values()
+                         if "aerodynamic_model" in variable.attrs})
+    if air_models:
+        words.append(f"{' / '.join(air_models)} aerodynamics")
     return ", ".join(words)

@@ -130,9 +130,10 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
     scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
+    # conditions() names the air model when the result records one; a launch-only result is flown with the default
+    air_model = "" if "aerodynamics" in scene else f"{aerodynamics} aerodynamics, "
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
-                    + (f"{scene}\n" if scene else "") + f"{aerodynamics} aerodynamics, {air_words}{count}",
-                    fontsize=9)
+                    + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}", fontsize=9)
     figure.tight_layout(rect=(0.0, 0.0, 0.80, 1.0))
     return _save(figure, path)
 
