@@ -611,3 +611,21 @@ def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):
     # GSPro messages carry no club: refused with the reason, not fitted on a guessed club
     assert main(["validate", "--dataset", str(DATA / "gspro_open_connect.json"), "--model", "rigid_coulomb"]) == 2
     assert "no club named" in capsys.readouterr().err
+
+
+def test_shots_does_not_count_a_negative_speed_or_spin_as_ball_data(tmp_path, capsys):
+    """A ball speed of -123.8 mph or a spin of -5492 rpm is no measurement: the shot table refuses it, so the shots
+    report must not count it as ball data, and must say which line and why."""
+    path = tmp_path / "signs.csv"
+    path.write_text("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Ball Speed [mph],Launch Angle [deg],"
+                    "Spin Rate [rpm]\n"
+                    "7 Iron,85.4,-0.9,19.7,123.8,15.4,5492\n"
+                    "7 Iron,85.4,-0.9,19.7,-123.8,15.4,5492\n"
+                    "7 Iron,85.4,-0.9,19.7,123.8,15.4,-5492\n")
+    assert main(["shots", str(path)]) == 0
+    report = capsys.readouterr().out
+    assert "ball data (ball speed, launch angle, spin): 1 row(s), 1 with a spin" in report
+    assert "not ball data, line 3: ball_speed: expected a value >= 0" in report
+    assert "not ball data, line 4: spin_rate: expected a value >= 0" in report
+    with pytest.raises(StudyError, match=r"signs.csv:3: ball_speed: expected a value >= 0"):
+        read_session(path).shot_table()
