@@ -629,3 +629,18 @@ def test_shots_does_not_count_a_negative_speed_or_spin_as_ball_data(tmp_path, ca
     assert "not ball data, line 4: spin_rate: expected a value >= 0" in report
     with pytest.raises(StudyError, match=r"signs.csv:3: ball_speed: expected a value >= 0"):
         read_session(path).shot_table()
+
+
+def test_an_unbracketed_units_row_is_refused_with_the_bracketed_form_shown():
+    text = ("Club,Club Speed,Attack Angle,Dyn. Loft,Ball Speed,Launch Angle,Spin Rate\n"
+            "[],mph,deg,deg,mph,deg,rpm\n"
+            "7 Iron,85.4,-0.9,19.7,123.8,15.4,5492\n")
+    with pytest.raises(StudyError) as refused:
+        read_session_text(text, "plain.csv")
+    message = str(refused.value)
+    assert "plain.csv:1:2 (Club Speed): expected a unit" in message
+    assert "'Club Speed [mph]'" in message and "'[mph]'" in message and "in brackets" in message
+    # the bracketed row is read: the form the message shows is the form that works
+    fixed = read_session_text(text.replace("[],mph,deg,deg,mph,deg,rpm", "[],[mph],[deg],[deg],[mph],[deg],[rpm]"),
+                              "plain.csv")
+    assert fixed.values["club_speed"][0] == pytest.approx(85.4 * MPH)

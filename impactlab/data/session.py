@@ -283,9 +283,11 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                 unit = layout.implied_units.get(_norm(split_header(cell)[0]))
             where = f"{file}:{header_line}:{column + 1} ({cell})"
             if unit is None and FIELDS[field] != "dimensionless":
-                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]} (in the header, "
-                                f"'{split_header(cell)[0]} [unit]', or a units row under it); a number without "
-                                f"its unit is not read (115 could be mph or m/s)")
+                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]}: in brackets, in the "
+                                f"header ('{split_header(cell)[0]} [mph]'-style: '{split_header(cell)[0]} [unit]') or "
+                                f"in a units row right under it ('[mph]', '[deg]', '[rpm]': every unit in brackets, "
+                                f"else the row is read as a shot); a number without its unit is not read (115 could "
+                                f"be mph or m/s)")
                 continue
             try:
                 factor = _unit_factor(unit or "", FIELDS[field], where)
