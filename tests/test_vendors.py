@@ -644,3 +644,15 @@ def test_an_unbracketed_units_row_is_refused_with_the_bracketed_form_shown():
     fixed = read_session_text(text.replace("[],mph,deg,deg,mph,deg,rpm", "[],[mph],[deg],[deg],[mph],[deg],[rpm]"),
                               "plain.csv")
     assert fixed.values["club_speed"][0] == pytest.approx(85.4 * MPH)
+
+
+def test_gspro_units_are_read_whatever_their_case_and_meters_still_refused():
+    """'yards' and 'YARDS' are the documented Yards (case is not a unit); Meters in any case stays refused."""
+    text = (DATA / "gspro_open_connect.json").read_text(encoding="utf-8")
+    plain = read_session_text(text, "capture.json")
+    for spelling in ("yards", "YARDS", " Yards "):
+        lower = read_session_text(text.replace('"Units": "Yards"', f'"Units": "{spelling}"'), "capture.json")
+        assert lower.size == plain.size == 5
+        np.testing.assert_array_equal(lower.values["ball_speed"], plain.values["ball_speed"])
+    with pytest.raises(StudyError, match=r"Units: expected 'Yards' or '', got .*'meters'.*not guessed"):
+        read_session_text(text.replace('"Units": "Yards"', '"Units": "meters"'), "capture.json")

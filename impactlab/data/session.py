@@ -316,6 +316,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     required = layout.required or {"column": None, "values": []}
     required_column = names.index(_norm(required["column"])) if required["column"] and \
         _norm(required["column"]) in names else None
+    required_values = {_norm(str(value)) for value in required["values"]}
     refused = []
     shots, shot_lines = [], []
     for cells, line in zip(body, body_lines):
@@ -329,7 +330,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                             f"a summary row ({cells[column].strip()!r}), not a shot"))
             continue
         if required_column is not None and required_column < len(cells) and \
-                cells[required_column].strip() not in [str(v) for v in required["values"]]:
+                _norm(cells[required_column]) not in required_values:  # 'yards' is Yards: case is not the unit
             refused.append((line, cells[required_column].strip()))
             continue
         if len(cells) != width:
