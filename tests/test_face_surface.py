@@ -175,3 +175,13 @@ def test_a_face_block_takes_a_surface_and_sweeps_its_water():
         impactlab.load_study({"ball": {"preset": "urethane_tour"}, "face": {"preset": "steel"},
                               "impact": {"speed": "30 m/s", "angle": "40 deg"}, "models": LAW})
     assert refused.value.path == "face.surface"
+
+
+def test_a_club_preset_sweep_gives_a_custom_base_club_each_presets_surface():
+    """The study's own club has numbers and no surface, but every swept preset brings its own: not refused, and each
+    case reads its preset's surface (the refusal is for a case that would run without one)."""
+    head = dict(CUSTOM, inertia={"toe": "2900 g*cm**2", "up": "5000 g*cm**2", "target": "3500 g*cm**2"})
+    study = impactlab.load_study(_study(head, sweep={"club.preset": ["driver", "sand_wedge"]}))
+    inputs = impactlab.study.arrays.case_inputs(study)
+    np.testing.assert_allclose(inputs["face_roughness_slope"],
+                               [0.0, FACE_SURFACES["grooved_blasted_steel"].roughness_slope])

@@ -297,7 +297,7 @@ def _build_study(document, text: str, file: str | None) -> Study:
     check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
     models = _build_models(document["models"])
-    _check_face_surface(scene, models, "club" if "club" in document else "face")
+    _check_face_surface(scene, sweep, models, "club" if "club" in document else "face")
     sensitivity = None
     if "sensitivity" in document:
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
@@ -308,12 +308,13 @@ def _build_study(document, text: str, file: str | None) -> Study:
                  sensitivity=sensitivity)
 
 
-def _check_face_surface(scene, models, block: str) -> None:
+def _check_face_surface(scene, sweep, models, block: str) -> None:
     """A friction law reads the face's surface: a face without one is refused here, at the study's line, rather
     than taken as smooth and dry (a club preset's sweep gives each club its own, which every preset has)."""
     law = next((entry for entry in models if getattr(entry.model.options, "friction_law", "coulomb") != "coulomb"),
                None)
-    if law is None or getattr(scene.face, "surface", None) is not None:
+    swept = any(field.input == "face_roughness_slope" for axis in sweep for field in axis.fields)
+    if law is None or swept or getattr(scene.face, "surface", None) is not None:
         return
     club = scene.club.name if scene.club is not None and scene.club.name else f"the study's {block}"
     raise FieldError(f"{block}.surface", f"the face's surface for friction_law: {law.model.options.friction_law} "
