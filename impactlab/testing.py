@@ -34,7 +34,7 @@ import attrs
 import numpy as np
 
 from impactlab.errors import ModelContractError
-from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS
+from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS, FACE_SURFACES
 from impactlab.model.base import ImpactModel
 from impactlab.physics.mechanics import effective_mass
 from impactlab.scene.clubs import ClubHead, Strike
@@ -52,7 +52,10 @@ RTOL = 1e-9
 def reference_inputs(n_angles: int = 7) -> dict[str, np.ndarray]:
     """A batch of golf-like cases on rigid and steel faces, frictions 0.1-0.6, lofts 2-70 deg, with and without spin."""
     scenes = []
-    for face in (FACE_PRESETS["rigid"], FACE_PRESETS["steel"], attrs.evolve(FACE_PRESETS["titanium"], mass=0.2)):
+    # each face with a surface for the friction law (none is ever assumed): grooved steel irons, a smooth driver
+    steel = FACE_SURFACES["grooved_blasted_steel"]
+    for face in (attrs.evolve(FACE_PRESETS["rigid"], surface=steel), attrs.evolve(FACE_PRESETS["steel"], surface=steel),
+                 attrs.evolve(FACE_PRESETS["titanium"], mass=0.2, surface=FACE_SURFACES["smooth_titanium"])):
         for friction in (0.1, 0.4, 0.6):
             for angle in np.radians(np.linspace(2.0, 70.0, n_angles)):
                 for spin in (0.0, 200.0):
@@ -69,7 +72,8 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
     cases where the mobility couples the normal and tangential directions and the slip turns.
     """
     symmetric = ClubHead(mass=0.2, inertia=(3.0e-4, 4.5e-4, 2.5e-4), center_of_mass=(0.0, -0.003, 0.035),
-                         loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material)
+                         loft=np.radians(10.0), bulge_radius=0.3, material=CLUB_PRESETS["driver"].material,
+                         surface=FACE_SURFACES["smooth_titanium"])
     scenes = []
     for club in (CLUB_PRESETS["driver"], symmetric):
         face = Scene.face_of(club)
@@ -81,7 +85,7 @@ def reference_inputs_3d() -> dict[str, np.ndarray]:
                     scenes.append(Scene.from_delivery(BALL_PRESETS["urethane_tour"], face,
                                                       Contact(friction, restitution), delivery, 0.0, club,
                                                       Strike(toe, high)))
-    # the inputs every scene gives (the symmetric head has no face surface for the friction law)
+    # the inputs every scene gives
     keys = set.intersection(*(set(scene.inputs()) for scene in scenes))
     return {key: np.array([scene.inputs()[key] for scene in scenes]) for key in keys}
 

@@ -42,6 +42,8 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     # the air of the ball flight's conditions: "15 degC" and "59 degF" are read as temperatures (registry below)
     "temperature": ("K", "K", "a temperature"),
     "dimensionless": ("dimensionless", "dimensionless", "a number"),
+    # sqrt(k rho c) of a face's or a cover's material (the friction law's flash temperature)
+    "effusivity": ("J/(m**2*K*s**0.5)", "J m-2 K-1 s-1/2", "a thermal effusivity sqrt(k rho c)"),
 }
 
 #: Per dimension, the unit people write it in and that unit's size in SI: the example a refused bare number is
@@ -49,7 +51,7 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
 EXAMPLE_UNITS: dict[str, tuple[str, float]] = {
     "length": ("mm", 1e-3), "mass": ("g", 1e-3), "pressure": ("MPa", 1e6), "speed": ("mph", 0.44704),
     "angle": ("deg", math.pi / 180.0), "angular_speed": ("rpm", math.pi / 30.0), "time": ("ms", 1e-3),
-    "inertia": ("g*cm**2", 1e-7), "inverse_speed": ("s/m", 1.0),
+    "inertia": ("g*cm**2", 1e-7), "inverse_speed": ("s/m", 1.0), "effusivity": ("J/(m**2*K*s**0.5)", 1.0),
     "temperature": ("degC", 1.0),  # an offset unit: _example adds its zero, 273.15 K, instead of multiplying
 }
 

@@ -130,7 +130,7 @@ INPUTS: dict[str, InputSpec] = {
                                   _surface_value("groove_land"), low=0.0, low_open=True),
     "face_water_film": InputSpec("face.surface.water_film", "m", "length", "water film on the face (0: dry)",
                                  _surface_value("water_film"), low=0.0, high=1e-3),
-    "face_effusivity": InputSpec("face.surface.effusivity", "J m-2 K-1 s-1/2", "dimensionless",
+    "face_effusivity": InputSpec("face.surface.effusivity", "J m-2 K-1 s-1/2", "effusivity",
                                  "thermal effusivity sqrt(k rho c) of the face", _surface_value("effusivity"),
                                  low=0.0, low_open=True, high_open=True),
     "speed": InputSpec("impact.speed", "m/s", "speed", "impact speed V along the path", _attr("impact", "speed"),
@@ -282,10 +282,12 @@ INPUT_BY_PATH["club.mass"] = "club_mass"
 #: words, not numbers: a study says them once (a swept definition would mix two meanings of one number)
 for _path in ("delivery.loft_at", "delivery.club_reference"):
     del INPUT_BY_PATH[_path]
-#: the face surface comes with the club (materials.FACE_SURFACES) and the cover's melting and effusivity with the
-#: ball preset: no study key sets them (a temperature rise is not a temperature, and effusivity has no unit here)
-for _path in [path for path in INPUT_BY_PATH if path.startswith("face.surface.")] + [
-        "ball.cover_melt_rise", "ball.cover_effusivity"]:
+#: the face's surface is a study input of the club block (club.surface.*, as face.surface.* of a face block); the
+#: cover's melting and effusivity come with the ball preset: no study key sets them (a temperature rise is not a
+#: temperature)
+for _path in [path for path in INPUT_BY_PATH if path.startswith("face.surface.")]:
+    INPUT_BY_PATH["club" + _path[len("face"):]] = INPUT_BY_PATH[_path]
+for _path in ("ball.cover_melt_rise", "ball.cover_effusivity"):
     del INPUT_BY_PATH[_path]
 #: swept paths a study may not set (they are parts of a tensor or vector checked as a whole)
 for _path in [path for path in INPUT_BY_PATH if path.startswith(("club.inertia.", "club.center_of_mass."))]:

@@ -6,6 +6,7 @@ from impactlab.errors import ModelInputError
 from impactlab.validators import check
 
 from impactlab.physics import friction_laws
+from impactlab.scene.materials import FACE_SURFACES
 
 from impactlab.physics.contact import GEOMETRY_INPUTS
 from impactlab.physics.delivery import DELIVERY_INPUTS
@@ -78,6 +79,8 @@ FRICTION_LAW_DOC = """friction_law : str
         case's Hertz history; a water film squeezed out through the grooves; the cover's shear strength softened by
         its flash temperature where the ball gives a melting cover. Reads the ball's ``shear_strength`` and
         ``cover_modulus`` and the face's surface (club presets carry one)."""
+#: the face surface's inputs the friction law needs (face_effusivity as well where the cover melts)
+SURFACE_INPUTS = ("face_roughness_slope", "face_roughness", "face_groove_land", "face_water_film")
 #: inputs the friction law reads when it is switched on (besides the ball's and face's elastic constants)
 FRICTION_INPUTS = frozenset(friction_laws.LAW_INPUTS)
 
@@ -92,11 +95,27 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
     needed = {"ball_shear_strength", "ball_cover_modulus"} | MATERIAL_OPTIONAL
     melting = "ball_cover_melt_rise" in inputs and np.any(np.isfinite(inputs["ball_cover_melt_rise"]))
     if melting:
-        needed |= {"ball_cover_effusivity", "face_effusivity"}
+        needed |= {"ball_cover_effusivity"}
     missing = sorted(needed - set(inputs))
     if missing:
         raise ModelInputError(
             f"friction_law: {law} needs the ball's cover (shear_strength, cover_modulus: the urethane_tour and "
             f"two_piece_ionomer presets carry them), the ball's and face's elastic constants"
-            f"{' and both thermal effusivities (a melting cover)' if melting else ''}; missing: {', '.join(missing)}")
+            f"{' and the cover effusivity (a melting cover)' if melting else ''}; missing: {', '.join(missing)}")
+    surface = SURFACE_INPUTS + (("face_effusivity",) if melting else ())
+    # a face without a surface is not taken as smooth and dry: the law's answer rests on it (docs/models.md)
+    lacking = np.zeros(n, bool)
+    for name in surface:
+        lacking |= np.isnan(np.broadcast_to(np.asarray(inputs[name], float), (n,))) if name in inputs else True
+    if np.any(lacking):
+        cases = np.flatnonzero(lacking)
+        which = "every case" if cases.size == n else "case(s) " + ", ".join(str(i) for i in cases[:5]) + (
+            " ..." if cases.size > 5 else "")
+        raise ModelInputError(
+            f"friction_law: {law} needs the face's surface (its texture, grooves, water and effusivity), and the "
+            f"club of {which} has none; give it one: in a study, club: {{surface: "
+            f"{' | '.join(FACE_SURFACES)}}} or its fields (roughness_slope, roughness, groove_land, effusivity; "
+            f"water_film for a wet face), or surface: in a club spec sheet; in Python, Face(surface=...) or "
+            f"ClubHead(surface=...) with impactlab.scene.materials.FACE_SURFACES. A face is never assumed smooth "
+            f"and dry")
     return friction_laws.effective_friction(law, inputs, state, restitution)

@@ -160,7 +160,8 @@ def test_adhesion_law_in_its_constant_limit_is_coulomb_with_that_mu(name, option
     ploughing = 3.0 / 16.0 * (1.0 - e_ball**2) * slope
     tau = (0.3 - ploughing) * stiff * slope / np.sqrt(8.0 / np.pi)
     law_inputs = dict(inputs, ball_shear_strength=tau, ball_cover_modulus=np.full(n, modulus),
-                      face_roughness_slope=np.full(n, slope), ball_cover_melt_rise=np.full(n, np.inf))
+                      face_roughness_slope=np.full(n, slope), ball_cover_melt_rise=np.full(n, np.inf),
+                      face_roughness=0.0, face_groove_land=np.inf, face_water_film=0.0)  # a dry face, given
     law = get_model(name)(friction_law="adhesion", **options).compute(law_inputs, OUTPUTS)
     plain = get_model(name)(**options).compute(_with(inputs, friction=0.3), OUTPUTS)
     for output in OUTPUTS:
@@ -187,7 +188,8 @@ def test_the_cover_and_the_face_move_friction_the_way_the_physics_says():
     state = CaseInputs(wedge).contact_state()
     groove = FACE_SURFACES["grooved_blasted_steel"]
     surface = {"face_roughness_slope": groove.roughness_slope, "face_roughness": groove.roughness,
-               "face_groove_land": groove.groove_land, "face_effusivity": groove.effusivity}
+               "face_groove_land": groove.groove_land, "face_effusivity": groove.effusivity,
+               "face_water_film": groove.water_film}
 
     def mu(ball, **changes):
         b = BALL_PRESETS[ball]

@@ -611,3 +611,48 @@ def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):
     # GSPro messages carry no club: refused with the reason, not fitted on a guessed club
     assert main(["validate", "--dataset", str(DATA / "gspro_open_connect.json"), "--model", "rigid_coulomb"]) == 2
     assert "no club named" in capsys.readouterr().err
+
+
+def test_shots_does_not_count_a_negative_speed_or_spin_as_ball_data(tmp_path, capsys):
+    """A ball speed of -123.8 mph or a spin of -5492 rpm is no measurement: the shot table refuses it, so the shots
+    report must not count it as ball data, and must say which line and why."""
+    path = tmp_path / "signs.csv"
+    path.write_text("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Ball Speed [mph],Launch Angle [deg],"
+                    "Spin Rate [rpm]\n"
+                    "7 Iron,85.4,-0.9,19.7,123.8,15.4,5492\n"
+                    "7 Iron,85.4,-0.9,19.7,-123.8,15.4,5492\n"
+                    "7 Iron,85.4,-0.9,19.7,123.8,15.4,-5492\n")
+    assert main(["shots", str(path)]) == 0
+    report = capsys.readouterr().out
+    assert "ball data (ball speed, launch angle, spin): 1 row(s), 1 with a spin" in report
+    assert "not ball data, line 3: ball_speed: expected a value >= 0" in report
+    assert "not ball data, line 4: spin_rate: expected a value >= 0" in report
+    with pytest.raises(StudyError, match=r"signs.csv:3: ball_speed: expected a value >= 0"):
+        read_session(path).shot_table()
+
+
+def test_an_unbracketed_units_row_is_refused_with_the_bracketed_form_shown():
+    text = ("Club,Club Speed,Attack Angle,Dyn. Loft,Ball Speed,Launch Angle,Spin Rate\n"
+            "[],mph,deg,deg,mph,deg,rpm\n"
+            "7 Iron,85.4,-0.9,19.7,123.8,15.4,5492\n")
+    with pytest.raises(StudyError) as refused:
+        read_session_text(text, "plain.csv")
+    message = str(refused.value)
+    assert "plain.csv:1:2 (Club Speed): expected a unit" in message
+    assert "'Club Speed [mph]'" in message and "'[mph]'" in message and "in brackets" in message
+    # the bracketed row is read: the form the message shows is the form that works
+    fixed = read_session_text(text.replace("[],mph,deg,deg,mph,deg,rpm", "[],[mph],[deg],[deg],[mph],[deg],[rpm]"),
+                              "plain.csv")
+    assert fixed.values["club_speed"][0] == pytest.approx(85.4 * MPH)
+
+
+def test_gspro_units_are_read_whatever_their_case_and_meters_still_refused():
+    """'yards' and 'YARDS' are the documented Yards (case is not a unit); Meters in any case stays refused."""
+    text = (DATA / "gspro_open_connect.json").read_text(encoding="utf-8")
+    plain = read_session_text(text, "capture.json")
+    for spelling in ("yards", "YARDS", " Yards "):
+        lower = read_session_text(text.replace('"Units": "Yards"', f'"Units": "{spelling}"'), "capture.json")
+        assert lower.size == plain.size == 5
+        np.testing.assert_array_equal(lower.values["ball_speed"], plain.values["ball_speed"])
+    with pytest.raises(StudyError, match=r"Units: expected 'Yards' or '', got .*'meters'.*not guessed"):
+        read_session_text(text.replace('"Units": "Yards"', '"Units": "meters"'), "capture.json")

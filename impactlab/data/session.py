@@ -283,9 +283,11 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                 unit = layout.implied_units.get(_norm(split_header(cell)[0]))
             where = f"{file}:{header_line}:{column + 1} ({cell})"
             if unit is None and FIELDS[field] != "dimensionless":
-                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]} (in the header, "
-                                f"'{split_header(cell)[0]} [unit]', or a units row under it); a number without "
-                                f"its unit is not read (115 could be mph or m/s)")
+                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]}: in brackets, in the "
+                                f"header ('{split_header(cell)[0]} [mph]'-style: '{split_header(cell)[0]} [unit]') or "
+                                f"in a units row right under it ('[mph]', '[deg]', '[rpm]': every unit in brackets, "
+                                f"else the row is read as a shot); a number without its unit is not read (115 could "
+                                f"be mph or m/s)")
                 continue
             try:
                 factor = _unit_factor(unit or "", FIELDS[field], where)
@@ -314,6 +316,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     required = layout.required or {"column": None, "values": []}
     required_column = names.index(_norm(required["column"])) if required["column"] and \
         _norm(required["column"]) in names else None
+    required_values = {_norm(str(value)) for value in required["values"]}
     refused = []
     shots, shot_lines = [], []
     for cells, line in zip(body, body_lines):
@@ -327,7 +330,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                             f"a summary row ({cells[column].strip()!r}), not a shot"))
             continue
         if required_column is not None and required_column < len(cells) and \
-                cells[required_column].strip() not in [str(v) for v in required["values"]]:
+                _norm(cells[required_column]) not in required_values:  # 'yards' is Yards: case is not the unit
             refused.append((line, cells[required_column].strip()))
             continue
         if len(cells) != width:

@@ -15,6 +15,7 @@ import numpy as np
 from impactlab.io.safe_output import write_atomically
 from impactlab.units import DIMENSIONS, unit_factor
 from impactlab.data.session_layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
+from impactlab.scene.plausibility import MAGNITUDES, wrong_sign
 
 if TYPE_CHECKING:  # annotations only: impactlab.data.session imports this module to re-export its functions
     from impactlab.data.session import Session
@@ -100,9 +101,20 @@ def describe(session: Session, include_flagged: bool = False) -> str:
         out.append(f"    ... and {len(reasons) - 8} other reasons")
     ball = np.isfinite(session.values["ball_speed"]) & np.isfinite(session.values["vertical_launch_angle"]) & \
         np.isfinite(session.values["spin_rate"])
+    # a ball speed or spin below zero is no measurement (the shot table refuses it): not ball data, said why
+    signs = {key: session.values[key] for key in MAGNITUDES}
+    wrong = [(row, problems) for row in range(session.size)
+             if (problems := wrong_sign(signs, row, f"line {session.lines[row]}"))]
+    for row, _ in wrong:
+        ball[row] = False
     measured_spin = ball & ~session.flagged("spin_rate")
     out.append(f"  ball data (ball speed, launch angle, spin): {int(ball.sum())} row(s), {int(measured_spin.sum())} "
                f"with a spin that is not flagged")
+    for _, problems in wrong[:10]:
+        out.append(f"    not ball data, {'; '.join(problems)}")
+    if wrong:
+        out.append(f"    ({len(wrong)} row(s) with a magnitude below zero: the shot table of validate and fit refuses "
+                   f"the file until they are fixed or removed)")
     square = keep & ~(np.isfinite(session.values["face_angle"]) & np.isfinite(session.values["path"]))
     if square.any():
         out.append(f"  {int(square.sum())} usable row(s) without face angle or club path: compared on ball speed, "

@@ -28,7 +28,8 @@ class CaseInputs(Mapping):
     Parameters
     ----------
     values : mapping, Scene or sequence of Scene
-        Input name -> scalar or 1-D array (SI), or scenes (their common inputs). Names must come from
+        Input name -> scalar or 1-D array (SI), or scenes (their common inputs; the face surface's inputs where
+        any scene gives them, NaN for a scene without a surface, which a friction law refuses). Names must come from
         :data:`impactlab.vocabulary.INPUTS`, arrays have one length (scalars are repeated), and every value
         must lie in its input's range; the arrays are copied and made read-only.
     copy : bool
@@ -136,7 +137,14 @@ def _checked_arrays(values: Any, copy: bool = True) -> tuple[dict[str, np.ndarra
             raise TypeError("inputs must be a mapping of input arrays, a Scene or a sequence of Scenes")
         per_scene = [scene.inputs() for scene in scenes]
         common = set.intersection(*(set(each) for each in per_scene))
-        values = {name: np.array([each[name] for each in per_scene], dtype=float) for name in common}
+        # the face's surface is read only by a friction law, which refuses the cases without one: NaN says "not
+        # given" for those, rather than one scene without a surface dropping it from every case
+        partial = {name for each in per_scene for name in each if INPUTS[name].path.startswith("face.surface.")}
+        values = {name: np.array([each.get(name, np.nan) for each in per_scene], dtype=float)
+                  for name in common | partial}
+        unset = partial - common
+    else:
+        unset = set()
     arrays = {}
     for name, value in values.items():
         if name not in INPUTS:
@@ -152,6 +160,8 @@ def _checked_arrays(values: Any, copy: bool = True) -> tuple[dict[str, np.ndarra
     for name, array in arrays.items():
         spec = INPUTS[name]
         bad = spec.out_of_range(array)
+        if name in unset:
+            bad &= ~np.isnan(array)
         if np.any(bad):
             raise FieldError(spec.path, spec.range_text(), float(array[np.argmax(bad)]))
         if copy or array.size != n_cases:

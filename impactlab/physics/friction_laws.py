@@ -84,9 +84,9 @@ HISTORY_POINTS = 400
 #: the inputs the adhesion law reads (all optional inputs of the models; their defaults below)
 LAW_INPUTS = ("ball_shear_strength", "ball_cover_modulus", "ball_cover_melt_rise", "ball_cover_effusivity",
               "face_roughness_slope", "face_roughness", "face_groove_land", "face_water_film", "face_effusivity")
-#: what a missing surface input means: a smooth (s = 0), dry face without grooves; no melting of the cover
-SURFACE_DEFAULTS = {"face_roughness_slope": 0.0, "face_roughness": 0.0, "face_groove_land": np.inf,
-                    "face_water_film": 0.0, "ball_cover_melt_rise": np.inf}
+#: what a missing cover input means: the cover does not melt. The face's surface has no default: a face is never
+#: assumed smooth and dry (the models refuse a case without one, models/_common.law_friction)
+SURFACE_DEFAULTS = {"ball_cover_melt_rise": np.inf}
 
 
 def area_fraction(k):
@@ -317,7 +317,7 @@ def effective_friction(law, inputs, state, restitution=None):
     inputs : mapping
         The case inputs (SI arrays): ``friction`` for ``"coulomb"``; for ``"adhesion"`` the ball's and face's
         elastic constants, ``ball_shear_strength``, ``ball_cover_modulus`` and the surface inputs of
-        :data:`LAW_INPUTS` (missing surface inputs: :data:`SURFACE_DEFAULTS`).
+        :data:`LAW_INPUTS` (the face's surface inputs required; a missing melt rise: :data:`SURFACE_DEFAULTS`).
     state : mapping
         The contact state (:func:`impactlab.physics.contact.contact_state`): mobility, normal and slip speed,
         relative radius.
@@ -335,6 +335,8 @@ def effective_friction(law, inputs, state, restitution=None):
     n = state["normal_speed"].size
 
     def value(name):
+        if name not in inputs and name not in SURFACE_DEFAULTS:
+            raise KeyError(f"friction law input {name!r} not given (a face is never assumed smooth and dry)")
         return np.broadcast_to(np.asarray(inputs[name] if name in inputs else SURFACE_DEFAULTS[name], float), (n,))
 
     modulus = hertz.effective_modulus(inputs["ball_youngs_modulus"], inputs["ball_poisson_ratio"],

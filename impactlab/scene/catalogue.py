@@ -20,7 +20,7 @@ import numpy as np
 
 from impactlab.errors import FieldError
 from impactlab.scene.clubs import INERTIA_AXES, INERTIA_COMPONENTS, ClubHead
-from impactlab.scene.materials import FACE_SURFACES, MATERIAL_PRESETS
+from impactlab.scene.materials import FACE_SURFACES, MATERIAL_PRESETS, face_surface
 from impactlab.units import to_si
 
 
@@ -339,7 +339,12 @@ def club_key(name: str) -> str | None:
 #: keys of a club spec sheet (YAML): what each is, its dimension
 SPEC_KEYS = {"name": "text", "names": "list of launch-monitor names", "base": "catalogue club", "source": "text",
              "loft": "angle", "lie": "angle", "mass": "mass", "moi": "inertia", "cg": "length", "bulge": "length",
-             "roll": "length", "face": "material", "restitution_gain": "dimensionless"}
+             "roll": "length", "face": "material", "restitution_gain": "dimensionless",
+             "surface": "face surface (a preset's name, or {preset, roughness_slope, roughness, groove_land, "
+                        "water_film, effusivity})"}
+#: dimension of each field of a spec sheet's surface mapping
+_SURFACE_DIMENSIONS = {"roughness_slope": "dimensionless", "roughness": "length", "groove_land": "length",
+                       "water_film": "length", "effusivity": "effusivity"}
 #: normalised launch-monitor name -> key of a user club (filled by :func:`user_clubs`)
 _USER_NAMES: dict[str, str] = {}
 
@@ -354,7 +359,8 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
     Every dimensional value carries its unit (``loft: 10.5 deg``, ``mass: 203 g``, ``moi: {up: 5200 g cm^2,
     toe: 2900 g cm^2, target: 4000 g cm^2}``, ``cg: {toe: 0 mm, high: 2 mm, depth: 38 mm}``, ``bulge: 305 mm``);
     ``base`` names a catalogue club whose values fill what the sheet leaves out (default: none, then loft, mass,
-    moi and cg are needed); ``face`` a material preset (titanium, steel).
+    moi and cg are needed); ``face`` a material preset (titanium, steel); ``surface`` the face's surface for the
+    friction law (a name of ``FACE_SURFACES``, or a mapping of a preset and/or fields with units over the base's).
     """
 
     if not isinstance(document, dict):
@@ -408,6 +414,8 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
     if "restitution_gain" in document:
         fields["restitution_gain"] = quantity(document["restitution_gain"], "dimensionless",
                                               f"{where}.restitution_gain")
+    if "surface" in document:
+        fields["surface"] = _spec_surface(document["surface"], f"{where}.surface", base.surface if base else None)
     name = str(document.get("name", "user club"))
     source = str(document.get("source", "a user's spec sheet"))
     if base is not None:
@@ -423,6 +431,18 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
     if isinstance(names, str) or not all(isinstance(n, str) for n in names):
         raise FieldError(f"{where}.names", "a list of the names launch monitors give this club", names)
     return head, tuple(names)
+
+
+def _spec_surface(value, where: str, base):
+    """A spec sheet's ``surface``: a preset's name, or a mapping of a preset and/or fields, each with its unit."""
+    if isinstance(value, str):
+        return face_surface(value, {}, base, where, preset_path=where)
+    if not isinstance(value, dict) or set(value) - {"preset", *_SURFACE_DIMENSIONS}:
+        raise FieldError(where, "a face surface preset's name or a mapping of preset, "
+                         + ", ".join(_SURFACE_DIMENSIONS), value, choices=FACE_SURFACES)
+    fields = {key: to_si(item, _SURFACE_DIMENSIONS[key], f"{where}.{key}") for key, item in value.items()
+              if key != "preset"}
+    return face_surface(value.get("preset"), fields, base, where)
 
 
 class user_clubs:

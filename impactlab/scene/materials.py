@@ -248,7 +248,7 @@ class Face:
                               validator=positive_or_inf("a positive club-head mass in kg (inf: a fixed face)"))
     name: str = ""
     source: str = ""
-    #: the surface the friction law reads (None: not given; the law then takes a smooth, dry face)
+    #: the surface the friction law reads (None: not given; the law then refuses the face, never smooth and dry)
     surface: FaceSurface | None = None
 
     def __attrs_post_init__(self):
@@ -386,3 +386,51 @@ def face_preset(name: str) -> Face:
         return FACE_PRESETS[name]
     except (KeyError, TypeError):
         raise FieldError("preset", "a face preset name", name, choices=FACE_PRESETS) from None
+
+
+#: the fields of a :class:`FaceSurface` a study or a club spec sheet may give
+SURFACE_FIELDS = ("roughness_slope", "roughness", "groove_land", "water_film", "effusivity")
+#: what a surface given without a preset to start from must say (left out, water_film is 0: a dry face)
+SURFACE_REQUIRED = ("roughness_slope", "roughness", "groove_land", "effusivity")
+
+
+def face_surface(preset: str | None, fields: dict, base: FaceSurface | None = None, where: str = "surface",
+                 preset_path: str | None = None) -> FaceSurface:
+    """A face's surface for the friction law: a preset of :data:`FACE_SURFACES` (or ``base``, the club preset's
+    own), with the fields given over it.
+
+    Parameters
+    ----------
+    preset : str or None
+        A name of :data:`FACE_SURFACES`; None: start from ``base``.
+    fields : dict
+        Fields of :data:`SURFACE_FIELDS` in SI (roughness, groove_land and water_film [m], effusivity
+        [J m^-2 K^-1 s^-1/2], roughness_slope [1]) that replace the preset's.
+    base : FaceSurface, optional
+        The surface the club already has (a club preset's). Without it or a preset, every field of
+        :data:`SURFACE_REQUIRED` must be given: a smooth or dry face is never assumed.
+    where, preset_path : str
+        Paths of the surface and of its preset name for error messages.
+
+    Raises
+    ------
+    FieldError
+        An unknown preset, a missing field, or a value out of its range.
+    """
+    if preset is not None:
+        if not isinstance(preset, str) or preset not in FACE_SURFACES:
+            raise FieldError(preset_path or f"{where}.preset", "a face surface preset", preset, choices=FACE_SURFACES)
+        base = FACE_SURFACES[preset]
+    if base is None:
+        missing = [key for key in SURFACE_REQUIRED if key not in fields]
+        if missing:
+            raise FieldError(f"{where}.{missing[0]}", f"the face's {missing[0]} (or a surface preset: "
+                             f"{', '.join(FACE_SURFACES)}), with its unit", "nothing")
+        base = FaceSurface(name="a surface given in full", source="given in the study or spec sheet")
+    if not fields:
+        return base
+    given = "; ".join(f"{key} {value:g}" for key, value in fields.items())
+    try:
+        return attrs.evolve(base, **fields, source=f"{base.source} Given over it (SI): {given}.".strip())
+    except FieldError as exc:
+        raise exc.at(prefix=where) from None

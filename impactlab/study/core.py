@@ -25,6 +25,7 @@ from impactlab.study.limits import check_cases
 from impactlab.model.base import ImpactModel
 from impactlab.model.registry import available, get_model
 from impactlab.scene.core import Scene
+from impactlab.scene.materials import FACE_SURFACES
 # the scene blocks live in study_scene; their builders stay importable from here
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike)
@@ -296,6 +297,7 @@ def _build_study(document, text: str, file: str | None) -> Study:
     check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
     models = _build_models(document["models"])
+    _check_face_surface(scene, sweep, models, "club" if "club" in document else "face")
     sensitivity = None
     if "sensitivity" in document:
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
@@ -304,6 +306,21 @@ def _build_study(document, text: str, file: str | None) -> Study:
                  source=text, file=file,
                  plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]),
                  sensitivity=sensitivity)
+
+
+def _check_face_surface(scene, sweep, models, block: str) -> None:
+    """A friction law reads the face's surface: a face without one is refused here, at the study's line, rather
+    than taken as smooth and dry (a club preset's sweep gives each club its own, which every preset has)."""
+    law = next((entry for entry in models if getattr(entry.model.options, "friction_law", "coulomb") != "coulomb"),
+               None)
+    swept = any(field.input == "face_roughness_slope" for axis in sweep for field in axis.fields)
+    if law is None or swept or getattr(scene.face, "surface", None) is not None:
+        return
+    club = scene.club.name if scene.club is not None and scene.club.name else f"the study's {block}"
+    raise FieldError(f"{block}.surface", f"the face's surface for friction_law: {law.model.options.friction_law} "
+                     f"(model {law.id}): a preset ({', '.join(FACE_SURFACES)}) or its fields roughness_slope, "
+                     f"roughness, groove_land, effusivity (water_film for a wet face), each with its unit; a face is "
+                     f"never taken as smooth and dry", f"none ({club} has no surface)", choices=FACE_SURFACES)
 
 
 def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:

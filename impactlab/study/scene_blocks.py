@@ -18,13 +18,14 @@ from impactlab.scene.catalogue import club_preset
 from impactlab.scene.clubs import INERTIA_COMPONENTS, ClubHead, Strike
 from impactlab.errors import FieldError
 from impactlab.scene.materials import (
-    MATERIAL_PRESETS, RESTITUTION_LAWS, Ball, Face, Material, RestitutionLaw, ball_preset, face_preset,
+    MATERIAL_PRESETS, RESTITUTION_LAWS, SURFACE_FIELDS, Ball, Face, Material, RestitutionLaw, ball_preset,
+    face_preset, face_surface,
 )
 from impactlab.physics.contact import CLUB_REFERENCES
 from impactlab.scene.core import HANDEDNESS, LOFT_AT, Contact, Delivery, Impact, Scene
 from impactlab.scene.flight import Conditions
 from impactlab.study.schema import (BallBlock, CenterBlock, ClubBlock, ConditionsBlock, ContactBlock, DeliveryBlock,
-                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock)
+                                    FaceBlock, ImpactBlock, RestitutionBlock, StrikeBlock, SurfaceBlock)
 from impactlab.study.structuring import structure
 
 
@@ -104,6 +105,18 @@ def _restitution_law(law, path: str) -> RestitutionLaw:
     return _construct(RestitutionLaw, path, kind=law.law, source="given in the study", **fields)
 
 
+def _surface(spec, path: str, base):
+    """The face's surface a block gives: a preset's name, or a SurfaceBlock of a preset and/or fields over ``base``
+    (the club preset's surface); ``base`` where the block gives none."""
+    if spec is None:
+        return base
+    if isinstance(spec, str):
+        return face_surface(spec, {}, base, path, preset_path=path)
+    assert isinstance(spec, SurfaceBlock), "the schema structures a surface into a name or a SurfaceBlock"
+    fields = {key: getattr(spec, key) for key in SURFACE_FIELDS if getattr(spec, key) is not None}
+    return face_surface(spec.preset, fields, base, path)
+
+
 def build_face(value: Any, path: str = "face") -> Face:
     """A face from a study block: a preset, rigid, or a material, with an optional head mass."""
     block = structure(value, FaceBlock, path)
@@ -114,7 +127,8 @@ def build_face(value: Any, path: str = "face") -> Face:
         raise FieldError(f"{path}.rigid", "either rigid: true or youngs_modulus + poisson_ratio, not both",
                          "both")
     return _construct(Face, path, material=material, rigid=rigid, mass=base.mass if block.mass is None else block.mass,
-                      name=base.name, source=base.source)
+                      name=base.name, source=base.source,
+                      surface=_surface(block.surface, f"{path}.surface", base.surface))
 
 
 def _inertia(value, path: str, base) -> tuple | None:
@@ -183,7 +197,8 @@ def build_club(value: Any, path: str = "club") -> ClubHead:
     if block.rigid and (block.youngs_modulus is not None or block.material is not None):
         raise FieldError(f"{path}.rigid", "either rigid: true or a face material, not both", "both")
     return _construct(ClubHead, path, material=material, name=base.name if base else "",
-                      source=base.source if base else "", surface=base.surface if base else None, **fields)
+                      source=base.source if base else "",
+                      surface=_surface(block.surface, f"{path}.surface", base.surface if base else None), **fields)
 
 
 def build_strike(value: Any, path: str = "strike") -> Strike:

@@ -40,9 +40,13 @@ Name = NewType("Name", str)
 Restitution = NewType("Restitution", object)
 #: a head's inertia: a :class:`InertiaBlock` or a 3x3 list of lists
 InertiaSpec = NewType("InertiaSpec", object)
+#: a face's surface for the friction law: a name of ``materials.FACE_SURFACES`` or a :class:`SurfaceBlock`
+SurfaceSpec = NewType("SurfaceSpec", object)
+#: a thermal effusivity sqrt(k rho c) with its unit ('8030 J/(m**2*K*s**0.5)')
+Effusivity = NewType("Effusivity", float)
 _DIMENSIONS = {Length: "length", Mass: "mass", Pressure: "pressure", Speed: "speed", Angle: "angle",
                Spin: "angular_speed", Inertia: "inertia", Number: "dimensionless", Temperature: "temperature",
-               InverseSpeed: "inverse_speed"}
+               InverseSpeed: "inverse_speed", Effusivity: "effusivity"}
 
 
 class SI(float):
@@ -87,6 +91,19 @@ class RestitutionBlock:
 
 
 @attrs.frozen
+class SurfaceBlock:
+    """``club.surface`` (or ``face.surface``) as a mapping: a surface preset and/or its fields (docs/models.md)."""
+
+    _what = "the face's surface"
+    preset: Name | None = None
+    roughness_slope: Number | None = None
+    roughness: Length | None = None
+    groove_land: Length | None = None
+    water_film: Length | None = None
+    effusivity: Effusivity | None = None
+
+
+@attrs.frozen
 class FaceBlock:
     """The ``face`` block: a preset, ``rigid``, a material and an optional head mass."""
 
@@ -96,6 +113,7 @@ class FaceBlock:
     youngs_modulus: Pressure | None = None
     poisson_ratio: Number | None = None
     mass: Mass | None = None
+    surface: SurfaceSpec | None = None
 
 
 @attrs.frozen
@@ -143,6 +161,7 @@ class ClubBlock:
     restitution_gain: Number | None = None
     face_width: Length | None = None
     face_height: Length | None = None
+    surface: SurfaceSpec | None = None
 
 
 @attrs.frozen
@@ -294,9 +313,9 @@ class ParameterRangeBlock:
     spread: Any = None
 
 
-BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, FaceBlock, InertiaBlock, CenterBlock, ClubBlock, StrikeBlock,
-          ContactBlock, ImpactBlock, DeliveryBlock, ConditionsBlock, RangeBlock, PlotBlock, SensitivityBlock,
-          ParameterRangeBlock)
+BLOCKS = (StudyBlock, BallBlock, RestitutionBlock, SurfaceBlock, FaceBlock, InertiaBlock, CenterBlock, ClubBlock,
+          StrikeBlock, ContactBlock, ImpactBlock, DeliveryBlock, ConditionsBlock, RangeBlock, PlotBlock,
+          SensitivityBlock, ParameterRangeBlock)
 
 
 def keys_of(cls: type) -> tuple[str, ...]:
@@ -314,7 +333,7 @@ def keys_of(cls: type) -> tuple[str, ...]:
     return tuple(field.name for field in attrs.fields(cls))
 
 
-__all__ = ["keys_of", "SI", "BallBlock", "RestitutionBlock", "FaceBlock", "InertiaBlock",
+__all__ = ["keys_of", "SI", "BallBlock", "RestitutionBlock", "SurfaceBlock", "FaceBlock", "InertiaBlock",
            "CenterBlock", "ClubBlock", "StrikeBlock", "ContactBlock", "ImpactBlock", "DeliveryBlock", "ConditionsBlock",
            "RangeBlock",
            "StudyBlock", "PlotBlock", "SensitivityBlock", "ParameterRangeBlock",

@@ -30,7 +30,7 @@ from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
 from impactlab.study.schema import (_DIMENSIONS, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
-                                    Name, Restitution, RestitutionBlock, keys_of)
+                                    Name, Restitution, RestitutionBlock, SurfaceBlock, SurfaceSpec, keys_of)
 from impactlab.study.yaml_lines import format_path, parse_path
 from impactlab.units import to_si
 
@@ -82,6 +82,13 @@ def _restitution(value, _):
     return to_si(value, "dimensionless")
 
 
+def _surface_spec(value, _):
+    """A face's surface: a preset's name (looked up by the builder), or a SurfaceBlock of a preset and/or fields."""
+    if isinstance(value, str):
+        return value
+    return _hook(SurfaceBlock)(value, SurfaceBlock)
+
+
 def _inertia_spec(value, _):
     """A head's inertia: the tensor as a 3x3 list (each entry located as ``[i][j]``), or an InertiaBlock."""
     if not isinstance(value, list):
@@ -124,7 +131,7 @@ def _converter() -> Converter:
         converter.register_structure_hook(type_, _quantity_hook(dimension))
     hooks: tuple[tuple[Any, Any], ...] = ((Flag, _flag), (Count, _count),
                                           (Name, lambda v, _: v), (Restitution, _restitution),
-                                          (InertiaSpec, _inertia_spec))
+                                          (InertiaSpec, _inertia_spec), (SurfaceSpec, _surface_spec))
     for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
     converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,

@@ -118,7 +118,8 @@ def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]],
         block = dict(trial.get(section) or {})
         trial[section] = block
         for part in inner:
-            block[part] = dict(block.get(part) or {})
+            given = block.get(part)  # a surface named by its preset: that preset, the swept field over it
+            block[part] = {"preset": given} if isinstance(given, str) else dict(given or {})
             block = block[part]
         block[key] = SI(values[index])
     build_scene(trial)
