@@ -631,6 +631,19 @@ def test_study_flight_equals_fly_on_the_models_launch():
         assert result[name].attrs["aerodynamic_model"] == aerodynamics.DEFAULT_MODEL
 
 
+def test_the_plan_names_the_air_model_the_run_flies_with():
+    """`impactlab run --plan` said 'Smits & Smith 1994 aerodynamics' after measured_fit became the default: the plan's
+    words must name the model the result then records on its flight variables, and no other air model."""
+    import impactlab
+    from impactlab.run.runner import plan_study
+
+    study = _golf_study(LAUNCH + ["carry_distance"])
+    text = plan_study(impactlab.load_study(study)).describe()
+    flown = impactlab.run_study(study).carry_distance.attrs["aerodynamic_model"]
+    assert f"({flown} aerodynamics" in text
+    assert not any(other in text for other in aerodynamics.MODELS if other != flown and flown not in other), text
+
+
 def test_trajectories_fly_with_the_air_model_the_result_names(tmp_path, monkeypatch):
     """A result computed with another air model (an older file) is redrawn with that model, and says so."""
     import impactlab
