@@ -18,6 +18,7 @@ import attrs
 from impactlab.model.derive import FROM_DELIVERY, FROM_FLIGHT, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from impactlab.model.derive import DERIVATION_OPTIONAL, FLIGHT_INPUTS
 from impactlab.errors import ModelInputError
+from impactlab.physics.aerodynamics import DEFAULT_MODEL as DEFAULT_AIR_MODEL
 from impactlab.vocabulary import INPUTS
 
 if TYPE_CHECKING:  # model.base imports this module
@@ -56,7 +57,7 @@ class OutputPlan:
         if self.derived - FROM_FLIGHT:
             parts.append(f"derives {', '.join(sorted(self.derived - FROM_FLIGHT))} from the impulses")
         if self.derived & FROM_FLIGHT:
-            parts.append(f"flies the launch for {', '.join(sorted(self.derived & FROM_FLIGHT))} (Smits & Smith 1994 "
+            parts.append(f"flies the launch for {', '.join(sorted(self.derived & FROM_FLIGHT))} ({DEFAULT_AIR_MODEL} "
                          "aerodynamics; the study's conditions or 15 degC, 101 325 Pa, 50 % humidity, still air)")
         for name, reason in self.missing.items():
             parts.append(f"leaves {name} NaN ({reason})")
