@@ -659,6 +659,15 @@ def test_trajectories_fly_with_the_air_model_the_result_names(tmp_path, monkeypa
     trajectories.plot_trajectories(result, tmp_path / "t.png")
     assert used and set(used) == {"smits_smith_1994"}
     assert "smits_smith_1994 aerodynamics" in conditions(result)
+    # a file from before the outputs named their model was flown with Smits & Smith, the default then
+    del result.carry_distance.attrs["aerodynamic_model"]
+    used.clear()
+    trajectories.plot_trajectories(result, tmp_path / "t2.png")
+    assert set(used) == {"smits_smith_1994"}
+    # a result holding only the launch is flown with today's default
+    used.clear()
+    trajectories.plot_trajectories(result.drop_vars("carry_distance"), tmp_path / "t3.png")
+    assert set(used) == {aerodynamics.DEFAULT_MODEL}
 
 
 def test_study_not_asking_for_the_flight_does_not_compute_it(monkeypatch):

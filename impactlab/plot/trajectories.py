@@ -17,6 +17,9 @@ from impactlab.scene.flight import air_arrays
 from impactlab.model.derive import FLIGHT_INPUTS
 from impactlab.plot.style import _MARKERS, _STYLES, _save, conditions
 
+#: the air model of every flight output written before the outputs named theirs (impactlab before 2026-11-23)
+UNRECORDED_AIR_MODEL = "smits_smith_1994"
+
 #: the launch a trajectory figure needs in a result file (a golf study that asks for them)
 TRAJECTORY_LAUNCH = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "back_spin", "side_spin",
                      "spin_axis")
@@ -70,10 +73,13 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if MODEL_DIM not in dataset.dims:
         dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
     air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
-    # the air model the result's flight outputs were computed with (they record it); a result holding only the
-    # launch is flown with today's default, and the title says which
-    aerodynamics = next((dataset[name].attrs["aerodynamic_model"] for name in FLIGHT_OUTPUTS
-                         if name in dataset.data_vars and "aerodynamic_model" in dataset[name].attrs), DEFAULT_MODEL)
+    # the air model the result's flight outputs were computed with (they record it); flight outputs that record
+    # none come from a file written before they did, when every flight was Smits & Smith's; a result holding only
+    # the launch is flown with today's default. The title says which.
+    flown = [name for name in FLIGHT_OUTPUTS if name in dataset.data_vars]
+    recorded = [dataset[name].attrs["aerodynamic_model"] for name in flown
+                if "aerodynamic_model" in dataset[name].attrs]
+    aerodynamics = recorded[0] if recorded else UNRECORDED_AIR_MODEL if flown else DEFAULT_MODEL
     mass = float(scene.get("ball_mass", BALL_MASS))
     radius = float(scene.get("ball_radius", BALL_RADIUS))
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
