@@ -126,8 +126,7 @@ def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
     """
     session = read_session(path)
     v = session.values
-    spin = v["spin_rate"]
-    spin = np.where(np.isfinite(spin), spin, np.hypot(v["back_spin"], v["side_spin"]))
+    spin = v["spin_rate"]  # the reader already fills it from back and side spin where a row has only those
     axis = np.nan_to_num(v["spin_axis"])
     keep = np.isfinite(v["ball_speed"]) & np.isfinite(v["vertical_launch_angle"]) & np.isfinite(spin) & np.isfinite(
         v["carry_distance"])
