@@ -150,8 +150,9 @@ def build_parser() -> argparse.ArgumentParser:
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
-    shots.add_argument("file", help="a session file: TrackMan, Garmin Golf, Foresight FSX, Rapsodo, FlightScope "
-                                    "export, or an impactlab shot-table CSV")
+    shots.add_argument("file", help="a session file as exported: TrackMan, Garmin Golf, Foresight FSX (CSV or "
+                                    ".session), Rapsodo, FlightScope, Square Golf, a Uneekor report or GSPro Open "
+                                    "Connect messages (JSON), or an impactlab shot-table CSV")
     shots.add_argument("--csv", help="write the normalised table (the vocabulary's names, units in the header)")
     shots.add_argument("--vendor", help="read with this vendor layout (default: recognised from the header)")
     shots.add_argument("--include-flagged", action="store_true",
