@@ -33,7 +33,7 @@ from impactlab.study.datasets import DATASETS
 from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
 from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
-from impactlab.study.sweeps import SweepAxis, SweepField, build_sweep
+from impactlab.study.sweeps import SweepAxis, SweepField, build_sweep, friction_law_entry
 from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
                                   check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
@@ -293,10 +293,10 @@ def _build_study(document, text: str, file: str | None) -> Study:
     if "models" not in document:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
     scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
-    sweep = build_sweep(document)
+    models = _build_models(document["models"])
+    sweep = build_sweep(document, models)
     check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
-    models = _build_models(document["models"])
     _check_face_surface(scene, sweep, models, "club" if "club" in document else "face")
     sensitivity = None
     if "sensitivity" in document:
@@ -311,8 +311,7 @@ def _build_study(document, text: str, file: str | None) -> Study:
 def _check_face_surface(scene, sweep, models, block: str) -> None:
     """A friction law reads the face's surface: a face without one is refused here, at the study's line, rather
     than taken as smooth and dry (a club preset's sweep gives each club its own, which every preset has)."""
-    law = next((entry for entry in models if getattr(entry.model.options, "friction_law", "coulomb") != "coulomb"),
-               None)
+    law = friction_law_entry(models)
     swept = any(field.input == "face_roughness_slope" for axis in sweep for field in axis.fields)
     if law is None or swept or getattr(scene.face, "surface", None) is not None:
         return

@@ -160,16 +160,21 @@ def _ball_preset_inputs(document: Mapping) -> tuple[str, ...]:
 COVER_INPUTS = ("ball_shear_strength", "ball_cover_modulus", "ball_cover_melt_rise", "ball_cover_effusivity")
 
 
-def _uses_friction_law(document: Mapping) -> bool:
-    """Whether a model entry of the study selects a friction law other than Coulomb's (which reads the cover)."""
-    models = document.get("models") or []
-    return isinstance(models, list) and any(isinstance(entry, Mapping) and entry.get("friction_law", "coulomb")
-                                            != "coulomb" for entry in models)
+def friction_law_entry(models):
+    """The first of a study's configured model entries whose friction law is not Coulomb's, or None.
+
+    Such a law reads the ball's cover and the face's surface, which Coulomb friction never does; the sweep and the
+    study's face check both ask this one question of the built entries.
+    """
+    return next((entry for entry in models if getattr(entry.model.options, "friction_law", "coulomb") != "coulomb"),
+                None)
 
 
-def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list[tuple[str, str, list[float]]], list]:
+def _preset_fields(document: Mapping, key: str, names, where: str,
+                   reads_cover: bool) -> tuple[list[tuple[str, str, list[float]]], list]:
     """The inputs of each preset in ``names`` of block ``club`` or ``ball`` (the study's other keys of that block
-    applied), as sweep fields, and the scene of each preset (whose ball carries its restitution law)."""
+    applied), as sweep fields, and the scene of each preset (whose ball carries its restitution law);
+    ``reads_cover``: whether a model's friction law reads the ball's cover."""
     block, mark = PRESET_SWEEPS[key]
     if not isinstance(names, list) or not names or not all(isinstance(name, str) for name in names) \
             or len(set(names)) != len(names):
@@ -187,7 +192,7 @@ def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list
             raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given, exc.choices) from None
         inputs = scene.inputs()
         missing = [name for name in wanted if name not in inputs]
-        if missing and block == "ball" and set(missing) <= set(COVER_INPUTS) and not _uses_friction_law(document):
+        if missing and block == "ball" and set(missing) <= set(COVER_INPUTS) and not reads_cover:
             # a ball without the friction law's cover data (surlyn_distance) beside one with it: nothing reads them
             # unless a model's friction_law does, so they are left out of the sweep rather than refused
             wanted = tuple(name for name in wanted if name not in COVER_INPUTS)
@@ -204,8 +209,10 @@ def _preset_fields(document: Mapping, key: str, names, where: str) -> tuple[list
     return [(f"{mark}{INPUTS[name].path}", name, values[name]) for name in wanted], scenes
 
 
-def build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
-    """The axes of a study's ``sweep:`` block (SI values), every value checked to make a valid scene."""
+def build_sweep(document: Mapping, models=()) -> tuple[SweepAxis, ...]:
+    """The axes of a study's ``sweep:`` block (SI values), every value checked to make a valid scene; ``models``:
+    the study's configured model entries (a ball preset sweep needs the cover's inputs only if one reads them)."""
+    reads_cover = friction_law_entry(models) is not None
     sweep = document.get("sweep") or {}
     if not isinstance(sweep, Mapping):
         raise FieldError("sweep", "a mapping from dotted field paths (or dimension names) to values", sweep)
@@ -213,7 +220,7 @@ def build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
     for key, spec in sweep.items():
         key = str(key)
         if key in PRESET_SWEEPS:  # a dimension "club" or "ball" labelled by preset, setting every input of it
-            fields, scenes = _preset_fields(document, key, spec, f"sweep.{key}")
+            fields, scenes = _preset_fields(document, key, spec, f"sweep.{key}", reads_cover)
             raw_axes.append((PRESET_SWEEPS[key][0], tuple(spec), fields,
                              tuple(scene.ball for scene in scenes) if key == "ball.preset" else None))
             continue
@@ -231,7 +238,8 @@ def build_sweep(document: Mapping) -> tuple[SweepAxis, ...]:
                   for path, values in spec.items() if path != "labels" and path not in PRESET_SWEEPS]
         balls = None
         for preset_key in (name for name in PRESET_SWEEPS if name in spec):
-            more, scenes = _preset_fields(document, preset_key, spec[preset_key], f"sweep.{key}.{preset_key}")
+            more, scenes = _preset_fields(document, preset_key, spec[preset_key], f"sweep.{key}.{preset_key}",
+                                          reads_cover)
             fields += more
             labels = labels if labels is not None else spec[preset_key]
             if preset_key == "ball.preset":
