@@ -9,6 +9,7 @@ carry the vendor's carry. ``python -m impactlab.data.carry [MODEL ...]`` prints 
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from importlib import resources
 
 import attrs
@@ -99,7 +100,7 @@ def carry_table(name: str = "trackman_carry") -> CarryTable:
                       column("flight_time", 1.0) if "flight_time" in units else None, air)
 
 
-def validate_carry(model: str = DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
+def validate_carry(model: str | Callable = DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
     """Fly every row of ``table`` with ``model``; model and measurement side by side (SI) and the carry errors.
 
     Parameters

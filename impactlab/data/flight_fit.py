@@ -84,14 +84,15 @@ def labels(name: str) -> tuple:
     return tuple(str(row.get("season", row["club"])) for row in document["rows"])
 
 
-def _flights(params: dict, sources, **options) -> list:
-    """Fly every source's rows with ``params`` (``c0``, ``lift_scale``); one :func:`validate_carry` result each."""
+def _flights(params: dict, sources, tables=None, **options) -> list:
+    """Fly every source's rows with ``params`` (``c0``, ``lift_scale``); one :func:`validate_carry` result each
+    (``tables``: name -> :class:`~impactlab.data.carry.CarryTable` used instead of the shipped file)."""
     model = coefficients(params.get("c0", MEASURED_FIT["c0"]), params.get("lift_scale", 1.0))
-    return [validate_carry(model, carry_table(name), **options) for name in sources]
+    return [validate_carry(model, (tables or {}).get(name) or carry_table(name), **options) for name in sources]
 
 
-def _residuals(params: dict, sources, keep, observables, options) -> np.ndarray:
-    checks = _flights(params, sources, **options)
+def _residuals(params: dict, sources, keep, observables, tables, options) -> np.ndarray:
+    checks = _flights(params, sources, tables, **options)
     parts = [np.concatenate([c["carry_error"] for c in checks])[keep]]
     if "max_height" in observables:
         apex = np.concatenate([c["apex_height"] / c["table"].max_height - 1.0 for c in checks])[keep]
@@ -99,7 +100,7 @@ def _residuals(params: dict, sources, keep, observables, options) -> np.ndarray:
     return np.concatenate(parts)
 
 
-def fit(sources=SOURCES, exclude=(), parameters=("c0",), observables=("carry",), **options) -> dict:
+def fit(sources=SOURCES, exclude=(), parameters=("c0",), observables=("carry",), tables=None, **options) -> dict:
     """Least squares of the relative errors of the measured flights ``sources`` over ``parameters``.
 
     Parameters
@@ -113,6 +114,8 @@ def fit(sources=SOURCES, exclude=(), parameters=("c0",), observables=("carry",),
         :func:`lift_scale_bounds`.
     observables : tuple
         ``("carry",)`` or ``("carry", "max_height")`` (apex heights weighted by :data:`APEX_WEIGHT`).
+    tables : dict, optional
+        Source name -> :class:`~impactlab.data.carry.CarryTable` to fit instead of the shipped file (same rows).
     **options
         Passed to :func:`impactlab.data.carry.validate_carry` over each source's own air (a sensitivity, e.g.
         ``temperature=288.15``).
@@ -142,11 +145,11 @@ def fit(sources=SOURCES, exclude=(), parameters=("c0",), observables=("carry",),
     low = [bounds[p][0] for p in parameters]
     high = [bounds[p][1] for p in parameters]
     solution = least_squares(
-        lambda x: _residuals(dict(zip(parameters, x)), sources, keep, observables, options),
+        lambda x: _residuals(dict(zip(parameters, x)), sources, keep, observables, tables, options),
         [start[p] for p in parameters], bounds=(low, high), x_scale=[0.01 if p == "c0" else 0.1 for p in parameters],
         diff_step=1e-4, xtol=1e-8)
     params = {"c0": MEASURED_FIT["c0"], "lift_scale": 1.0, **dict(zip(parameters, map(float, solution.x)))}
-    errors = np.concatenate([c["carry_error"] for c in _flights(params, sources, **options)])[keep]
+    errors = np.concatenate([c["carry_error"] for c in _flights(params, sources, tables, **options)])[keep]
     at_bound = any(np.isclose(value, b, rtol=0, atol=1e-6) for p, value in zip(parameters, solution.x)
                    for b in bounds[p])
     return {**params, "rows": int(keep.sum()), "rms_carry_error": float(np.sqrt(np.mean(errors**2))),
@@ -163,7 +166,8 @@ def leave_one_out(sources=SOURCES, by: str = "label", **options) -> list:
     by : {"label", "source"}
         Leave out one row label at a time (e.g. one season of a source) or one source at a time.
     **options
-        ``parameters`` and ``observables`` of :func:`fit`.
+        ``parameters`` and ``observables`` of :func:`fit`; the rest is passed to
+        :func:`impactlab.data.carry.validate_carry` (fit and held-out flights alike).
 
     Returns
     -------
@@ -176,10 +180,11 @@ def leave_one_out(sources=SOURCES, by: str = "label", **options) -> list:
     groups = list(sources) if by == "source" else [label for name in sources for label in labels(name)]
     if len(groups) < 2:
         raise ValueError(f"leave-one-out needs two groups or more, got {groups}")
+    shape = {key: options.pop(key) for key in ("parameters", "observables") if key in options}
     out = []
     for group in groups:
-        params = fit(sources, exclude=(group,), **options)
-        errors = np.concatenate([c["carry_error"] for c in _flights(params, sources)])
+        params = fit(sources, exclude=(group,), **shape, **options)
+        errors = np.concatenate([c["carry_error"] for c in _flights(params, sources, **options)])
         held = np.array([group in (name, label) for name in sources for label in labels(name)])
         out.append({"group": group, "c0": params["c0"], "lift_scale": params["lift_scale"],
                     "carry_error": errors[held], "rms_carry_error": float(np.sqrt(np.mean(errors[held] ** 2)))})
