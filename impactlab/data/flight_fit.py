@@ -255,6 +255,12 @@ def format_report(sources=SOURCES) -> str:
         height = np.concatenate([c["height_error"] for c in checks.values()]) / YARD
         land = np.degrees(np.concatenate([c["land_error"] for c in checks.values()]))
         lines.append(f"| {title} | " + " | ".join(cells) + f" | {np.mean(height):+.1f} yd | {np.mean(land):+.1f} deg |")
+    cold = fit(sources, temperature=288.15)
+    lines += ["", "| sensitivity (air) | " + " | ".join(TABLES) + " |", "|---" * (len(TABLES) + 1) + "|"]
+    for title, c0, options in ((f"tables at 25 degC too (c0 {main['c0']:.4f})", main["c0"], {"temperature": 298.15}),
+                               (f"seasons fitted at 15 degC (c0 {cold['c0']:.4f})", cold["c0"], {})):
+        lines.append(f"| {title} | " + " | ".join(f"{100 * c['rms_carry_error']:.2f} %"
+                                                   for c in held_out(c0, **options).values()) + " |")
     for name, check in held_out(main["c0"]).items():
         lines += ["", f"held out, {name}: RMS {100 * check['rms_carry_error']:.1f} %", "",
                   "| club | carry TM yd | error | height TM yd | error yd | land TM deg | error deg |",
