@@ -24,6 +24,9 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "aero_coefficients": ("Measured golf-ball lift and drag against spin ratio (every ball group, above and in "
                                "its drag crisis) beside measured_fit at Re 6e4, 1e5, 2e5 and smits_smith_1994",
                                "python docs/aero_coefficients.py"),
+         "flight_fit_c0": ("Carry RMS against the ball's drag level c0 on the PGA TOUR radar seasons (fitted) and on "
+                           "TrackMan's three tour tables without their drivers (held out), and the held-out rows' "
+                           "carry errors against launch spin ratio", "python docs/flight_fit_c0.py"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
                                      "the wedge cover difference, and a wet face's spin loss",

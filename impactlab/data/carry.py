@@ -9,6 +9,7 @@ carry the vendor's carry. ``python -m impactlab.data.carry [MODEL ...]`` prints 
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from importlib import resources
 
 import attrs
@@ -38,9 +39,14 @@ class CarryTable:
     ball_speed, launch_angle, spin_rate : ndarray
         The launch: m/s, rad, rad/s.
     max_height, land_angle, carry : ndarray
-        The measured flight: m, rad, m.
+        The measured flight: m, rad, m (NaN where the table has no such column or cell).
     source, confirmed : str
         Citation, and which cells were checked as text.
+    flight_time : ndarray or None
+        Measured flight (hang) time, s, where the table has one (NaN cells where not published).
+    air : dict
+        The air the table was measured in as :func:`impactlab.physics.flight.fly` keywords (``temperature`` K,
+        ``relative_humidity``, ``altitude`` m), where the table states or implies it; empty: not published.
     """
 
     clubs: tuple
@@ -52,50 +58,73 @@ class CarryTable:
     carry: np.ndarray = attrs.field(eq=False)
     source: str = ""
     confirmed: str = ""
+    flight_time: np.ndarray | None = attrs.field(eq=False, default=None)
+    air: dict = attrs.field(eq=False, factory=dict)
+
+
+#: columns every measured table has, and their units as written in the YAML
+REQUIRED_UNITS = {"ball_speed": "mph", "launch_angle": "deg", "spin_rate": "rpm", "carry": "yd"}
+#: columns a table may have (NaN where it has not)
+OPTIONAL_UNITS = {"max_height": "yd", "land_angle": "deg", "flight_time": "s"}
+#: the keys of a table's ``air`` block and the factor to the fly() keyword's SI unit
+AIR_KEYS = {"temperature_degC": ("temperature", 1.0, 273.15), "relative_humidity": ("relative_humidity", 1.0, 0.0),
+            "altitude_m": ("altitude", 1.0, 0.0)}
 
 
 @functools.cache
 def carry_table(name: str = "trackman_carry") -> CarryTable:
-    """The measured table ``name`` shipped in impactlab/data/validation (units converted to SI)."""
+    """The measured table ``name`` shipped in impactlab/data/validation (units converted to SI).
+
+    The file's ``units`` must name every column of :data:`REQUIRED_UNITS` and may name those of
+    :data:`OPTIONAL_UNITS`, each in the unit given there; its optional ``air`` block (:data:`AIR_KEYS`) becomes
+    :attr:`CarryTable.air`.
+    """
     document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text())
+    assert document["kind"] == "measurement", (name, document["kind"])
     units = document["units"]
-    assert units == {"ball_speed": "mph", "launch_angle": "deg", "spin_rate": "rpm", "max_height": "yd",
-                     "land_angle": "deg", "carry": "yd"}, units
+    known = {**REQUIRED_UNITS, **OPTIONAL_UNITS}
+    assert REQUIRED_UNITS.items() <= units.items() and units.items() <= known.items(), (name, units)
     rows = document["rows"]
 
     def column(key, factor):
-        return np.array([row[key] for row in rows], dtype=float) * factor
+        if key not in units:
+            return np.full(len(rows), np.nan)
+        return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float) * factor
 
+    air = {AIR_KEYS[key][0]: float(value) * AIR_KEYS[key][1] + AIR_KEYS[key][2]
+           for key, value in (document.get("air") or {}).items() if key in AIR_KEYS}
     return CarryTable(tuple(row["club"] for row in rows), column("ball_speed", MPH),
                       column("launch_angle", np.pi / 180), column("spin_rate", RPM), column("max_height", YARD),
                       column("land_angle", np.pi / 180), column("carry", YARD), document["source"].strip(),
-                      document.get("confirmed", "").strip())
+                      document.get("confirmed", "").strip(),
+                      column("flight_time", 1.0) if "flight_time" in units else None, air)
 
 
-def validate_carry(model: str = DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
+def validate_carry(model: str | Callable = DEFAULT_MODEL, table: CarryTable | None = None, **options) -> dict:
     """Fly every row of ``table`` with ``model``; model and measurement side by side (SI) and the carry errors.
 
     Parameters
     ----------
-    model : str
-        A key of :data:`impactlab.physics.aerodynamics.MODELS`.
+    model : str or callable
+        A key of :data:`impactlab.physics.aerodynamics.MODELS`, or a function ``(S, Re) -> (CD, CL)``.
     table : CarryTable, optional
         Default :func:`carry_table`.
     **options
-        Passed to :func:`impactlab.physics.flight.fly` (air, spin decay...); default the standard air
-        (15 degC, 101 325 Pa, 50 %), since TrackMan's table is not normalised to any.
+        Passed to :func:`impactlab.physics.flight.fly` (air, spin decay...); default the table's :attr:`~CarryTable.air`
+        where it states one, else the standard air (15 degC, 101 325 Pa, 50 %), since TrackMan's tables are not
+        normalised to any.
 
     Returns
     -------
     dict
-        ``carry``, ``apex_height`` [m], ``landing_angle`` [rad] of the model; ``carry_error`` (relative, model over
-        measurement minus 1); ``rms_carry_error`` (relative); ``table``.
+        ``carry``, ``apex_height`` [m], ``landing_angle`` [rad], ``flight_time`` [s] of the model; ``carry_error``
+        (relative, model over measurement minus 1); ``rms_carry_error`` (relative); ``table``.
     """
     table = table or carry_table()
-    result = flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, model=model, **options)
+    result = flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, model=model, **{**table.air, **options})
     error = result["carry_distance"] / table.carry - 1.0
     return {"carry": result["carry_distance"], "apex_height": result["apex_height"],
-            "landing_angle": result["landing_angle"], "carry_error": error,
+            "landing_angle": result["landing_angle"], "flight_time": result["flight_time"], "carry_error": error,
             "rms_carry_error": float(np.sqrt(np.mean(np.square(error)))), "table": table}
 
 

@@ -177,9 +177,13 @@ def fly(
         right, up).  ``(-5, 0, 0)`` is a 5 m/s headwind.  Uniform with height.
     ball_mass, ball_radius : array_like, optional
         kg and m.  Defaults are the R&A/USGA limits (45.93 g, 42.67 mm).
-    model : str, optional
+    model : str or callable, optional
         Aerodynamic model, a key of :data:`MODELS`.  Default
         ``"measured_fit"`` (:data:`impactlab.physics.aerodynamics.DEFAULT_MODEL`).
+        Or a function ``(S, Re) -> (CD, CL)`` of arrays (dimensionless), flown
+        with the spin decay of the registered models (``lam`` 2.0e-5, or
+        ``spin_decay``); used to fit a coefficient to measured flights
+        (:mod:`impactlab.data.flight_fit`).
     spin_decay : float or None, optional
         Spin-decay constant ``lam`` of :func:`spin_decay_rate`; ``None`` uses
         the model's (2.0e-5, Smits & Smith); 0 disables spin decay.
@@ -246,9 +250,12 @@ def fly(
     >>> float(r["carry_distance"]) > 200
     True
     """
-    if model not in MODELS:
+    if callable(model):
+        coef_fn, lam_default = model, 2.0e-5
+    elif isinstance(model, str) and model in MODELS:
+        coef_fn, lam_default = MODELS[model]
+    else:
         raise ValueError(f"unknown model {model!r}; choose from {sorted(MODELS)}")
-    coef_fn, lam_default = MODELS[model]
     lam = lam_default if spin_decay is None else float(spin_decay)
 
     wind = np.asarray(wind, dtype=float)

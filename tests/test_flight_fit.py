@@ -1,0 +1,204 @@
+"""The ball's drag level settled on measured flights that are not TrackMan's tour tables, and the tables held out
+(impactlab.data.flight_fit; docs/flight.md, "Settling the drag level on measured flights").
+
+Oracles: the numbers of the cited source table (PGA TOUR radar season averages as tabulated in jhoblitt/tmelevation
+provenance.md @ 98f8a49, section 5), written here from that table; TrackMan's 2023 PGA driver row; a fit that must
+recover a drag level it was given; the measured balls' drag offsets as bounds.
+"""
+
+from __future__ import annotations
+
+import functools
+from importlib import resources
+
+import attrs
+import numpy as np
+import pytest
+import yaml
+
+from impactlab.data import flight_fit
+from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
+from impactlab.physics import aerodynamics, flight
+from impactlab.physics.atmosphere import air_density
+from impactlab.units import MPH
+
+RPM = np.pi / 30.0
+
+
+@functools.cache
+def _fit():
+    return flight_fit.fit()
+
+
+@functools.cache
+def _folds():
+    return flight_fit.leave_one_out()
+
+
+def _document():
+    path = resources.files("impactlab.data.validation").joinpath("pgatour_radar_driver.yaml")
+    return yaml.safe_load(path.read_text())
+
+
+def test_radar_seasons_file_is_a_measurement_with_its_source_and_caveats():
+    document = _document()
+    assert document["kind"] == "measurement"
+    for word in ("PGA TOUR", "TrackMan", "ground impact", "jhoblitt/tmelevation", "98f8a49"):
+        assert word in document["source"], word
+    # what is measured and what is not, and that the driver rows of the tour tables share these shots
+    assert "ground" in document["measured"] and "model" in document["measured"]
+    assert "NOT independent" in document["independence"]
+    assert set(document["units"]) == {"ball_speed", "launch_angle", "spin_rate", "max_height", "flight_time", "carry"}
+
+
+def test_radar_seasons_are_the_cited_numbers():
+    # provenance.md section 5, "PGA TOUR radar statistics": season, ball mph, launch deg, spin rpm, apex yd, hang s,
+    # carry yd (2018-19 hang time: the published average is a data error, the 6.35 s there is derived: not shipped)
+    cited = {"2008": (165.22, 11.26, 2670, 30.2, 6.2, 268.8), "2013-14": (167.18, 11.01, 2619, 32.7, 6.2, 272.6),
+             "2017-18": (169.17, 11.06, 2641, 35.1, 6.3, 277.6), "2018-19": (170.25, 9.98, 2637, 33.1, None, 279.8),
+             "2022-23": (172.85, 10.49, 2571, 34.0, 6.4, 283.8)}
+    table = carry_table("pgatour_radar_driver")
+    assert flight_fit.labels("pgatour_radar_driver") == tuple(cited)
+    for i, (ball, launch, spin, apex, hang, carry) in enumerate(cited.values()):
+        assert table.ball_speed[i] == pytest.approx(ball * MPH)
+        assert np.degrees(table.launch_angle[i]) == pytest.approx(launch)
+        assert table.spin_rate[i] == pytest.approx(spin * RPM)
+        assert table.max_height[i] == pytest.approx(apex * YARD)
+        assert table.carry[i] == pytest.approx(carry * YARD)
+        assert np.isnan(table.flight_time[i]) if hang is None else table.flight_time[i] == pytest.approx(hang)
+    assert np.all(np.isnan(table.land_angle))  # PGA TOUR publishes no descent angle
+    assert _document()["rows"][-1]["attempts"] == [113979, 121740]
+
+
+def test_radar_2022_23_season_agrees_with_trackmans_2023_driver_row():
+    # the source's cross-check, restated: TrackMan's 2023 PGA driver row is the same competition tee shots
+    season, row = carry_table("pgatour_radar_driver"), carry_table("trackman_carry_pga_2023")
+    assert row.clubs[0] == "Driver"
+    assert season.ball_speed[-1] == pytest.approx(row.ball_speed[0], rel=0.015)
+    assert np.degrees(season.launch_angle[-1] - row.launch_angle[0]) == pytest.approx(0.0, abs=0.2)
+    assert season.spin_rate[-1] == pytest.approx(row.spin_rate[0], rel=0.015)
+    assert season.carry[-1] == pytest.approx(row.carry[0], rel=0.01)
+
+
+def test_radar_seasons_fly_in_the_air_of_the_season_mean_density():
+    table = carry_table("pgatour_radar_driver")
+    assert table.air == {"temperature": pytest.approx(298.15), "relative_humidity": 0.5, "altitude": 0.0}
+    # altitude-evidence.md section 2: season-mean density 0.992 of dry sea-level air at 25 degC (1.184 kg/m^3)
+    assert float(air_density(298.15, 101325.0, 0.5)) == pytest.approx(0.992 * 1.184, rel=0.005)
+    # the tour tables state no air: flown in the standard air as before
+    assert all(carry_table(name).air == {} for name in TABLES)
+
+
+def test_c0_bounds_are_the_measured_balls_drag_offsets():
+    assert flight_fit.C0_BOUNDS == (aerodynamics.MEASURED_FIT_OFFSETS["modern"],
+                                    aerodynamics.MEASURED_FIT_OFFSETS["bh_1976"])
+    assert flight_fit.C0_BOUNDS == pytest.approx((0.2072, 0.2736), abs=1e-4)
+
+
+def test_coefficients_with_the_fitted_models_own_c0_fly_measured_fit_exactly():
+    table = carry_table("trackman_carry")
+    named = validate_carry("measured_fit", table)
+    again = validate_carry(flight_fit.coefficients(), table)
+    np.testing.assert_array_equal(named["carry"], again["carry"])
+    # c0 enters the drag additively: 0.01 more drag at the same S and Re
+    cd0, cl0 = aerodynamics.aero_coefficients(0.1, 1.5e5, "measured_fit")
+    cd1, cl1 = flight_fit.coefficients(aerodynamics.MEASURED_FIT["c0"] + 0.01, 1.1)(np.array(0.1), np.array(1.5e5))
+    assert cd1 == pytest.approx(cd0 + 0.01) and cl1 == pytest.approx(1.1 * cl0)
+
+
+def test_fly_takes_a_coefficient_function_and_refuses_anything_else():
+    none = flight.fly(60.0, 0.3, 300.0, model=lambda s, re: (np.zeros_like(s), np.zeros_like(s)), spin_decay=0.0)
+    vacuum = flight.fly(60.0, 0.3, 300.0, model="vacuum")
+    assert none["carry_distance"] == pytest.approx(vacuum["carry_distance"], rel=1e-9)
+    with pytest.raises(ValueError, match="unknown model"):
+        flight.fly(60.0, 0.3, 300.0, model=3)
+
+
+def test_fit_reproduces_its_constants_from_the_yaml():
+    result = _fit()
+    assert result["c0"] == pytest.approx(flight_fit.FITTED["c0"], rel=1e-4)
+    assert not result["at_bound"] and result["lift_scale"] == 1.0 and result["rows"] == 5
+    # measured: RMS 0.74 % over the five seasons (carry to ground impact, 25 degC)
+    assert result["rms_carry_error"] < 0.01
+
+
+def test_fit_recovers_a_drag_level_it_was_given():
+    # flights made with c0 = 0.235 and taken as measured: the least squares must return 0.235
+    table = carry_table("pgatour_radar_driver")
+    made = validate_carry(flight_fit.coefficients(0.235), table)["carry"]
+    result = flight_fit.fit(tables={"pgatour_radar_driver": attrs.evolve(table, carry=made)})
+    assert result["c0"] == pytest.approx(0.235, abs=2e-5) and result["rms_carry_error"] < 1e-4
+
+
+def test_fit_stays_inside_the_measured_balls_range():
+    # carries 30 % short of the seasons' want more drag than any measured ball has: the fit stops at the bound
+    table = carry_table("pgatour_radar_driver")
+    result = flight_fit.fit(tables={"pgatour_radar_driver": attrs.evolve(table, carry=0.7 * table.carry)})
+    assert result["c0"] == pytest.approx(flight_fit.C0_BOUNDS[1]) and result["at_bound"]
+
+
+def test_fit_refuses_what_it_cannot_fit():
+    with pytest.raises(ValueError, match="parameters"):
+        flight_fit.fit(parameters=("lift_scale",))
+    with pytest.raises(ValueError, match="observables"):
+        flight_fit.fit(observables=("land_angle",))
+    with pytest.raises(ValueError, match="no row left"):
+        flight_fit.fit(exclude=("pgatour_radar_driver",))
+    with pytest.raises(ValueError, match="two groups"):
+        flight_fit.leave_one_out(by="source")
+
+
+def test_leave_one_season_out_regression_guard():
+    # measured: c0 0.2112-0.2130 without each season; the season held out within -1.5..+1.1 %
+    folds = _folds()
+    assert [fold["group"] for fold in folds] == list(flight_fit.labels("pgatour_radar_driver"))
+    for fold in folds:
+        assert fold["c0"] == pytest.approx(flight_fit.FITTED["c0"], abs=0.0015), fold["group"]
+        assert abs(fold["c0"] - flight_fit.FITTED["c0"]) > 5e-5, fold["group"]  # the season really was left out
+        assert abs(fold["carry_error"][0]) < 0.02, fold["group"]
+
+
+def test_lift_scale_bounds_are_the_spread_of_the_measured_lift_rows():
+    low, high = flight_fit.lift_scale_bounds()
+    assert 0.6 < low < 1.0 < high < 1.4  # measured: 0.73-1.21 (10th-90th percentile at S <= 0.2)
+
+
+def test_tour_tables_held_out_regression_guard_and_what_stays_wrong():
+    # measured (docs/flight.md): classic 4.0 %, PGA 2023 4.4 %, LPGA 2023 4.4 % RMS with c0 fitted on the radar
+    # seasons; every table's 5-wood and hybrid 3-9 % long and 5-8 deg shallow; no row beyond 8.5 %
+    checks = flight_fit.held_out(flight_fit.FITTED["c0"])
+    for name, rms in (("trackman_carry", 0.041), ("trackman_carry_pga_2023", 0.045),
+                      ("trackman_carry_lpga_2023", 0.045)):
+        check = checks[name]
+        assert check["rms_carry_error"] <= rms, name
+        assert check["rms_without_driver"] > 0.03, name  # the target is not met on the held-out rows either
+        assert np.all(np.abs(check["carry_error"]) <= 0.09), name
+        assert np.all(np.abs(check["height_error"]) <= 7 * YARD), name
+        assert np.all(np.abs(np.degrees(check["land_error"])) <= 10.5), name
+        long_shots = [i for i, club in enumerate(check["table"].clubs) if club in ("5-wood", "Hybrid")]
+        assert np.all(check["carry_error"][long_shots] > 0.02), name
+        assert np.all(np.degrees(check["land_error"][long_shots]) < -5.0), name
+
+
+def test_a_lift_scale_fitted_with_the_apex_is_contradicted_by_the_hang_times():
+    # c0 and a lift scale fitted to the seasons' carries and apex heights (measured: 0.2246, 1.129) fly the seasons
+    # 0.4-0.53 s longer than their measured hang times, where c0 alone is within 0.17 s: not shipped
+    both = flight_fit.fit(parameters=("c0", "lift_scale"), observables=("carry", "max_height"))
+    assert both["c0"] == pytest.approx(0.2246, abs=0.001) and both["lift_scale"] == pytest.approx(1.129, abs=0.005)
+    table = carry_table("pgatour_radar_driver")
+    timed = np.isfinite(table.flight_time)
+    scaled = flight_fit.coefficients(both["c0"], both["lift_scale"])
+    late = validate_carry(scaled, table)["flight_time"] - table.flight_time
+    alone = validate_carry(flight_fit.coefficients(flight_fit.FITTED["c0"]), table)["flight_time"] - table.flight_time
+    assert np.all(late[timed] > 0.35) and np.all(np.abs(alone[timed]) < 0.2)
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "Not met held out: the drag level fitted only to measured flights that are not the tour tables (PGA TOUR radar "
+    "seasons, c0 0.2120) gives 4.0 / 4.4 / 4.4 % RMS on the classic, PGA 2023 and LPGA 2023 tables (4.2 / 4.5 / "
+    "4.6 % without their driver rows); the PGA woods, hybrids and 3-5 irons stay 3-7 % long, the LPGA 5-wood and "
+    "hybrid 7-9 %, landing 5-10 deg shallow. A lift scale fitted with the apex heights (3.1-3.8 %) is contradicted "
+    "by the seasons' hang times (docs/flight.md)."))
+def test_held_out_drag_level_meets_3_percent_on_every_tour_table():
+    checks = flight_fit.held_out(flight_fit.FITTED["c0"])
+    assert all(check["rms_carry_error"] <= 0.03 for check in checks.values())
