@@ -17,7 +17,7 @@ from impactlab.physics import ball_laws
 from impactlab.physics.contact import DIAGONAL_TOLERANCE, couple_mobility
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      law_friction, rolling_on)
+                      core_inputs, law_friction, rolling_on)
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -162,6 +162,11 @@ class HertzTangentialModel(ImpactModel):
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        # the core turning behind the shell (option core_radius; impactlab.physics.core_torsion): its modes ride on
+        # the 3-D kernel's slip and rolling rate
+        core = core_inputs(self.options, p, friction)
+        if core is not None:
+            three_d |= friction > 0.0
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
         # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
@@ -258,13 +263,13 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss, rolling)
+                           record, result, solution_of_case, initial_energy, loss, rolling, core)
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
             # answer is one continuous function of the strike position (issue 21, item 5)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0)
+                correct = three_d & sliding & (loss == 0.0) & (core is None)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
@@ -369,7 +374,7 @@ class HertzTangentialModel(ImpactModel):
         return coupling, rotation, rate, arm_factor
 
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy, loss, rolling=None):
+                  result, solution_of_case, initial_energy, loss, rolling=None, core=None):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -386,6 +391,7 @@ class HertzTangentialModel(ImpactModel):
                                        radius=state["contact_radius"][rows], normal=normal,
                                        springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
                                        rolling=None if rolling is None else tuple(part[rows] for part in rolling),
+                                       core=None if core is None else tuple(part[rows] for part in core),
                                        **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]

@@ -9,7 +9,8 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
+from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
+                      core_shear_modulus_field, core_specific_gravity_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -33,6 +34,12 @@ class _SpringOptions(CompliantOptions):
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
     #: the friction law (models._common.FRICTION_LAW_DOC); "coulomb": the friction input
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
+    core_radius: float = core_radius_field()
+    core_shear_modulus: float | None = core_shear_modulus_field()
+    core_specific_gravity: float | None = core_specific_gravity_field()
+    core_loss: float = core_loss_field()
+    core_modes: int = core_modes_field()
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""

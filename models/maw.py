@@ -10,7 +10,8 @@ from impactlab.validators import check, in_range, to_float
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
+from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
+                      core_shear_modulus_field, core_specific_gravity_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -92,6 +93,12 @@ class MawOptions(CompliantOptions):
     cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
         1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
+    core_radius: float = core_radius_field()
+    core_shear_modulus: float | None = core_shear_modulus_field()
+    core_specific_gravity: float | None = core_specific_gravity_field()
+    core_loss: float = core_loss_field()
+    core_modes: int = core_modes_field()
 
     @tolerance.default
     def _default_tolerance(self):
