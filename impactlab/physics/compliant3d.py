@@ -70,7 +70,11 @@ class Contact3DSolution:
     moment : ndarray (n, 2)
         Angular impulse on the ball of the rolling-resistance couple along (s, l) [N m s] (zeros without one).
     work : ndarray (n,)
-        Work of the contact forces on the relative motion [J].
+        Work of the contact forces on the relative motion of the rigid bodies [J] (with a core, less what its
+        modes took: ``core_energy``).
+    core_energy : ndarray (n,)
+        Energy the core's modes took from the contact, held as vibration at separation or damped [J] (zeros
+        without a core).
     steps : ndarray (n,)
     unfinished : ndarray (n,) of bool
         The step limit came before the bodies separated.
@@ -85,8 +89,7 @@ class Contact3DSolution:
     steps: np.ndarray
     unfinished: np.ndarray
     moment: np.ndarray
-    #: energy the core's modes took from the contact (held at separation or damped) [J]; zeros without them
-    core_energy: np.ndarray | None = None
+    core_energy: np.ndarray
     time: np.ndarray | None = None
     normal_force: np.ndarray | None = None
     tangential_force: np.ndarray | None = None

@@ -291,11 +291,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 wm1 = w1 + 0.5 * dt * aw1
                 g0 = cn0 * normal - mu * (ct00 * f0 + ct10 * f1)
                 g1 = cn1 * normal - mu * (ct01 * f0 + ct11 * f1)
-                q0 = -((wm0 + wc0) / (0.625 * dt) + g0)
-                q1 = -((wm1 + wc1) / (0.625 * dt) + g1)
-                e00 = r00
-                e11 = r11
                 if live:  # the modes' rolling rate by the step's end without the couple, and their give to it
+                    q0 = -((wm0 + wc0) / (0.625 * dt) + g0)
+                    q1 = -((wm1 + wc1) / (0.625 * dt) + g1)
                     for j in range(modes):
                         free0 = -1.25 * k * mode_gain[case, j] * f0 - mode_frequency[case, j] ** 2 * ym[j, 0] \
                             - mode_damping[case, j] * hm[j, 0]
@@ -303,11 +301,16 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                             - mode_damping[case, j] * hm[j, 1]
                         q0 -= 0.8 * q_arm * free1
                         q1 += 0.8 * q_arm * free0
-                    e00 += mode_rr
-                    e11 += mode_rr
-                det_all = e00 * e11 - r01 * r10
-                c0 = (e11 * q0 - r01 * q1) / det_all
-                c1 = (-r10 * q0 + e00 * q1) / det_all
+                    e00 = r00 + mode_rr
+                    e11 = r11 + mode_rr
+                    det_all = e00 * e11 - r01 * r10
+                    c0 = (e11 * q0 - r01 * q1) / det_all
+                    c1 = (-r10 * q0 + e00 * q1) / det_all
+                else:
+                    q0 = -(wm0 / (0.625 * dt) + g0)
+                    q1 = -(wm1 / (0.625 * dt) + g1)
+                    c0 = (r11 * q0 - r01 * q1) / det
+                    c1 = (-r10 * q0 + r00 * q1) / det
                 limit = rho * root * normal
                 size = np.sqrt(c0 * c0 + c1 * c1)
                 if size > limit:
@@ -334,7 +337,10 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 w0 = wm0 + 0.5 * dt * aw0
                 w1 = wm1 + 0.5 * dt * aw1
                 # the couple's work on the half-step rolling rate, as the forces' work below [F_max delta_max]
-                work += dt * 0.5 * ((prev_c0 + c0) * (wm0 + wc0) + (prev_c1 + c1) * (wm1 + wc1))
+                if live:  # the rolling rate includes the core's modes
+                    work += dt * 0.5 * ((prev_c0 + c0) * (wm0 + wc0) + (prev_c1 + c1) * (wm1 + wc1))
+                else:
+                    work += dt * 0.5 * ((prev_c0 + c0) * wm0 + (prev_c1 + c1) * wm1)
                 mom0 += 0.5 * dt * (prev_c0 + c0)
                 mom1 += 0.5 * dt * (prev_c1 + c1)
                 prev_c0 = c0
@@ -383,7 +389,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         for j in range(modes if live else 0):  # what the core's modes hold at separation
             core_taken += core_scale * (zm[j, 0] ** 2 + zm[j, 1] ** 2 + mode_frequency[case, j] ** 2 * (
                 ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
-        out[case, 7] = work - core_taken
+        out[case, 7] = work - core_taken if live else work
         out[case, 11] = core_taken
 
 
