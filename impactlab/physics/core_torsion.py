@@ -60,6 +60,8 @@ omega R / c_s = 5.763).
 
 from __future__ import annotations
 
+import functools
+
 import attrs
 import numpy as np
 from scipy import optimize, special
@@ -79,24 +81,22 @@ def frequency_function(x, shell_ratio):
 def roots(shell_ratio: float, count: int) -> np.ndarray:
     """The first ``count`` positive roots x_k = omega_k b / c_s of eq. (1) for I_s / I_c = ``shell_ratio`` >= 0.
 
-    Bracketed on a grid of pi / 40 and refined by Brent's method to 1e-13. Root k lies between the k-th roots of
-    j1 (I_s -> inf) and j2 (I_s = 0).
+    Bracketed on a grid of pi / 40 (root k lies between the k-th roots of j1, I_s -> inf, and of j2, I_s = 0,
+    about pi apart) and refined by Brent's method to 1e-13; cached per (ratio, count).
     """
     if shell_ratio < 0.0 or not np.isfinite(shell_ratio):
         raise ValueError(f"the shell's inertia over the core's must be >= 0 and finite, not {shell_ratio}")
-    found: list[float] = []
-    step = np.pi / 40.0
-    low = 1.0  # the rigid root x = 0 is excluded; the first elastic root is above 4.49
-    f_low = frequency_function(low, shell_ratio)
-    while len(found) < count:
-        high = low + step
-        f_high = frequency_function(high, shell_ratio)
-        if f_low == 0.0:
-            found.append(low)
-        elif f_low * f_high < 0.0:
-            found.append(optimize.brentq(frequency_function, low, high, args=(shell_ratio,), xtol=1e-13))
-        low, f_low = high, f_high
-    return np.array(found[:count])
+    return _roots(float(shell_ratio), int(count)).copy()
+
+
+@functools.lru_cache(maxsize=256)
+def _roots(shell_ratio: float, count: int) -> np.ndarray:
+    # the first elastic root is above 4.49 and root k below (k + 1.5) pi: one grid over all of them
+    grid = np.arange(1.0, (count + 2.0) * np.pi, np.pi / 40.0)
+    values = frequency_function(grid, shell_ratio)
+    change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0.0)[:count]
+    return np.array([optimize.brentq(frequency_function, grid[i], grid[i + 1], args=(shell_ratio,), xtol=1e-13)
+                     if values[i] != 0.0 else grid[i] for i in change])
 
 
 def modal_inverse_inertia(x, core_mass, core_radius, shell_inertia):

@@ -94,6 +94,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     ym = np.zeros((modes, 2))
     am = np.zeros((modes, 2))
     hm = np.zeros((modes, 2))
+    coef = np.zeros((modes, 5))  # per mode: (5/4) kappa g, Omega^2, d, (5/4)(kappa/mu) g a_max/R, its damping's weight
     for case in range(cases):
         mu = friction[case]
         k = kappa[case]
@@ -168,6 +169,13 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             am[j, 0] = 0.0
             am[j, 1] = 0.0
             mode_rr += mode_gain[case, j] * mode_arm[case] * mode_arm[case]
+            if live:
+                coef[j, 0] = 1.25 * k * mode_gain[case, j]
+                coef[j, 1] = mode_frequency[case, j] * mode_frequency[case, j]
+                coef[j, 2] = mode_damping[case, j]
+                coef[j, 3] = (1.25 * k / mu) * mode_gain[case, j] * mode_arm[case]
+                coef[j, 4] = 2.0 * core_scale * mode_damping[case, j] / mode_gain[case, j]
+        damped_core = live and mode_damping[case].max() > 0.0
         for step in range(1, max_steps + 1):
             h_half = hh + 0.5 * dt * ah
             vr0 = s0 + 0.5 * dt * as0
@@ -185,8 +193,10 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                     ym[j, 1] += dt * hm[j, 1]
                     v0 += hm[j, 0]
                     v1 += hm[j, 1]
-                    wc0 += q_arm * hm[j, 1]
-                    wc1 -= q_arm * hm[j, 0]
+                    wc0 += hm[j, 1]
+                    wc1 -= hm[j, 0]
+                wc0 *= q_arm
+                wc1 *= q_arm
             h_old = h
             h = h + dt * h_half
             # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
@@ -295,10 +305,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                     q0 = -((wm0 + wc0) / (0.625 * dt) + g0)
                     q1 = -((wm1 + wc1) / (0.625 * dt) + g1)
                     for j in range(modes):
-                        free0 = -1.25 * k * mode_gain[case, j] * f0 - mode_frequency[case, j] ** 2 * ym[j, 0] \
-                            - mode_damping[case, j] * hm[j, 0]
-                        free1 = -1.25 * k * mode_gain[case, j] * f1 - mode_frequency[case, j] ** 2 * ym[j, 1] \
-                            - mode_damping[case, j] * hm[j, 1]
+                        free0 = -coef[j, 0] * f0 - coef[j, 1] * ym[j, 0] - coef[j, 2] * hm[j, 0]
+                        free1 = -coef[j, 0] * f1 - coef[j, 1] * ym[j, 1] - coef[j, 2] * hm[j, 1]
                         q0 -= 0.8 * q_arm * free1
                         q1 += 0.8 * q_arm * free0
                     e00 = r00 + mode_rr
@@ -322,15 +330,12 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * (b1 * normal + ct10 * c0 + ct11 * c1)
             if live:
                 for j in range(modes):
-                    gain = mode_gain[case, j]
-                    am[j, 0] = -1.25 * k * gain * f0 - (1.25 * k / mu) * gain * mode_arm[case] * c1 \
-                        - mode_frequency[case, j] ** 2 * ym[j, 0] - mode_damping[case, j] * hm[j, 0]
-                    am[j, 1] = -1.25 * k * gain * f1 + (1.25 * k / mu) * gain * mode_arm[case] * c0 \
-                        - mode_frequency[case, j] ** 2 * ym[j, 1] - mode_damping[case, j] * hm[j, 1]
+                    am[j, 0] = -coef[j, 0] * f0 - coef[j, 3] * c1 - coef[j, 1] * ym[j, 0] - coef[j, 2] * hm[j, 0]
+                    am[j, 1] = -coef[j, 0] * f1 + coef[j, 3] * c0 - coef[j, 1] * ym[j, 1] - coef[j, 2] * hm[j, 1]
                     zm[j, 0] = hm[j, 0] + 0.5 * dt * am[j, 0]
                     zm[j, 1] = hm[j, 1] + 0.5 * dt * am[j, 1]
-                    core_taken += dt * 2.0 * core_scale * mode_damping[case, j] * (
-                        hm[j, 0] * hm[j, 0] + hm[j, 1] * hm[j, 1]) / gain
+                    if damped_core:
+                        core_taken += dt * coef[j, 4] * (hm[j, 0] * hm[j, 0] + hm[j, 1] * hm[j, 1])
             if rho > 0.0:
                 aw0 = 1.25 * (g0 + r00 * c0 + r01 * c1)
                 aw1 = 1.25 * (g1 + r10 * c0 + r11 * c1)
