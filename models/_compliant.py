@@ -165,7 +165,7 @@ class HertzTangentialModel(ImpactModel):
         # the core turning behind the shell (option core_radius; impactlab.physics.core_torsion): its modes ride on
         # the 3-D kernel's slip and rolling rate
         core = core_inputs(self.options, p, friction)
-        if core is not None:
+        if core is not None and not self._planar_core:
             three_d |= friction > 0.0
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
@@ -178,7 +178,7 @@ class HertzTangentialModel(ImpactModel):
                 hysteresis, restitution, p.get("club_restitution_gain", 0.0))
             rolls = (arm_factor > 0.0) & (friction > 0.0)
             rolling = self._rolling_inputs(p, state, arm_factor)
-            if self._planar_rolling and rolling is not None:
+            if self._planar_rolling and rolling is not None and core is None:  # (the 1-D solver takes either)
                 planar = rolls & ~three_d & (slip != 0.0) & planar_couple(*rolling[:3])
             three_d |= rolls & ~planar
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
@@ -205,12 +205,18 @@ class HertzTangentialModel(ImpactModel):
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         couple = self._planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach_scale,
                                      scale_speed) if np.any(planar) else None
+        # the core's modes on the line, scaled as dem.solve_scaled's ``core``
+        core_line = None if core is None or not self._planar_core else (
+            1.25 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0],
+            (core[1] * (approach_scale / scale_speed)[:, None]) ** 2, core[2] * (approach_scale / scale_speed)[:, None])
         moment, rolling_work, dissipation = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
                 members = line & sliding & (law_of_case == index) & (resolution == count)
                 steps_wanted = self.options.resolution_steps(int(count))
                 extra = {} if couple is None else {"rolling": [part[members] for part in couple]}
+                if core_line is not None:
+                    extra["core"] = [part[members] for part in core_line]
                 solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
                                      kappa=kappa[members], **extra)
                 slip_change[members] = solved.slip_change
@@ -323,6 +329,8 @@ class HertzTangentialModel(ImpactModel):
 
     #: whether :meth:`_solve` takes ``rolling`` (a couple on the line; see dem.solve_scaled)
     _planar_rolling = False
+    #: whether :meth:`_solve` takes ``core`` (the core's modes on the line; see dem.solve_scaled)
+    _planar_core = False
 
     @staticmethod
     def _planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach, speed):

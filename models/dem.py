@@ -146,8 +146,10 @@ class _SpringModel(HertzTangentialModel):
 
     #: the one-spring kernel carries a rolling couple on the line (dem.solve_scaled, ``rolling``)
     _planar_rolling = True
+    #: and the core's modes (dem.solve_scaled, ``core``)
+    _planar_core = True
 
-    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa, rolling=None):
+    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa, rolling=None, core=None):
         change, dissipation = np.zeros_like(chi), np.zeros_like(chi)
         moment, rolling_work = (None, None) if rolling is None else (np.zeros_like(chi), np.zeros_like(chi))
         force = stick = tau = None
@@ -158,7 +160,8 @@ class _SpringModel(HertzTangentialModel):
             members = np.ones(chi.size, dtype=bool) if value is None else kappa == value
             solved = dem.solve_scaled(chi[members], psi1[members], steps=steps, record=record, normal=normal,
                                       damping=self.options.damping, **self._law(value),
-                                      rolling=None if rolling is None else [part[members] for part in rolling])
+                                      rolling=None if rolling is None else [part[members] for part in rolling],
+                                      core=None if core is None else [part[members] for part in core])
             change[members], dissipation[members] = solved.slip_change, solved.dissipation
             if rolling is not None:
                 moment[members], rolling_work[members] = solved.moment, solved.rolling_work

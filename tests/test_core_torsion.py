@@ -165,9 +165,14 @@ def _oracle(inputs, modes, steps=12_000):
     return y[4], y[5]
 
 
+@pytest.mark.parametrize("line", [True, False], ids=["1-D solver", "3-D kernel"])
 @pytest.mark.parametrize("angle", [0.25, 0.8])
-def test_the_kernel_agrees_with_an_rk4_impact_of_a_ball_with_a_core(angle):
-    """A driver-like and a wedge-like spin loft, two modes: the 3-D kernel with the core against the oracle."""
+def test_the_kernel_agrees_with_an_rk4_impact_of_a_ball_with_a_core(angle, line, monkeypatch):
+    """A driver-like and a wedge-like spin loft, two modes: the 1-D solver (where a plate case goes) and the 3-D
+    kernel with the core against the oracle."""
+    from impactlab_models.dem import HertzMindlinModel
+
+    monkeypatch.setattr(HertzMindlinModel, "_planar_core", line)
     inputs = _plate(angle)
     options = dict(core_radius=CORE, core_shear_modulus=SHEAR, core_specific_gravity=DENSITY / 1000.0,
                    core_modes=2, rescale=False, tolerance=1e-6)
@@ -270,3 +275,20 @@ def test_the_compiled_kernel_with_a_core_equals_its_numpy_reference(monkeypatch)
     for name in ("impulse", "moment", "work", "core_energy"):
         np.testing.assert_allclose(getattr(compiled, name), getattr(reference, name), rtol=1e-10, atol=1e-14)
     assert np.all(compiled.core_energy > 0.0)
+
+
+def test_the_one_spring_kernel_with_a_core_equals_its_numpy_reference():
+    from impactlab.physics import dem
+    from impactlab.physics import kernels as _kernels
+
+    if not _kernels.HAVE_NUMBA:
+        pytest.skip("numba is off: the numpy path is the only one")
+    chi, psi1 = np.array([0.3, 1.2, 2.0]), np.array([0.5, 3.0, 9.0])
+    core = (np.full((3, 2), 0.9), np.array([[40.0, 150.0]] * 3), np.array([[0.0, 0.0], [1.0, 2.0], [0.5, 0.5]]))
+    compiled = dem.solve_scaled(chi, psi1, steps=400, core=core)
+    reference = dem.solve_scaled(chi, psi1, steps=400, core=core, _force_numpy=True)
+    np.testing.assert_allclose(compiled.slip_change, reference.slip_change, rtol=1e-12)
+    np.testing.assert_allclose(compiled.dissipation, reference.dissipation, rtol=1e-12)
+    plain = dem.solve_scaled(chi, psi1, steps=400)
+    assert np.all(np.abs(compiled.slip_change - plain.slip_change)[:2] > 1e-3)  # gripping cases feel the core
+    np.testing.assert_allclose(compiled.slip_change[2], plain.slip_change[2], rtol=1e-12)  # a sliding one: not
