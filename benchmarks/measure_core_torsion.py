@@ -101,6 +101,42 @@ def spin_table(model_name, rolling):
               f" | {spin[0] / spin[1]:.2f} | {out['contact_time'].values[0] * 1e3:.3f} |")
 
 
+def soft_core_sweep():
+    """From a core that cannot follow within the contact (G -> 0: the shell alone takes the impulse) to a rigid
+    ball; 8 modes; hertz_mindlin, no rolling law; the tangential restitution beta of each row as well."""
+    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
+    inputs = scene_inputs(rows)
+    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
+    print("\n#### From a free shell to a rigid ball (hertz_mindlin, b 19.05 mm, SG 1.15, 8 modes): spin per unit "
+          "[rpm/mph], and beta\n")
+    print("| G MPa | PGA driver | LPGA driver | PGA 6-iron | LPGA 6-iron | wedge | iron/driver | beta: PGA driver, "
+          "PGA 6-iron, wedge |")
+    print("|---|---|---|---|---|---|---|---|")
+    for shear in (None, 0.1e6, 0.2e6, 0.5e6, 1e6, 2e6, 3e6, 5e6, 10e6, 100e6):
+        options = {} if shear is None else {"core_radius": 0.01905, "core_shear_modulus": shear,
+                                            "core_specific_gravity": 1.15, "core_modes": 8}
+        out = get_model("hertz_mindlin")(**options).compute(inputs, ["spin_rate", "spin_loft",
+                                                                     "tangential_restitution"])
+        values = per_unit(out["spin_rate"].values, speeds, out["spin_loft"].values)
+        beta = out["tangential_restitution"].values
+        print(f"| {'off' if shear is None else f'{shear / 1e6:g}'} | " + " | ".join(f"{v:.1f}" for v in values)
+              + f" | {values[2:4].mean() / values[:2].mean():.2f} | {beta[0]:+.2f}, {beta[2]:+.2f}, {beta[4]:+.2f} |")
+
+
+def truncation():
+    """The spin's change with the number of modes kept, against 16 (hertz_mindlin, b 19.05 mm, SG 1.15)."""
+    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
+    inputs = scene_inputs(rows)
+    print("\nModes kept: spin against 16 modes [%] (PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge)")
+    for shear in (2e6, 10e6, 20e6):
+        spins = {count: get_model("hertz_mindlin")(core_radius=0.01905, core_shear_modulus=shear,
+                                                   core_specific_gravity=1.15, core_modes=count).compute(
+            inputs, ["spin_rate"])["spin_rate"].values for count in (16, 8, 4, 2, 1)}
+        for count in (8, 4, 2, 1):
+            print(f"  G {shear / 1e6:g} MPa, {count} modes: "
+                  + ", ".join(f"{100 * (a / b - 1):+.2f}" for a, b in zip(spins[count], spins[16])))
+
+
 def held_out_fit():
     """The core's shear modulus fitted on one tour's two rows (spin RMS, a log grid 0.1-50 MPa), the other tour's
     errors reported: hertz_mindlin, loft at contact, rolling 1 - e_ball^2, b 19.05 mm, SG 1.15, nothing else
@@ -160,6 +196,8 @@ def main():
     for model_name in ("hertz_mindlin", "maw"):
         for rolling in (False, True):
             spin_table(model_name, rolling)
+    soft_core_sweep()
+    truncation()
     held_out_fit()
     cost()
 
