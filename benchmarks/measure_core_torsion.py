@@ -103,18 +103,19 @@ def spin_table(model_name, rolling):
 
 def soft_core_sweep():
     """From a core that cannot follow within the contact (G -> 0: the shell alone takes the impulse) to a rigid
-    ball; 8 modes; hertz_mindlin, no rolling law; the tangential restitution beta of each row as well."""
+    ball; the default modes (up to 20 kHz); hertz_mindlin, no rolling law; the tangential restitution beta of each
+    row as well."""
     rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
     inputs = scene_inputs(rows)
     speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
-    print("\n#### From a free shell to a rigid ball (hertz_mindlin, b 19.05 mm, SG 1.15, 8 modes): spin per unit "
-          "[rpm/mph], and beta\n")
+    print("\n#### From a free shell to a rigid ball (hertz_mindlin, b 19.05 mm, SG 1.15, modes up to 20 kHz): spin "
+          "per unit [rpm/mph], and beta\n")
     print("| G MPa | PGA driver | LPGA driver | PGA 6-iron | LPGA 6-iron | wedge | iron/driver | beta: PGA driver, "
           "PGA 6-iron, wedge |")
     print("|---|---|---|---|---|---|---|---|")
     for shear in (None, 0.1e6, 0.2e6, 0.5e6, 1e6, 2e6, 3e6, 5e6, 10e6, 100e6):
         options = {} if shear is None else {"core_radius": 0.01905, "core_shear_modulus": shear,
-                                            "core_specific_gravity": 1.15, "core_modes": 8}
+                                            "core_specific_gravity": 1.15}
         out = get_model("hertz_mindlin")(**options).compute(inputs, ["spin_rate", "spin_loft",
                                                                      "tangential_restitution"])
         values = per_unit(out["spin_rate"].values, speeds, out["spin_loft"].values)
@@ -124,17 +125,21 @@ def soft_core_sweep():
 
 
 def truncation():
-    """The spin's change with the number of modes kept, against 16 (hertz_mindlin, b 19.05 mm, SG 1.15)."""
+    """The spin's change with the number of modes kept, against 32 (hertz_mindlin, b 19.05 mm, SG 1.15)."""
     rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
     inputs = scene_inputs(rows)
-    print("\nModes kept: spin against 16 modes [%] (PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge)")
-    for shear in (2e6, 10e6, 20e6):
+    print("\nModes kept: spin against 32 modes [%] (PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge)")
+    total = FACTOR * MASS * RADIUS**2
+    for shear in (0.1e6, 2e6, 10e6, 20e6, 47e6):
         spins = {count: get_model("hertz_mindlin")(core_radius=0.01905, core_shear_modulus=shear,
                                                    core_specific_gravity=1.15, core_modes=count).compute(
-            inputs, ["spin_rate"])["spin_rate"].values for count in (16, 8, 4, 2, 1)}
-        for count in (8, 4, 2, 1):
-            print(f"  G {shear / 1e6:g} MPa, {count} modes: "
-                  + ", ".join(f"{100 * (a / b - 1):+.2f}" for a, b in zip(spins[count], spins[16])))
+            inputs, ["spin_rate"])["spin_rate"].values for count in (32, 16, 8, 4, 2, 1, None)}
+        automatic = core_torsion.modes_below(core_torsion.CUTOFF_FREQUENCY, total_inertia=total, core_radius=0.01905,
+                                             core_density=1150.0, shear_modulus=shear)
+        for count in (16, 8, 4, 2, 1, None):
+            label = f"default ({automatic}, up to 20 kHz)" if count is None else f"{count}"
+            print(f"  G {shear / 1e6:g} MPa, {label} modes against 32: "
+                  + ", ".join(f"{100 * (a / b - 1):+.2f}" for a, b in zip(spins[count], spins[32])))
 
 
 def held_out_fit():
@@ -187,7 +192,7 @@ def cost():
                               ("maw", {})):
             without = per_impact(get_model(name)(**options), inputs)
             with_core = per_impact(get_model(name)(**options, **core), inputs)
-            print(f"    {name}{' + rolling' if options else ''} + core (4 modes): {with_core * 1e3:.3f} ms, "
+            print(f"    {name}{' + rolling' if options else ''} + core (G 10 MPa: 7 modes): {with_core * 1e3:.3f} ms, "
                   f"{with_core / elastic:.2f} x elastic, {with_core / without:.2f} x without the core")
 
 

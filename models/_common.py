@@ -153,9 +153,11 @@ def core_loss_field():
 
 
 def core_modes_field():
-    """Option ``core_modes``: how many of the core's rotatory modes the law carries."""
-    return attrs.field(default=core_torsion.DEFAULT_MODES, validator=check(
-        lambda v: isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 64, "an integer from 1 to 64"))
+    """Option ``core_modes``: how many of the core's rotatory modes the law carries; None: those up to
+    :data:`impactlab.physics.core_torsion.CUTOFF_FREQUENCY` (at least 4)."""
+    return attrs.field(default=None, validator=check(
+        lambda v: v is None or (isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 64),
+        "an integer from 1 to 64, or leave it out for the modes up to 20 kHz"))
 
 
 CORE_TORSION_DOC = """core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
@@ -163,9 +165,10 @@ CORE_TORSION_DOC = """core_radius, core_shear_modulus, core_specific_gravity, co
         radius b [m] (``core_radius``; 0, the default, is the rigid ball, today's model exactly), shear modulus G
         [Pa] (default: the ball's E / (2 (1 + nu))), specific gravity (default: the ball's mean density) and loss
         factor eta (default 0), bonded inside a rigid shell that holds the rest of the ball's inertia K^2 m R^2.
-        The contact's force turns the shell; the core follows through ``core_modes`` (default 4) of its rotatory
-        modes. The spin reported is the whole ball's angular momentum over K^2 m R^2 (the spin once the core's
-        vibration has died). Cases with a core take the 3-D kernel."""
+        The contact's force turns the shell; the core follows through ``core_modes`` of its rotatory modes
+        (default: those up to 20 kHz, at least 4). The spin reported is the whole ball's angular momentum over
+        K^2 m R^2 (the spin once the core's vibration has died). The one-spring models carry the modes in their
+        1-D solver too; otherwise cases with a core take the 3-D kernel."""
 
 
 def core_inputs(options, inputs, friction) -> tuple | None:
@@ -191,10 +194,14 @@ def core_inputs(options, inputs, friction) -> tuple | None:
     if np.any(radius >= ball_radius):
         raise ModelInputError(f"core_radius: a core of radius {radius * 1e3:.2f} mm does not fit inside a ball of "
                               f"radius {float(np.min(ball_radius)) * 1e3:.3f} mm")
-    count = options.core_modes
-    inverse, frequency, damping = np.zeros((n, count)), np.zeros((n, count)), np.zeros((n, count))
     keys = np.stack([mass, ball_radius, factor, shear, density], -1)
     unique, which = np.unique(keys, axis=0, return_inverse=True)
+    count = options.core_modes
+    if count is None:  # the modes up to the cut-off, the most any case needs (every case keeps as many)
+        count = max(core_torsion.modes_below(core_torsion.CUTOFF_FREQUENCY, total_inertia=k2 * m * r**2,
+                                             core_radius=radius, core_density=rho, shear_modulus=g)
+                    for m, r, k2, g, rho in unique)
+    inverse, frequency, damping = np.zeros((n, count)), np.zeros((n, count)), np.zeros((n, count))
     for index, (m, r, k2, g, rho) in enumerate(unique):
         try:
             modes = core_torsion.core_modes(total_inertia=k2 * m * r**2, core_radius=radius, core_density=rho,

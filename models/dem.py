@@ -113,6 +113,9 @@ class HertzMindlinOptions(_SpringOptions):
         stiffness differs (see docs/approaches.md on LAMMPS).
     tolerance, steps, damping, history_points, inelastic
         As for ``dem_linear``.
+    core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
+        The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
+        models._common.CORE_TORSION_DOC); core_radius 0 (the default): a rigid ball. Shared with ``dem_linear``.
     """
 
     history: str = attrs.field(default="force", validator=check(

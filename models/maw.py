@@ -76,6 +76,11 @@ class MawOptions(CompliantOptions):
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the ball-face pair's friction law
         (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+    core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
+        The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
+        models._common.CORE_TORSION_DOC): core radius [m] (0, the default: a rigid ball, the paper's model),
+        shear modulus [Pa] (default the ball's), specific gravity (default the ball's mean density), loss factor
+        (0) and the modes kept (default: up to 20 kHz). Cases with a core take the 3-D kernel.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
