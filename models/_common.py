@@ -3,7 +3,7 @@
 import attrs
 import numpy as np
 
-from impactlab.errors import ModelInputError
+from impactlab.errors import FieldError, ModelInputError
 from impactlab.units import si_length, si_pressure
 from impactlab.validators import check, in_range, to_float
 
@@ -127,15 +127,25 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
 
 # -- the core turning behind the shell (impactlab.physics.core_torsion) ----------------------------------------------
 
+def _named(converter, name: str):
+    """``converter`` whose refusal names the option (a unit converter's FieldError has no field of its own)."""
+    def convert(value):
+        try:
+            return converter(value)
+        except FieldError as exc:
+            raise FieldError(name, exc.expected, exc.given, exc.choices) from None
+    return convert
+
+
 def core_radius_field():
     """Option ``core_radius`` [m]: 0 (default) is the rigid ball, the paper's model unchanged."""
-    return attrs.field(default=0.0, converter=si_length, validator=in_range(
+    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), validator=in_range(
         0.0, 0.0213, "a core radius in m between 0 (no core law) and the ball's radius (e.g. '19 mm')"))
 
 
 def core_shear_modulus_field():
     """Option ``core_shear_modulus`` [Pa]; None: the ball's, E / (2 (1 + nu)) of its elastic constants."""
-    return attrs.field(default=None, converter=si_pressure, validator=in_range(
+    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), validator=in_range(
         1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. '20 MPa'), or leave it out for "
         "the ball's E / (2 (1 + nu))", optional=True))
 

@@ -8,6 +8,7 @@ one-mode rotor under a step torque, and an impact integrated in SI variables by 
 
 import os
 
+import impactlab
 import numpy as np
 import pytest
 import scipy.linalg
@@ -292,3 +293,25 @@ def test_the_one_spring_kernel_with_a_core_equals_its_numpy_reference():
     plain = dem.solve_scaled(chi, psi1, steps=400)
     assert np.all(np.abs(compiled.slip_change - plain.slip_change)[:2] > 1e-3)  # gripping cases feel the core
     np.testing.assert_allclose(compiled.slip_change[2], plain.slip_change[2], rtol=1e-12)  # a sliding one: not
+
+
+STUDY = """name: core
+ball: {preset: urethane_tour}
+club: {preset: driver}
+delivery: {club_speed: 115 mph, path: 0 deg, face_angle: 0 deg, attack_angle: -0.9 deg, dynamic_loft: 12.8 deg}
+models:
+  - hertz_mindlin
+  - {name: hertz_mindlin, id: core, core_radius: 19.05 mm, core_shear_modulus: 10 MPa}
+outputs: [spin_rate]
+"""
+
+
+@pytest.mark.parametrize("change, fragment", [
+    (("10 MPa", "10 kg"), "models[1].core_shear_modulus: expected a modulus"),
+    (("19.05 mm", "30 mm"), "models[1].core_radius: expected a core radius"),
+])
+def test_a_study_refuses_a_bad_core_option_at_its_line(change, fragment):
+    from test_study import assert_one_clear_message
+
+    impactlab.load_study(STUDY, file="study.yaml")  # as written, it loads
+    assert_one_clear_message(STUDY, change, 7, [fragment])
