@@ -125,34 +125,39 @@ def _plate(angle, friction=0.4, speed=40.0):
                  restitution=np.array([1.0]), speed=np.array([speed]))
 
 
-def _oracle(inputs, modes, steps=12_000):
+def _oracle(inputs, modes, steps=12_000, loss=0.0, alpha=0.0):
     """The elastic impact of a ball with a core on a rigid fixed face, in SI, by classical RK4 (written here).
 
     Hertz normal force (4/3) E* sqrt(R) delta^1.5; one tangential spring dF/dt = 8 G* a v (Mindlin's stiffness,
-    a = sqrt(R delta)), its force held to |F| <= mu F_n after each step; the ball translates (m), its whole
-    rotation takes the torque R F over I_tot and each mode R F / I_k - omega_k^2 theta_k; the slip v is the
-    contact point's, u + R (Omega_0 + sum theta_k'). Returns the normal and tangential impulses [N s]."""
+    a = sqrt(R delta)), its force held to |F| <= mu F_n after each step; the ball translates (m: u' = -F / m),
+    its whole rotation takes the torque T = -R F + C over I_tot and each mode T / I_k - omega_k^2 theta_k -
+    loss omega_k theta_k'; the slip v is the contact point's, u + R (Omega_0 + sum theta_k'). With ``alpha`` a
+    rolling couple C = -(3/16) alpha a F_n sign(Omega) opposes the shell's rotation Omega (on a fixed face the
+    relative rolling; the spin never stops within these impacts). Returns J_n, J_t and the couple's angular
+    impulse [N s, N s, N m s]."""
     m, r = float(inputs["ball_mass"][0]), float(inputs["ball_radius"][0])
     e_b, nu_b = float(inputs["ball_youngs_modulus"][0]), float(inputs["ball_poisson_ratio"][0])
     e_star, g_star = e_b / (1 - nu_b**2), (e_b / (2 * (1 + nu_b))) / (2 - nu_b)  # rigid face
     mu, speed, angle = float(inputs["friction"][0]), float(inputs["speed"][0]), float(inputs["angle"][0])
     inverse = np.asarray(modes.inverse_inertia)
-    omega2 = np.asarray(modes.frequency) ** 2
+    omega = np.asarray(modes.frequency)
     count = inverse.size
     k_n = 4.0 / 3.0 * e_star * np.sqrt(r)
     # Hertz contact time 2.94 delta_max / V, delta_max = (15 m V^2 / (16 k_n))^(2/5)
     dt = 1.2 * 2.94 * (15 * m * (speed * np.cos(angle)) ** 2 / (16 * k_n)) ** 0.4 / (speed * np.cos(angle)) / steps
 
-    def derivative(y):  # y: delta, delta', rigid slip, F, J_n, J_t, angles (count), rates (count)
-        delta, force = max(y[0], 0.0), y[3]
+    def derivative(y):  # y: delta, delta', u, Omega_0, F, J_n, J_t, J_c, angles (count), rates (count)
+        delta, force = max(y[0], 0.0), y[4]
         normal = k_n * delta**1.5
-        rates = y[6 + count:]
-        slip = y[2] + r * rates.sum()
-        head = [y[1], -normal / m, -force * (1 / m + r * r / modes.total_inertia),
-                8 * g_star * np.sqrt(r * delta) * slip, normal, force]
-        return np.concatenate([head, rates, -r * force * inverse - omega2 * y[6:6 + count]])
+        rates = y[8 + count:]
+        spin = y[3] + rates.sum()
+        couple = -3.0 / 16.0 * alpha * np.sqrt(r * delta) * normal * np.sign(spin)
+        torque = -r * force + couple
+        head = [y[1], -normal / m, -force / m, torque / modes.total_inertia,
+                8 * g_star * np.sqrt(r * delta) * (y[2] + r * spin), normal, force, couple]
+        return np.concatenate([head, rates, torque * inverse - omega**2 * y[8:8 + count] - loss * omega * rates])
 
-    y = np.concatenate([[0.0, speed * np.cos(angle), speed * np.sin(angle), 0.0, 0.0, 0.0], np.zeros(2 * count)])
+    y = np.concatenate([[0.0, speed * np.cos(angle), speed * np.sin(angle)], np.zeros(5 + 2 * count)])
     for _ in range(steps):
         k1 = derivative(y)
         k2 = derivative(y + 0.5 * dt * k1)
@@ -160,33 +165,40 @@ def _oracle(inputs, modes, steps=12_000):
         k4 = derivative(y + dt * k3)
         y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         cap = mu * k_n * max(y[0], 0.0) ** 1.5
-        y[3] = min(max(y[3], -cap), cap)
+        y[4] = min(max(y[4], -cap), cap)
         if y[0] < 0.0 and y[1] < 0.0:
             break
-    return y[4], y[5]
+    return y[5], y[6], y[7]
 
 
-@pytest.mark.parametrize("line", [True, False], ids=["1-D solver", "3-D kernel"])
-@pytest.mark.parametrize("angle", [0.25, 0.8])
-def test_the_kernel_agrees_with_an_rk4_impact_of_a_ball_with_a_core(angle, line, monkeypatch):
+@pytest.mark.parametrize("angle, line, loss, alpha", [
+    (0.25, True, 0.0, 0.0), (0.8, True, 0.0, 0.0), (0.25, False, 0.0, 0.0), (0.8, False, 0.0, 0.0),
+    (0.8, True, 0.5, 0.0), (0.25, False, 0.5, 0.0), (0.25, False, 0.0, 0.6), (0.8, False, 0.3, 0.6)],
+    ids=["driver 1-D", "wedge 1-D", "driver 3-D", "wedge 3-D", "wedge 1-D lossy core", "driver 3-D lossy core",
+         "driver 3-D rolling couple", "wedge 3-D lossy core and rolling couple"])
+def test_the_kernel_agrees_with_an_rk4_impact_of_a_ball_with_a_core(angle, line, loss, alpha, monkeypatch):
     """A driver-like and a wedge-like spin loft, two modes: the 1-D solver (where a plate case goes) and the 3-D
-    kernel with the core against the oracle."""
+    kernel with the core against the oracle; a lossy core; the rolling couple on the shell (3-D kernel)."""
     from impactlab_models.dem import HertzMindlinModel
 
     monkeypatch.setattr(HertzMindlinModel, "_planar_core", line)
     inputs = _plate(angle)
+    laws = dict(rescale=False, tolerance=1e-6, rolling_hysteresis=alpha)
     options = dict(core_radius=CORE, core_shear_modulus=SHEAR, core_specific_gravity=DENSITY / 1000.0,
-                   core_modes=2, rescale=False, tolerance=1e-6)
-    result = get_model("hertz_mindlin")(**options).compute(inputs, ["normal_impulse", "tangential_impulse"])
+                   core_modes=2, core_loss=loss, **laws)
+    names = ["normal_impulse", "tangential_impulse", "rolling_moment"]
+    result = get_model("hertz_mindlin")(**options).compute(inputs, names)
     modes = core_torsion.core_modes(total_inertia=TOTAL, core_radius=CORE, core_density=DENSITY,
-                                    shear_modulus=SHEAR, modes=2)
-    jn, jt = _oracle(inputs, modes)
-    rigid = get_model("hertz_mindlin")(rescale=False, tolerance=1e-6).compute(inputs, ["tangential_impulse"])
+                                    shear_modulus=SHEAR, modes=2, loss=loss)
+    jn, jt, jc = _oracle(inputs, modes, loss=loss, alpha=alpha)
+    rigid = get_model("hertz_mindlin")(**laws).compute(inputs, names)
     rigid_jt = float(rigid["tangential_impulse"].values[0])
     assert float(result["normal_impulse"].values[0]) == pytest.approx(jn, rel=2e-4)
     model_jt = float(result["tangential_impulse"].values[0])
     assert abs(jt - rigid_jt) > 0.01 * abs(rigid_jt)  # the core matters here: the comparison can tell
     assert abs(model_jt - jt) <= 0.03 * abs(jt - rigid_jt), (model_jt, jt, rigid_jt)
+    if alpha:  # the couple sits on its limit throughout: its angular impulse, (3/16) alpha int a F_n dt
+        assert float(abs(result["rolling_moment"].values[0])) == pytest.approx(abs(jc), rel=1e-5)
 
 
 def test_a_stiff_core_is_the_rigid_ball_and_no_core_is_todays_model():
@@ -315,3 +327,18 @@ def test_a_study_refuses_a_bad_core_option_at_its_line(change, fragment):
 
     impactlab.load_study(STUDY, file="study.yaml")  # as written, it loads
     assert_one_clear_message(STUDY, change, 7, [fragment])
+
+
+def test_the_defaults_are_the_balls_own_shear_modulus_and_mean_density():
+    """Left out, G = E / (2 (1 + nu)) of the ball's elastic constants and the ball's mass over its volume."""
+    inputs = _plate(0.3)
+    e, nu = float(inputs["ball_youngs_modulus"][0]), float(inputs["ball_poisson_ratio"][0])
+    m, r = float(inputs["ball_mass"][0]), float(inputs["ball_radius"][0])
+    names = ["tangential_impulse"]
+    default = get_model("hertz_mindlin")(core_radius=CORE).compute(inputs, names)
+    given = get_model("hertz_mindlin")(core_radius=CORE, core_shear_modulus=e / (2 * (1 + nu)),
+                                       core_specific_gravity=m / (4 / 3 * np.pi * r**3) / 1000).compute(inputs, names)
+    np.testing.assert_allclose(default["tangential_impulse"].values, given["tangential_impulse"].values, rtol=1e-12)
+    other = get_model("hertz_mindlin")(core_radius=CORE, core_shear_modulus=e / (2 * (1 + nu)),
+                                       core_specific_gravity=1.0).compute(inputs, names)
+    assert abs(other["tangential_impulse"].values[0] - given["tangential_impulse"].values[0]) > 1e-6
