@@ -124,6 +124,27 @@ def soft_core_sweep():
               + f" | {values[2:4].mean() / values[:2].mean():.2f} | {beta[0]:+.2f}, {beta[2]:+.2f}, {beta[4]:+.2f} |")
 
 
+def stiffer_contact():
+    """Is the result a property of Mindlin's tangential stiffness? hertz_mindlin with k_t / k_n = 3 and 10 (about 4
+    and 14 times Mindlin's kappa = 2 (1 - nu) / (2 - nu) = 0.71 of the ball on a near-rigid face): the core
+    against the rigid ball."""
+    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
+    inputs = scene_inputs(rows)
+    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
+    print("\nA stiffer tangential spring (hertz_mindlin stiffness_ratio), b 19.05 mm, SG 1.15: spin per unit "
+          "(PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge) and iron/driver")
+    for ratio in (3.0, 10.0):
+        for shear in (None, 2e6, 5e6, 10e6, 20e6):
+            options = {"stiffness_ratio": ratio}
+            if shear is not None:
+                options.update(core_radius=0.01905, core_shear_modulus=shear, core_specific_gravity=1.15)
+            out = get_model("hertz_mindlin")(**options).compute(inputs, ["spin_rate", "spin_loft"])
+            values = per_unit(out["spin_rate"].values, speeds, out["spin_loft"].values)
+            ratio_iron = values[2:4].mean() / values[:2].mean()
+            print(f"  k_t/k_n {ratio:g}, {'rigid ball' if shear is None else f'G {shear / 1e6:g} MPa'}: "
+                  + ", ".join(f"{v:.1f}" for v in values) + f"; iron/driver {ratio_iron:.2f}")
+
+
 def truncation():
     """The spin's change with the number of modes kept, against 32 (hertz_mindlin, b 19.05 mm, SG 1.15)."""
     rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
@@ -202,6 +223,7 @@ def main():
         for rolling in (False, True):
             spin_table(model_name, rolling)
     soft_core_sweep()
+    stiffer_contact()
     truncation()
     held_out_fit()
     cost()
