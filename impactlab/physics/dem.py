@@ -171,8 +171,8 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         dt = tau[k] - tau[k - 1]
         half = change + 0.5 * dt * acceleration
         velocity = psi1 + half
-        if modes:
-            hm = zm + 0.5 * dt * am
+        if modes:  # leapfrog, as the kernel
+            hm = hm + (0.5 if k == 1 else 1.0) * dt * am
             ym = ym + dt * hm
             for j in range(modes):  # in the kernel's order
                 velocity = velocity + hm[:, j]
@@ -195,7 +195,6 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         acceleration = -gain * chi * total
         if modes:
             am = -mode_force * total[:, None] - mode_frequency2 * ym - mode_damping * hm
-            zm = hm + 0.5 * dt * am
             for j in range(modes):
                 core_taken = core_taken + dt * mode_damping[:, j] * hm[:, j] * hm[:, j] / mode_force[:, j]
         if np.any(rolls):  # the couple that stops the rolling by the step's end, on its limit (the kernel's rule)
@@ -215,6 +214,7 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
             force[:, k] = total
             stuck[:, k] = np.where(over, 0.0, 1.0)
     if modes:
+        zm = hm + 0.5 * (tau[-1] - tau[-2]) * am  # the rates at the last step's end
         for j in range(modes):
             core_taken = core_taken + (zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j]) / (
                 2.0 * mode_force[:, j])

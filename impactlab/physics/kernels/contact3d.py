@@ -164,6 +164,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         for j in range(modes):
             zm[j, 0] = 0.0
             zm[j, 1] = 0.0
+            hm[j, 0] = 0.0
+            hm[j, 1] = 0.0
             ym[j, 0] = 0.0
             ym[j, 1] = 0.0
             am[j, 0] = 0.0
@@ -185,18 +187,20 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             # the core's modes: half-step rates, new angles; their rates join the slip and the rolling rate
             wc0 = 0.0
             wc1 = 0.0
-            if live:
+            if live:  # (leapfrog: the half-step rate moves by a whole step of the last acceleration)
                 for j in range(modes):
-                    hm[j, 0] = zm[j, 0] + 0.5 * dt * am[j, 0]
-                    hm[j, 1] = zm[j, 1] + 0.5 * dt * am[j, 1]
+                    hm[j, 0] += (0.5 if step == 1 else 1.0) * dt * am[j, 0]
+                    hm[j, 1] += (0.5 if step == 1 else 1.0) * dt * am[j, 1]
                     ym[j, 0] += dt * hm[j, 0]
                     ym[j, 1] += dt * hm[j, 1]
                     v0 += hm[j, 0]
                     v1 += hm[j, 1]
-                    wc0 += hm[j, 1]
-                    wc1 -= hm[j, 0]
-                wc0 *= q_arm
-                wc1 *= q_arm
+                if rho > 0.0:
+                    for j in range(modes):
+                        wc0 += hm[j, 1]
+                        wc1 -= hm[j, 0]
+                    wc0 *= q_arm
+                    wc1 *= q_arm
             h_old = h
             h = h + dt * h_half
             # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
@@ -332,9 +336,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 for j in range(modes):
                     am[j, 0] = -coef[j, 0] * f0 - coef[j, 3] * c1 - coef[j, 1] * ym[j, 0] - coef[j, 2] * hm[j, 0]
                     am[j, 1] = -coef[j, 0] * f1 + coef[j, 3] * c0 - coef[j, 1] * ym[j, 1] - coef[j, 2] * hm[j, 1]
-                    zm[j, 0] = hm[j, 0] + 0.5 * dt * am[j, 0]
-                    zm[j, 1] = hm[j, 1] + 0.5 * dt * am[j, 1]
-                    if damped_core:
+                if damped_core:
+                    for j in range(modes):
                         core_taken += dt * coef[j, 4] * (hm[j, 0] * hm[j, 0] + hm[j, 1] * hm[j, 1])
             if rho > 0.0:
                 aw0 = 1.25 * (g0 + r00 * c0 + r01 * c1)
@@ -391,7 +394,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         out[case, 8] = steps
         out[case, 9] = mom0
         out[case, 10] = mom1
-        for j in range(modes if live else 0):  # what the core's modes hold at separation
+        for j in range(modes if live else 0):  # what the core's modes hold at separation (rates at the step's end)
+            zm[j, 0] = hm[j, 0] + 0.5 * dt * am[j, 0]
+            zm[j, 1] = hm[j, 1] + 0.5 * dt * am[j, 1]
             core_taken += core_scale * (zm[j, 0] ** 2 + zm[j, 1] ** 2 + mode_frequency[case, j] ** 2 * (
                 ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
         out[case, 7] = work - core_taken if live else work

@@ -53,7 +53,7 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
         core_taken = 0.0
         damped_core = False
         for j in range(modes):
-            zm[j] = 0.0
+            hm[j] = 0.0
             ym[j] = 0.0
             am[j] = 0.0
             damped_core = damped_core or mode_damping[case, j] > 0.0
@@ -61,8 +61,8 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             dt = tau[k] - tau[k - 1]
             half = change + 0.5 * dt * acceleration
             velocity = p1 + half
-            for j in range(modes):  # the core's modes: half-step rates, new angles, their rates in the slip
-                hm[j] = zm[j] + 0.5 * dt * am[j]
+            for j in range(modes):  # the core's modes (leapfrog): half-step rates, new angles, rates in the slip
+                hm[j] += (0.5 if k == 1 else 1.0) * dt * am[j]
                 ym[j] += dt * hm[j]
                 velocity += hm[j]
             stiff = stiffness[k]
@@ -84,7 +84,6 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             acceleration = -gain * chi[case] * total
             for j in range(modes):
                 am[j] = -mode_force[case, j] * total - mode_frequency2[case, j] * ym[j] - mode_damping[case, j] * hm[j]
-                zm[j] = hm[j] + 0.5 * dt * am[j]
                 if damped_core:
                     core_taken += dt * mode_damping[case, j] * hm[j] * hm[j] / mode_force[case, j]
             if rho > 0.0:
@@ -105,7 +104,8 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             if record:
                 force[case, k] = total
                 stuck[case, k] = 0.0 if over else 1.0
-        for j in range(modes):
+        for j in range(modes):  # the rates at the last step's end
+            zm[j] = hm[j] + 0.5 * (tau[nodes - 1] - tau[nodes - 2]) * am[j]
             core_taken += (zm[j] * zm[j] + mode_frequency2[case, j] * ym[j] * ym[j]) / (2.0 * mode_force[case, j])
         change_out[case] = change
         work_out[case] = work + core_taken if modes > 0 else work
