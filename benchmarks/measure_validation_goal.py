@@ -3,6 +3,7 @@
 change and the wedge cover difference as ratios to the published observations; each mechanism one at a time.
 
     .venv/bin/python benchmarks/measure_validation_goal.py [--models rigid_coulomb hertz_mindlin]
+        [--core-radius '19.05 mm' --core-shear-modulus '10 MPa' --core-specific-gravity 1.15]
 
 Prints markdown (docs/validation.md, "Validation by source"). Targets: ball speed within 1 %, launch within
 0.7 deg, spin within 7 % (RMS over a held-out source's rows), ratios within 0.5-1.5.
@@ -48,8 +49,13 @@ CONFIGURATIONS = [
 ]
 
 
+#: options every configuration's model takes besides its own (``--core-radius`` & co.: the core law, not fitted)
+EXTRA_OPTIONS: dict = {}
+
+
 def measure(model_name: str, config: dict) -> dict:
     options = {"rolling_hysteresis": "restitution"} if config["rolling"] else {}
+    options.update(EXTRA_OPTIONS)
     if config["friction"]:
         options["friction_law"] = "adhesion"
     model = get_model(model_name)(**options)
@@ -87,7 +93,15 @@ def measure(model_name: str, config: dict) -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--models", nargs="+", default=["rigid_coulomb", "hertz_mindlin"])
+    parser.add_argument("--core-radius", help="the core law in every configuration (impactlab.physics.core_torsion; "
+                        "a compliant model's option core_radius, e.g. '19.05 mm'); not fitted")
+    parser.add_argument("--core-shear-modulus", help="its core_shear_modulus (e.g. '10 MPa'; default the ball's)")
+    parser.add_argument("--core-specific-gravity", type=float, help="its core_specific_gravity (default the ball's)")
     args = parser.parse_args()
+    if args.core_radius:
+        EXTRA_OPTIONS.update({"core_radius": args.core_radius, "core_shear_modulus": args.core_shear_modulus,
+                              "core_specific_gravity": args.core_specific_gravity})
+        print(f"core law on in every configuration: {EXTRA_OPTIONS}")
     for model_name in args.models:
         print(f"\n#### {model_name}\n")
         print("| configuration | source | ball speed % | launch deg | spin % | driver axis ratio | 6-iron axis ratio "

@@ -47,6 +47,8 @@ T_FRICTION = ["tests/test_friction_laws.py"]
 #: the JSON shot records (session_json) and the measured aerodynamic fit (aero_fit, measured_fit)
 T_JSON = ["tests/test_vendors.py", "tests/test_shots.py"]
 T_AERO = ["tests/test_flight.py"]
+#: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)
+T_CORE_TORSION = ["tests/test_core_torsion.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
 MUTANTS = [
@@ -366,6 +368,34 @@ MUTANTS = [
      "if reply.code in UNSOLICITED:\n                    self._note(reply)\n                    continue",
      "if False:\n                    continue",
      T_GSPRO, "an unsolicited 201 player-information message taken as the answer to a shot"),
+    # --- the core turning behind the shell (physics/core_torsion.py, the modes in both kernels, the options)
+    ("core-frequency-factor", "impactlab/physics/core_torsion.py",
+     "return 5.0 * special.spherical_jn(2, x) + x * shell_ratio", "return 3.0 * special.spherical_jn(2, x) + x * shell_ratio",
+     T_CORE_TORSION, "frequency equation with 3 I_c for 5 I_c"),
+    ("core-modal-mass-sign", "impactlab/physics/core_torsion.py",
+     "(j1**2 - j0 * j2)", "(j1**2 + j0 * j2)",
+     T_CORE_TORSION, "the core's modal mass integral with the wrong sign"),
+    ("core-kernel3d-couple-sign", "impactlab/physics/kernels/contact3d.py",
+     "am[j, 0] = -coef[j, 0] * f0 - coef[j, 3] * c1", "am[j, 0] = -coef[j, 0] * f0 + coef[j, 3] * c1",
+     T_CORE_TORSION, "3-D kernel: the rolling couple drives the core's modes with the wrong sign"),
+    ("core-kernel3d-slip", "impactlab/physics/kernels/contact3d.py",
+     "                    v0 += hm[j, 0]\n", "                    v0 += 0.5 * hm[j, 0]\n",
+     T_CORE_TORSION, "3-D kernel: half the mode's rate in the slip"),
+    ("core-kernel1d-slip", "impactlab/physics/kernels/dem.py",
+     "velocity += hm[j]", "velocity -= hm[j]",
+     T_CORE_TORSION, "1-D solver: the mode's rate taken out of the slip"),
+    ("core-line-gain", "models/_compliant.py",
+     "1.25 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0]",
+     "2.5 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0]",
+     T_CORE_TORSION, "1-D solver: the modes' gain doubled"),
+    ("core-default-density", "models/_common.py",
+     "mass / (4.0 / 3.0 * np.pi * ball_radius**3)", "mass / (np.pi * ball_radius**3)",
+     T_CORE_TORSION, "the default core density without the 4/3"),
+    ("core-modal-damping", "impactlab/physics/core_torsion.py",
+     "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), loss * frequency)",
+     "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), 0.0 * frequency)",
+     T_CORE_TORSION, "the core's loss factor dropped"),
+
 ]
 
 #: mutants that change no result beyond the contract's tolerance, with the reason; the kill rate leaves them out

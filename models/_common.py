@@ -1,9 +1,13 @@
 """Declarations shared by the built-in models."""
 
+import attrs
 import numpy as np
 
-from impactlab.errors import ModelInputError
-from impactlab.validators import check
+from impactlab.errors import FieldError, ModelInputError
+from impactlab.units import si_length, si_pressure
+from impactlab.validators import check, in_range, to_float
+
+from impactlab.physics import core_torsion
 
 from impactlab.physics import friction_laws
 from impactlab.scene.materials import FACE_SURFACES
@@ -119,3 +123,102 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
             f"ClubHead(surface=...) with impactlab.scene.materials.FACE_SURFACES. A face is never assumed smooth "
             f"and dry")
     return friction_laws.effective_friction(law, inputs, state, restitution)
+
+
+# -- the core turning behind the shell (impactlab.physics.core_torsion) ----------------------------------------------
+
+def _named(converter, name: str):
+    """``converter`` whose refusal names the option (a unit converter's FieldError has no field of its own)."""
+    def convert(value):
+        try:
+            return converter(value)
+        except FieldError as exc:
+            raise FieldError(name, exc.expected, exc.given, exc.choices) from None
+    return convert
+
+
+def core_radius_field():
+    """Option ``core_radius`` [m]: 0 (default) is the rigid ball, the paper's model unchanged."""
+    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), validator=in_range(
+        0.0, 0.0213, "a core radius in m between 0 (no core law) and the ball's radius (e.g. '19 mm')"))
+
+
+def core_shear_modulus_field():
+    """Option ``core_shear_modulus`` [Pa]; None: the ball's, E / (2 (1 + nu)) of its elastic constants."""
+    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), validator=in_range(
+        1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. '20 MPa'), or leave it out for "
+        "the ball's E / (2 (1 + nu))", optional=True))
+
+
+def core_specific_gravity_field():
+    """Option ``core_specific_gravity`` [1]; None: the ball's mean density (mass over volume)."""
+    return attrs.field(default=None, converter=to_float, validator=in_range(
+        0.5, 3.0, "a specific gravity between 0.5 and 3 (patents give 1.10-1.40), or leave it out for the ball's "
+        "mean density", optional=True))
+
+
+def core_loss_field():
+    """Option ``core_loss`` [1]: the core's loss factor in shear (0: elastic)."""
+    return attrs.field(default=0.0, converter=to_float, validator=in_range(0.0, 2.0, "a loss factor 0 <= eta <= 2"))
+
+
+def core_modes_field():
+    """Option ``core_modes``: how many of the core's rotatory modes the law carries; None: those up to
+    :data:`impactlab.physics.core_torsion.CUTOFF_FREQUENCY` (at least 4)."""
+    return attrs.field(default=None, validator=check(
+        lambda v: v is None or (isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 64),
+        "an integer from 1 to 64, or leave it out for the modes up to 20 kHz"))
+
+
+CORE_TORSION_DOC = """core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
+        The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`): a uniform elastic core of
+        radius b [m] (``core_radius``; 0, the default, is the rigid ball, today's model exactly), shear modulus G
+        [Pa] (default: the ball's E / (2 (1 + nu))), specific gravity (default: the ball's mean density) and loss
+        factor eta (default 0), bonded inside a rigid shell that holds the rest of the ball's inertia K^2 m R^2.
+        The contact's force turns the shell; the core follows through ``core_modes`` of its rotatory modes
+        (default: those up to 20 kHz, at least 4). The spin reported is the whole ball's angular momentum over
+        K^2 m R^2 (the spin once the core's vibration has died). The one-spring models carry the modes in their
+        1-D solver too; otherwise cases with a core take the 3-D kernel."""
+
+
+def core_inputs(options, inputs, friction) -> tuple | None:
+    """The 3-D kernel's ``core`` tuple (compliant3d.solve) per case under a model's core options, or None when off.
+
+    The ball's inertia K^2 m R^2, its mass and radius, and its elastic constants (for the default shear modulus)
+    come from the inputs; cases with equal values share one solve of the frequency equation.
+    """
+    radius = float(getattr(options, "core_radius", 0.0) or 0.0)
+    if radius <= 0.0:
+        return None
+    n = np.asarray(friction).size
+
+    def column(name):
+        return np.broadcast_to(np.asarray(inputs[name], float), (n,))
+
+    mass, ball_radius, factor = column("ball_mass"), column("ball_radius"), column("ball_inertia_factor")
+    modulus, poisson = column("ball_youngs_modulus"), column("ball_poisson_ratio")
+    shear = options.core_shear_modulus
+    shear = modulus / (2.0 * (1.0 + poisson)) if shear is None else np.full(n, float(shear))
+    gravity = options.core_specific_gravity
+    density = mass / (4.0 / 3.0 * np.pi * ball_radius**3) if gravity is None else np.full(n, 1000.0 * gravity)
+    if np.any(radius >= ball_radius):
+        raise ModelInputError(f"core_radius: a core of radius {radius * 1e3:.2f} mm does not fit inside a ball of "
+                              f"radius {float(np.min(ball_radius)) * 1e3:.3f} mm")
+    keys = np.stack([mass, ball_radius, factor, shear, density], -1)
+    unique, which = np.unique(keys, axis=0, return_inverse=True)
+    count = options.core_modes
+    if count is None:  # the modes up to the cut-off, the most any case needs (every case keeps as many)
+        count = max(core_torsion.modes_below(core_torsion.CUTOFF_FREQUENCY, total_inertia=k2 * m * r**2,
+                                             core_radius=radius, core_density=rho, shear_modulus=g)
+                    for m, r, k2, g, rho in unique)
+    inverse, frequency, damping = np.zeros((n, count)), np.zeros((n, count)), np.zeros((n, count))
+    for index, (m, r, k2, g, rho) in enumerate(unique):
+        try:
+            modes = core_torsion.core_modes(total_inertia=k2 * m * r**2, core_radius=radius, core_density=rho,
+                                            shear_modulus=g, loss=options.core_loss, modes=count)
+        except ValueError as exc:
+            raise ModelInputError(f"core_radius, core_specific_gravity: {exc}; a smaller or lighter core, or a "
+                                  f"ball with more inertia") from None
+        rows = which.ravel() == index
+        inverse[rows], frequency[rows], damping[rows] = modes.inverse_inertia, modes.frequency, modes.damping
+    return inverse, frequency, damping, ball_radius.copy()

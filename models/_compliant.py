@@ -17,7 +17,7 @@ from impactlab.physics import ball_laws
 from impactlab.physics.contact import DIAGONAL_TOLERANCE, couple_mobility
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      law_friction, rolling_on)
+                      core_inputs, law_friction, rolling_on)
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -162,6 +162,11 @@ class HertzTangentialModel(ImpactModel):
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        # the core turning behind the shell (option core_radius; impactlab.physics.core_torsion): its modes ride on
+        # the 3-D kernel's slip and rolling rate
+        core = core_inputs(self.options, p, friction)
+        if core is not None and not self._planar_core:
+            three_d |= friction > 0.0
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
         # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
@@ -173,7 +178,7 @@ class HertzTangentialModel(ImpactModel):
                 hysteresis, restitution, p.get("club_restitution_gain", 0.0))
             rolls = (arm_factor > 0.0) & (friction > 0.0)
             rolling = self._rolling_inputs(p, state, arm_factor)
-            if self._planar_rolling and rolling is not None:
+            if self._planar_rolling and rolling is not None and core is None:  # (the 1-D solver takes either)
                 planar = rolls & ~three_d & (slip != 0.0) & planar_couple(*rolling[:3])
             three_d |= rolls & ~planar
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
@@ -200,12 +205,18 @@ class HertzTangentialModel(ImpactModel):
         approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
         couple = self._planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach_scale,
                                      scale_speed) if np.any(planar) else None
+        # the core's modes on the line, scaled as dem.solve_scaled's ``core``
+        core_line = None if core is None or not self._planar_core else (
+            1.25 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0],
+            (core[1] * (approach_scale / scale_speed)[:, None]) ** 2, core[2] * (approach_scale / scale_speed)[:, None])
         moment, rolling_work, dissipation = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
         for index, law in enumerate(laws):
             for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
                 members = line & sliding & (law_of_case == index) & (resolution == count)
                 steps_wanted = self.options.resolution_steps(int(count))
                 extra = {} if couple is None else {"rolling": [part[members] for part in couple]}
+                if core_line is not None:
+                    extra["core"] = [part[members] for part in core_line]
                 solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
                                      kappa=kappa[members], **extra)
                 slip_change[members] = solved.slip_change
@@ -258,13 +269,13 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss, rolling)
+                           record, result, solution_of_case, initial_energy, loss, rolling, core)
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
             # answer is one continuous function of the strike position (issue 21, item 5)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0)
+                correct = three_d & sliding & (loss == 0.0) & (core is None)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
@@ -318,6 +329,8 @@ class HertzTangentialModel(ImpactModel):
 
     #: whether :meth:`_solve` takes ``rolling`` (a couple on the line; see dem.solve_scaled)
     _planar_rolling = False
+    #: whether :meth:`_solve` takes ``core`` (the core's modes on the line; see dem.solve_scaled)
+    _planar_core = False
 
     @staticmethod
     def _planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach, speed):
@@ -369,7 +382,7 @@ class HertzTangentialModel(ImpactModel):
         return coupling, rotation, rate, arm_factor
 
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy, loss, rolling=None):
+                  result, solution_of_case, initial_energy, loss, rolling=None, core=None):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -386,6 +399,7 @@ class HertzTangentialModel(ImpactModel):
                                        radius=state["contact_radius"][rows], normal=normal,
                                        springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
                                        rolling=None if rolling is None else tuple(part[rows] for part in rolling),
+                                       core=None if core is None else tuple(part[rows] for part in core),
                                        **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]

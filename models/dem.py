@@ -9,7 +9,8 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
+from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
+                      core_shear_modulus_field, core_specific_gravity_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -33,6 +34,12 @@ class _SpringOptions(CompliantOptions):
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
     #: the friction law (models._common.FRICTION_LAW_DOC); "coulomb": the friction input
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
+    core_radius: float = core_radius_field()
+    core_shear_modulus: float | None = core_shear_modulus_field()
+    core_specific_gravity: float | None = core_specific_gravity_field()
+    core_loss: float = core_loss_field()
+    core_modes: int = core_modes_field()
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""
@@ -106,6 +113,9 @@ class HertzMindlinOptions(_SpringOptions):
         stiffness differs (see docs/approaches.md on LAMMPS).
     tolerance, steps, damping, history_points, inelastic
         As for ``dem_linear``.
+    core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
+        The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
+        models._common.CORE_TORSION_DOC); core_radius 0 (the default): a rigid ball. Shared with ``dem_linear``.
     """
 
     history: str = attrs.field(default="force", validator=check(
@@ -139,8 +149,10 @@ class _SpringModel(HertzTangentialModel):
 
     #: the one-spring kernel carries a rolling couple on the line (dem.solve_scaled, ``rolling``)
     _planar_rolling = True
+    #: and the core's modes (dem.solve_scaled, ``core``)
+    _planar_core = True
 
-    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa, rolling=None):
+    def _solve(self, chi, psi1, record, normal, resolution, steps, kappa, rolling=None, core=None):
         change, dissipation = np.zeros_like(chi), np.zeros_like(chi)
         moment, rolling_work = (None, None) if rolling is None else (np.zeros_like(chi), np.zeros_like(chi))
         force = stick = tau = None
@@ -151,7 +163,8 @@ class _SpringModel(HertzTangentialModel):
             members = np.ones(chi.size, dtype=bool) if value is None else kappa == value
             solved = dem.solve_scaled(chi[members], psi1[members], steps=steps, record=record, normal=normal,
                                       damping=self.options.damping, **self._law(value),
-                                      rolling=None if rolling is None else [part[members] for part in rolling])
+                                      rolling=None if rolling is None else [part[members] for part in rolling],
+                                      core=None if core is None else [part[members] for part in core])
             change[members], dissipation[members] = solved.slip_change, solved.dissipation
             if rolling is not None:
                 moment[members], rolling_work[members] = solved.moment, solved.rolling_work

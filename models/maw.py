@@ -10,7 +10,8 @@ from impactlab.validators import check, in_range, to_float
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._common import FRICTION_LAW, ROLLING_HYSTERESIS
+from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
+                      core_shear_modulus_field, core_specific_gravity_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -75,6 +76,11 @@ class MawOptions(CompliantOptions):
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the ball-face pair's friction law
         (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+    core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
+        The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
+        models._common.CORE_TORSION_DOC): core radius [m] (0, the default: a rigid ball, the paper's model),
+        shear modulus [Pa] (default the ball's), specific gravity (default the ball's mean density), loss factor
+        (0) and the modes kept (default: up to 20 kHz). Cases with a core take the 3-D kernel.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -92,6 +98,12 @@ class MawOptions(CompliantOptions):
     cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
         1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
+    core_radius: float = core_radius_field()
+    core_shear_modulus: float | None = core_shear_modulus_field()
+    core_specific_gravity: float | None = core_specific_gravity_field()
+    core_loss: float = core_loss_field()
+    core_modes: int = core_modes_field()
 
     @tolerance.default
     def _default_tolerance(self):

@@ -70,7 +70,11 @@ class Contact3DSolution:
     moment : ndarray (n, 2)
         Angular impulse on the ball of the rolling-resistance couple along (s, l) [N m s] (zeros without one).
     work : ndarray (n,)
-        Work of the contact forces on the relative motion [J].
+        Work of the contact forces on the relative motion of the rigid bodies [J] (with a core, less what its
+        modes took: ``core_energy``).
+    core_energy : ndarray (n,)
+        Energy the core's modes took from the contact, held as vibration at separation or damped [J] (zeros
+        without a core).
     steps : ndarray (n,)
     unfinished : ndarray (n,) of bool
         The step limit came before the bodies separated.
@@ -85,6 +89,7 @@ class Contact3DSolution:
     steps: np.ndarray
     unfinished: np.ndarray
     moment: np.ndarray
+    core_energy: np.ndarray
     time: np.ndarray | None = None
     normal_force: np.ndarray | None = None
     tangential_force: np.ndarray | None = None
@@ -94,7 +99,7 @@ class Contact3DSolution:
 def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
           steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
           rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0, record: bool = False,
-          extrapolate: bool = True, rolling=None) -> Contact3DSolution:
+          extrapolate: bool = True, rolling=None, core=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case; by default at ``steps`` and ``2 steps``, extrapolated.
 
     Richardson extrapolation 2 J(2N) - J(N) of the impulses, their time integrals and the work removes the
@@ -103,7 +108,8 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
     """
     arguments = dict(friction=friction, kappa=kappa, modulus=modulus, radius=radius, normal=normal, springs=springs,
                      law=law, stiffness_factor=stiffness_factor, store_force=store_force, rescale=rescale,
-                     tangential_damping=tangential_damping, tangential_loss=tangential_loss, rolling=rolling)
+                     tangential_damping=tangential_damping, tangential_loss=tangential_loss, rolling=rolling,
+                     core=core)
     fine = solve_once(mobility, normal_speed, slip_speed, steps=2 * steps, record=record, **arguments)
     if not extrapolate:
         return fine
@@ -112,13 +118,14 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
                         moment=2.0 * fine.moment - coarse.moment,
                         impulse_time=2.0 * fine.impulse_time - coarse.impulse_time,
                         work=2.0 * fine.work - coarse.work, steps=fine.steps + coarse.steps,
+                        core_energy=2.0 * fine.core_energy - coarse.core_energy,
                         unfinished=fine.unfinished | coarse.unfinished)
 
 
 def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
                steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
                rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0,
-               record: bool = False, rolling=None) -> Contact3DSolution:
+               record: bool = False, rolling=None, core=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case.
 
     Parameters
@@ -145,6 +152,10 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         Rolling resistance (:mod:`.ball_laws`): (coupling B (n, 3, 2), rotation D (n, 2, 2), relative rolling rate
         (n, 2), arm factor (n,)) with B, D and the rate of :func:`impactlab.physics.contact.couple_mobility` and the
         arm factor d / a = (3/16) alpha; None (default): no couple.
+    core : tuple, optional
+        The core turning behind the shell (:mod:`.core_torsion`): (1 / I_k (n, K) [1/(kg m^2)], omega_k (n, K)
+        [rad/s], modal damping eta omega_k (n, K) [1/s], the ball's radius R (n,) [m]); the rigid rotation of
+        the whole ball is already in ``mobility``. None (default): a rigid ball.
     """
     n = normal_speed.size
     m_normal = 1.0 / mobility[:, 2, 2]
@@ -173,14 +184,24 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         couple_rr = np.ascontiguousarray(d * (m_normal * reach**2)[:, None, None])
         rolling0 = np.ascontiguousarray(rate * (reach / normal_speed)[:, None])
         arm = np.broadcast_to(np.asarray(factor, float), (n,)).copy()
-    out = np.zeros((n, 11))
+    if core is None:
+        gain, frequency, damping_modes, arm_ratio = np.zeros((n, 0)), np.zeros((n, 0)), np.zeros((n, 0)), np.zeros(n)
+    else:  # scaled: g_k = m* R^2 / I_k, Omega_k = omega_k delta_max / V_z, d_k likewise, a_max / R
+        inverse, omega, eta_omega, ball_radius = core
+        time_scale = (approach / normal_speed)[:, None]
+        gain = np.ascontiguousarray((m_normal * ball_radius**2)[:, None] * inverse)
+        frequency = np.ascontiguousarray(omega * time_scale)
+        damping_modes = np.ascontiguousarray(eta_omega * time_scale)
+        arm_ratio = np.ascontiguousarray(reach / ball_radius)
+    out = np.zeros((n, 12))
     # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
     relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
     damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
     kernel(ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping, np.ascontiguousarray(dtau),
            max_steps, LAWS[law], float(stiffness_factor), bool(store_force), bool(rescale), float(tangential_damping),
            np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), history_normal, history_tangential,
-           history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm)
+           history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm, gain, frequency, damping_modes,
+           arm_ratio)
 
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
     time_unit = approach / normal_speed
@@ -190,7 +211,7 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         * (impulse_unit * time_unit)[:, None]
     solution = dict(impulse=impulse, impulse_time=impulse_time, contact_time=out[:, 3] * time_unit,
                     work=out[:, 7] * peak * approach, steps=out[:, 8], unfinished=out[:, 8] >= max_steps,
-                    moment=out[:, 9:11] * (peak * reach * time_unit)[:, None])
+                    moment=out[:, 9:11] * (peak * reach * time_unit)[:, None], core_energy=out[:, 11] * peak * approach)
     if record:
         nodes = np.arange(max_steps + 1)
         solution.update(

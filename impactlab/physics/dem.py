@@ -63,7 +63,8 @@ def stiffness_shape(law: str, h: np.ndarray, stiffness_factor: float) -> np.ndar
 
 def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1.0, history: str = "force",
                  rescale: bool = True, damping: float = 0.0, steps: int = 2000, record: bool = False,
-                 normal: NormalLaw | None = None, rolling=None, _force_numpy: bool = False) -> TangentialSolution:
+                 normal: NormalLaw | None = None, rolling=None, core=None,
+                 _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact under a DEM spring law for each (chi, psi1) pair.
 
     Parameters
@@ -93,6 +94,11 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
             psi' = -(5/2) chi f + (5/4)(kappa/mu) b c,    w' = (5/4)(-mu b f + r c),    |c| <= (d/a) h^0.5 f_n.
 
         Each step takes the couple that stops the rolling by the step's end, put on its limit. None: no couple.
+    core : tuple of array_like (cases, modes), optional
+        The core turning behind the shell (:mod:`.core_torsion`), scaled: ((5/4) kappa g_k, Omega_k^2, d_k) with
+        g_k = m* R^2 / I_k, Omega_k = omega_k delta_max / V_z, d_k = eta Omega_k; each mode adds its rate Z_k to
+        the slip, Z_k' = -(5/4) kappa g_k f - Omega_k^2 Y_k - d_k Z_k (the 3-D kernel's modes on one line).
+        ``dissipation`` then counts what the modes took as well (the rigid bodies' loss). Not with ``rolling``.
 
     Returns
     -------
@@ -129,12 +135,16 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
     store_force = history == "force" or law == "linear"
     args = (chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, float(damping), SLIP_GAIN, record)
     root = np.sqrt(h)
+    if core is not None and rolling is not None:
+        raise ValueError("the core's modes and a rolling couple on the line are not combined (the 3-D kernel is)")
+    modes = [np.zeros((n, 0))] * 3 if core is None else [
+        np.ascontiguousarray(np.broadcast_to(np.asarray(part, float), (n, np.shape(core[0])[-1]))) for part in core]
     if _kernels.HAVE_NUMBA and not _force_numpy:
         force = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stuck = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
-        change, work, moment, rolling_work = _kernels.dem_cases(*args, force, stuck, root, *couple)
+        change, work, moment, rolling_work = _kernels.dem_cases(*args, force, stuck, root, *couple, *modes)
     else:
-        change, work, force, stuck, moment, rolling_work = _numpy_cases(*args, root, *couple)
+        change, work, force, stuck, moment, rolling_work = _numpy_cases(*args, root, *couple, *modes)
     stick_radius = root[None, :] * stuck if record else None
     # the work of f on the slip, in the units of TangentialSolution.dissipation (f = 1.5 * integral u)
     dissipation = work * SLIP_GAIN / TANGENTIAL_GAIN
@@ -144,9 +154,12 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
 
 
 def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record, root,
-                 couple_slip, couple_roll, rotation, rolling0, arm):
+                 couple_slip, couple_roll, rotation, rolling0, arm, mode_force, mode_frequency2, mode_damping):
     """Reference implementation, vectorised over cases; same arithmetic as ``_kernels.dem_cases``."""
     n = chi.size
+    modes = mode_force.shape[1]
+    zm, ym, am, hm = (np.zeros((n, modes)) for _ in range(4))
+    core_taken = np.zeros(n)
     spring = np.zeros(n)  # stored force (force history) or displacement (displacement history)
     change, acceleration, work, previous = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     rolls = arm > 0.0
@@ -158,6 +171,11 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         dt = tau[k] - tau[k - 1]
         half = change + 0.5 * dt * acceleration
         velocity = psi1 + half
+        if modes:  # leapfrog, as the kernel
+            hm = hm + (0.5 if k == 1 else 1.0) * dt * am
+            ym = ym + dt * hm
+            for j in range(modes):  # in the kernel's order
+                velocity = velocity + hm[:, j]
         stiff = stiffness[k]
         spring *= shrink[k]
         spring += (mean_stiffness[k] if store_force else 1.0) * dt * velocity
@@ -175,6 +193,10 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         work += 0.5 * (previous + total) * dt * velocity
         previous = total
         acceleration = -gain * chi * total
+        if modes:
+            am = -mode_force * total[:, None] - mode_frequency2 * ym - mode_damping * hm
+            for j in range(modes):
+                core_taken = core_taken + dt * mode_damping[:, j] * hm[:, j] * hm[:, j] / mode_force[:, j]
         if np.any(rolls):  # the couple that stops the rolling by the step's end, on its limit (the kernel's rule)
             middle = rate + 0.5 * dt * rate_change
             drive = -couple_roll * total
@@ -191,6 +213,12 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         if record:
             force[:, k] = total
             stuck[:, k] = np.where(over, 0.0, 1.0)
+    if modes:
+        zm = hm + 0.5 * (tau[-1] - tau[-2]) * am  # the rates at the last step's end
+        for j in range(modes):
+            core_taken = core_taken + (zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j]) / (
+                2.0 * mode_force[:, j])
+        work = work + core_taken
     return change, work, force, stuck, moment, rolling_work
 
 

@@ -41,7 +41,8 @@ if HAVE_NUMBA:  # inlined into the kernel's IR (the kernel looks its globals up 
 
 def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
                      store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
-                     history_tangential, history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm):
+                     history_tangential, history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm,
+                     mode_gain, mode_frequency, mode_damping, mode_arm):
     """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
 
     Scaled state: approach h and its rate H = h' (1 at first touch), slip S (2-vector, units mu V_z/kappa),
@@ -73,10 +74,27 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
 
     Each step the couple that stops the rolling by the step's end is taken if it lies within its limit, else
     that couple put on the limit (the rolling analogue of Coulomb's law); the couple acts only with friction.
+
+    The core turning behind the shell (:mod:`impactlab.physics.core_torsion`; ``mode_gain`` of shape (n, 0): none):
+    mode k of the core adds Z_k (2-vector, the slip's units) to the slip and q (Z_k1, -Z_k0) to the rolling rate
+    (q = mu mode_arm / kappa, mode_arm = a_max / R), with g_k = m* R^2 / I_k, Omega_k = omega_k delta_max / V_z and
+    d_k = eta Omega_k:
+
+        Y_k' = Z_k,   Z_k' = -(5/4) kappa g_k f + (5/4)(kappa/mu) g_k mode_arm (-c_1, c_0) - Omega_k^2 Y_k - d_k Z_k,
+
+    integrated by the same velocity Verlet. The modes' own energy (2/5)(mu/kappa)^2 (Z^2 + Omega^2 Y^2) / g_k at
+    the end and what their damping took are taken out of ``work`` (the rigid bodies' balance) and given in
+    ``out[:, 11]``; the couple that stops the rolling counts the modes' part of it.
     """
     cases = psi.shape[0]
     springs = xi2.size
     u = np.zeros((springs, 2))
+    modes = mode_gain.shape[1]
+    zm = np.zeros((modes, 2))
+    ym = np.zeros((modes, 2))
+    am = np.zeros((modes, 2))
+    hm = np.zeros((modes, 2))
+    coef = np.zeros((modes, 5))  # per mode: (5/4) kappa g, Omega^2, d, (5/4)(kappa/mu) g a_max/R, its damping's weight
     for case in range(cases):
         mu = friction[case]
         k = kappa[case]
@@ -138,10 +156,51 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         prev_c1 = 0.0
         mom0 = 0.0
         mom1 = 0.0
+        live = modes > 0 and mu > 0.0
+        core_scale = 0.4 * mu * mu / (k * k) if live else 0.0
+        q_arm = mu * mode_arm[case] / k if live else 0.0
+        core_taken = 0.0
+        mode_rr = 0.0
+        for j in range(modes):
+            zm[j, 0] = 0.0
+            zm[j, 1] = 0.0
+            hm[j, 0] = 0.0
+            hm[j, 1] = 0.0
+            ym[j, 0] = 0.0
+            ym[j, 1] = 0.0
+            am[j, 0] = 0.0
+            am[j, 1] = 0.0
+            mode_rr += mode_gain[case, j] * mode_arm[case] * mode_arm[case]
+            if live:
+                coef[j, 0] = 1.25 * k * mode_gain[case, j]
+                coef[j, 1] = mode_frequency[case, j] * mode_frequency[case, j]
+                coef[j, 2] = mode_damping[case, j]
+                coef[j, 3] = (1.25 * k / mu) * mode_gain[case, j] * mode_arm[case]
+                coef[j, 4] = 2.0 * core_scale * mode_damping[case, j] / mode_gain[case, j]
+        damped_core = live and mode_damping[case].max() > 0.0
         for step in range(1, max_steps + 1):
             h_half = hh + 0.5 * dt * ah
-            v0 = s0 + 0.5 * dt * as0
-            v1 = s1 + 0.5 * dt * as1
+            vr0 = s0 + 0.5 * dt * as0
+            vr1 = s1 + 0.5 * dt * as1
+            v0 = vr0
+            v1 = vr1
+            # the core's modes: half-step rates, new angles; their rates join the slip and the rolling rate
+            wc0 = 0.0
+            wc1 = 0.0
+            if live:  # (leapfrog: the half-step rate moves by a whole step of the last acceleration)
+                for j in range(modes):
+                    hm[j, 0] += (0.5 if step == 1 else 1.0) * dt * am[j, 0]
+                    hm[j, 1] += (0.5 if step == 1 else 1.0) * dt * am[j, 1]
+                    ym[j, 0] += dt * hm[j, 0]
+                    ym[j, 1] += dt * hm[j, 1]
+                    v0 += hm[j, 0]
+                    v1 += hm[j, 1]
+                if rho > 0.0:
+                    for j in range(modes):
+                        wc0 += hm[j, 1]
+                        wc1 -= hm[j, 0]
+                    wc0 *= q_arm
+                    wc1 *= q_arm
             h_old = h
             h = h + dt * h_half
             # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
@@ -246,10 +305,24 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 wm1 = w1 + 0.5 * dt * aw1
                 g0 = cn0 * normal - mu * (ct00 * f0 + ct10 * f1)
                 g1 = cn1 * normal - mu * (ct01 * f0 + ct11 * f1)
-                q0 = -(wm0 / (0.625 * dt) + g0)
-                q1 = -(wm1 / (0.625 * dt) + g1)
-                c0 = (r11 * q0 - r01 * q1) / det
-                c1 = (-r10 * q0 + r00 * q1) / det
+                if live:  # the modes' rolling rate by the step's end without the couple, and their give to it
+                    q0 = -((wm0 + wc0) / (0.625 * dt) + g0)
+                    q1 = -((wm1 + wc1) / (0.625 * dt) + g1)
+                    for j in range(modes):
+                        free0 = -coef[j, 0] * f0 - coef[j, 1] * ym[j, 0] - coef[j, 2] * hm[j, 0]
+                        free1 = -coef[j, 0] * f1 - coef[j, 1] * ym[j, 1] - coef[j, 2] * hm[j, 1]
+                        q0 -= 0.8 * q_arm * free1
+                        q1 += 0.8 * q_arm * free0
+                    e00 = r00 + mode_rr
+                    e11 = r11 + mode_rr
+                    det_all = e00 * e11 - r01 * r10
+                    c0 = (e11 * q0 - r01 * q1) / det_all
+                    c1 = (-r10 * q0 + e00 * q1) / det_all
+                else:
+                    q0 = -(wm0 / (0.625 * dt) + g0)
+                    q1 = -(wm1 / (0.625 * dt) + g1)
+                    c0 = (r11 * q0 - r01 * q1) / det
+                    c1 = (-r10 * q0 + r00 * q1) / det
                 limit = rho * root * normal
                 size = np.sqrt(c0 * c0 + c1 * c1)
                 if size > limit:
@@ -259,20 +332,30 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
             if mu > 0.0:
                 as0 = -1.25 * k * (a00 * f0 + a01 * f1) + (1.25 * k / mu) * (b0 * normal + ct00 * c0 + ct01 * c1)
                 as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * (b1 * normal + ct10 * c0 + ct11 * c1)
+            if live:
+                for j in range(modes):
+                    am[j, 0] = -coef[j, 0] * f0 - coef[j, 3] * c1 - coef[j, 1] * ym[j, 0] - coef[j, 2] * hm[j, 0]
+                    am[j, 1] = -coef[j, 0] * f1 + coef[j, 3] * c0 - coef[j, 1] * ym[j, 1] - coef[j, 2] * hm[j, 1]
+                if damped_core:
+                    for j in range(modes):
+                        core_taken += dt * coef[j, 4] * (hm[j, 0] * hm[j, 0] + hm[j, 1] * hm[j, 1])
             if rho > 0.0:
                 aw0 = 1.25 * (g0 + r00 * c0 + r01 * c1)
                 aw1 = 1.25 * (g1 + r10 * c0 + r11 * c1)
                 w0 = wm0 + 0.5 * dt * aw0
                 w1 = wm1 + 0.5 * dt * aw1
                 # the couple's work on the half-step rolling rate, as the forces' work below [F_max delta_max]
-                work += dt * 0.5 * ((prev_c0 + c0) * wm0 + (prev_c1 + c1) * wm1)
+                if live:  # the rolling rate includes the core's modes
+                    work += dt * 0.5 * ((prev_c0 + c0) * (wm0 + wc0) + (prev_c1 + c1) * (wm1 + wc1))
+                else:
+                    work += dt * 0.5 * ((prev_c0 + c0) * wm0 + (prev_c1 + c1) * wm1)
                 mom0 += 0.5 * dt * (prev_c0 + c0)
                 mom1 += 0.5 * dt * (prev_c1 + c1)
                 prev_c0 = c0
                 prev_c1 = c1
             h_new = h_half + 0.5 * dt * ah
-            n0 = v0 + 0.5 * dt * as0
-            n1 = v1 + 0.5 * dt * as1
+            n0 = vr0 + 0.5 * dt * as0
+            n1 = vr1 + 0.5 * dt * as1
             work += dt * (-0.5 * (prev_n + normal) * h_half
                           - (mu * mu / k) * 0.5 * ((prev_0 + f0) * v0 + (prev_1 + f1) * v1))
             old_n = imp_n
@@ -308,10 +391,16 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         out[case, 4] = cum_n
         out[case, 5] = cum_0
         out[case, 6] = cum_1
-        out[case, 7] = work
         out[case, 8] = steps
         out[case, 9] = mom0
         out[case, 10] = mom1
+        for j in range(modes if live else 0):  # what the core's modes hold at separation (rates at the step's end)
+            zm[j, 0] = hm[j, 0] + 0.5 * dt * am[j, 0]
+            zm[j, 1] = hm[j, 1] + 0.5 * dt * am[j, 1]
+            core_taken += core_scale * (zm[j, 0] ** 2 + zm[j, 1] ** 2 + mode_frequency[case, j] ** 2 * (
+                ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
+        out[case, 7] = work - core_taken if live else work
+        out[case, 11] = core_taken
 
 
 contact3d_cases = _compiled(_contact3d_cases, fastmath={"reassoc", "nsz", "arcp", "contract"})

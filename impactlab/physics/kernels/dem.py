@@ -8,16 +8,27 @@ from ._numba import compiled as _compiled
 
 
 def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_force, damping, gain, record, force,
-               stuck, root, couple_slip, couple_roll, rotation, rolling0, arm):
+               stuck, root, couple_slip, couple_roll, rotation, rolling0, arm, mode_force, mode_frequency2,
+               mode_damping):
     """One-spring DEM time loop per case; see dem.solve_scaled and dem._numpy_cases (the reference).
 
     With ``arm[case]`` > 0 a rolling-resistance couple on the line (dem.solve_scaled, ``rolling``): per step the
     couple that stops the rolling by the step's end, put on its limit arm sqrt(h) f_n, the arithmetic of
     :func:`impactlab.physics.kernels.contact3d._contact3d_cases` on one line. Returns (slip change, work of the
     spring's force on the slip, angular impulse of the couple, its work on the rolling).
+
+    The core's modes on the line (``mode_force`` of shape (n, 0): none; dem.solve_scaled, ``core``): each adds its
+    rate Z to the slip, Y' = Z, Z' = -mode_force f - mode_frequency2 Y - mode_damping Z, by the same velocity
+    Verlet; the energy they took (held at the end, (Z^2 + Omega^2 Y^2) / (2 mode_force), and damped) is added to
+    the work, so that the work is what the rigid bodies' slip lost. Not combined with a couple.
     """
     cases = chi.size
     nodes = tau.size
+    modes = mode_force.shape[1]
+    zm = np.zeros(modes)
+    ym = np.zeros(modes)
+    am = np.zeros(modes)
+    hm = np.zeros(modes)
     change_out = np.zeros(cases)
     work_out = np.zeros(cases)
     moment_out = np.zeros(cases)
@@ -39,10 +50,21 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
         previous_couple = 0.0
         moment = 0.0
         rolling_work = 0.0
+        core_taken = 0.0
+        damped_core = False
+        for j in range(modes):
+            hm[j] = 0.0
+            ym[j] = 0.0
+            am[j] = 0.0
+            damped_core = damped_core or mode_damping[case, j] > 0.0
         for k in range(1, nodes):
             dt = tau[k] - tau[k - 1]
             half = change + 0.5 * dt * acceleration
             velocity = p1 + half
+            for j in range(modes):  # the core's modes (leapfrog): half-step rates, new angles, rates in the slip
+                hm[j] += (0.5 if k == 1 else 1.0) * dt * am[j]
+                ym[j] += dt * hm[j]
+                velocity += hm[j]
             stiff = stiffness[k]
             spring *= shrink[k]
             spring += (mean_stiffness[k] if store_force else 1.0) * dt * velocity
@@ -60,6 +82,10 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             work += 0.5 * (previous + total) * dt * velocity
             previous = total
             acceleration = -gain * chi[case] * total
+            for j in range(modes):
+                am[j] = -mode_force[case, j] * total - mode_frequency2[case, j] * ym[j] - mode_damping[case, j] * hm[j]
+                if damped_core:
+                    core_taken += dt * mode_damping[case, j] * hm[j] * hm[j] / mode_force[case, j]
             if rho > 0.0:
                 # rolling rate at the half step; the couple that stops it by the step's end, put on its limit
                 middle = w + 0.5 * dt * aw
@@ -78,8 +104,11 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             if record:
                 force[case, k] = total
                 stuck[case, k] = 0.0 if over else 1.0
+        for j in range(modes):  # the rates at the last step's end
+            zm[j] = hm[j] + 0.5 * (tau[nodes - 1] - tau[nodes - 2]) * am[j]
+            core_taken += (zm[j] * zm[j] + mode_frequency2[case, j] * ym[j] * ym[j]) / (2.0 * mode_force[case, j])
         change_out[case] = change
-        work_out[case] = work
+        work_out[case] = work + core_taken if modes > 0 else work
         moment_out[case] = moment
         rolling_work_out[case] = rolling_work
     return change_out, work_out, moment_out, rolling_work_out
