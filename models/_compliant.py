@@ -167,6 +167,12 @@ class HertzTangentialModel(ImpactModel):
         core = core_inputs(self.options, p, friction)
         if core is not None and not self._planar_core:
             three_d |= friction > 0.0
+        elif core is not None and not isinstance(laws[0], hertz.CaseNormals):
+            # the 1-D solver's uniform steps carry the modes by leapfrog, which diverges for Omega_k dt > 2: a case
+            # whose stiffest mode needs more takes the 3-D kernel, which raises its steps per case (core_steps)
+            fastest = core[1].max(axis=1) * hertz.max_approach(m_normal, radius, modulus, scale_speed) / scale_speed
+            tau_end = np.array([law.tau_end for law in laws])[law_of_case]
+            three_d |= (fastest * tau_end > compliant3d.CORE_STEP * self.options.resolution_steps(1)) & (friction > 0.0)
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
         # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
