@@ -278,10 +278,11 @@ class HertzTangentialModel(ImpactModel):
                            record, result, solution_of_case, initial_energy, loss, rolling, core)
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
-            # answer is one continuous function of the strike position (issue 21, item 5)
+            # answer is one continuous function of the strike position (issue 21, item 5); with a core, that of its
+            # rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff limit)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0) & (core is None)
+                correct = three_d & sliding & (loss == 0.0)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))

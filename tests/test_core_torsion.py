@@ -372,3 +372,19 @@ def test_the_one_spring_solver_refuses_a_core_its_steps_cannot_carry():
     omega = 3.0 * compliant3d.CORE_STEP * steps / dem.ELASTIC.tau_end
     with pytest.raises(ValueError, match="Omega dt"):
         dem.solve_scaled([1.0], [2.0], steps=steps, core=([[0.5]], [[omega**2]], [[0.0]]))
+
+
+def test_maw_hysteretic_with_a_stiff_core_is_the_rigid_ball_and_keeps_the_limit_flag():
+    """maw with inelastic="hysteretic": MDR breaks the 3-D Coulomb limit here (flag 64) and the 1-D path's
+    correction is carried to the 3-D kernel. With a core every maw case takes the 3-D kernel; a nearly rigid core
+    must still give the rigid ball's spin (to 1 rpm, not the 52 rpm of the uncorrected MDR) and the flag."""
+    from test_ball_laws import _centred_head_cases
+
+    inputs = _centred_head_cases([0.0, 1e-6, 0.01])
+    names = ["spin_rate", "validity"]
+    rigid = get_model("maw")(inelastic="hysteretic").compute(inputs, names)
+    stiff = get_model("maw")(inelastic="hysteretic", core_radius="19 mm", core_shear_modulus="10 GPa",
+                             core_modes=2).compute(inputs, names)
+    np.testing.assert_allclose(stiff["spin_rate"].values, rigid["spin_rate"].values, rtol=0, atol=1.0)
+    assert np.all(rigid["validity"].values.astype(int) & 64)
+    assert np.all(stiff["validity"].values.astype(int) & 64)
