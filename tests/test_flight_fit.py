@@ -202,3 +202,24 @@ def test_a_lift_scale_fitted_with_the_apex_is_contradicted_by_the_hang_times():
 def test_held_out_drag_level_meets_3_percent_on_every_tour_table():
     checks = flight_fit.held_out(flight_fit.FITTED["c0"])
     assert all(check["rms_carry_error"] <= 0.03 for check in checks.values())
+
+
+@pytest.mark.parametrize("function, fragment", [
+    (lambda s, re: (np.full_like(s, np.nan), 0.1 + 0 * s), "returned CD nan"),
+    (lambda s, re: (-0.2 + 0 * s, 0.1 + 0 * s), "returned CD -0.2"),
+    (lambda s, re: (0.25 + 0 * s, np.full_like(s, np.inf)), "CL inf"),
+    (lambda s, re: 0.25 + 0 * s, "must return (CD, CL)"),
+    (lambda s, re: (s, s, s), "must return (CD, CL)"),
+    (lambda s, re: (np.ones(7), np.ones(7)), "must return (CD, CL)"),
+], ids=["nan", "negative drag", "infinite lift", "one array", "three arrays", "wrong shape"])
+def test_fly_refuses_a_coefficient_function_with_a_wrong_answer(function, fragment):
+    """A caller's (S, Re) -> (CD, CL) answering NaN, a negative drag or the wrong shape is one ValueError naming
+    what it returned: before, NaN gave NaN carries and CD -0.2 a 279 m 'carry' (drag pushing the ball), silently;
+    with two shots, a single array of CD was unpacked as CD and CL."""
+    speeds, angles, spins = np.array([70.0, 75.0]), np.radians([11.0, 12.0]), np.array([270.0, 260.0])
+    with pytest.raises(ValueError, match=r"model: the function .*" + fragment.replace("(", r"\(").replace(")", r"\)")):
+        flight.fly(speeds, angles, spins, model=function)
+    # two numbers, and a stacked (2, n) array, are answers
+    constant = flight.fly(speeds, angles, spins, model=lambda s, re: (0.25, 0.15))
+    stacked = flight.fly(speeds, angles, spins, model=lambda s, re: np.stack([0.25 + 0 * s, 0.15 + 0 * s]))
+    np.testing.assert_array_equal(constant["carry_distance"], stacked["carry_distance"])
