@@ -223,3 +223,37 @@ def test_fly_refuses_a_coefficient_function_with_a_wrong_answer(function, fragme
     constant = flight.fly(speeds, angles, spins, model=lambda s, re: (0.25, 0.15))
     stacked = flight.fly(speeds, angles, spins, model=lambda s, re: np.stack([0.25 + 0 * s, 0.15 + 0 * s]))
     np.testing.assert_array_equal(constant["carry_distance"], stacked["carry_distance"])
+
+
+GOOD_TABLE = {"name": "t", "kind": "measurement", "source": "a test table",
+              "units": {"ball_speed": "mph", "launch_angle": "deg", "spin_rate": "rpm", "carry": "yd"},
+              "rows": [{"club": "Driver", "ball_speed": 167.0, "launch_angle": 10.9, "spin_rate": 2686, "carry": 275}]}
+
+
+@pytest.mark.parametrize("change, fragment", [
+    ({"kind": "model output"}, "kind: expected 'measurement'"),
+    ({"units": {**GOOD_TABLE["units"], "carry": "m"}}, "carry: 'm' not accepted"),
+    ({"units": {**GOOD_TABLE["units"], "max_height": "ft"}}, "max_height: 'ft' not accepted"),
+    ({"units": {k: v for k, v in GOOD_TABLE["units"].items() if k != "spin_rate"}}, "missing ['spin_rate']"),
+    ({"rows": [{**GOOD_TABLE["rows"][0], "carry": None}]}, "row 1 (Driver): no carry"),
+    ({"rows": [{k: v for k, v in GOOD_TABLE["rows"][0].items() if k != "ball_speed"}]},
+     "row 1 (Driver): no ball_speed"),
+    ({"air": {"temperature_degF": 77}}, "air: unknown ['temperature_degF']"),
+    ({"air": {"relative_humidity": 50}}, "relative_humidity: expected a number from 0 to 1, got 50"),
+    ({"air": {"temperature_degC": "25 degC"}}, "temperature_degC: expected a number"),
+], ids=["kind", "carry in m", "height in ft", "no spin column", "empty carry", "no ball speed", "air key",
+        "humidity in percent", "temperature as text"])
+def test_a_malformed_carry_table_is_one_clear_message(tmp_path, monkeypatch, change, fragment):
+    """Tables may lack the optional columns and state their air, but a wrong unit, a missing required cell or an
+    unknown air key is refused naming the file: before, a missing carry cell was read as NaN (an RMS of NaN), an
+    unknown air key was dropped (the table flown in standard air) and the rest were bare asserts (gone under -O)."""
+    from impactlab.data import carry
+
+    (tmp_path / "bad.yaml").write_text(yaml.safe_dump({**GOOD_TABLE, **change}))
+    (tmp_path / "good.yaml").write_text(yaml.safe_dump({**GOOD_TABLE, "air": {"temperature_degC": 25}}))
+    monkeypatch.setattr(carry.resources, "files", lambda package: tmp_path)
+    good = carry.carry_table.__wrapped__("good")
+    assert good.air == {"temperature": pytest.approx(298.15)} and np.isnan(good.max_height[0])
+    with pytest.raises(ValueError, match="impactlab/data/validation/bad.yaml: ") as caught:
+        carry.carry_table.__wrapped__("bad")
+    assert fragment in str(caught.value)
