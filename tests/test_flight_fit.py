@@ -257,3 +257,20 @@ def test_a_malformed_carry_table_is_one_clear_message(tmp_path, monkeypatch, cha
     with pytest.raises(ValueError, match="impactlab/data/validation/bad.yaml: ") as caught:
         carry.carry_table.__wrapped__("bad")
     assert fragment in str(caught.value)
+
+
+@pytest.mark.parametrize("module, argv, fragment", [
+    ("carry", ["nosuch"], "unknown model nosuch"),
+    ("carry", ["measured_fit", "--bogus"], "unrecognized arguments: --bogus"),
+    ("flight_fit", ["measured_fit"], "unrecognized arguments: measured_fit"),
+])
+def test_the_flight_commands_refuse_a_wrong_argument_with_exit_code_2(module, argv, fragment, capsys):
+    """python -m impactlab.data.carry / flight_fit: before, an unknown model was a ValueError traceback (exit 1)
+    and flight_fit ignored any argument and ran its 6-second report."""
+    import importlib
+
+    with pytest.raises(SystemExit) as caught:
+        importlib.import_module(f"impactlab.data.{module}").main(argv)
+    assert caught.value.code == 2
+    err = capsys.readouterr().err
+    assert fragment in err and "Traceback" not in err

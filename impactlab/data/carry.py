@@ -233,11 +233,26 @@ def format_summary(models) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
-    import sys
+def main(argv=None) -> int:
+    """``python -m impactlab.data.carry [MODEL ...]``: the summary and every table's validation (default every
+    model but ``vacuum``). An unknown model is one message and exit code 2 (argparse), never a traceback."""
+    import argparse
 
-    print(format_summary(sys.argv[1:] or [key for key in MODELS if key != "vacuum"]), end="\n\n")
+    names = [key for key in MODELS if key != "vacuum"]
+    parser = argparse.ArgumentParser(prog="python -m impactlab.data.carry",
+                                     description="Fly TrackMan's tour tables with aerodynamic models (docs/flight.md).")
+    parser.add_argument("models", nargs="*", metavar="MODEL", help=f"models to fly (default all: {', '.join(names)})")
+    models = parser.parse_args(argv).models or names
+    unknown = [name for name in models if name not in MODELS]
+    if unknown:
+        parser.error(f"unknown model {', '.join(unknown)}; choose from {', '.join(sorted(MODELS))}")
+    print(format_summary(models), end="\n\n")
     for table_name in TABLES:
         print(f"## {table_name}", end="\n\n")
-        for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
+        for name in models:
             print(format_validation(name, table_name), end="\n\n")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
+    raise SystemExit(main())
