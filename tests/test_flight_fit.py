@@ -274,3 +274,47 @@ def test_the_flight_commands_refuse_a_wrong_argument_with_exit_code_2(module, ar
     assert caught.value.code == 2
     err = capsys.readouterr().err
     assert fragment in err and "Traceback" not in err
+
+
+# -- oracles added with the flight_fit mutants (benchmarks/mutation.py -k flightfit carry-air; review5) ------------
+
+def _fly_rows(table, c0, **air):
+    """The table's launches flown directly by flight.fly with measured_fit at drag level c0 (not through
+    validate_carry or flight_fit's bookkeeping)."""
+    return flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, model=flight_fit.coefficients(c0), **air)
+
+
+def test_each_fold_reports_its_own_season_flown_without_it():
+    """Leave-one-out: each fold's held-out error is that one season's carry error, flown in the season's air
+    with the c0 fitted without it."""
+    table = carry_table("pgatour_radar_driver")
+    for i, fold in enumerate(_folds()):
+        assert fold["carry_error"].shape == (1,), fold["group"]
+        carry = _fly_rows(table, fold["c0"], temperature=298.15, relative_humidity=0.5, altitude=0.0)["carry_distance"]
+        assert fold["carry_error"][0] == pytest.approx(carry[i] / table.carry[i] - 1.0, rel=1e-9, abs=1e-12)
+
+
+def test_explicit_air_overrides_the_air_a_table_states():
+    """validate_carry(..., temperature=...) flies at that temperature, the table's other air kept: the fit's
+    15 degC sensitivity (docs/flight.md) must not silently fly at the table's 25 degC."""
+    table = carry_table("pgatour_radar_driver")
+    cold = validate_carry("measured_fit", table, temperature=288.15)["carry"]
+    direct = flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, temperature=288.15,
+                        relative_humidity=0.5, altitude=0.0)["carry_distance"]
+    np.testing.assert_allclose(cold, direct, rtol=1e-12)
+    assert np.all(validate_carry("measured_fit", table)["carry"] > cold)  # 25 degC air is thinner: longer
+
+
+def test_held_out_height_and_land_errors_are_model_minus_table():
+    """As docs/flight.md states them: the PGA 2023 table flown directly in the standard air, minus the table."""
+    table = carry_table("trackman_carry_pga_2023")
+    direct = _fly_rows(table, flight_fit.FITTED["c0"])
+    check = flight_fit.held_out(flight_fit.FITTED["c0"], tables=("trackman_carry_pga_2023",))
+    check = check["trackman_carry_pga_2023"]
+    np.testing.assert_allclose(check["height_error"], direct["apex_height"] - table.max_height, rtol=1e-12)
+    np.testing.assert_allclose(check["land_error"], direct["landing_angle"] - table.land_angle, rtol=1e-12)
+
+
+def test_lift_scale_bounds_are_the_documented_spread():
+    """docs/flight.md: 0.73-1.21, the 10th-90th percentile of measured over fitted CL at S <= 0.2."""
+    assert flight_fit.lift_scale_bounds() == pytest.approx((0.73, 1.21), abs=0.006)
