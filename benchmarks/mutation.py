@@ -397,6 +397,12 @@ MUTANTS = [
      "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), loss * frequency)",
      "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), 0.0 * frequency)",
      T_CORE_TORSION, "the core's loss factor dropped"),
+    ("core-stable-steps", "impactlab/physics/compliant3d.py",
+     "wanted = np.ceil(fastest * tau_end / CORE_STEP).astype(int)", "wanted = np.ceil(0.0 * fastest).astype(int)",
+     T_CORE_TORSION, "3-D kernel: a stiff core's modes integrated on the given steps (their leapfrog diverges)"),
+    ("core-stable-line", "models/_compliant.py",
+     "three_d |= (fastest * tau_end > compliant3d.CORE_STEP", "three_d |= (fastest * tau_end > 1e9 * compliant3d.CORE_STEP",
+     T_CORE_TORSION, "1-D solver: a stiff core kept on a line whose steps cannot carry its modes"),
     # --- the drag level fitted on measured flights (impactlab/data/flight_fit.py, carry.py; review5)
     ("flightfit-drag-sign", "impactlab/data/flight_fit.py",
      'return cd + (c0 - MEASURED_FIT["c0"]), cl * lift_scale', 'return cd - (c0 - MEASURED_FIT["c0"]), cl * lift_scale',
