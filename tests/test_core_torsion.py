@@ -388,3 +388,54 @@ def test_maw_hysteretic_with_a_stiff_core_is_the_rigid_ball_and_keeps_the_limit_
     np.testing.assert_allclose(stiff["spin_rate"].values, rigid["spin_rate"].values, rtol=0, atol=1.0)
     assert np.all(rigid["validity"].values.astype(int) & 64)
     assert np.all(stiff["validity"].values.astype(int) & 64)
+
+
+@pytest.mark.parametrize("model, plate", [("hertz_mindlin", True), ("hertz_mindlin", False), ("maw", False),
+                                          ("dem_linear", True)],
+                         ids=["hertz_mindlin 1-D", "hertz_mindlin 3-D", "maw 3-D", "dem_linear 1-D"])
+def test_a_cases_core_modes_do_not_depend_on_its_batch(model, plate):
+    """With the default modes (those up to 20 kHz) a case keeps its own count: run beside a much softer ball (more
+    modes below the cut-off) its result is bit-identical to its result alone. Before, every case of a batch kept
+    the batch's largest count, which moved a driver's spin by 3e-4 (1.4 rpm) with what else was in the chunk."""
+    source = _complete(reference_inputs()) if plate else DRIVER_CASES
+    alone = {key: np.asarray(value)[:1] for key, value in source.items()}
+    batch = {key: np.concatenate([value, value]) for key, value in alone.items()}
+    batch["ball_youngs_modulus"] = np.array([alone["ball_youngs_modulus"][0], 5e6])
+    if plate:  # a gripping plate case (the 1-D line)
+        alone = _with(alone, angle=np.array([0.3]), spin=np.array([0.0]), friction=np.array([0.4]))
+        batch = _with(batch, angle=np.full(2, 0.3), spin=np.zeros(2), friction=np.full(2, 0.4))
+    names = ["tangential_impulse", "lateral_impulse"]
+    run = get_model(model)(core_radius="19 mm", tolerance=1e-3)
+    one, two = run.compute(alone, names), run.compute(batch, names)
+    for name in names:
+        assert two[name].values[0] == one[name].values[0], name
+    assert abs(float(one["tangential_impulse"].values[0])) > 0.0
+
+
+def test_an_inert_padding_mode_changes_nothing_in_either_kernel():
+    """A mode of gain 0 (how a case with fewer modes than its batch is padded) leaves both solvers' results
+    exactly as without it, compiled and numpy alike, lossy core included (no 0/0 in the energy taken)."""
+    from impactlab.physics import compliant3d, dem, hertz
+
+    chi, psi1 = np.array([0.3, 1.2, 2.0]), np.array([0.5, 3.0, 9.0])
+    core = (np.full((3, 1), 0.9), np.full((3, 1), 40.0**2), np.array([[0.0], [1.0], [0.5]]))
+    padded = tuple(np.concatenate([part, np.zeros((3, 1))], axis=1) for part in core)
+    for numpy_only in (False, True):
+        plain = dem.solve_scaled(chi, psi1, steps=400, core=core, _force_numpy=numpy_only)
+        pad = dem.solve_scaled(chi, psi1, steps=400, core=padded, _force_numpy=numpy_only)
+        np.testing.assert_array_equal(pad.slip_change, plain.slip_change)
+        np.testing.assert_array_equal(pad.dissipation, plain.dissipation)
+    n = 3
+    mobility = np.broadcast_to(np.diag([1 / MASS + RADIUS**2 / TOTAL] * 2 + [1 / MASS]), (n, 3, 3)).copy()
+    modes = core_torsion.core_modes(total_inertia=TOTAL, core_radius=CORE, core_density=DENSITY,
+                                    shear_modulus=SHEAR, loss=0.2, modes=2)
+    core3 = (np.tile(modes.inverse_inertia, (n, 1)), np.tile(modes.frequency, (n, 1)), np.tile(modes.damping, (n, 1)),
+             np.full(n, RADIUS))
+    padded3 = tuple(np.concatenate([part, np.zeros((n, 2))], axis=1) for part in core3[:3]) + (core3[3],)
+    arguments = dict(friction=np.full(n, 0.4), kappa=np.full(n, 0.7), modulus=np.full(n, 1.5e8),
+                     radius=np.full(n, RADIUS), normal=hertz.ELASTIC, springs=1, steps=300, law="mindlin")
+    speeds, slips = np.full(n, 40.0), np.array([5.0, 15.0, 40.0])
+    plain = compliant3d.solve_once(mobility, speeds, slips, core=core3, **arguments)
+    pad = compliant3d.solve_once(mobility, speeds, slips, core=padded3, **arguments)
+    for name in ("impulse", "work", "core_energy"):
+        np.testing.assert_array_equal(getattr(pad, name), getattr(plain, name))

@@ -202,8 +202,9 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         acceleration = -gain * chi * total
         if modes:
             am = -mode_force * total[:, None] - mode_frequency2 * ym - mode_damping * hm
-            for j in range(modes):
-                core_taken = core_taken + dt * mode_damping[:, j] * hm[:, j] * hm[:, j] / mode_force[:, j]
+            for j in range(modes):  # (a mode of gain 0 pads a case with fewer modes: inert, takes nothing)
+                core_taken = core_taken + dt * np.divide(mode_damping[:, j] * hm[:, j] * hm[:, j], mode_force[:, j],
+                                                         out=np.zeros(n), where=mode_force[:, j] > 0.0)
         if np.any(rolls):  # the couple that stops the rolling by the step's end, on its limit (the kernel's rule)
             middle = rate + 0.5 * dt * rate_change
             drive = -couple_roll * total
@@ -223,8 +224,8 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
     if modes:
         zm = hm + 0.5 * (tau[-1] - tau[-2]) * am  # the rates at the last step's end
         for j in range(modes):
-            core_taken = core_taken + (zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j]) / (
-                2.0 * mode_force[:, j])
+            core_taken = core_taken + np.divide(zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j],
+                                                2.0 * mode_force[:, j], out=np.zeros(n), where=mode_force[:, j] > 0.0)
         work = work + core_taken
     return change, work, force, stuck, moment, rolling_work
 
