@@ -49,6 +49,8 @@ T_JSON = ["tests/test_vendors.py", "tests/test_shots.py"]
 T_AERO = ["tests/test_flight.py"]
 #: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)
 T_CORE_TORSION = ["tests/test_core_torsion.py"]
+#: the drag level settled on measured radar flights, the tour tables held out (impactlab.data.flight_fit, carry)
+T_FLIGHT_FIT = ["tests/test_flight_fit.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
 MUTANTS = [
@@ -395,6 +397,38 @@ MUTANTS = [
      "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), loss * frequency)",
      "modal_inverse_inertia(x, core_mass, core_radius, shell_inertia), 0.0 * frequency)",
      T_CORE_TORSION, "the core's loss factor dropped"),
+    ("core-stable-steps", "impactlab/physics/compliant3d.py",
+     "wanted = np.ceil(fastest * tau_end / CORE_STEP).astype(int)", "wanted = np.ceil(0.0 * fastest).astype(int)",
+     T_CORE_TORSION, "3-D kernel: a stiff core's modes integrated on the given steps (their leapfrog diverges)"),
+    ("core-stable-line", "models/_compliant.py",
+     "three_d |= (fastest * tau_end > compliant3d.CORE_STEP", "three_d |= (fastest * tau_end > 1e9 * compliant3d.CORE_STEP",
+     T_CORE_TORSION, "1-D solver: a stiff core kept on a line whose steps cannot carry its modes"),
+    # --- the drag level fitted on measured flights (impactlab/data/flight_fit.py, carry.py; review5)
+    ("flightfit-drag-sign", "impactlab/data/flight_fit.py",
+     'return cd + (c0 - MEASURED_FIT["c0"]), cl * lift_scale', 'return cd - (c0 - MEASURED_FIT["c0"]), cl * lift_scale',
+     T_FLIGHT_FIT, "more c0 taken as less drag"),
+    ("flightfit-fold-not-left-out", "impactlab/data/flight_fit.py",
+     "params = fit(sources, exclude=(group,), **shape, **options)", "params = fit(sources, **shape, **options)",
+     T_FLIGHT_FIT, "leave-one-out fits every row: the 'held-out' season was fitted"),
+    ("flightfit-fold-wrong-rows", "impactlab/data/flight_fit.py",
+     "held = np.array([group in (name, label) for", "held = np.array([group not in (name, label) for",
+     T_FLIGHT_FIT, "leave-one-out reports the fitted rows' errors as the held-out one's"),
+    ("flightfit-lift-rows", "impactlab/data/flight_fit.py",
+     '(m["s"] <= DRIVER_S) & (m["s"] > 0)', '(m["s"] >= DRIVER_S) & (m["s"] > 0)',
+     T_FLIGHT_FIT, "the lift scale's bounds read from the high-spin rows, not the drivers'"),
+    ("flightfit-apex-ratio", "impactlab/data/flight_fit.py",
+     'c["apex_height"] / c["table"].max_height - 1.0', 'c["table"].max_height / c["apex_height"] - 1.0',
+     T_FLIGHT_FIT, "the apex residual inverted (measured over model)"),
+    ("flightfit-height-sign", "impactlab/data/flight_fit.py",
+     '"height_error": check["apex_height"] - check["table"].max_height',
+     '"height_error": check["table"].max_height - check["apex_height"]',
+     T_FLIGHT_FIT, "held-out height error as table minus model, against the documented model minus table"),
+    ("carry-air-precedence", "impactlab/data/carry.py",
+     "model=model, **{**table.air, **options})", "model=model, **{**options, **table.air})",
+     T_FLIGHT_FIT, "a table's stated air overrides the caller's explicit air (a sensitivity silently not run)"),
+    ("carry-air-kelvin", "impactlab/data/carry.py",
+     '"temperature_degC": ("temperature", 1.0, 273.15)', '"temperature_degC": ("temperature", 1.0, 0.0)',
+     T_FLIGHT_FIT, "a table's temperature in degC taken as kelvin"),
 
 ]
 

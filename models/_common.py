@@ -206,13 +206,14 @@ def core_inputs(options, inputs, friction) -> tuple | None:
                               f"radius {float(np.min(ball_radius)) * 1e3:.3f} mm")
     keys = np.stack([mass, ball_radius, factor, shear, density], -1)
     unique, which = np.unique(keys, axis=0, return_inverse=True)
-    count = options.core_modes
-    if count is None:  # the modes up to the cut-off, the most any case needs (every case keeps as many)
-        count = max(core_torsion.modes_below(core_torsion.CUTOFF_FREQUENCY, total_inertia=k2 * m * r**2,
-                                             core_radius=radius, core_density=rho, shear_modulus=g)
-                    for m, r, k2, g, rho in unique)
-    inverse, frequency, damping = np.zeros((n, count)), np.zeros((n, count)), np.zeros((n, count))
-    for index, (m, r, k2, g, rho) in enumerate(unique):
+    # the modes each case keeps: its own, never its batch's (a case's result must not depend on the cases run with
+    # it); a case with fewer than the widest is padded with inert modes (gain 0) that the kernels skip
+    counts = [options.core_modes if options.core_modes is not None else core_torsion.modes_below(
+        core_torsion.CUTOFF_FREQUENCY, total_inertia=k2 * m * r**2, core_radius=radius, core_density=rho,
+        shear_modulus=g) for m, r, k2, g, rho in unique]
+    width = max(counts)
+    inverse, frequency, damping = np.zeros((n, width)), np.zeros((n, width)), np.zeros((n, width))
+    for index, ((m, r, k2, g, rho), count) in enumerate(zip(unique, counts)):
         try:
             modes = core_torsion.core_modes(total_inertia=k2 * m * r**2, core_radius=radius, core_density=rho,
                                             shear_modulus=g, loss=options.core_loss, modes=count)
@@ -220,5 +221,6 @@ def core_inputs(options, inputs, friction) -> tuple | None:
             raise ModelInputError(f"core_radius, core_specific_gravity: {exc}; a smaller or lighter core, or a "
                                   f"ball with more inertia") from None
         rows = which.ravel() == index
-        inverse[rows], frequency[rows], damping[rows] = modes.inverse_inertia, modes.frequency, modes.damping
+        inverse[rows, :count], frequency[rows, :count] = modes.inverse_inertia, modes.frequency
+        damping[rows, :count] = modes.damping
     return inverse, frequency, damping, ball_radius.copy()

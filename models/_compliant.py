@@ -167,6 +167,12 @@ class HertzTangentialModel(ImpactModel):
         core = core_inputs(self.options, p, friction)
         if core is not None and not self._planar_core:
             three_d |= friction > 0.0
+        elif core is not None and not isinstance(laws[0], hertz.CaseNormals):
+            # the 1-D solver's uniform steps carry the modes by leapfrog, which diverges for Omega_k dt > 2: a case
+            # whose stiffest mode needs more takes the 3-D kernel, which raises its steps per case (core_steps)
+            fastest = core[1].max(axis=1) * hertz.max_approach(m_normal, radius, modulus, scale_speed) / scale_speed
+            tau_end = np.array([law.tau_end for law in laws])[law_of_case]
+            three_d |= (fastest * tau_end > compliant3d.CORE_STEP * self.options.resolution_steps(1)) & (friction > 0.0)
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
         # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
@@ -272,10 +278,11 @@ class HertzTangentialModel(ImpactModel):
                            record, result, solution_of_case, initial_energy, loss, rolling, core)
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
-            # answer is one continuous function of the strike position (issue 21, item 5)
+            # answer is one continuous function of the strike position (issue 21, item 5); with a core, that of its
+            # rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff limit)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0) & (core is None)
+                correct = three_d & sliding & (loss == 0.0)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))

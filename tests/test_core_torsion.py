@@ -342,3 +342,100 @@ def test_the_defaults_are_the_balls_own_shear_modulus_and_mean_density():
     other = get_model("hertz_mindlin")(core_radius=CORE, core_shear_modulus=e / (2 * (1 + nu)),
                                        core_specific_gravity=1.0).compute(inputs, names)
     assert abs(other["tangential_impulse"].values[0] - given["tangential_impulse"].values[0]) > 1e-6
+
+
+# -- a stiff core on few steps (review5): the modes' leapfrog diverges for Omega_k dt > 2 --------------------------
+
+@pytest.mark.parametrize("model, options", [("maw", {}), ("hertz_mindlin", {"steps": 200}),
+                                            ("dem_linear", {"steps": 100})],
+                         ids=["maw default steps", "hertz_mindlin 200 steps", "dem_linear 100 steps"])
+@pytest.mark.parametrize("shear, loss", [("3 GPa", 0.0), ("10 GPa", 2.0)])
+def test_a_stiff_core_is_the_rigid_ball_at_any_step_count(model, options, shear, loss):
+    """A core of 3-10 GPa (within the option's range) is nearly rigid: the spin must be the rigid ball's (law off)
+    to 0.1 %, on the centred strike (1-D solver) and off it (3-D kernel). Before the steps were raised for the
+    modes, maw's default steps gave twice the rigid ball's spin and 100 steps of dem_linear about 20 rpm."""
+    from test_ball_laws import _centred_head_cases
+
+    inputs = _centred_head_cases([0.0, 1e-6])
+    rigid = get_model(model)(**options).compute(inputs, ["spin_rate"])["spin_rate"].values
+    core = get_model(model)(core_radius="19 mm", core_shear_modulus=shear, core_loss=loss,
+                            **options).compute(inputs, ["spin_rate"])["spin_rate"].values
+    np.testing.assert_allclose(core, rigid, rtol=1e-3)
+
+
+def test_the_one_spring_solver_refuses_a_core_its_steps_cannot_carry():
+    """dem.solve_scaled called directly: a mode with Omega dt above compliant3d.CORE_STEP is refused, not
+    integrated into a diverging number."""
+    from impactlab.physics import compliant3d, dem
+
+    steps = 100
+    omega = 3.0 * compliant3d.CORE_STEP * steps / dem.ELASTIC.tau_end
+    with pytest.raises(ValueError, match="Omega dt"):
+        dem.solve_scaled([1.0], [2.0], steps=steps, core=([[0.5]], [[omega**2]], [[0.0]]))
+
+
+def test_maw_hysteretic_with_a_stiff_core_is_the_rigid_ball_and_keeps_the_limit_flag():
+    """maw with inelastic="hysteretic": MDR breaks the 3-D Coulomb limit here (flag 64) and the 1-D path's
+    correction is carried to the 3-D kernel. With a core every maw case takes the 3-D kernel; a nearly rigid core
+    must still give the rigid ball's spin (to 1 rpm, not the 52 rpm of the uncorrected MDR) and the flag."""
+    from test_ball_laws import _centred_head_cases
+
+    inputs = _centred_head_cases([0.0, 1e-6, 0.01])
+    names = ["spin_rate", "validity"]
+    rigid = get_model("maw")(inelastic="hysteretic").compute(inputs, names)
+    stiff = get_model("maw")(inelastic="hysteretic", core_radius="19 mm", core_shear_modulus="10 GPa",
+                             core_modes=2).compute(inputs, names)
+    np.testing.assert_allclose(stiff["spin_rate"].values, rigid["spin_rate"].values, rtol=0, atol=1.0)
+    assert np.all(rigid["validity"].values.astype(int) & 64)
+    assert np.all(stiff["validity"].values.astype(int) & 64)
+
+
+@pytest.mark.parametrize("model, plate", [("hertz_mindlin", True), ("hertz_mindlin", False), ("maw", False),
+                                          ("dem_linear", True)],
+                         ids=["hertz_mindlin 1-D", "hertz_mindlin 3-D", "maw 3-D", "dem_linear 1-D"])
+def test_a_cases_core_modes_do_not_depend_on_its_batch(model, plate):
+    """With the default modes (those up to 20 kHz) a case keeps its own count: run beside a much softer ball (more
+    modes below the cut-off) its result is bit-identical to its result alone. Before, every case of a batch kept
+    the batch's largest count, which moved a driver's spin by 3e-4 (1.4 rpm) with what else was in the chunk."""
+    source = _complete(reference_inputs()) if plate else DRIVER_CASES
+    alone = {key: np.asarray(value)[:1] for key, value in source.items()}
+    batch = {key: np.concatenate([value, value]) for key, value in alone.items()}
+    batch["ball_youngs_modulus"] = np.array([alone["ball_youngs_modulus"][0], 5e6])
+    if plate:  # a gripping plate case (the 1-D line)
+        alone = _with(alone, angle=np.array([0.3]), spin=np.array([0.0]), friction=np.array([0.4]))
+        batch = _with(batch, angle=np.full(2, 0.3), spin=np.zeros(2), friction=np.full(2, 0.4))
+    names = ["tangential_impulse", "lateral_impulse"]
+    run = get_model(model)(core_radius="19 mm", tolerance=1e-3)
+    one, two = run.compute(alone, names), run.compute(batch, names)
+    for name in names:
+        assert two[name].values[0] == one[name].values[0], name
+    assert abs(float(one["tangential_impulse"].values[0])) > 0.0
+
+
+def test_an_inert_padding_mode_changes_nothing_in_either_kernel():
+    """A mode of gain 0 (how a case with fewer modes than its batch is padded) leaves both solvers' results
+    exactly as without it, compiled and numpy alike, lossy core included (no 0/0 in the energy taken)."""
+    from impactlab.physics import compliant3d, dem, hertz
+
+    chi, psi1 = np.array([0.3, 1.2, 2.0]), np.array([0.5, 3.0, 9.0])
+    core = (np.full((3, 1), 0.9), np.full((3, 1), 40.0**2), np.array([[0.0], [1.0], [0.5]]))
+    padded = tuple(np.concatenate([part, np.zeros((3, 1))], axis=1) for part in core)
+    for numpy_only in (False, True):
+        plain = dem.solve_scaled(chi, psi1, steps=400, core=core, _force_numpy=numpy_only)
+        pad = dem.solve_scaled(chi, psi1, steps=400, core=padded, _force_numpy=numpy_only)
+        np.testing.assert_array_equal(pad.slip_change, plain.slip_change)
+        np.testing.assert_array_equal(pad.dissipation, plain.dissipation)
+    n = 3
+    mobility = np.broadcast_to(np.diag([1 / MASS + RADIUS**2 / TOTAL] * 2 + [1 / MASS]), (n, 3, 3)).copy()
+    modes = core_torsion.core_modes(total_inertia=TOTAL, core_radius=CORE, core_density=DENSITY,
+                                    shear_modulus=SHEAR, loss=0.2, modes=2)
+    core3 = (np.tile(modes.inverse_inertia, (n, 1)), np.tile(modes.frequency, (n, 1)), np.tile(modes.damping, (n, 1)),
+             np.full(n, RADIUS))
+    padded3 = tuple(np.concatenate([part, np.zeros((n, 2))], axis=1) for part in core3[:3]) + (core3[3],)
+    arguments = dict(friction=np.full(n, 0.4), kappa=np.full(n, 0.7), modulus=np.full(n, 1.5e8),
+                     radius=np.full(n, RADIUS), normal=hertz.ELASTIC, springs=1, steps=300, law="mindlin")
+    speeds, slips = np.full(n, 40.0), np.array([5.0, 15.0, 40.0])
+    plain = compliant3d.solve_once(mobility, speeds, slips, core=core3, **arguments)
+    pad = compliant3d.solve_once(mobility, speeds, slips, core=padded3, **arguments)
+    for name in ("impulse", "work", "core_energy"):
+        np.testing.assert_array_equal(getattr(pad, name), getattr(plain, name))

@@ -202,3 +202,119 @@ def test_a_lift_scale_fitted_with_the_apex_is_contradicted_by_the_hang_times():
 def test_held_out_drag_level_meets_3_percent_on_every_tour_table():
     checks = flight_fit.held_out(flight_fit.FITTED["c0"])
     assert all(check["rms_carry_error"] <= 0.03 for check in checks.values())
+
+
+@pytest.mark.parametrize("function, fragment", [
+    (lambda s, re: (np.full_like(s, np.nan), 0.1 + 0 * s), "returned CD nan"),
+    (lambda s, re: (-0.2 + 0 * s, 0.1 + 0 * s), "returned CD -0.2"),
+    (lambda s, re: (0.25 + 0 * s, np.full_like(s, np.inf)), "CL inf"),
+    (lambda s, re: 0.25 + 0 * s, "must return (CD, CL)"),
+    (lambda s, re: (s, s, s), "must return (CD, CL)"),
+    (lambda s, re: (np.ones(7), np.ones(7)), "must return (CD, CL)"),
+], ids=["nan", "negative drag", "infinite lift", "one array", "three arrays", "wrong shape"])
+def test_fly_refuses_a_coefficient_function_with_a_wrong_answer(function, fragment):
+    """A caller's (S, Re) -> (CD, CL) answering NaN, a negative drag or the wrong shape is one ValueError naming
+    what it returned: before, NaN gave NaN carries and CD -0.2 a 279 m 'carry' (drag pushing the ball), silently;
+    with two shots, a single array of CD was unpacked as CD and CL."""
+    speeds, angles, spins = np.array([70.0, 75.0]), np.radians([11.0, 12.0]), np.array([270.0, 260.0])
+    with pytest.raises(ValueError, match=r"model: the function .*" + fragment.replace("(", r"\(").replace(")", r"\)")):
+        flight.fly(speeds, angles, spins, model=function)
+    # two numbers, and a stacked (2, n) array, are answers
+    constant = flight.fly(speeds, angles, spins, model=lambda s, re: (0.25, 0.15))
+    stacked = flight.fly(speeds, angles, spins, model=lambda s, re: np.stack([0.25 + 0 * s, 0.15 + 0 * s]))
+    np.testing.assert_array_equal(constant["carry_distance"], stacked["carry_distance"])
+
+
+GOOD_TABLE = {"name": "t", "kind": "measurement", "source": "a test table",
+              "units": {"ball_speed": "mph", "launch_angle": "deg", "spin_rate": "rpm", "carry": "yd"},
+              "rows": [{"club": "Driver", "ball_speed": 167.0, "launch_angle": 10.9, "spin_rate": 2686, "carry": 275}]}
+
+
+@pytest.mark.parametrize("change, fragment", [
+    ({"kind": "model output"}, "kind: expected 'measurement'"),
+    ({"units": {**GOOD_TABLE["units"], "carry": "m"}}, "carry: 'm' not accepted"),
+    ({"units": {**GOOD_TABLE["units"], "max_height": "ft"}}, "max_height: 'ft' not accepted"),
+    ({"units": {k: v for k, v in GOOD_TABLE["units"].items() if k != "spin_rate"}}, "missing ['spin_rate']"),
+    ({"rows": [{**GOOD_TABLE["rows"][0], "carry": None}]}, "row 1 (Driver): no carry"),
+    ({"rows": [{k: v for k, v in GOOD_TABLE["rows"][0].items() if k != "ball_speed"}]},
+     "row 1 (Driver): no ball_speed"),
+    ({"air": {"temperature_degF": 77}}, "air: unknown ['temperature_degF']"),
+    ({"air": {"relative_humidity": 50}}, "relative_humidity: expected a number from 0 to 1, got 50"),
+    ({"air": {"temperature_degC": "25 degC"}}, "temperature_degC: expected a number"),
+], ids=["kind", "carry in m", "height in ft", "no spin column", "empty carry", "no ball speed", "air key",
+        "humidity in percent", "temperature as text"])
+def test_a_malformed_carry_table_is_one_clear_message(tmp_path, monkeypatch, change, fragment):
+    """Tables may lack the optional columns and state their air, but a wrong unit, a missing required cell or an
+    unknown air key is refused naming the file: before, a missing carry cell was read as NaN (an RMS of NaN), an
+    unknown air key was dropped (the table flown in standard air) and the rest were bare asserts (gone under -O)."""
+    from impactlab.data import carry
+
+    (tmp_path / "bad.yaml").write_text(yaml.safe_dump({**GOOD_TABLE, **change}))
+    (tmp_path / "good.yaml").write_text(yaml.safe_dump({**GOOD_TABLE, "air": {"temperature_degC": 25}}))
+    monkeypatch.setattr(carry.resources, "files", lambda package: tmp_path)
+    good = carry.carry_table.__wrapped__("good")
+    assert good.air == {"temperature": pytest.approx(298.15)} and np.isnan(good.max_height[0])
+    with pytest.raises(ValueError, match="impactlab/data/validation/bad.yaml: ") as caught:
+        carry.carry_table.__wrapped__("bad")
+    assert fragment in str(caught.value)
+
+
+@pytest.mark.parametrize("module, argv, fragment", [
+    ("carry", ["nosuch"], "unknown model nosuch"),
+    ("carry", ["measured_fit", "--bogus"], "unrecognized arguments: --bogus"),
+    ("flight_fit", ["measured_fit"], "unrecognized arguments: measured_fit"),
+])
+def test_the_flight_commands_refuse_a_wrong_argument_with_exit_code_2(module, argv, fragment, capsys):
+    """python -m impactlab.data.carry / flight_fit: before, an unknown model was a ValueError traceback (exit 1)
+    and flight_fit ignored any argument and ran its 6-second report."""
+    import importlib
+
+    with pytest.raises(SystemExit) as caught:
+        importlib.import_module(f"impactlab.data.{module}").main(argv)
+    assert caught.value.code == 2
+    err = capsys.readouterr().err
+    assert fragment in err and "Traceback" not in err
+
+
+# -- oracles added with the flight_fit mutants (benchmarks/mutation.py -k flightfit carry-air; review5) ------------
+
+def _fly_rows(table, c0, **air):
+    """The table's launches flown directly by flight.fly with measured_fit at drag level c0 (not through
+    validate_carry or flight_fit's bookkeeping)."""
+    return flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, model=flight_fit.coefficients(c0), **air)
+
+
+def test_each_fold_reports_its_own_season_flown_without_it():
+    """Leave-one-out: each fold's held-out error is that one season's carry error, flown in the season's air
+    with the c0 fitted without it."""
+    table = carry_table("pgatour_radar_driver")
+    for i, fold in enumerate(_folds()):
+        assert fold["carry_error"].shape == (1,), fold["group"]
+        carry = _fly_rows(table, fold["c0"], temperature=298.15, relative_humidity=0.5, altitude=0.0)["carry_distance"]
+        assert fold["carry_error"][0] == pytest.approx(carry[i] / table.carry[i] - 1.0, rel=1e-9, abs=1e-12)
+
+
+def test_explicit_air_overrides_the_air_a_table_states():
+    """validate_carry(..., temperature=...) flies at that temperature, the table's other air kept: the fit's
+    15 degC sensitivity (docs/flight.md) must not silently fly at the table's 25 degC."""
+    table = carry_table("pgatour_radar_driver")
+    cold = validate_carry("measured_fit", table, temperature=288.15)["carry"]
+    direct = flight.fly(table.ball_speed, table.launch_angle, table.spin_rate, temperature=288.15,
+                        relative_humidity=0.5, altitude=0.0)["carry_distance"]
+    np.testing.assert_allclose(cold, direct, rtol=1e-12)
+    assert np.all(validate_carry("measured_fit", table)["carry"] > cold)  # 25 degC air is thinner: longer
+
+
+def test_held_out_height_and_land_errors_are_model_minus_table():
+    """As docs/flight.md states them: the PGA 2023 table flown directly in the standard air, minus the table."""
+    table = carry_table("trackman_carry_pga_2023")
+    direct = _fly_rows(table, flight_fit.FITTED["c0"])
+    check = flight_fit.held_out(flight_fit.FITTED["c0"], tables=("trackman_carry_pga_2023",))
+    check = check["trackman_carry_pga_2023"]
+    np.testing.assert_allclose(check["height_error"], direct["apex_height"] - table.max_height, rtol=1e-12)
+    np.testing.assert_allclose(check["land_error"], direct["landing_angle"] - table.land_angle, rtol=1e-12)
+
+
+def test_lift_scale_bounds_are_the_documented_spread():
+    """docs/flight.md: 0.73-1.21, the 10th-90th percentile of measured over fitted CL at S <= 0.2."""
+    assert flight_fit.lift_scale_bounds() == pytest.approx((0.73, 1.21), abs=0.006)

@@ -69,6 +69,8 @@ OPTIONAL_UNITS = {"max_height": "yd", "land_angle": "deg", "flight_time": "s"}
 #: the keys of a table's ``air`` block and the factor to the fly() keyword's SI unit
 AIR_KEYS = {"temperature_degC": ("temperature", 1.0, 273.15), "relative_humidity": ("relative_humidity", 1.0, 0.0),
             "altitude_m": ("altitude", 1.0, 0.0)}
+#: the range each ``air`` value must lie in, as written (a humidity of 50 is a percentage, not a fraction)
+AIR_RANGES = {"temperature_degC": (-40.0, 50.0), "relative_humidity": (0.0, 1.0), "altitude_m": (-500.0, 5000.0)}
 
 
 @functools.cache
@@ -80,11 +82,32 @@ def carry_table(name: str = "trackman_carry") -> CarryTable:
     :attr:`CarryTable.air`.
     """
     document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text())
-    assert document["kind"] == "measurement", (name, document["kind"])
-    units = document["units"]
+    # a malformed table is one ValueError naming the file and what is wrong (never a column taken in a unit it is
+    # not in, a required cell read as NaN or an air key dropped: each would be a wrong carry, not a refusal)
+    where = f"impactlab/data/validation/{name}.yaml"
+    if document.get("kind") != "measurement":
+        raise ValueError(f"{where}: kind: expected 'measurement', got {document.get('kind')!r}")
+    units = document.get("units") or {}
     known = {**REQUIRED_UNITS, **OPTIONAL_UNITS}
-    assert REQUIRED_UNITS.items() <= units.items() and units.items() <= known.items(), (name, units)
+    wrong = {key: unit for key, unit in units.items() if known.get(key) != unit}
+    missing = sorted(set(REQUIRED_UNITS) - set(units))
+    if wrong or missing:
+        raise ValueError(f"{where}: units: expected {REQUIRED_UNITS} and any of {OPTIONAL_UNITS}; "
+                         + "; ".join(([f"missing {missing}"] if missing else [])
+                                     + [f"{key}: {unit!r} not accepted" for key, unit in wrong.items()]))
     rows = document["rows"]
+    for index, row in enumerate(rows):
+        empty = [key for key in ("club", *REQUIRED_UNITS) if row.get(key) is None]
+        if empty:
+            raise ValueError(f"{where}: row {index + 1} ({row.get('club', '?')}): no {', '.join(empty)} (every row "
+                             f"needs the club, {', '.join(REQUIRED_UNITS)})")
+    unknown = sorted(set(document.get("air") or {}) - set(AIR_KEYS))
+    if unknown:
+        raise ValueError(f"{where}: air: unknown {unknown}; expected keys among {sorted(AIR_KEYS)}")
+    for key, value in (document.get("air") or {}).items():
+        low, high = AIR_RANGES[key]
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not low <= value <= high:
+            raise ValueError(f"{where}: air: {key}: expected a number from {low:g} to {high:g}, got {value!r}")
 
     def column(key, factor):
         if key not in units:
@@ -92,7 +115,7 @@ def carry_table(name: str = "trackman_carry") -> CarryTable:
         return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float) * factor
 
     air = {AIR_KEYS[key][0]: float(value) * AIR_KEYS[key][1] + AIR_KEYS[key][2]
-           for key, value in (document.get("air") or {}).items() if key in AIR_KEYS}
+           for key, value in (document.get("air") or {}).items()}
     return CarryTable(tuple(row["club"] for row in rows), column("ball_speed", MPH),
                       column("launch_angle", np.pi / 180), column("spin_rate", RPM), column("max_height", YARD),
                       column("land_angle", np.pi / 180), column("carry", YARD), document["source"].strip(),
@@ -210,11 +233,26 @@ def format_summary(models) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
-    import sys
+def main(argv=None) -> int:
+    """``python -m impactlab.data.carry [MODEL ...]``: the summary and every table's validation (default every
+    model but ``vacuum``). An unknown model is one message and exit code 2 (argparse), never a traceback."""
+    import argparse
 
-    print(format_summary(sys.argv[1:] or [key for key in MODELS if key != "vacuum"]), end="\n\n")
+    names = [key for key in MODELS if key != "vacuum"]
+    parser = argparse.ArgumentParser(prog="python -m impactlab.data.carry",
+                                     description="Fly TrackMan's tour tables with aerodynamic models (docs/flight.md).")
+    parser.add_argument("models", nargs="*", metavar="MODEL", help=f"models to fly (default all: {', '.join(names)})")
+    models = parser.parse_args(argv).models or names
+    unknown = [name for name in models if name not in MODELS]
+    if unknown:
+        parser.error(f"unknown model {', '.join(unknown)}; choose from {', '.join(sorted(MODELS))}")
+    print(format_summary(models), end="\n\n")
     for table_name in TABLES:
         print(f"## {table_name}", end="\n\n")
-        for name in sys.argv[1:] or [key for key in MODELS if key != "vacuum"]:
+        for name in models:
             print(format_validation(name, table_name), end="\n\n")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
+    raise SystemExit(main())

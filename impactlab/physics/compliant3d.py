@@ -44,6 +44,11 @@ LAWS = {"mdr": 0, "linear": 1, "mindlin": 2}
 #: (0.09 / N; it is second order on one line), which the extrapolation removes.
 SPRING_ERROR, TIME_ERROR = 0.25, 3.0
 MAX_STEPS = 200_000
+#: the largest Omega_k dt the core's modes are integrated at (scaled time). Their leapfrog, damped on the half-step
+#: rate, has the amplification lambda^2 - (2 - eta a - a^2) lambda + 1 - eta a = 0 (a = Omega dt) and diverges for
+#: a > sqrt(eta^2 + 4) - eta: 2 undamped, 0.83 at the largest loss factor, eta = 2 (derived here). A case whose
+#: stiffest mode is faster gets more steps (core_steps)
+CORE_STEP = 0.5
 
 
 def resolution(tolerance: float, springs_needed: bool = True) -> tuple[int, int, bool]:
@@ -110,6 +115,8 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
                      law=law, stiffness_factor=stiffness_factor, store_force=store_force, rescale=rescale,
                      tangential_damping=tangential_damping, tangential_loss=tangential_loss, rolling=rolling,
                      core=core)
+    if core is not None:  # the coarse run's steps stable for the core's modes (per case; see solve_once)
+        steps = core_steps(mobility, normal_speed, modulus, radius, normal, core, steps)
     fine = solve_once(mobility, normal_speed, slip_speed, steps=2 * steps, record=record, **arguments)
     if not extrapolate:
         return fine
@@ -122,8 +129,23 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
                         unfinished=fine.unfinished | coarse.unfinished)
 
 
+def core_steps(mobility, normal_speed, modulus, radius, normal, core, steps):
+    """Steps per case (n,) of at least ``steps`` at which the core's stiffest mode has Omega_k dt <= CORE_STEP.
+
+    The modes ride on the kernel's leapfrog, which diverges for Omega_k dt > 2: a stiff core (a few GPa) on the
+    3-D kernel's default steps turned a ball's spin into twice the rigid ball's, or into nonsense, with no flag.
+    Cases whose modes the given steps carry keep them (their results unchanged).
+    """
+    n = normal_speed.size
+    approach = hertz.max_approach(1.0 / mobility[:, 2, 2], radius, modulus, normal_speed)
+    fastest = np.max(np.asarray(core[1], float), axis=1, initial=0.0) * approach / normal_speed  # scaled Omega
+    tau_end = np.broadcast_to(np.asarray(normal.tau_end, float), (n,))
+    wanted = np.ceil(fastest * tau_end / CORE_STEP).astype(int)
+    return np.maximum(np.broadcast_to(np.asarray(steps, int), (n,)), wanted)
+
+
 def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
-               steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
+               steps, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
                rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0,
                record: bool = False, rolling=None, core=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case.
@@ -140,8 +162,11 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         mu, kappa = G*/E*, E* [Pa] and the Hertz radius [m].
     normal : NormalLaw or CaseNormals
         The normal law (its damping, and its duration for the step size): one for all cases, or one per case.
-    springs, steps : int
-        MDR springs on the half-contact (1 for a DEM law) and uniform steps over the uncoupled contact.
+    springs : int
+        MDR springs on the half-contact (1 for a DEM law).
+    steps : int or ndarray (n,)
+        Uniform steps over the uncoupled contact (with a core, raised per case where its stiffest mode needs
+        more: :func:`core_steps`).
     law, stiffness_factor, store_force, rescale, tangential_damping
         The tangential law (see :mod:`.dem`; ``"mdr"`` for Maw's).
     tangential_loss : array_like
@@ -166,8 +191,10 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         psi = np.where(friction > 0.0, kappa * slip_speed / np.where(friction > 0.0, friction * normal_speed, 1.0),
                        0.0)
     psi = np.stack([psi, np.zeros(n)], -1)
+    if core is not None:
+        steps = core_steps(mobility, normal_speed, modulus, radius, normal, core, steps)
     dtau = np.broadcast_to(np.asarray(normal.tau_end, float), (n,)) / steps
-    max_steps = STEP_ALLOWANCE * steps
+    max_steps = STEP_ALLOWANCE * int(np.max(steps))
     xi2 = ((np.arange(springs) + 0.5) / springs) ** 2
     shape = (n, max_steps + 1) if record else (1, 1)
     history_normal, history_tangential, history_stick = (np.zeros(shape) for _ in range(3))

@@ -45,6 +45,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import kernels as _kernels
+from .compliant3d import CORE_STEP
 from .hertz import ELASTIC, NormalLaw, cached_grid
 from .mdr import TANGENTIAL_GAIN, TangentialSolution
 
@@ -99,6 +100,8 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
         g_k = m* R^2 / I_k, Omega_k = omega_k delta_max / V_z, d_k = eta Omega_k; each mode adds its rate Z_k to
         the slip, Z_k' = -(5/4) kappa g_k f - Omega_k^2 Y_k - d_k Z_k (the 3-D kernel's modes on one line).
         ``dissipation`` then counts what the modes took as well (the rigid bodies' loss). Not with ``rolling``.
+        Refused (ValueError) when the stiffest mode has Omega_k dt above
+        :data:`impactlab.physics.compliant3d.CORE_STEP`: the modes' leapfrog would diverge.
 
     Returns
     -------
@@ -139,6 +142,10 @@ def solve_scaled(chi, psi1, *, law: str = "mindlin", stiffness_factor: float = 1
         raise ValueError("the core's modes and a rolling couple on the line are not combined (the 3-D kernel is)")
     modes = [np.zeros((n, 0))] * 3 if core is None else [
         np.ascontiguousarray(np.broadcast_to(np.asarray(part, float), (n, np.shape(core[0])[-1]))) for part in core]
+    fastest = float(np.sqrt(np.max(modes[1], initial=0.0))) * normal.tau_end / steps  # Omega_k dt
+    if fastest > CORE_STEP:  # the modes' leapfrog diverges beyond 2: a wrong number, not a slow one
+        raise ValueError(f"the core's stiffest mode has Omega dt = {fastest:.3g} at {steps} steps, above "
+                         f"{CORE_STEP}: give at least {int(np.ceil(fastest * steps / CORE_STEP))} steps or fewer modes")
     if _kernels.HAVE_NUMBA and not _force_numpy:
         force = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stuck = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
@@ -195,8 +202,9 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
         acceleration = -gain * chi * total
         if modes:
             am = -mode_force * total[:, None] - mode_frequency2 * ym - mode_damping * hm
-            for j in range(modes):
-                core_taken = core_taken + dt * mode_damping[:, j] * hm[:, j] * hm[:, j] / mode_force[:, j]
+            for j in range(modes):  # (a mode of gain 0 pads a case with fewer modes: inert, takes nothing)
+                core_taken = core_taken + dt * np.divide(mode_damping[:, j] * hm[:, j] * hm[:, j], mode_force[:, j],
+                                                         out=np.zeros(n), where=mode_force[:, j] > 0.0)
         if np.any(rolls):  # the couple that stops the rolling by the step's end, on its limit (the kernel's rule)
             middle = rate + 0.5 * dt * rate_change
             drive = -couple_roll * total
@@ -216,8 +224,8 @@ def _numpy_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_f
     if modes:
         zm = hm + 0.5 * (tau[-1] - tau[-2]) * am  # the rates at the last step's end
         for j in range(modes):
-            core_taken = core_taken + (zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j]) / (
-                2.0 * mode_force[:, j])
+            core_taken = core_taken + np.divide(zm[:, j] * zm[:, j] + mode_frequency2[:, j] * ym[:, j] * ym[:, j],
+                                                2.0 * mode_force[:, j], out=np.zeros(n), where=mode_force[:, j] > 0.0)
         work = work + core_taken
     return change, work, force, stuck, moment, rolling_work
 

@@ -124,6 +124,38 @@ def _hermite_root(z0, z1, dz0, dz1, h):
     return s
 
 
+
+def _checked_coefficients(function):
+    """A caller's ``(S, Re) -> (CD, CL)`` with its answer checked at every call: two finite arrays of the shape
+    of S (or scalars) with CD >= 0; anything else is one ValueError naming the function, never a carry of NaN or
+    of a ball that drag pushes forward."""
+    name = getattr(function, "__name__", repr(function))
+
+    def coefficients(s, re):
+        answer = function(s, re)
+        try:
+            if isinstance(answer, np.ndarray) and answer.shape != (2,) + np.shape(s):
+                raise ValueError
+            cd, cl = answer
+            cd = np.broadcast_to(np.asarray(cd, dtype=float), np.shape(s))
+            cl = np.broadcast_to(np.asarray(cl, dtype=float), np.shape(s))
+        except (TypeError, ValueError):
+            parts = [np.shape(part) for part in answer] if isinstance(answer, (tuple, list)) else np.shape(answer)
+            raise ValueError(f"model: the function {name} must return (CD, CL), two arrays of the shape of S "
+                             f"{np.shape(s)} or two numbers; it returned a {type(answer).__name__} of shape "
+                             f"{parts}") from None
+        bad = ~(np.isfinite(cd) & np.isfinite(cl) & (cd >= 0.0))
+        if np.any(bad):
+            i = int(np.flatnonzero(bad.ravel())[0])
+            raise ValueError(f"model: the function {name} returned CD {float(cd.ravel()[i]):.4g}, CL "
+                             f"{float(cl.ravel()[i]):.4g} at "
+                             f"S {np.ravel(s)[i]:.4g}, Re {np.ravel(re)[i]:.4g}; expected finite values with "
+                             f"CD >= 0")
+        return cd, cl
+
+    return coefficients
+
+
 def fly(
     ball_speed,
     launch_angle,
@@ -183,7 +215,9 @@ def fly(
         Or a function ``(S, Re) -> (CD, CL)`` of arrays (dimensionless), flown
         with the spin decay of the registered models (``lam`` 2.0e-5, or
         ``spin_decay``); used to fit a coefficient to measured flights
-        (:mod:`impactlab.data.flight_fit`).
+        (:mod:`impactlab.data.flight_fit`). Its answer must be two finite
+        arrays of the shape of S (or two numbers) with CD >= 0, else
+        ValueError.
     spin_decay : float or None, optional
         Spin-decay constant ``lam`` of :func:`spin_decay_rate`; ``None`` uses
         the model's (2.0e-5, Smits & Smith); 0 disables spin decay.
@@ -251,7 +285,7 @@ def fly(
     True
     """
     if callable(model):
-        coef_fn, lam_default = model, 2.0e-5
+        coef_fn, lam_default = _checked_coefficients(model), 2.0e-5
     elif isinstance(model, str) and model in MODELS:
         coef_fn, lam_default = MODELS[model]
     else:

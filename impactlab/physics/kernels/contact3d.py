@@ -176,7 +176,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 coef[j, 1] = mode_frequency[case, j] * mode_frequency[case, j]
                 coef[j, 2] = mode_damping[case, j]
                 coef[j, 3] = (1.25 * k / mu) * mode_gain[case, j] * mode_arm[case]
-                coef[j, 4] = 2.0 * core_scale * mode_damping[case, j] / mode_gain[case, j]
+                # (gain 0: a mode that pads a case with fewer modes than its batch; inert, it takes nothing)
+                coef[j, 4] = 2.0 * core_scale * mode_damping[case, j] / mode_gain[case, j] if mode_gain[case, j] > 0.0 \
+                    else 0.0
         damped_core = live and mode_damping[case].max() > 0.0
         for step in range(1, max_steps + 1):
             h_half = hh + 0.5 * dt * ah
@@ -397,8 +399,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         for j in range(modes if live else 0):  # what the core's modes hold at separation (rates at the step's end)
             zm[j, 0] = hm[j, 0] + 0.5 * dt * am[j, 0]
             zm[j, 1] = hm[j, 1] + 0.5 * dt * am[j, 1]
-            core_taken += core_scale * (zm[j, 0] ** 2 + zm[j, 1] ** 2 + mode_frequency[case, j] ** 2 * (
-                ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
+            if mode_gain[case, j] > 0.0:
+                core_taken += core_scale * (zm[j, 0] ** 2 + zm[j, 1] ** 2 + mode_frequency[case, j] ** 2 * (
+                    ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
         out[case, 7] = work - core_taken if live else work
         out[case, 11] = core_taken
 

@@ -84,7 +84,7 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
             acceleration = -gain * chi[case] * total
             for j in range(modes):
                 am[j] = -mode_force[case, j] * total - mode_frequency2[case, j] * ym[j] - mode_damping[case, j] * hm[j]
-                if damped_core:
+                if damped_core and mode_force[case, j] > 0.0:  # (gain 0: a padding mode, inert)
                     core_taken += dt * mode_damping[case, j] * hm[j] * hm[j] / mode_force[case, j]
             if rho > 0.0:
                 # rolling rate at the half step; the couple that stops it by the step's end, put on its limit
@@ -106,7 +106,8 @@ def _dem_cases(chi, psi1, tau, cap, stiffness, mean_stiffness, shrink, store_for
                 stuck[case, k] = 0.0 if over else 1.0
         for j in range(modes):  # the rates at the last step's end
             zm[j] = hm[j] + 0.5 * (tau[nodes - 1] - tau[nodes - 2]) * am[j]
-            core_taken += (zm[j] * zm[j] + mode_frequency2[case, j] * ym[j] * ym[j]) / (2.0 * mode_force[case, j])
+            if mode_force[case, j] > 0.0:
+                core_taken += (zm[j] * zm[j] + mode_frequency2[case, j] * ym[j] * ym[j]) / (2.0 * mode_force[case, j])
         change_out[case] = change
         work_out[case] = work + core_taken if modes > 0 else work
         moment_out[case] = moment
