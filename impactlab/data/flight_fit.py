@@ -234,10 +234,12 @@ def format_report(sources=SOURCES) -> str:
     table = rows["table"]
     hang = table.flight_time if table.flight_time is not None else np.full(len(table.clubs), np.nan)
     for i, label in enumerate(labels(sources[0])):
+        # a season whose hang time the source does not give (2018-19) shows "-", as the docs' table does
+        hang_cells = (f"{hang[i]:.2f} | {rows['flight_time'][i] - hang[i]:+.2f}" if np.isfinite(hang[i])
+                      else "- | -")
         lines.append(f"| {label} | {table.carry[i] / YARD:.1f} | {100 * base['carry_error'][i]:+.1f} % | "
                      f"{100 * rows['carry_error'][i]:+.1f} % | {table.max_height[i] / YARD:.1f} | "
-                     f"{(rows['apex_height'][i] - table.max_height[i]) / YARD:+.1f} | {hang[i]:.2f} | "
-                     f"{rows['flight_time'][i] - hang[i]:+.2f} |")
+                     f"{(rows['apex_height'][i] - table.max_height[i]) / YARD:+.1f} | {hang_cells} |")
     lines += ["", "| left out | c0 fitted without it | held-out carry error |", "|---|---|---|"]
     for fold in leave_one_out(sources):
         lines.append(f"| {fold['group']} | {fold['c0']:.4f} | "
