@@ -27,6 +27,7 @@ from pathlib import Path
 
 import attrs
 import numpy as np
+from scipy import optimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -88,8 +89,27 @@ def cor_table():
             print(f"| {f / 1e3:g} | " + " | ".join(f"{v:.3f}" for v in values) + " |")
 
 
+def cor_limit_faces():
+    """The face frequency whose simulated COR is the Rules' limit 0.830 (hysteretic law) at the plate's modal
+    masses of a 2.6 and a 3.0 mm face: the faces 'at the CT limit', sized without the TrackMan rows."""
+    print("\nFaces at the COR limit 0.830 (hysteretic; the frequency solved at the plate's modal mass)")
+    for h in (2.6, 3.0):
+        _, modal, _ = face_flex.clamped_plate_mode(FACE_RADIUS, h * 1e-3, *TITANIUM)
+        f = optimize.brentq(lambda f: pair_cor({"inelastic": "hysteretic", "face_frequency": 2 * np.pi * f,
+                                                 "face_modal_mass": modal})[0] - 0.830, 4e3, 20e3, xtol=1.0)
+        print(f"  {h:.1f} mm plate's modal mass {modal * 1e3:.1f} g: f = {f / 1e3:.2f} kHz")
+
+
+#: faces sized without the TrackMan rows: the clamped plates of 2.6 and 3.0 mm (model outputs) and the faces of
+#: those modal masses whose simulated COR is the Rules' limit 0.830 (cor_limit_faces, hysteretic law)
+NAMED_FACES = (("plate 2.6 mm: 3.99 kHz, 10.9 g", 3.99e3, 0.0109), ("plate 3.0 mm: 4.60 kHz, 12.6 g", 4.60e3, 0.0126),
+               ("COR 0.830: 6.88 kHz, 10.9 g", 6.88e3, 0.0109), ("COR 0.830: 6.47 kHz, 12.6 g", 6.47e3, 0.0126))
+
+
 def forms():
     yield "off (rigid face, gain 0.083)", {}
+    for name, f, m in NAMED_FACES:
+        yield f"**{name}**", {"face_frequency": 2 * np.pi * f, "face_modal_mass": m}
     for m in MASSES:
         for f in FREQUENCIES:
             yield f"{f / 1e3:g} kHz, {m * 1e3:.0f} g", {"face_frequency": 2 * np.pi * f, "face_modal_mass": m}
@@ -182,6 +202,7 @@ def cost():
 def main():
     plate_table()
     cor_table()
+    cor_limit_faces()
     for inelastic in ("adjusted_speed", "hysteretic"):
         for rolling in (False, True):
             spin_table(inelastic, rolling)
