@@ -61,7 +61,8 @@ def plate_table():
     for h in (2.3, 2.6, 3.0, 3.3):
         f, m, k = face_flex.clamped_plate_mode(FACE_RADIUS, h * 1e-3, *TITANIUM)
         d = TITANIUM[0] * (h * 1e-3) ** 3 / (12 * (1 - TITANIUM[1] ** 2))
-        print(f"| {h:.1f} | {f / 1e3:.2f} | {m * 1e3:.1f} | {k / 1e6:.2f} | {16 * np.pi * d / FACE_RADIUS**2 / 1e6:.2f} |")
+        static = 16 * np.pi * d / FACE_RADIUS**2
+        print(f"| {h:.1f} | {f / 1e3:.2f} | {m * 1e3:.1f} | {k / 1e6:.2f} | {static / 1e6:.2f} |")
 
 
 def pair_cor(options, speed=48.8):

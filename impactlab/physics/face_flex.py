@@ -131,7 +131,7 @@ def pendulum_contact_time(stiffness: float, modal_mass: float, pendulum_mass: fl
     def parted(t, state):
         return state[0] - state[2] if t > 1e-3 * hertz_time else 1.0
 
-    parted.direction = -1
+    parted.direction = -1  # type: ignore[attr-defined]  # (solve_ivp reads it off the event function)
     solved = integrate.solve_ivp(rates, (0.0, span), [0.0, speed, 0.0, 0.0], method="DOP853", events=parted,
                                  rtol=1e-10, atol=1e-14 * speed * span, max_step=hertz_time / 50.0)
     xp, vp, y, vy = solved.y[:, -1]
