@@ -107,6 +107,25 @@ NAMED_FACES = (("plate 2.6 mm: 3.99 kHz, 10.9 g", 3.99e3, 0.0109), ("plate 3.0 m
                ("COR 0.830: 6.88 kHz, 10.9 g", 6.88e3, 0.0109), ("COR 0.830: 6.47 kHz, 12.6 g", 6.47e3, 0.0126))
 
 
+def pendulum_check():
+    """The pendulum's mass at which each named face reads the CT limit 239 us in the simulated CT test, for two
+    assumed tip radii and speeds (the USGA's Technical Description, which gives them, was not found): a check a
+    reader with that document can make of the COR-limit sizing."""
+    print("\nPendulum mass [g] at which a face reads CT = 239 us (steel tip on Ti-6Al-4V; tip radius and speed "
+          "ASSUMED)")
+    print("| face | tip 6.35 mm, 0.2 m/s | tip 6.35 mm, 0.5 m/s | tip 12.7 mm, 0.2 m/s | tip 12.7 mm, 0.5 m/s |")
+    print("|---|---|---|---|---|")
+    for name, f, m in NAMED_FACES:
+        k = m * (2 * np.pi * f) ** 2
+        masses = []
+        for radius in (0.00635, 0.0127):
+            tip = face_flex.hertz_constant(radius, 196e9, 0.272, TITANIUM[0], TITANIUM[1])
+            for speed in (0.2, 0.5):
+                masses.append(optimize.brentq(lambda mp: face_flex.pendulum_contact_time(k, m, mp, speed, tip)
+                                              - 239e-6, 0.005, 2.0, xtol=1e-5))
+        print(f"| {name} | " + " | ".join(f"{1e3 * mp:.0f}" for mp in masses) + " |")
+
+
 def forms():
     yield "off (rigid face, gain 0.083)", {}
     for name, f, m in NAMED_FACES:
@@ -204,6 +223,7 @@ def main():
     plate_table()
     cor_table()
     cor_limit_faces()
+    pendulum_check()
     for inelastic in ("adjusted_speed", "hysteretic"):
         for rolling in (False, True):
             spin_table(inelastic, rolling)
