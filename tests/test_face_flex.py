@@ -227,6 +227,24 @@ def test_no_face_is_todays_model_irons_stay_rigid_and_a_stiff_face_is_rigid():
         np.testing.assert_allclose(stiff[name].values, rigid[name].values, rtol=0, atol=2e-3 * scale)
 
 
+def test_maw_with_the_face_agrees_with_the_rk4_impact_on_one_line():
+    """maw's MDR springs under the face: on one line its normal impulse is the oracle's (the normal problem does
+    not depend on the tangential law there), and the face moves its J_t as it moves the one-spring law's, the
+    same way (the oracle's single Mindlin spring is not Maw's microslip law, so only the direction is shared)."""
+    inputs = _plate(0.25)
+    modal, frequency = 0.008, 4e3
+    result = get_model("maw")(tolerance=1e-5, face_frequency="4 kHz", face_modal_mass=modal).compute(
+        inputs, ["normal_impulse", "tangential_impulse"])
+    rigid = get_model("maw")(tolerance=1e-5).compute(inputs, ["tangential_impulse"])
+    jn, jt, _, _, _ = _oracle(inputs, modal * (2 * np.pi * frequency) ** 2, modal)
+    rigid_jt = float(rigid["tangential_impulse"].values[0])
+    assert float(result["normal_impulse"].values[0]) == pytest.approx(jn, rel=5e-4)
+    spring_rigid = float(get_model("hertz_mindlin")(tolerance=1e-5, rescale=False).compute(
+        inputs, ["tangential_impulse"])["tangential_impulse"].values[0])
+    change = float(result["tangential_impulse"].values[0]) - rigid_jt
+    assert abs(change) > 0.1 * abs(rigid_jt) and np.sign(change) == np.sign(jt - spring_rigid)
+
+
 def test_the_options_take_units_and_refuse_half_a_face():
     model = get_model("hertz_mindlin")(face_frequency="4 kHz", face_modal_mass="8 g")
     assert model.options.face_frequency == pytest.approx(2 * np.pi * 4000)
@@ -276,7 +294,8 @@ def test_a_lossy_ball_gains_speed_from_the_face_and_an_elastic_one_loses_it():
 WITH_FACE = [get_model("hertz_mindlin")(tolerance=1e-3, **FACE),
              get_model("hertz_mindlin")(tolerance=1e-3, inelastic="hysteretic", face_loss=0.1,
                                         rolling_hysteresis="restitution", **FACE),
-             get_model("dem_linear")(tolerance=1e-3, **FACE)]
+             get_model("dem_linear")(tolerance=1e-3, **FACE),
+             get_model("maw")(tolerance=1e-3, **FACE)]
 
 
 @pytest.mark.slow
