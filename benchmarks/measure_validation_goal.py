@@ -4,6 +4,7 @@ change and the wedge cover difference as ratios to the published observations; e
 
     .venv/bin/python benchmarks/measure_validation_goal.py [--models rigid_coulomb hertz_mindlin]
         [--core-radius '19.05 mm' --core-shear-modulus '10 MPa' --core-specific-gravity 1.15]
+        [--face-frequency '5 kHz' --face-modal-mass '8 g' --face-loss 0 --inelastic hysteretic]
 
 Prints markdown (docs/validation.md, "Validation by source"). Targets: ball speed within 1 %, launch within
 0.7 deg, spin within 7 % (RMS over a held-out source's rows), ratios within 0.5-1.5.
@@ -97,7 +98,20 @@ def main() -> None:
                         "a compliant model's option core_radius, e.g. '19.05 mm'); not fitted")
     parser.add_argument("--core-shear-modulus", help="its core_shear_modulus (e.g. '10 MPa'; default the ball's)")
     parser.add_argument("--core-specific-gravity", type=float, help="its core_specific_gravity (default the ball's)")
+    parser.add_argument("--face-frequency", help="the flexing face in every configuration (impactlab.physics."
+                        "face_flex; a one-spring model's option face_frequency, e.g. '5 kHz'); not fitted")
+    parser.add_argument("--face-modal-mass", help="its face_modal_mass (e.g. '8 g')")
+    parser.add_argument("--face-loss", type=float, default=0.0, help="its face_loss (default 0)")
+    parser.add_argument("--inelastic", choices=("adjusted_speed", "hysteretic"),
+                        help="the compliant models' option inelastic in every configuration (default: theirs)")
     args = parser.parse_args()
+    if args.face_frequency:
+        EXTRA_OPTIONS.update({"face_frequency": args.face_frequency, "face_modal_mass": args.face_modal_mass,
+                              "face_loss": args.face_loss})
+        print(f"face law on in every configuration: {EXTRA_OPTIONS}")
+    if args.inelastic:
+        EXTRA_OPTIONS["inelastic"] = args.inelastic
+        print(f"inelastic: {args.inelastic} in every configuration")
     if args.core_radius:
         EXTRA_OPTIONS.update({"core_radius": args.core_radius, "core_shear_modulus": args.core_shear_modulus,
                               "core_specific_gravity": args.core_specific_gravity})

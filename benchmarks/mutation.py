@@ -48,6 +48,7 @@ T_FRICTION = ["tests/test_friction_laws.py"]
 T_JSON = ["tests/test_vendors.py", "tests/test_shots.py"]
 T_AERO = ["tests/test_flight.py"]
 #: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)
+T_FACE_FLEX = ["tests/test_face_flex.py"]
 T_CORE_TORSION = ["tests/test_core_torsion.py"]
 #: the drag level settled on measured radar flights, the tour tables held out (impactlab.data.flight_fit, carry)
 T_FLIGHT_FIT = ["tests/test_flight_fit.py"]
@@ -429,6 +430,30 @@ MUTANTS = [
     ("carry-air-kelvin", "impactlab/data/carry.py",
      '"temperature_degC": ("temperature", 1.0, 273.15)', '"temperature_degC": ("temperature", 1.0, 0.0)',
      T_FLIGHT_FIT, "a table's temperature in degC taken as kelvin"),
+    # --- the face flexing behind the contact (physics/face_flex.py, the face's mode in the 3-D kernel, the options)
+    ("face-kernel-push", "impactlab/physics/kernels/contact3d.py",
+     "        face_push = 1.25 * gf\n", "        face_push = 2.5 * gf\n",
+     T_FACE_FLEX, "3-D kernel: the contact force drives the face's mode twice as hard"),
+    ("face-kernel-compression", "impactlab/physics/kernels/contact3d.py",
+     "                h = rigid - fy\n", "                h = rigid + fy\n",
+     T_FACE_FLEX, "3-D kernel: the face's deflection added to the ball's compression"),
+    ("face-kernel-rate", "impactlab/physics/kernels/contact3d.py",
+     "load = 1.0 + c * (h_half + 0.5 * dt * ah - fz - 0.5 * dt * fa)", "load = 1.0 + c * (h_half + 0.5 * dt * ah)",
+     T_FACE_FLEX, "3-D kernel: the ball's loss from the bodies' approach rate, not its compression rate"),
+    ("face-kernel-reach", "impactlab/physics/kernels/contact3d.py",
+     "rigid + np.sqrt(fy * fy + fz * fz / face_w2) > 0.0", "rigid > 0.0",
+     T_FACE_FLEX, "3-D kernel: the contact ends before the face's swing can no longer reach the ball"),
+    ("face-own-restitution", "models/_common.py",
+     "np.where(face[1], np.clip(restitution - gain, 0.0, 1.0), restitution)",
+     "np.where(face[1], restitution, restitution)",
+     T_FACE_FLEX, "the fitted gain kept with the flexing face: ball speed counted twice"),
+    ("face-modal-mass-ratio", "impactlab/physics/face_flex.py",
+     "return float(2.0 * np.sum(0.5 * weights * shape**2 * s) / centre**2)",
+     "return float(np.sum(0.5 * weights * shape**2 * s) / centre**2)",
+     T_FACE_FLEX, "the plate's modal mass without the factor 2 of the area integral"),
+    ("face-pendulum-last", "impactlab/physics/face_flex.py",
+     "return float(solved.t_events[0][-1])", "return float(solved.t_events[0][0])",
+     T_FACE_FLEX, "the CT taken at the pendulum's first parting, not its last"),
 
 ]
 

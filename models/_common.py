@@ -4,10 +4,10 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, ModelInputError
-from impactlab.units import si_length, si_pressure
+from impactlab.units import si_angular_speed, si_length, si_mass, si_pressure
 from impactlab.validators import check, in_range, to_float
 
-from impactlab.physics import core_torsion
+from impactlab.physics import core_torsion, face_flex
 
 from impactlab.physics import friction_laws
 from impactlab.scene.materials import FACE_SURFACES
@@ -224,3 +224,73 @@ def core_inputs(options, inputs, friction) -> tuple | None:
         inverse[rows, :count], frequency[rows, :count] = modes.inverse_inertia, modes.frequency
         damping[rows, :count] = modes.damping
     return inverse, frequency, damping, ball_radius.copy()
+
+
+# -- the face flexing behind the contact (impactlab.physics.face_flex) ---------------------------------------------
+
+def face_frequency_field():
+    """Option ``face_frequency`` [rad/s; '4 kHz' reads as 2 pi 4000 rad/s]: 0 (default) is the rigid face."""
+    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), validator=in_range(
+        0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit between 0 (a rigid face) and 1 MHz "
+        "(e.g. '4 kHz')"))
+
+
+def face_modal_mass_field():
+    """Option ``face_modal_mass`` [kg]: the face mode's modal mass at the strike; 0 (default) with a rigid face."""
+    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), validator=in_range(
+        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"))
+
+
+def face_loss_field():
+    """Option ``face_loss`` [1]: loss factor of the face's mode (0: elastic)."""
+    return attrs.field(default=0.0, converter=to_float, validator=in_range(0.0, 1.0, "a loss factor 0 <= eta <= 1"))
+
+
+FACE_FLEX_DOC = """face_frequency, face_modal_mass, face_loss
+        The face flexing behind the contact (:mod:`impactlab.physics.face_flex`): one modal oscillator of the face
+        along the contact normal, of first-mode frequency ``face_frequency`` (with its unit, '4 kHz'), modal mass
+        ``face_modal_mass`` ('8 g') and loss factor ``face_loss`` (default 0), in series with the ball's Hertz
+        contact. Both 0 (the default): a rigid face, today's model exactly; one without the other is refused. It
+        applies to the faces a club marks as spring-like (``club_restitution_gain`` > 0: the woods and hybrids;
+        irons stay rigid), and on those the normal law takes the ball's own restitution e - club_restitution_gain:
+        the flexing face replaces the fitted gain, so ball speed is not counted twice. Cases with a flexing face
+        take the 3-D kernel."""
+
+
+def face_on(options) -> bool:
+    """Whether a model's options switch the face law on; one of frequency and modal mass without the other is
+    refused (ModelInputError)."""
+    omega = float(getattr(options, "face_frequency", 0.0) or 0.0)
+    mass = float(getattr(options, "face_modal_mass", 0.0) or 0.0)
+    if (omega > 0.0) != (mass > 0.0):
+        raise ModelInputError("face_frequency, face_modal_mass: the flexing face needs both its first-mode "
+                              "frequency and its modal mass (e.g. face_frequency: 4 kHz, face_modal_mass: 8 g), or "
+                              "neither for a rigid face")
+    return omega > 0.0
+
+
+def face_inputs(options, inputs, size: int):
+    """(the 3-D kernel's ``face`` tuple, flexing cases) under a model's face options, or None when off.
+
+    A case's face flexes where its club marks a spring-like face (input ``club_restitution_gain`` > 0).
+    """
+    if not face_on(options):
+        return None
+    gain = np.broadcast_to(np.asarray(inputs.get("club_restitution_gain", 0.0), float), (size,))
+    flexing = gain > 0.0
+    if not np.any(flexing):
+        return None
+    omega = float(options.face_frequency)
+    inverse, omega_f, damping = face_flex.modal_inputs(options.face_modal_mass * omega**2,
+                                                       options.face_modal_mass, options.face_loss)
+    return (np.where(flexing, inverse, 0.0), np.full(size, float(omega_f)), np.where(flexing, damping, 0.0)), flexing
+
+
+def face_restitution(face, p, restitution):
+    """The normal law's restitution per case: on a flexing face the ball's own e (e - club_restitution_gain, clipped
+    to [0, 1]), the face's mode returning what the fitted gain stood for, so ball speed is not counted twice; e
+    elsewhere (``face`` from :func:`face_inputs`, None when the law is off)."""
+    if face is None:
+        return restitution
+    gain = np.broadcast_to(np.asarray(p.get("club_restitution_gain", 0.0), float), restitution.shape)
+    return np.where(face[1], np.clip(restitution - gain, 0.0, 1.0), restitution)

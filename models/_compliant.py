@@ -17,7 +17,7 @@ from impactlab.physics import ball_laws
 from impactlab.physics.contact import DIAGONAL_TOLERANCE, couple_mobility
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      core_inputs, law_friction, rolling_on)
+                      core_inputs, face_inputs, face_restitution, law_friction, rolling_on)
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -138,17 +138,21 @@ class HertzTangentialModel(ImpactModel):
         restitution = p.get("restitution", np.ones_like(normal_speed))
         # the friction law's coefficient per case (option friction_law; "coulomb": the friction input)
         friction = law_friction(self.options, p, state, restitution)
+        # the face flexing behind the contact (options face_frequency & co.; impactlab.physics.face_flex): on a
+        # spring-like face the normal law takes the ball's own e, the face's mode giving what the gain stood for
+        face = face_inputs(self.options, p, normal_speed.size)
+        normal_restitution = face_restitution(face, p, restitution)
         if self.options.inelastic == "adjusted_speed":
             # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
-            scale_speed = 0.5 * (1.0 + restitution) * normal_speed
+            scale_speed = 0.5 * (1.0 + normal_restitution) * normal_speed
             law_of_case = np.zeros(slip.size, dtype=int)
             laws = [hertz.ELASTIC]
         else:
             scale_speed = normal_speed
-            levels, law_of_case = np.unique(restitution, return_inverse=True)
+            levels, law_of_case = np.unique(normal_restitution, return_inverse=True)
             per_case = levels.size > MAX_DAMPED_LAWS
             if per_case:  # a law per case (a restitution law of the speed): tabulated laws, the 3-D kernel
-                laws, law_of_case = [hertz.CaseNormals(restitution)], np.zeros(slip.size, dtype=int)
+                laws, law_of_case = [hertz.CaseNormals(normal_restitution)], np.zeros(slip.size, dtype=int)
             else:
                 laws = [self._damped_law(level) for level in levels]
 
@@ -189,6 +193,8 @@ class HertzTangentialModel(ImpactModel):
             three_d |= rolls & ~planar
         if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)
+        if face is not None:  # a flexing face changes the normal problem: the 3-D kernel integrates it per case
+            three_d |= face[1]
         turning_head = state["head_inverse_inertia"] is not None
         if "face_rotation" in outputs and turning_head:
             three_d = np.ones(slip.size, dtype=bool)
@@ -275,7 +281,8 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss, rolling, core)
+                           record, result, solution_of_case, initial_energy, loss, rolling, core,
+                           None if face is None else face[0])
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
             # answer is one continuous function of the strike position (issue 21, item 5); with a core, that of its
@@ -283,8 +290,10 @@ class HertzTangentialModel(ImpactModel):
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
                 correct = three_d & sliding & (loss == 0.0)
+                if face is not None:
+                    correct &= ~face[1]
                 if isinstance(laws[0], hertz.CaseNormals):
-                    levels, level_of_case = np.unique(restitution, return_inverse=True)
+                    levels, level_of_case = np.unique(normal_restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
                               for k, level in enumerate(levels)]
                 else:
@@ -389,7 +398,7 @@ class HertzTangentialModel(ImpactModel):
         return coupling, rotation, rate, arm_factor
 
     def _solve_3d(self, members, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus, record,
-                  result, solution_of_case, initial_energy, loss, rolling=None, core=None):
+                  result, solution_of_case, initial_energy, loss, rolling=None, core=None, face=None):
         """The 3-D cases, grouped by normal law, resolution and (for laws that depend on it) kappa."""
         groups = np.unique(np.stack([law_of_case, resolution, kappa if self._3d_depends_on_kappa
                                      else np.zeros_like(kappa)], -1)[members], axis=0)
@@ -407,6 +416,7 @@ class HertzTangentialModel(ImpactModel):
                                        springs=springs, steps=steps, record=record, tangential_loss=loss[rows],
                                        rolling=None if rolling is None else tuple(part[rows] for part in rolling),
                                        core=None if core is None else tuple(part[rows] for part in core),
+                                       face=None if face is None else tuple(part[rows] for part in face),
                                        **self._law_3d(kappa_value))
             impulse = solved.impulse
             result["normal_impulse"][rows] = impulse[:, 2]

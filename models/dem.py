@@ -10,7 +10,8 @@ from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
 from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
-                      core_shear_modulus_field, core_specific_gravity_field)
+                      core_shear_modulus_field, core_specific_gravity_field, face_frequency_field, face_loss_field,
+                      face_modal_mass_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -40,6 +41,10 @@ class _SpringOptions(CompliantOptions):
     core_specific_gravity: float | None = core_specific_gravity_field()
     core_loss: float = core_loss_field()
     core_modes: int = core_modes_field()
+    #: the face flexing behind the contact (models._common.FACE_FLEX_DOC); 0: a rigid face
+    face_frequency: float = face_frequency_field()
+    face_modal_mass: float = face_modal_mass_field()
+    face_loss: float = face_loss_field()
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""
@@ -116,6 +121,10 @@ class HertzMindlinOptions(_SpringOptions):
     core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
         The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
         models._common.CORE_TORSION_DOC); core_radius 0 (the default): a rigid ball. Shared with ``dem_linear``.
+    face_frequency, face_modal_mass, face_loss
+        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; models._common.FACE_FLEX_DOC):
+        one modal oscillator of a spring-like face (club_restitution_gain > 0) in series with the Hertz contact,
+        the ball's own restitution on it; 0 (the default): a rigid face. Shared with ``dem_linear``.
     """
 
     history: str = attrs.field(default="force", validator=check(

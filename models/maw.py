@@ -11,7 +11,8 @@ from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
 from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
-                      core_shear_modulus_field, core_specific_gravity_field)
+                      core_shear_modulus_field, core_specific_gravity_field, face_frequency_field, face_loss_field,
+                      face_modal_mass_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -81,6 +82,10 @@ class MawOptions(CompliantOptions):
         models._common.CORE_TORSION_DOC): core radius [m] (0, the default: a rigid ball, the paper's model),
         shear modulus [Pa] (default the ball's), specific gravity (default the ball's mean density), loss factor
         (0) and the modes kept (default: up to 20 kHz). Cases with a core take the 3-D kernel.
+    face_frequency, face_modal_mass, face_loss
+        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; models._common.FACE_FLEX_DOC):
+        one modal oscillator of a spring-like face (club_restitution_gain > 0) in series with the Hertz contact,
+        the ball's own restitution on it; 0 (the default): a rigid face. Those cases take the 3-D kernel.
     """
 
     method: str = attrs.field(default="mdr", validator=check(lambda v: v in METHODS,
@@ -104,6 +109,10 @@ class MawOptions(CompliantOptions):
     core_specific_gravity: float | None = core_specific_gravity_field()
     core_loss: float = core_loss_field()
     core_modes: int = core_modes_field()
+    #: the face flexing behind the contact (models._common.FACE_FLEX_DOC); 0: a rigid face
+    face_frequency: float = face_frequency_field()
+    face_modal_mass: float = face_modal_mass_field()
+    face_loss: float = face_loss_field()
 
     @tolerance.default
     def _default_tolerance(self):

@@ -80,6 +80,9 @@ class Contact3DSolution:
     core_energy : ndarray (n,)
         Energy the core's modes took from the contact, held as vibration at separation or damped [J] (zeros
         without a core).
+    face_energy : ndarray (n,)
+        Energy the flexing face took from the contact, held as its vibration at separation or lost in it [J]
+        (zeros on a rigid face); it is part of what the rigid bodies lost, ``-work`` on an elastic ball.
     steps : ndarray (n,)
     unfinished : ndarray (n,) of bool
         The step limit came before the bodies separated.
@@ -95,6 +98,7 @@ class Contact3DSolution:
     unfinished: np.ndarray
     moment: np.ndarray
     core_energy: np.ndarray
+    face_energy: np.ndarray
     time: np.ndarray | None = None
     normal_force: np.ndarray | None = None
     tangential_force: np.ndarray | None = None
@@ -104,7 +108,7 @@ class Contact3DSolution:
 def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
           steps: int, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
           rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0, record: bool = False,
-          extrapolate: bool = True, rolling=None, core=None) -> Contact3DSolution:
+          extrapolate: bool = True, rolling=None, core=None, face=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case; by default at ``steps`` and ``2 steps``, extrapolated.
 
     Richardson extrapolation 2 J(2N) - J(N) of the impulses, their time integrals and the work removes the
@@ -114,7 +118,7 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
     arguments = dict(friction=friction, kappa=kappa, modulus=modulus, radius=radius, normal=normal, springs=springs,
                      law=law, stiffness_factor=stiffness_factor, store_force=store_force, rescale=rescale,
                      tangential_damping=tangential_damping, tangential_loss=tangential_loss, rolling=rolling,
-                     core=core)
+                     core=core, face=face)
     if core is not None:  # the coarse run's steps stable for the core's modes (per case; see solve_once)
         steps = core_steps(mobility, normal_speed, modulus, radius, normal, core, steps)
     fine = solve_once(mobility, normal_speed, slip_speed, steps=2 * steps, record=record, **arguments)
@@ -126,6 +130,7 @@ def solve(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radiu
                         impulse_time=2.0 * fine.impulse_time - coarse.impulse_time,
                         work=2.0 * fine.work - coarse.work, steps=fine.steps + coarse.steps,
                         core_energy=2.0 * fine.core_energy - coarse.core_energy,
+                        face_energy=2.0 * fine.face_energy - coarse.face_energy,
                         unfinished=fine.unfinished | coarse.unfinished)
 
 
@@ -147,7 +152,7 @@ def core_steps(mobility, normal_speed, modulus, radius, normal, core, steps):
 def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, radius, normal, springs: int,
                steps, law: str = "mdr", stiffness_factor: float = 1.0, store_force: bool = True,
                rescale: bool = False, tangential_damping: float = 0.0, tangential_loss=0.0,
-               record: bool = False, rolling=None, core=None) -> Contact3DSolution:
+               record: bool = False, rolling=None, core=None, face=None) -> Contact3DSolution:
     """Integrate the coupled compliant contact of each case.
 
     Parameters
@@ -181,6 +186,10 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         The core turning behind the shell (:mod:`.core_torsion`): (1 / I_k (n, K) [1/(kg m^2)], omega_k (n, K)
         [rad/s], modal damping eta omega_k (n, K) [1/s], the ball's radius R (n,) [m]); the rigid rotation of
         the whole ball is already in ``mobility``. None (default): a rigid ball.
+    face : tuple, optional
+        The face flexing behind the contact (:mod:`.face_flex`): (1 / m_f (n,) [1/kg], omega_f (n,) [rad/s],
+        modal damping eta omega_f (n,) [1/s]), one modal oscillator of the face along the contact normal in
+        series with the Hertz contact; 1 / m_f = 0 is a rigid face. None (default): every face rigid.
     """
     n = normal_speed.size
     m_normal = 1.0 / mobility[:, 2, 2]
@@ -220,7 +229,15 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         frequency = np.ascontiguousarray(omega * time_scale)
         damping_modes = np.ascontiguousarray(eta_omega * time_scale)
         arm_ratio = np.ascontiguousarray(reach / ball_radius)
-    out = np.zeros((n, 12))
+    if face is None:
+        face_gain, face_frequency, face_damping = np.zeros(n), np.zeros(n), np.zeros(n)
+    else:  # scaled: g = m* / m_f, Omega = omega_f delta_max / V_z, d likewise
+        inverse_mass, omega_f, eta_omega_f = (np.broadcast_to(np.asarray(part, float), (n,)) for part in face)
+        time_scale = approach / normal_speed
+        face_gain = np.ascontiguousarray(m_normal * inverse_mass)
+        face_frequency = np.ascontiguousarray(np.where(face_gain > 0.0, omega_f * time_scale, 1.0))
+        face_damping = np.ascontiguousarray(eta_omega_f * time_scale)
+    out = np.zeros((n, 13))
     # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
     relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
     damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
@@ -228,7 +245,7 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
            max_steps, LAWS[law], float(stiffness_factor), bool(store_force), bool(rescale), float(tangential_damping),
            np.ascontiguousarray(relaxation), xi2, 1.0 / springs, bool(record), history_normal, history_tangential,
            history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm, gain, frequency, damping_modes,
-           arm_ratio)
+           arm_ratio, face_gain, face_frequency, face_damping)
 
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
     time_unit = approach / normal_speed
@@ -238,7 +255,8 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         * (impulse_unit * time_unit)[:, None]
     solution = dict(impulse=impulse, impulse_time=impulse_time, contact_time=out[:, 3] * time_unit,
                     work=out[:, 7] * peak * approach, steps=out[:, 8], unfinished=out[:, 8] >= max_steps,
-                    moment=out[:, 9:11] * (peak * reach * time_unit)[:, None], core_energy=out[:, 11] * peak * approach)
+                    moment=out[:, 9:11] * (peak * reach * time_unit)[:, None], core_energy=out[:, 11] * peak * approach,
+                    face_energy=out[:, 12] * peak * approach)
     if record:
         nodes = np.arange(max_steps + 1)
         solution.update(

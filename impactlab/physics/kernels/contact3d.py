@@ -42,7 +42,7 @@ if HAVE_NUMBA:  # inlined into the kernel's IR (the kernel looks its globals up 
 def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
                      store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
                      history_tangential, history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm,
-                     mode_gain, mode_frequency, mode_damping, mode_arm):
+                     mode_gain, mode_frequency, mode_damping, mode_arm, face_gain, face_frequency, face_damping):
     """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
 
     Scaled state: approach h and its rate H = h' (1 at first touch), slip S (2-vector, units mu V_z/kappa),
@@ -85,6 +85,19 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     integrated by the same velocity Verlet. The modes' own energy (2/5)(mu/kappa)^2 (Z^2 + Omega^2 Y^2) / g_k at
     the end and what their damping took are taken out of ``work`` (the rigid bodies' balance) and given in
     ``out[:, 11]``; the couple that stops the rolling counts the modes' part of it.
+
+    The face flexing behind the contact (:mod:`impactlab.physics.face_flex`; ``face_gain`` 0: a rigid face): one
+    modal oscillator of the face along the normal, displacement y (into the head, units delta_max) with
+    g = m*/m_f, Omega = omega_f delta_max / V_z and d = eta Omega; the rigid bodies' approach r keeps the equation
+    of h above, and the ball's compression is h = r - y:
+
+        y'' = (5/4) g h^1.5 L - Omega^2 y - d y'
+
+    (leapfrog, as the core's modes; the Hunt-Crossley rate is the compression's, r' - y'). ``work`` stays the
+    forces' work on the rigid bodies' approach; what the face holds at the end and what its loss took,
+    (2/5)(y'^2 + Omega^2 y^2) / g and (2/5) d / g int y'^2, is ``out[:, 12]``. The contact ends when the bodies
+    separate and the face's swing (amplitude sqrt(y^2 + (y'/Omega)^2)) can no longer reach the ball; the contact
+    time is the last instant with a force.
     """
     cases = psi.shape[0]
     springs = xi2.size
@@ -180,6 +193,18 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 coef[j, 4] = 2.0 * core_scale * mode_damping[case, j] / mode_gain[case, j] if mode_gain[case, j] > 0.0 \
                     else 0.0
         damped_core = live and mode_damping[case].max() > 0.0
+        gf = face_gain[case]
+        flex = gf > 0.0
+        face_push = 1.25 * gf
+        face_w2 = face_frequency[case] * face_frequency[case]
+        face_d = face_damping[case]
+        face_loss = 0.8 * face_d / gf if flex else 0.0
+        fy = 0.0
+        fz = 0.0
+        fa = 0.0
+        rigid = 0.0
+        face_taken = 0.0
+        last_touch = 0.0
         for step in range(1, max_steps + 1):
             h_half = hh + 0.5 * dt * ah
             vr0 = s0 + 0.5 * dt * as0
@@ -204,9 +229,18 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                     wc0 *= q_arm
                     wc1 *= q_arm
             h_old = h
-            h = h + dt * h_half
+            if flex:  # the face's mode (leapfrog); the ball's compression is the bodies' approach less the face's
+                fz += (0.5 if step == 1 else 1.0) * dt * fa
+                fy += dt * fz
+                rigid += dt * h_half
+                h = rigid - fy
+            else:
+                h = h + dt * h_half
             # the damped law's force at the step's end needs the rate there: predicted with the last acceleration
-            load = 1.0 + c * (h_half + 0.5 * dt * ah) if c > 0.0 else 1.0
+            if flex:
+                load = 1.0 + c * (h_half + 0.5 * dt * ah - fz - 0.5 * dt * fa) if c > 0.0 else 1.0
+            else:
+                load = 1.0 + c * (h_half + 0.5 * dt * ah) if c > 0.0 else 1.0
             if load < 0.0:
                 load = 0.0
             hp = h if h > 0.0 else 0.0
@@ -331,6 +365,12 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                     c0 *= limit / size
                     c1 *= limit / size
             ah = -1.25 * (normal - mu * (b0 * f0 + b1 * f1) + cn0 * c0 + cn1 * c1)
+            if flex:
+                fa = face_push * normal - face_w2 * fy - face_d * fz
+                if face_d > 0.0:
+                    face_taken += dt * face_loss * fz * fz
+                if normal > 0.0:
+                    last_touch = tau + dt
             if mu > 0.0:
                 as0 = -1.25 * k * (a00 * f0 + a01 * f1) + (1.25 * k / mu) * (b0 * normal + ct00 * c0 + ct01 * c1)
                 as1 = -1.25 * k * (a10 * f0 + a11 * f1) + (1.25 * k / mu) * (b1 * normal + ct10 * c0 + ct11 * c1)
@@ -382,6 +422,8 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                 history_normal[case, step] = normal
                 history_tangential[case, step] = f0
                 history_stick[case, step] = stuck_to
+            if flex and (h > 0.0 or hh >= 0.0 or rigid + np.sqrt(fy * fy + fz * fz / face_w2) > 0.0):
+                continue  # the face's swing may still reach the ball
             if h <= 0.0 and hh < 0.0:
                 break
             if load == 0.0 and hh < 0.0:  # a damped contact that stopped pushing: the bodies separate
@@ -389,7 +431,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
         out[case, 0] = imp_n
         out[case, 1] = imp_0
         out[case, 2] = imp_1
-        out[case, 3] = tau
+        out[case, 3] = last_touch if flex else tau
         out[case, 4] = cum_n
         out[case, 5] = cum_0
         out[case, 6] = cum_1
@@ -404,6 +446,9 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
                     ym[j, 0] ** 2 + ym[j, 1] ** 2)) / mode_gain[case, j]
         out[case, 7] = work - core_taken if live else work
         out[case, 11] = core_taken
+        if flex:  # what the face holds at the end (its rate at the step's end), with what its loss took
+            fz += 0.5 * dt * fa
+            out[case, 12] = face_taken + 0.4 * (fz * fz + face_w2 * fy * fy) / gf
 
 
 contact3d_cases = _compiled(_contact3d_cases, fastmath={"reassoc", "nsz", "arcp", "contract"})
