@@ -199,7 +199,7 @@ MUTANTS = [
      '"tangential_force": peak * friction * np.sign(slip)', '"tangential_force": peak * friction',
      T_MAW + ["tests/test_paper.py"], "tangential-force history's sign dropped for negative slip"),
     ("compliant-adjusted-speed", "models/_compliant.py",
-     "scale_speed = 0.5 * (1.0 + restitution) * normal_speed", "scale_speed = restitution * normal_speed",
+     "scale_speed = 0.5 * (1.0 + normal_restitution) * normal_speed", "scale_speed = normal_restitution * normal_speed",
      T_MAW, "adjusted speed e V instead of (1+e) V / 2"),
     ("compliant-impulse-sign", "models/_compliant.py",
      '"tangential_impulse": -np.sign(slip) * m_tangential * slip_change',
