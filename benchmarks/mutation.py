@@ -444,7 +444,7 @@ MUTANTS = [
      "rigid + np.sqrt(fy * fy + fz * fz / face_w2) > 0.0", "rigid > 0.0",
      T_FACE_FLEX, "3-D kernel: the contact ends before the face's swing can no longer reach the ball"),
     ("face-own-restitution", "models/_common.py",
-     "np.where(face[1], np.clip(restitution - gain, 0.0, 1.0), restitution)",
+     "np.where(face[1], np.minimum(restitution - gain, 1.0), restitution)",
      "np.where(face[1], restitution, restitution)",
      T_FACE_FLEX, "the fitted gain kept with the flexing face: ball speed counted twice"),
     ("face-modal-mass-ratio", "impactlab/physics/face_flex.py",

@@ -287,10 +287,19 @@ def face_inputs(options, inputs, size: int):
 
 
 def face_restitution(face, p, restitution):
-    """The normal law's restitution per case: on a flexing face the ball's own e (e - club_restitution_gain, clipped
-    to [0, 1]), the face's mode returning what the fitted gain stood for, so ball speed is not counted twice; e
-    elsewhere (``face`` from :func:`face_inputs`, None when the law is off)."""
+    """The normal law's restitution per case: on a flexing face the ball's own e (e - club_restitution_gain, at most
+    1), the face's mode returning what the fitted gain stood for, so ball speed is not counted twice; e elsewhere
+    (``face`` from :func:`face_inputs`, None when the law is off). A flexing case whose e is below its gain (a
+    ``contact.restitution`` given below the club's gain) has no ball's own e: refused (ModelInputError), not
+    clipped to 0."""
     if face is None:
         return restitution
     gain = np.broadcast_to(np.asarray(p.get("club_restitution_gain", 0.0), float), restitution.shape)
-    return np.where(face[1], np.clip(restitution - gain, 0.0, 1.0), restitution)
+    below = face[1] & (restitution < gain)
+    if np.any(below):
+        case = int(np.argmax(below))
+        raise ModelInputError(f"restitution, club_restitution_gain: with the flexing face (face_frequency) the ball's "
+                              f"own e is e - club_restitution_gain, negative in {int(below.sum())} case(s) (e.g. e "
+                              f"{float(restitution[case]):.3g}, gain {float(gain[case]):.3g}); give the pair's e "
+                              f"(contact.restitution) at least the club's gain, or leave it to the ball's law")
+    return np.where(face[1], np.minimum(restitution - gain, 1.0), restitution)

@@ -345,3 +345,15 @@ def test_a_study_refuses_a_bad_face_option_at_its_line(change, fragment):
 
     impactlab.load_study(STUDY, file="study.yaml")  # as written, it loads
     assert_one_clear_message(STUDY, change, 7, [fragment])
+
+
+def test_a_gain_above_the_pairs_e_on_a_flexing_face_is_refused_not_clipped():
+    """The ball's own e = e - gain on a flexing face: a pair's e below the club's gain has none. Before, it was
+    clipped to 0 without a word (a perfectly plastic ball on the face, whatever the user meant)."""
+    inputs = _with({key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}, restitution=[0.05, 0.8],
+                   club_restitution_gain=0.083)
+    with pytest.raises(ModelInputError, match="club_restitution_gain.*1 case"):
+        get_model("hertz_mindlin")(**FACE).compute(inputs, ["normal_impulse"])
+    # the face off, or an iron's face (no gain), leaves the pair's e as given
+    get_model("hertz_mindlin")().compute(inputs, ["normal_impulse"])
+    get_model("hertz_mindlin")(**FACE).compute(_with(inputs, club_restitution_gain=0.0), ["normal_impulse"])
