@@ -253,8 +253,9 @@ FACE_FLEX_DOC = """face_frequency, face_modal_mass, face_loss
         contact. Both 0 (the default): a rigid face, today's model exactly; one without the other is refused. It
         applies to the faces a club marks as spring-like (``club_restitution_gain`` > 0: the woods and hybrids;
         irons stay rigid), and on those the normal law takes the ball's own restitution e - club_restitution_gain:
-        the flexing face replaces the fitted gain, so ball speed is not counted twice. Cases with a flexing face
-        take the 3-D kernel."""
+        the flexing face replaces the fitted gain, so ball speed is not counted twice (a pair's e below the gain
+        is refused; a study sweeping the gain through 0 too, as that switches the face on). Cases with a flexing
+        face take the 3-D kernel."""
 
 
 def face_on(options) -> bool:

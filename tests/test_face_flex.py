@@ -357,3 +357,36 @@ def test_a_gain_above_the_pairs_e_on_a_flexing_face_is_refused_not_clipped():
     # the face off, or an iron's face (no gain), leaves the pair's e as given
     get_model("hertz_mindlin")().compute(inputs, ["normal_impulse"])
     get_model("hertz_mindlin")(**FACE).compute(_with(inputs, club_restitution_gain=0.0), ["normal_impulse"])
+
+
+@pytest.mark.parametrize("tail, line, fragment, refused", [
+    ("sweep: {club.restitution_gain: [0, 0.04, 0.083]}\n", 9, "sweep.club.restitution_gain: expected", True),
+    ("sweep: {g: {club.restitution_gain: [0, 0.083], club.loft: [10 deg, 12 deg]}}\n", 9,
+     "sweep.g.club.restitution_gain: expected", True),
+    ("sensitivity: {samples: 8, parameters: {club.restitution_gain: {low: 0, high: 0.1}}}\n", 9,
+     "sensitivity.parameters.club.restitution_gain: expected", True),
+    ("sweep: {club.restitution_gain: [0.02, 0.083]}\n", 0, "", False),  # all flexing: the gain's own effect
+    ("sweep: {club.preset: [driver, 7_iron]}\n", 0, "", False),  # irons beside woods: each club's own face
+    ("sensitivity: {samples: 8, parameters: {club.restitution_gain: {spread: 0.01}}}\n", 0, "", False),
+])
+def test_a_gain_swept_through_zero_with_the_face_on_is_refused_at_its_line(tail, line, fragment, refused):
+    """club_restitution_gain > 0 marks the faces that flex: gains 0 and 1e-9 differ by the whole face law (J_t of
+    a driver strike by 5 %, measured below), so a sweep or a sensitivity range through 0 would draw that switch
+    as the gain's effect. Before, it ran and showed the jump without a word."""
+    one = {key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}
+    jumps = get_model("hertz_mindlin")(**FACE).compute(_with(one, club_restitution_gain=[0.0, MARK]),
+                                                       ["tangential_impulse"])["tangential_impulse"].values
+    assert abs(jumps[1] - jumps[0]) > 0.01 * abs(jumps[0])  # what the refusal is for
+    study = STUDY + tail
+    if not refused:
+        impactlab.load_study(study, file="study.yaml")
+        impactlab.load_study(study.replace("  - {name: hertz_mindlin, id: face, face_frequency: 4 kHz, "
+                                           "face_modal_mass: 8 g}\n", ""), file="study.yaml")
+        return
+    with pytest.raises(FieldError) as info:
+        impactlab.load_study(study, file="study.yaml")
+    assert str(info.value).startswith(f"study.yaml:{line}: {fragment}"), str(info.value)
+    assert "switches the face law on and off" in str(info.value)
+    # the same study without the flexing face runs the sweep: the gain's effect is then the rigid face's
+    impactlab.load_study(study.replace("face_frequency: 4 kHz, face_modal_mass: 8 g", "tolerance: 0.01"),
+                         file="study.yaml")
