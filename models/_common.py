@@ -127,6 +127,14 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
 
 # -- the core turning behind the shell (impactlab.physics.core_torsion) ----------------------------------------------
 
+#: field metadata of a dimensional option: a study refuses a bare number for it (impactlab.study.core; its unit is
+#: never guessed), where Python keywords take SI
+#: (and what it expects instead, where the dimension's own words would mislead: a frequency is not a spin rate)
+LENGTH, PRESSURE, MASS = ({"dimension": name} for name in ("length", "pressure", "mass"))
+FREQUENCY = {"dimension": "angular_speed", "expected": "a frequency with its unit, e.g. 4 kHz (a bare number's unit "
+             "is never guessed: Hz or rad/s)"}
+
+
 def _named(converter, name: str):
     """``converter`` whose refusal names the option (a unit converter's FieldError has no field of its own)."""
     def convert(value):
@@ -139,15 +147,15 @@ def _named(converter, name: str):
 
 def core_radius_field():
     """Option ``core_radius`` [m]: 0 (default) is the rigid ball, the paper's model unchanged."""
-    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), validator=in_range(
+    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), metadata=LENGTH, validator=in_range(
         0.0, 0.0213, "a core radius in m between 0 (no core law) and the ball's radius (e.g. '19 mm')"))
 
 
 def core_shear_modulus_field():
     """Option ``core_shear_modulus`` [Pa]; None: the ball's, E / (2 (1 + nu)) of its elastic constants."""
-    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), validator=in_range(
-        1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. '20 MPa'), or leave it out for "
-        "the ball's E / (2 (1 + nu))", optional=True))
+    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), metadata=PRESSURE,
+                       validator=in_range(1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. "
+                                          "'20 MPa'), or leave it out for the ball's E / (2 (1 + nu))", optional=True))
 
 
 def core_specific_gravity_field():
@@ -230,14 +238,14 @@ def core_inputs(options, inputs, friction) -> tuple | None:
 
 def face_frequency_field():
     """Option ``face_frequency`` [rad/s; '4 kHz' reads as 2 pi 4000 rad/s]: 0 (default) is the rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), validator=in_range(
-        0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit between 0 (a rigid face) and 1 MHz "
-        "(e.g. '4 kHz')"))
+    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), metadata=FREQUENCY,
+                       validator=in_range(0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit "
+                                          "between 0 (a rigid face) and 1 MHz (e.g. '4 kHz')"))
 
 
 def face_modal_mass_field():
     """Option ``face_modal_mass`` [kg]: the face mode's modal mass at the strike; 0 (default) with a rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), validator=in_range(
+    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), metadata=MASS, validator=in_range(
         0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"))
 
 

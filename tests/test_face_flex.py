@@ -339,11 +339,16 @@ outputs: [spin_rate]
 @pytest.mark.parametrize("change, fragment", [
     (("4 kHz", "4 kg"), "models[1].face_frequency: expected"),
     (("8 g", "8 mm"), "models[1].face_modal_mass: expected a mass"),
+    # bare numbers: their unit is never guessed (before, 4000 ran as 4000 rad/s = 637 Hz, 0.008 as kg)
+    (("4 kHz", "4000"), "models[1].face_frequency: expected a frequency with its unit, e.g. 4 kHz"),
+    (("4 kHz", "'4000'"), "models[1].face_frequency: expected a frequency with its unit"),
+    (("8 g", "0.008"), "models[1].face_modal_mass: expected a mass with its unit"),
 ])
 def test_a_study_refuses_a_bad_face_option_at_its_line(change, fragment):
     from test_study import assert_one_clear_message
 
     impactlab.load_study(STUDY, file="study.yaml")  # as written, it loads
+    impactlab.load_study(STUDY.replace("4 kHz", "0").replace("8 g", "0"), file="study.yaml")  # a bare 0 is read
     assert_one_clear_message(STUDY, change, 7, [fragment])
 
 

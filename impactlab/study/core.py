@@ -22,6 +22,7 @@ import yaml
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.study.limits import check_cases
+from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
 from impactlab.model.registry import available, get_model
 from impactlab.scene.core import Scene
@@ -262,6 +263,14 @@ def _configured_model(name, options: Mapping, where: str) -> ImpactModel:
         if not isinstance(name, str) or name not in models:
             raise FieldError(f"{where}.name", "a registered model", str(name), choices=models)
         name = get_model(name)
+    fields = attrs.fields_dict(name.Options) if attrs.has(name.Options) else {}
+    for key, value in options.items():  # a dimensional option (its field's metadata) takes a unit in a study
+        dimension = fields[key].metadata.get("dimension") if key in fields else None
+        if dimension is not None and isinstance(value, (int, float, str)) and not isinstance(value, bool):
+            try:
+                to_si(value, dimension, f"{where}.{key}")  # a bare number refused (0 excepted), never read as SI
+            except FieldError as exc:
+                raise FieldError(exc.path, fields[key].metadata.get("expected", exc.expected), exc.given) from None
     try:
         return name(**options)
     except FieldError as exc:
