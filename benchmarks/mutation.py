@@ -454,6 +454,22 @@ MUTANTS = [
     ("face-pendulum-last", "impactlab/physics/face_flex.py",
      "return float(solved.t_events[0][-1])", "return float(solved.t_events[0][0])",
      T_FACE_FLEX, "the CT taken at the pendulum's first parting, not its last"),
+    # review6: the face's energy bookkeeping, the refusals of a gain above e and of a gain swept through 0
+    ("face-energy-held", "impactlab/physics/kernels/contact3d.py",
+     "out[case, 12] = face_taken + 0.4 * (fz * fz", "out[case, 12] = face_taken + 0.2 * (fz * fz",
+     T_FACE_FLEX, "3-D kernel: the face's vibration at separation counted at half its energy"),
+    ("face-energy-loss", "impactlab/physics/kernels/contact3d.py",
+     "face_taken += dt * face_loss * fz * fz", "face_taken += 0.0 * face_loss * fz * fz",
+     T_FACE_FLEX, "3-D kernel: what the face's loss took left out of the face's energy"),
+    ("face-gain-above-e", "models/_common.py",
+     "below = face[1] & (restitution < gain)", "below = face[1] & (restitution < 0.0)",
+     T_FACE_FLEX, "a pair's e below the club's gain clipped to a plastic ball without a word"),
+    ("face-gain-through-zero", "impactlab/study/core.py",
+     "np.any(values == 0.0) and np.any(values > 0.0)):", "np.any(values < 0.0) and np.any(values > 0.0)):",
+     T_FACE_FLEX, "a study sweeping the face's marker gain through 0 runs, drawing the face switching on as a jump"),
+    ("face-bare-unit", "impactlab/study/core.py",
+     "to_si(value, dimension, f\"{where}.{key}\")", "to_si(value, dimension, f\"{where}.{key}\", bare=\"si\")",
+     T_FACE_FLEX, "a study's bare face_frequency: 4000 read as rad/s (a guessed unit)"),
 
 ]
 

@@ -395,3 +395,23 @@ def test_a_gain_swept_through_zero_with_the_face_on_is_refused_at_its_line(tail,
     # the same study without the flexing face runs the sweep: the gain's effect is then the rigid face's
     impactlab.load_study(study.replace("face_frequency: 4 kHz, face_modal_mass: 8 g", "tolerance: 0.01"),
                          file="study.yaml")
+
+
+@pytest.mark.parametrize("loss", [0.0, 0.1])
+def test_the_face_energy_the_kernel_reports_is_what_an_elastic_ball_lost(loss):
+    """Energy conservation, an oracle apart from the face's bookkeeping: an elastic ball without friction on a
+    flexing face loses exactly what the face holds at separation plus what its loss took, so the reported
+    face_energy equals -work (the rigid bodies' loss, summed from the contact force on their approach) to the
+    integration's error; a lossy ball loses more than the face takes. Before, no test read face_energy's value
+    (a halved held energy, or the loss's share dropped, passed)."""
+    n, mass = 4, 0.04593
+    mobility = np.broadcast_to(np.diag([1 / mass + 1 / (0.4 * mass)] * 2 + [1 / mass + 1 / 0.2]), (n, 3, 3)).copy()
+    face = face_flex.modal_inputs(np.array([5e6, 8e6, 1.2e7, 3e6]), np.array([0.008, 0.006, 0.01, 0.012]), loss)
+    arguments = dict(friction=np.zeros(n), kappa=np.full(n, 0.7), modulus=np.full(n, 1.5e8),
+                     radius=np.full(n, 0.021335), springs=1, steps=300, law="mindlin", face=face)
+    elastic = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.ELASTIC, **arguments)
+    kinetic = 0.5 * 40.0**2 / mobility[0, 2, 2]
+    assert np.all(elastic.face_energy > 1e-3 * kinetic)
+    np.testing.assert_allclose(elastic.face_energy, -elastic.work, rtol=1e-3)
+    lossy = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.DampedNormal(0.3), **arguments)
+    assert np.all((lossy.face_energy > 0.0) & (lossy.face_energy < -lossy.work))
