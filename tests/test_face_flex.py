@@ -415,3 +415,24 @@ def test_the_face_energy_the_kernel_reports_is_what_an_elastic_ball_lost(loss):
     np.testing.assert_allclose(elastic.face_energy, -elastic.work, rtol=1e-3)
     lossy = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.DampedNormal(0.3), **arguments)
     assert np.all((lossy.face_energy > 0.0) & (lossy.face_energy < -lossy.work))
+
+
+def test_the_force_history_of_a_flexing_face_integrates_to_its_normal_impulse():
+    """outputs [normal_force] alone on the 3-D kernel's cases (every flexing face's): before, the kernel was run
+    without recording (the 1-D solvers draw the normal force from their law), and the model raised a TypeError
+    where the same driver strike on a rigid face gave its history. Oracle: impulse-momentum, int F dt = J_n."""
+    inputs = _with(_plate(0.25), club_restitution_gain=0.083, restitution=0.87)
+    off_centre = {key: np.asarray(value)[:3] for key, value in DRIVER_CASES.items()}  # 3-D, face off too
+    for case, options in ((inputs, FACE), (off_centre, FACE), (off_centre, {})):
+        result = get_model("hertz_mindlin")(**options).compute(case, ["normal_impulse", "normal_force"])
+        force, time = result["normal_force"].values, result["time"].values
+        np.testing.assert_allclose(np.trapezoid(np.nan_to_num(force), time, axis=-1),
+                                   result["normal_impulse"].values, rtol=1e-4)
+
+
+def test_maw_annuli_names_the_flexing_face_when_it_refuses_a_case():
+    """maw's annuli solve one line only; a centre strike on a fixed flexing face is such a line, yet takes the 3-D
+    kernel: the refusal says so instead of listing only reasons the case does not have."""
+    inputs = _with(_plate(0.25), club_restitution_gain=0.083, restitution=0.87)
+    with pytest.raises(ModelInputError, match="a flexing face"):
+        get_model("maw")(method="annuli", **FACE).compute(inputs, ["normal_impulse"])
