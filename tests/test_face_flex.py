@@ -436,3 +436,22 @@ def test_maw_annuli_names_the_flexing_face_when_it_refuses_a_case():
     inputs = _with(_plate(0.25), club_restitution_gain=0.083, restitution=0.87)
     with pytest.raises(ModelInputError, match="a flexing face"):
         get_model("maw")(method="annuli", **FACE).compute(inputs, ["normal_impulse"])
+
+
+@pytest.mark.parametrize("model, tolerance", [("maw", 1e-2), ("maw", 1e-3), ("hertz_mindlin", 1e-2)])
+def test_a_stiff_face_on_few_steps_is_the_rigid_face_not_a_divergence(model, tolerance):
+    """The face's mode rides on the kernel's leapfrog, which diverges for Omega_eff dt > 2 (Omega_eff^2 = Omega^2
+    + (15/8) g, the contact's stiffness included). Before, a 200 kHz or 1 MHz face (inside the option's range) on
+    a model's coarse 3-D steps gave NaN or 1e280 impulses, in maw without a flag. Oracle: the stiff limit, the
+    rigid face with the ball's own e (e - gain)."""
+    cases = {key: np.asarray(value)[:4] for key, value in DRIVER_CASES.items()}
+    gained = _with(cases, club_restitution_gain=0.05)
+    ball_own = _with(cases, club_restitution_gain=0.0, restitution=cases["restitution"] - 0.05)
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
+    rigid = get_model(model)(tolerance=tolerance).compute(ball_own, names)
+    scale = np.abs(rigid["normal_impulse"].values).max()
+    for frequency in ("200 kHz", "1 MHz"):
+        stiff = get_model(model)(tolerance=tolerance, face_frequency=frequency, face_modal_mass="8 g").compute(
+            gained, names)
+        for name in names:
+            np.testing.assert_allclose(stiff[name].values, rigid[name].values, rtol=0, atol=2e-3 * scale)
