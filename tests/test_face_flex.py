@@ -455,3 +455,17 @@ def test_a_stiff_face_on_few_steps_is_the_rigid_face_not_a_divergence(model, tol
             gained, names)
         for name in names:
             np.testing.assert_allclose(stiff[name].values, rigid[name].values, rtol=0, atol=2e-3 * scale)
+
+
+def test_a_face_option_on_a_study_without_a_spring_like_face_is_refused_not_ignored():
+    """The face law acts where club_restitution_gain > 0: on a custom club without a gain (a spec-sheet driver
+    typed in), or irons only, it changed nothing and the study ran as a rigid face, the option silently void."""
+    for club in ("club: {preset: 7_iron}", "club: {preset: driver, restitution_gain: 0}"):
+        with pytest.raises(FieldError) as info:
+            impactlab.load_study(STUDY.replace("club: {preset: driver}", club), file="study.yaml")
+        message = str(info.value)
+        assert message.startswith("study.yaml:7: models[1].face_frequency: expected a study with a spring-like face")
+        assert "would change nothing" in message
+    # a woods-and-irons sweep flexes the woods: it runs
+    impactlab.load_study(STUDY.replace("club: {preset: driver}", "club: {preset: 7_iron}")
+                         + "sweep: {club.preset: [7_iron, driver]}\n", file="study.yaml")

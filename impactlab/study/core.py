@@ -341,6 +341,18 @@ def _check_face_marker(document, scene, sweep, models, sensitivity) -> None:
     flexing = [entry.id for entry in models if float(getattr(entry.model.options, "face_frequency", 0.0) or 0.0) > 0]
     if not flexing:
         return
+    gains = np.concatenate([np.ravel(scene.inputs().get("club_restitution_gain", 0.0))] + [
+        np.asarray(field.values, float) for axis in sweep for field in axis.fields
+        if field.input == "club_restitution_gain"])
+    ranged = sensitivity is not None and any(p.input == "club_restitution_gain" for p in sensitivity.parameters)
+    if not np.any(gains > 0.0) and not ranged:  # the option would change nothing: said, not run as a rigid face
+        index = next(index for index, entry in enumerate(models) if entry.id == flexing[0])
+        club = scene.club.name if scene.club is not None and scene.club.name else "the study's club or face"
+        raise FieldError(f"models[{index}].face_frequency", f"a study with a spring-like face to flex: the face law "
+                         f"acts on clubs with restitution_gain > 0 (the catalogue's driver, woods and hybrids), and no "
+                         f"case of this study has one ({club}: 0), so it would change nothing; give the club's "
+                         f"restitution_gain (the presets' fitted 0.083) or a wood's preset, or leave face_frequency "
+                         f"out", flexing[0])
     swept = document.get("sweep") or {}
     for axis in sweep:
         for field in axis.fields:
