@@ -289,9 +289,7 @@ class HertzTangentialModel(ImpactModel):
             # rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff limit)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0)
-                if face is not None:
-                    correct &= ~face[1]
+                correct = three_d & sliding & (loss == 0.0)  # a flexing face's too: its rigid face's (exact when stiff)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(normal_restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))

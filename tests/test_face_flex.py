@@ -469,3 +469,18 @@ def test_a_face_option_on_a_study_without_a_spring_like_face_is_refused_not_igno
     # a woods-and-irons sweep flexes the woods: it runs
     impactlab.load_study(STUDY.replace("club: {preset: driver}", "club: {preset: 7_iron}")
                          + "sweep: {club.preset: [7_iron, driver]}\n", file="study.yaml")
+
+
+def test_maw_hysteretic_with_a_stiff_face_keeps_the_rigid_faces_limit_correction_and_flag():
+    """maw's hysteretic law corrects MDR where it breaks the 3-D Coulomb limit (flag 64, the annular strips'
+    correction) on the rigid face; its flexing-face cases skipped it, so a 1 MHz face (a rigid one) gave 28 rpm more
+    spin than the rigid face with the same ball's e, and the flag vanished. Oracle: the stiff limit."""
+    cases = {key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}
+    names = ["tangential_impulse", "normal_impulse", "validity"]
+    rigid = get_model("maw")(inelastic="hysteretic").compute(_with(cases, club_restitution_gain=0.0,
+                                                                    restitution=0.75), names)
+    stiff = get_model("maw")(inelastic="hysteretic", face_frequency="1 MHz", face_modal_mass="8 g").compute(
+        _with(cases, club_restitution_gain=0.05, restitution=0.8), names)
+    assert np.all(rigid["validity"].values.astype(int) & 64)  # the cases this is about
+    np.testing.assert_array_equal(stiff["validity"].values, rigid["validity"].values)
+    np.testing.assert_allclose(stiff["tangential_impulse"].values, rigid["tangential_impulse"].values, rtol=1e-3)
