@@ -15,6 +15,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from scipy import integrate, optimize, special
 
+from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.shot_report import shot_table
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.model.registry import get_model
 from impactlab.physics import compliant3d, face_flex, hertz
@@ -484,3 +486,12 @@ def test_maw_hysteretic_with_a_stiff_face_keeps_the_rigid_faces_limit_correction
     assert np.all(rigid["validity"].values.astype(int) & 64)  # the cases this is about
     np.testing.assert_array_equal(stiff["validity"].values, rigid["validity"].values)
     np.testing.assert_allclose(stiff["tangential_impulse"].values, rigid["tangential_impulse"].values, rtol=1e-3)
+
+
+def test_the_calibration_refuses_to_fit_the_gain_the_flexing_face_replaces():
+    """With the face on, the gain only marks the faces that flex: a fit of face_restitution_gain was flat in it
+    (it stayed at its start and inflated the other parameters' uncertainty threefold), its COR check added it to
+    the ball's law, and at its bound 0 it would switch the face off. Before, it was fitted without a word."""
+    model = get_model("hertz_mindlin")(**FACE)
+    with pytest.raises(FieldError, match="without face_restitution_gain.*flexing face"):
+        calibrate(model, shot_table("trackman_tour"), DEFAULT_PARAMETERS)
