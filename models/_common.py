@@ -245,8 +245,19 @@ def face_frequency_field():
 
 def face_modal_mass_field():
     """Option ``face_modal_mass`` [kg]: the face mode's modal mass at the strike; 0 (default) with a rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), metadata=MASS, validator=in_range(
-        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"))
+    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), metadata=MASS, validator=[in_range(
+        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"), _whole_face])
+
+
+def _whole_face(options, attribute, mass) -> None:
+    """Both the face's frequency and its modal mass, or neither: refused with the options (a study's line), not
+    when the model runs (attrs runs validators once every field is set, face_frequency before this one)."""
+    omega = float(getattr(options, "face_frequency", 0.0) or 0.0)
+    if (omega > 0.0) != (float(mass) > 0.0):
+        given = "face_modal_mass 0" if omega > 0.0 else "face_frequency 0"
+        raise FieldError("face_frequency" if omega == 0.0 else "face_modal_mass", "the flexing face's first-mode "
+                         "frequency and its modal mass both (e.g. face_frequency: 4 kHz, face_modal_mass: 8 g), or "
+                         "neither for a rigid face", given)
 
 
 def face_loss_field():
