@@ -501,3 +501,24 @@ def test_the_calibration_refuses_to_fit_the_gain_the_flexing_face_replaces():
     model = get_model("hertz_mindlin")(**FACE)
     with pytest.raises(FieldError, match="without face_restitution_gain.*flexing face"):
         calibrate(model, shot_table("trackman_tour"), DEFAULT_PARAMETERS)
+
+
+@pytest.mark.parametrize("model", ["hertz_mindlin", "maw"])
+def test_energy_never_rises_with_the_face_the_core_rolling_and_the_adhesion_law_together(model):
+    """The face with every other law of the compliant models on at once (core behind the shell, rolling couple
+    1 - e^2, friction_law adhesion on a rough dry face), off-centre strikes of a free head: ball and head never
+    leave with more kinetic energy than they had (velocities' oracle, test_ball_laws.kinetic_energy)."""
+    rng = np.random.default_rng(11)
+    n = 16
+    inputs = _with({key: np.asarray(value)[:n] for key, value in DRIVER_CASES.items()},
+                   restitution=rng.choice([0.6, 0.8, 0.95], n), strike_toe=rng.uniform(-0.03, 0.03, n),
+                   strike_high=rng.uniform(-0.02, 0.02, n), dynamic_loft=rng.uniform(0.05, 0.9, n),
+                   speed=rng.uniform(20.0, 55.0, n), club_restitution_gain=rng.choice([0.0, 0.05, 0.083], n),
+                   ball_shear_strength=rng.uniform(2e6, 8e6, n), ball_cover_modulus=2e8, face_roughness_slope=0.1,
+                   ball_cover_melt_rise=np.inf, face_roughness=2e-6, face_groove_land=np.inf, face_water_film=0.0)
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse", "rolling_moment", "rolling_moment_slip"]
+    result = get_model(model)(face_frequency="5 kHz", face_modal_mass="9 g", face_loss=0.1, core_radius="19 mm",
+                              rolling_hysteresis="restitution", inelastic="hysteretic", friction_law="adhesion",
+                              tolerance=1e-3).compute(inputs, names)
+    before, after = kinetic_energy(inputs), kinetic_energy(inputs, result)
+    assert np.all(np.isfinite(after)) and np.all(after <= before * (1.0 + 1e-9)), np.max((after - before) / before)
