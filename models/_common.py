@@ -127,6 +127,14 @@ def law_friction(options, inputs, state, restitution=None) -> np.ndarray:
 
 # -- the core turning behind the shell (impactlab.physics.core_torsion) ----------------------------------------------
 
+#: field metadata of a dimensional option: a study refuses a bare number for it (impactlab.study.core; its unit is
+#: never guessed), where Python keywords take SI
+#: (and what it expects instead, where the dimension's own words would mislead: a frequency is not a spin rate)
+LENGTH, PRESSURE, MASS = ({"dimension": name} for name in ("length", "pressure", "mass"))
+FREQUENCY = {"dimension": "angular_speed", "expected": "a frequency with its unit, e.g. 4 kHz (a bare number's unit "
+             "is never guessed: Hz or rad/s)"}
+
+
 def _named(converter, name: str):
     """``converter`` whose refusal names the option (a unit converter's FieldError has no field of its own)."""
     def convert(value):
@@ -139,15 +147,15 @@ def _named(converter, name: str):
 
 def core_radius_field():
     """Option ``core_radius`` [m]: 0 (default) is the rigid ball, the paper's model unchanged."""
-    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), validator=in_range(
+    return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), metadata=LENGTH, validator=in_range(
         0.0, 0.0213, "a core radius in m between 0 (no core law) and the ball's radius (e.g. '19 mm')"))
 
 
 def core_shear_modulus_field():
     """Option ``core_shear_modulus`` [Pa]; None: the ball's, E / (2 (1 + nu)) of its elastic constants."""
-    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), validator=in_range(
-        1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. '20 MPa'), or leave it out for "
-        "the ball's E / (2 (1 + nu))", optional=True))
+    return attrs.field(default=None, converter=_named(si_pressure, "core_shear_modulus"), metadata=PRESSURE,
+                       validator=in_range(1e5, 1e10, "a core shear modulus in Pa between 0.1 MPa and 10 GPa (e.g. "
+                                          "'20 MPa'), or leave it out for the ball's E / (2 (1 + nu))", optional=True))
 
 
 def core_specific_gravity_field():
@@ -230,15 +238,26 @@ def core_inputs(options, inputs, friction) -> tuple | None:
 
 def face_frequency_field():
     """Option ``face_frequency`` [rad/s; '4 kHz' reads as 2 pi 4000 rad/s]: 0 (default) is the rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), validator=in_range(
-        0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit between 0 (a rigid face) and 1 MHz "
-        "(e.g. '4 kHz')"))
+    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), metadata=FREQUENCY,
+                       validator=in_range(0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit "
+                                          "between 0 (a rigid face) and 1 MHz (e.g. '4 kHz')"))
 
 
 def face_modal_mass_field():
     """Option ``face_modal_mass`` [kg]: the face mode's modal mass at the strike; 0 (default) with a rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), validator=in_range(
-        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"))
+    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), metadata=MASS, validator=[in_range(
+        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"), _whole_face])
+
+
+def _whole_face(options, attribute, mass) -> None:
+    """Both the face's frequency and its modal mass, or neither: refused with the options (a study's line), not
+    when the model runs (attrs runs validators once every field is set, face_frequency before this one)."""
+    omega = float(getattr(options, "face_frequency", 0.0) or 0.0)
+    if (omega > 0.0) != (float(mass) > 0.0):
+        given = "face_modal_mass 0" if omega > 0.0 else "face_frequency 0"
+        raise FieldError("face_frequency" if omega == 0.0 else "face_modal_mass", "the flexing face's first-mode "
+                         "frequency and its modal mass both (e.g. face_frequency: 4 kHz, face_modal_mass: 8 g), or "
+                         "neither for a rigid face", given)
 
 
 def face_loss_field():
@@ -253,8 +272,9 @@ FACE_FLEX_DOC = """face_frequency, face_modal_mass, face_loss
         contact. Both 0 (the default): a rigid face, today's model exactly; one without the other is refused. It
         applies to the faces a club marks as spring-like (``club_restitution_gain`` > 0: the woods and hybrids;
         irons stay rigid), and on those the normal law takes the ball's own restitution e - club_restitution_gain:
-        the flexing face replaces the fitted gain, so ball speed is not counted twice. Cases with a flexing face
-        take the 3-D kernel."""
+        the flexing face replaces the fitted gain, so ball speed is not counted twice (a pair's e below the gain
+        is refused; a study sweeping the gain through 0 too, as that switches the face on). Cases with a flexing
+        face take the 3-D kernel."""
 
 
 def face_on(options) -> bool:
@@ -287,10 +307,19 @@ def face_inputs(options, inputs, size: int):
 
 
 def face_restitution(face, p, restitution):
-    """The normal law's restitution per case: on a flexing face the ball's own e (e - club_restitution_gain, clipped
-    to [0, 1]), the face's mode returning what the fitted gain stood for, so ball speed is not counted twice; e
-    elsewhere (``face`` from :func:`face_inputs`, None when the law is off)."""
+    """The normal law's restitution per case: on a flexing face the ball's own e (e - club_restitution_gain, at most
+    1), the face's mode returning what the fitted gain stood for, so ball speed is not counted twice; e elsewhere
+    (``face`` from :func:`face_inputs`, None when the law is off). A flexing case whose e is below its gain (a
+    ``contact.restitution`` given below the club's gain) has no ball's own e: refused (ModelInputError), not
+    clipped to 0."""
     if face is None:
         return restitution
     gain = np.broadcast_to(np.asarray(p.get("club_restitution_gain", 0.0), float), restitution.shape)
-    return np.where(face[1], np.clip(restitution - gain, 0.0, 1.0), restitution)
+    below = face[1] & (restitution < gain)
+    if np.any(below):
+        case = int(np.argmax(below))
+        raise ModelInputError(f"restitution, club_restitution_gain: with the flexing face (face_frequency) the ball's "
+                              f"own e is e - club_restitution_gain, negative in {int(below.sum())} case(s) (e.g. e "
+                              f"{float(restitution[case]):.3g}, gain {float(gain[case]):.3g}); give the pair's e "
+                              f"(contact.restitution) at least the club's gain, or leave it to the ball's law")
+    return np.where(face[1], np.minimum(restitution - gain, 1.0), restitution)

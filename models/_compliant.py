@@ -281,7 +281,7 @@ class HertzTangentialModel(ImpactModel):
         }
         if np.any(three_d):
             self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           record, result, solution_of_case, initial_energy, loss, rolling, core,
+                           bool(histories), result, solution_of_case, initial_energy, loss, rolling, core,
                            None if face is None else face[0])
             # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
             # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
@@ -289,9 +289,7 @@ class HertzTangentialModel(ImpactModel):
             # rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff limit)
             damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
             if damped:
-                correct = three_d & sliding & (loss == 0.0)
-                if face is not None:
-                    correct &= ~face[1]
+                correct = three_d & sliding & (loss == 0.0)  # a flexing face's too: its rigid face's (exact when stiff)
                 if isinstance(laws[0], hertz.CaseNormals):
                     levels, level_of_case = np.unique(normal_restitution, return_inverse=True)
                     groups = [(self._damped_law(float(level)), correct & (level_of_case == k))

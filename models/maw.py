@@ -215,8 +215,9 @@ class MawModel(HertzTangentialModel):
         if self.options.method == "annuli" and np.any(three_d):
             raise ModelInputError(
                 f"maw with method: annuli solves impacts on one line only, and {int(np.sum(three_d))} case(s) have a "
-                "3-D contact (a free club head struck off its centre-of-mass line, a curved face, or face_rotation "
-                "asked for); use method: mdr for them")
+                "3-D contact (a free club head struck off its centre-of-mass line, a curved face, face_rotation "
+                "asked for, or a flexing face: face_frequency on a club with restitution_gain > 0); use method: mdr "
+                "for them")
 
     def _law_3d(self, kappa):
         return {"law": "mdr"}

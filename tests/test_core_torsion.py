@@ -321,6 +321,9 @@ outputs: [spin_rate]
 @pytest.mark.parametrize("change, fragment", [
     (("10 MPa", "10 kg"), "models[1].core_shear_modulus: expected a modulus"),
     (("19.05 mm", "30 mm"), "models[1].core_radius: expected a core radius"),
+    # a bare number's unit is never guessed in a study (before, 0.019 ran as metres, 10000000 as Pa)
+    (("19.05 mm", "0.019"), "models[1].core_radius: expected a length with its unit"),
+    (("10 MPa", "10000000"), "models[1].core_shear_modulus: expected a modulus (pressure) with its unit"),
 ])
 def test_a_study_refuses_a_bad_core_option_at_its_line(change, fragment):
     from test_study import assert_one_clear_message

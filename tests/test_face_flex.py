@@ -15,6 +15,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from scipy import integrate, optimize, special
 
+from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.shot_report import shot_table
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.model.registry import get_model
 from impactlab.physics import compliant3d, face_flex, hertz
@@ -253,8 +255,11 @@ def test_the_options_take_units_and_refuse_half_a_face():
                 {"face_loss": 2.0}):
         with pytest.raises(FieldError):
             get_model("hertz_mindlin")(**bad)
-    with pytest.raises(ModelInputError, match="face_frequency, face_modal_mass"):
-        get_model("hertz_mindlin")(face_frequency="4 kHz").compute(DRIVER_CASES, ["tangential_impulse"])
+    # half a face is refused with the options (a study's line), not when the model runs
+    for half in ({"face_frequency": "4 kHz"}, {"face_modal_mass": "8 g"}, {"face_frequency": "4 kHz",
+                                                                           "face_modal_mass": 0.0}):
+        with pytest.raises(FieldError, match="frequency and its modal mass both"):
+            get_model("hertz_mindlin")(**half)
 
 
 @given(friction=st.floats(0.05, 1.0), frequency=st.floats(2e3, 8e3), modal=st.floats(0.002, 0.03),
@@ -339,9 +344,181 @@ outputs: [spin_rate]
 @pytest.mark.parametrize("change, fragment", [
     (("4 kHz", "4 kg"), "models[1].face_frequency: expected"),
     (("8 g", "8 mm"), "models[1].face_modal_mass: expected a mass"),
+    # bare numbers: their unit is never guessed (before, 4000 ran as 4000 rad/s = 637 Hz, 0.008 as kg)
+    (("4 kHz", "4000"), "models[1].face_frequency: expected a frequency with its unit, e.g. 4 kHz"),
+    (("4 kHz", "'4000'"), "models[1].face_frequency: expected a frequency with its unit"),
+    # half a face, at its line (before, a ModelInputError without a line once the model ran)
+    (("8 g", "0 g"), "models[1].face_modal_mass: expected the flexing face's first-mode frequency and its modal"),
+    (("face_frequency: 4 kHz, ", ""), "models[1].face_frequency: expected the flexing face's first-mode frequency"),
+    (("8 g", "0.008"), "models[1].face_modal_mass: expected a mass with its unit"),
 ])
 def test_a_study_refuses_a_bad_face_option_at_its_line(change, fragment):
     from test_study import assert_one_clear_message
 
     impactlab.load_study(STUDY, file="study.yaml")  # as written, it loads
+    impactlab.load_study(STUDY.replace("4 kHz", "0").replace("8 g", "0"), file="study.yaml")  # a bare 0 is read
     assert_one_clear_message(STUDY, change, 7, [fragment])
+
+
+def test_a_gain_above_the_pairs_e_on_a_flexing_face_is_refused_not_clipped():
+    """The ball's own e = e - gain on a flexing face: a pair's e below the club's gain has none. Before, it was
+    clipped to 0 without a word (a perfectly plastic ball on the face, whatever the user meant)."""
+    inputs = _with({key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}, restitution=[0.05, 0.8],
+                   club_restitution_gain=0.083)
+    with pytest.raises(ModelInputError, match="club_restitution_gain.*1 case"):
+        get_model("hertz_mindlin")(**FACE).compute(inputs, ["normal_impulse"])
+    # the face off, or an iron's face (no gain), leaves the pair's e as given
+    get_model("hertz_mindlin")().compute(inputs, ["normal_impulse"])
+    get_model("hertz_mindlin")(**FACE).compute(_with(inputs, club_restitution_gain=0.0), ["normal_impulse"])
+
+
+@pytest.mark.parametrize("tail, line, fragment, refused", [
+    ("sweep: {club.restitution_gain: [0, 0.04, 0.083]}\n", 9, "sweep.club.restitution_gain: expected", True),
+    ("sweep: {g: {club.restitution_gain: [0, 0.083], club.loft: [10 deg, 12 deg]}}\n", 9,
+     "sweep.g.club.restitution_gain: expected", True),
+    ("sensitivity: {samples: 8, parameters: {club.restitution_gain: {low: 0, high: 0.1}}}\n", 9,
+     "sensitivity.parameters.club.restitution_gain: expected", True),
+    ("sweep: {club.restitution_gain: [0.02, 0.083]}\n", 0, "", False),  # all flexing: the gain's own effect
+    ("sweep: {club.preset: [driver, 7_iron]}\n", 0, "", False),  # irons beside woods: each club's own face
+    ("sensitivity: {samples: 8, parameters: {club.restitution_gain: {spread: 0.01}}}\n", 0, "", False),
+])
+def test_a_gain_swept_through_zero_with_the_face_on_is_refused_at_its_line(tail, line, fragment, refused):
+    """club_restitution_gain > 0 marks the faces that flex: gains 0 and 1e-9 differ by the whole face law (J_t of
+    a driver strike by 5 %, measured below), so a sweep or a sensitivity range through 0 would draw that switch
+    as the gain's effect. Before, it ran and showed the jump without a word."""
+    one = {key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}
+    jumps = get_model("hertz_mindlin")(**FACE).compute(_with(one, club_restitution_gain=[0.0, MARK]),
+                                                       ["tangential_impulse"])["tangential_impulse"].values
+    assert abs(jumps[1] - jumps[0]) > 0.01 * abs(jumps[0])  # what the refusal is for
+    study = STUDY + tail
+    if not refused:
+        impactlab.load_study(study, file="study.yaml")
+        impactlab.load_study(study.replace("  - {name: hertz_mindlin, id: face, face_frequency: 4 kHz, "
+                                           "face_modal_mass: 8 g}\n", ""), file="study.yaml")
+        return
+    with pytest.raises(FieldError) as info:
+        impactlab.load_study(study, file="study.yaml")
+    assert str(info.value).startswith(f"study.yaml:{line}: {fragment}"), str(info.value)
+    assert "switches the face law on and off" in str(info.value)
+    # the same study without the flexing face runs the sweep: the gain's effect is then the rigid face's
+    impactlab.load_study(study.replace("face_frequency: 4 kHz, face_modal_mass: 8 g", "tolerance: 0.01"),
+                         file="study.yaml")
+
+
+@pytest.mark.parametrize("loss", [0.0, 0.1])
+def test_the_face_energy_the_kernel_reports_is_what_an_elastic_ball_lost(loss):
+    """Energy conservation, an oracle apart from the face's bookkeeping: an elastic ball without friction on a
+    flexing face loses exactly what the face holds at separation plus what its loss took, so the reported
+    face_energy equals -work (the rigid bodies' loss, summed from the contact force on their approach) to the
+    integration's error; a lossy ball loses more than the face takes. Before, no test read face_energy's value
+    (a halved held energy, or the loss's share dropped, passed)."""
+    n, mass = 4, 0.04593
+    mobility = np.broadcast_to(np.diag([1 / mass + 1 / (0.4 * mass)] * 2 + [1 / mass + 1 / 0.2]), (n, 3, 3)).copy()
+    face = face_flex.modal_inputs(np.array([5e6, 8e6, 1.2e7, 3e6]), np.array([0.008, 0.006, 0.01, 0.012]), loss)
+    arguments = dict(friction=np.zeros(n), kappa=np.full(n, 0.7), modulus=np.full(n, 1.5e8),
+                     radius=np.full(n, 0.021335), springs=1, steps=300, law="mindlin", face=face)
+    elastic = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.ELASTIC, **arguments)
+    kinetic = 0.5 * 40.0**2 / mobility[0, 2, 2]
+    assert np.all(elastic.face_energy > 1e-3 * kinetic)
+    np.testing.assert_allclose(elastic.face_energy, -elastic.work, rtol=1e-3)
+    lossy = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.DampedNormal(0.3), **arguments)
+    assert np.all((lossy.face_energy > 0.0) & (lossy.face_energy < -lossy.work))
+
+
+def test_the_force_history_of_a_flexing_face_integrates_to_its_normal_impulse():
+    """outputs [normal_force] alone on the 3-D kernel's cases (every flexing face's): before, the kernel was run
+    without recording (the 1-D solvers draw the normal force from their law), and the model raised a TypeError
+    where the same driver strike on a rigid face gave its history. Oracle: impulse-momentum, int F dt = J_n."""
+    inputs = _with(_plate(0.25), club_restitution_gain=0.083, restitution=0.87)
+    off_centre = {key: np.asarray(value)[:3] for key, value in DRIVER_CASES.items()}  # 3-D, face off too
+    for case, options in ((inputs, FACE), (off_centre, FACE), (off_centre, {})):
+        result = get_model("hertz_mindlin")(**options).compute(case, ["normal_impulse", "normal_force"])
+        force, time = result["normal_force"].values, result["time"].values
+        np.testing.assert_allclose(np.trapezoid(np.nan_to_num(force), time, axis=-1),
+                                   result["normal_impulse"].values, rtol=1e-4)
+
+
+def test_maw_annuli_names_the_flexing_face_when_it_refuses_a_case():
+    """maw's annuli solve one line only; a centre strike on a fixed flexing face is such a line, yet takes the 3-D
+    kernel: the refusal says so instead of listing only reasons the case does not have."""
+    inputs = _with(_plate(0.25), club_restitution_gain=0.083, restitution=0.87)
+    with pytest.raises(ModelInputError, match="a flexing face"):
+        get_model("maw")(method="annuli", **FACE).compute(inputs, ["normal_impulse"])
+
+
+@pytest.mark.parametrize("model, tolerance", [("maw", 1e-2), ("maw", 1e-3), ("hertz_mindlin", 1e-2)])
+def test_a_stiff_face_on_few_steps_is_the_rigid_face_not_a_divergence(model, tolerance):
+    """The face's mode rides on the kernel's leapfrog, which diverges for Omega_eff dt > 2 (Omega_eff^2 = Omega^2
+    + (15/8) g, the contact's stiffness included). Before, a 200 kHz or 1 MHz face (inside the option's range) on
+    a model's coarse 3-D steps gave NaN or 1e280 impulses, in maw without a flag. Oracle: the stiff limit, the
+    rigid face with the ball's own e (e - gain)."""
+    cases = {key: np.asarray(value)[:4] for key, value in DRIVER_CASES.items()}
+    gained = _with(cases, club_restitution_gain=0.05)
+    ball_own = _with(cases, club_restitution_gain=0.0, restitution=cases["restitution"] - 0.05)
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse"]
+    rigid = get_model(model)(tolerance=tolerance).compute(ball_own, names)
+    scale = np.abs(rigid["normal_impulse"].values).max()
+    for frequency in ("200 kHz", "1 MHz"):
+        stiff = get_model(model)(tolerance=tolerance, face_frequency=frequency, face_modal_mass="8 g").compute(
+            gained, names)
+        for name in names:
+            np.testing.assert_allclose(stiff[name].values, rigid[name].values, rtol=0, atol=2e-3 * scale)
+
+
+def test_a_face_option_on_a_study_without_a_spring_like_face_is_refused_not_ignored():
+    """The face law acts where club_restitution_gain > 0: on a custom club without a gain (a spec-sheet driver
+    typed in), or irons only, it changed nothing and the study ran as a rigid face, the option silently void."""
+    for club in ("club: {preset: 7_iron}", "club: {preset: driver, restitution_gain: 0}"):
+        with pytest.raises(FieldError) as info:
+            impactlab.load_study(STUDY.replace("club: {preset: driver}", club), file="study.yaml")
+        message = str(info.value)
+        assert message.startswith("study.yaml:7: models[1].face_frequency: expected a study with a spring-like face")
+        assert "would change nothing" in message
+    # a woods-and-irons sweep flexes the woods: it runs
+    impactlab.load_study(STUDY.replace("club: {preset: driver}", "club: {preset: 7_iron}")
+                         + "sweep: {club.preset: [7_iron, driver]}\n", file="study.yaml")
+
+
+def test_maw_hysteretic_with_a_stiff_face_keeps_the_rigid_faces_limit_correction_and_flag():
+    """maw's hysteretic law corrects MDR where it breaks the 3-D Coulomb limit (flag 64, the annular strips'
+    correction) on the rigid face; its flexing-face cases skipped it, so a 1 MHz face (a rigid one) gave 28 rpm more
+    spin than the rigid face with the same ball's e, and the flag vanished. Oracle: the stiff limit."""
+    cases = {key: np.asarray(value)[:2] for key, value in DRIVER_CASES.items()}
+    names = ["tangential_impulse", "normal_impulse", "validity"]
+    rigid = get_model("maw")(inelastic="hysteretic").compute(_with(cases, club_restitution_gain=0.0,
+                                                                    restitution=0.75), names)
+    stiff = get_model("maw")(inelastic="hysteretic", face_frequency="1 MHz", face_modal_mass="8 g").compute(
+        _with(cases, club_restitution_gain=0.05, restitution=0.8), names)
+    assert np.all(rigid["validity"].values.astype(int) & 64)  # the cases this is about
+    np.testing.assert_array_equal(stiff["validity"].values, rigid["validity"].values)
+    np.testing.assert_allclose(stiff["tangential_impulse"].values, rigid["tangential_impulse"].values, rtol=1e-3)
+
+
+def test_the_calibration_refuses_to_fit_the_gain_the_flexing_face_replaces():
+    """With the face on, the gain only marks the faces that flex: a fit of face_restitution_gain was flat in it
+    (it stayed at its start and inflated the other parameters' uncertainty threefold), its COR check added it to
+    the ball's law, and at its bound 0 it would switch the face off. Before, it was fitted without a word."""
+    model = get_model("hertz_mindlin")(**FACE)
+    with pytest.raises(FieldError, match="without face_restitution_gain.*flexing face"):
+        calibrate(model, shot_table("trackman_tour"), DEFAULT_PARAMETERS)
+
+
+@pytest.mark.parametrize("model", ["hertz_mindlin", "maw"])
+def test_energy_never_rises_with_the_face_the_core_rolling_and_the_adhesion_law_together(model):
+    """The face with every other law of the compliant models on at once (core behind the shell, rolling couple
+    1 - e^2, friction_law adhesion on a rough dry face), off-centre strikes of a free head: ball and head never
+    leave with more kinetic energy than they had (velocities' oracle, test_ball_laws.kinetic_energy)."""
+    rng = np.random.default_rng(11)
+    n = 16
+    inputs = _with({key: np.asarray(value)[:n] for key, value in DRIVER_CASES.items()},
+                   restitution=rng.choice([0.6, 0.8, 0.95], n), strike_toe=rng.uniform(-0.03, 0.03, n),
+                   strike_high=rng.uniform(-0.02, 0.02, n), dynamic_loft=rng.uniform(0.05, 0.9, n),
+                   speed=rng.uniform(20.0, 55.0, n), club_restitution_gain=rng.choice([0.0, 0.05, 0.083], n),
+                   ball_shear_strength=rng.uniform(2e6, 8e6, n), ball_cover_modulus=2e8, face_roughness_slope=0.1,
+                   ball_cover_melt_rise=np.inf, face_roughness=2e-6, face_groove_land=np.inf, face_water_film=0.0)
+    names = ["normal_impulse", "tangential_impulse", "lateral_impulse", "rolling_moment", "rolling_moment_slip"]
+    result = get_model(model)(face_frequency="5 kHz", face_modal_mass="9 g", face_loss=0.1, core_radius="19 mm",
+                              rolling_hysteresis="restitution", inelastic="hysteretic", friction_law="adhesion",
+                              tolerance=1e-3).compute(inputs, names)
+    before, after = kinetic_energy(inputs), kinetic_energy(inputs, result)
+    assert np.all(np.isfinite(after)) and np.all(after <= before * (1.0 + 1e-9)), np.max((after - before) / before)

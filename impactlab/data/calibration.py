@@ -184,6 +184,13 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         if name in names and name not in model.options_dict():
             raise FieldError("--parameter", f"a parameter model {model.name!r} has (it has no {name} option)", name,
                              choices=[n for n in PARAMETERS if n not in MODEL_OPTIONS])
+    if "face_restitution_gain" in names and float(model.options_dict().get("face_frequency", 0.0) or 0.0) > 0.0:
+        # the flexing face (models._common.face_inputs) replaces the gain, which then only marks the faces that
+        # flex: the fit would be flat in it, its COR check would add it, and at its bound 0 it switches the face off
+        raise FieldError("--parameter", f"parameters without face_restitution_gain: model {model.name!r} has the "
+                         f"flexing face (face_frequency), which replaces the gain (the gain only marks which faces "
+                         f"flex, and a fit reaching 0 would switch the face off)", "face_restitution_gain",
+                         choices=[n for n in PARAMETERS if n != "face_restitution_gain"])
     measured_values = sum(int(np.isfinite(table.measured[key]).sum()) for key in MEASURED_FIELDS)
     if measured_values < len(names):
         raise FieldError("--parameter", f"at most as many parameters as measured values ({measured_values})",

@@ -22,6 +22,7 @@ import yaml
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.study.limits import check_cases
+from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
 from impactlab.model.registry import available, get_model
 from impactlab.scene.core import Scene
@@ -33,7 +34,7 @@ from impactlab.study.datasets import DATASETS
 from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
 from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
-from impactlab.study.sweeps import SweepAxis, SweepField, build_sweep, friction_law_entry
+from impactlab.study.sweeps import PRESET_MARK, SweepAxis, SweepField, build_sweep, friction_law_entry
 from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
                                   check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
@@ -262,6 +263,14 @@ def _configured_model(name, options: Mapping, where: str) -> ImpactModel:
         if not isinstance(name, str) or name not in models:
             raise FieldError(f"{where}.name", "a registered model", str(name), choices=models)
         name = get_model(name)
+    fields = attrs.fields_dict(name.Options) if attrs.has(name.Options) else {}
+    for key, value in options.items():  # a dimensional option (its field's metadata) takes a unit in a study
+        dimension = fields[key].metadata.get("dimension") if key in fields else None
+        if dimension is not None and isinstance(value, (int, float, str)) and not isinstance(value, bool):
+            try:
+                to_si(value, dimension, f"{where}.{key}")  # a bare number refused (0 excepted), never read as SI
+            except FieldError as exc:
+                raise FieldError(exc.path, fields[key].metadata.get("expected", exc.expected), exc.given) from None
     try:
         return name(**options)
     except FieldError as exc:
@@ -302,6 +311,7 @@ def _build_study(document, text: str, file: str | None) -> Study:
     if "sensitivity" in document:
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
                                         {field.input for axis in sweep for field in axis.fields})
+    _check_face_marker(document, scene, sweep, models, sensitivity)
     return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
                  source=text, file=file,
                  plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]),
@@ -320,6 +330,54 @@ def _check_face_surface(scene, sweep, models, block: str) -> None:
                      f"(model {law.id}): a preset ({', '.join(FACE_SURFACES)}) or its fields roughness_slope, "
                      f"roughness, groove_land, effusivity (water_film for a wet face), each with its unit; a face is "
                      f"never taken as smooth and dry", f"none ({club} has no surface)", choices=FACE_SURFACES)
+
+
+def _check_face_marker(document, scene, sweep, models, sensitivity) -> None:
+    """The flexing face (model option ``face_frequency``; models._common.face_inputs) acts on the faces whose
+    club_restitution_gain is > 0: a sweep of the gain from 0 to above it switches the face law on between two of
+    its values, a step in every result of that model that is no physics of the gain. Refused at the sweep's line
+    rather than drawn as a jump (a club preset sweep, irons beside woods, keeps each club's own face); likewise a
+    sensitivity range of the gain that reaches 0 from above."""
+    flexing = [entry.id for entry in models if float(getattr(entry.model.options, "face_frequency", 0.0) or 0.0) > 0]
+    if not flexing:
+        return
+    gains = np.concatenate([np.ravel(scene.inputs().get("club_restitution_gain", 0.0))] + [
+        np.asarray(field.values, float) for axis in sweep for field in axis.fields
+        if field.input == "club_restitution_gain"])
+    ranged = sensitivity is not None and any(p.input == "club_restitution_gain" for p in sensitivity.parameters)
+    if not np.any(gains > 0.0) and not ranged:  # the option would change nothing: said, not run as a rigid face
+        index = next(index for index, entry in enumerate(models) if entry.id == flexing[0])
+        club = scene.club.name if scene.club is not None and scene.club.name else "the study's club or face"
+        raise FieldError(f"models[{index}].face_frequency", f"a study with a spring-like face to flex: the face law "
+                         f"acts on clubs with restitution_gain > 0 (the catalogue's driver, woods and hybrids), and no "
+                         f"case of this study has one ({club}: 0), so it would change nothing; give the club's "
+                         f"restitution_gain (the presets' fitted 0.083) or a wood's preset, or leave face_frequency "
+                         f"out", flexing[0])
+    swept = document.get("sweep") or {}
+    for axis in sweep:
+        for field in axis.fields:
+            values = np.asarray(field.values, float)
+            if field.input != "club_restitution_gain" or field.path.startswith(PRESET_MARK) or not (
+                    np.any(values == 0.0) and np.any(values > 0.0)):
+                continue
+            where = f"sweep.{field.path}" if field.path in swept else f"sweep.{axis.dim}.{field.path}"
+            raise FieldError(where, f"restitution gains all above 0 or all 0 with the flexing face of model "
+                             f"{flexing[0]} (face_frequency): a gain > 0 marks a spring-like face, which then flexes "
+                             f"and takes the ball's own e, so a sweep through 0 switches the face law on and off "
+                             f"(a jump, not the gain's effect); sweep it without 0, or compare the model with and "
+                             f"without face_frequency", ", ".join(f"{value:g}" for value in values))
+    for parameter in () if sensitivity is None else sensitivity.parameters:
+        if parameter.input != "club_restitution_gain":
+            continue
+        nominal = np.unique(np.concatenate([np.ravel(scene.inputs().get("club_restitution_gain", 0.0))] + [
+            np.asarray(field.values, float) for axis in sweep for field in axis.fields
+            if field.input == "club_restitution_gain"]))
+        low, high = parameter.bounds(nominal)
+        if np.any((low <= 0.0) & (high > 0.0)):
+            raise FieldError(f"sensitivity.parameters.{parameter.path}", f"a range of the restitution gain above 0 "
+                             f"with the flexing face of model {flexing[0]} (face_frequency): a gain > 0 marks a "
+                             f"spring-like face, so a range reaching 0 switches the face law on and off inside it",
+                             parameter.describe())
 
 
 def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
