@@ -145,6 +145,20 @@ def _named(converter, name: str):
     return convert
 
 
+def cover_thickness_field():
+    """Option ``cover_thickness`` [m] of ``maw`` (the cover in the tangential compliance): 0 (default), the
+    homogeneous ball. With its unit in a study, as every dimensional option."""
+    return attrs.field(default=0.0, converter=_named(si_length, "cover_thickness"), metadata=LENGTH, validator=in_range(
+        0.0, 0.005, "a cover thickness in m between 0 and 0.005 (e.g. '0.8 mm')"))
+
+
+def cover_modulus_field():
+    """Option ``cover_modulus`` [Pa] of ``maw``; None: the ball's Young's modulus."""
+    return attrs.field(default=None, converter=_named(si_pressure, "cover_modulus"), metadata=PRESSURE,
+                       validator=in_range(1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (e.g. "
+                                          "'70 MPa'; or leave it out: the ball's)", optional=True))
+
+
 def core_radius_field():
     """Option ``core_radius`` [m]: 0 (default) is the rigid ball, the paper's model unchanged."""
     return attrs.field(default=0.0, converter=_named(si_length, "core_radius"), metadata=LENGTH, validator=in_range(

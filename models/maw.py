@@ -6,11 +6,12 @@ import attrs
 import numpy as np
 
 from impactlab.model import HISTORY_LENGTH
-from impactlab.validators import check, in_range, to_float
+from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
 from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
+                      cover_modulus_field, cover_thickness_field,
                       core_shear_modulus_field, core_specific_gravity_field, face_frequency_field, face_loss_field,
                       face_modal_mass_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
@@ -98,10 +99,8 @@ class MawOptions(CompliantOptions):
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
-    cover_thickness: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
-        0.0, 0.005, "a cover thickness in m between 0 and 0.005 (5 mm)"))
-    cover_modulus: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        1e6, 1e10, "a cover Young's modulus in Pa between 1e6 and 1e10 (or leave it out: the ball's)", optional=True))
+    cover_thickness: float = cover_thickness_field()
+    cover_modulus: float | None = cover_modulus_field()
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
     #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
     core_radius: float = core_radius_field()

@@ -361,3 +361,31 @@ def test_cover_of_the_balls_own_modulus_changes_nothing_and_a_soft_cover_grips_m
     np.testing.assert_allclose(own["spin_rate"].values, today, rtol=1e-12)
     soft = get_model("maw")(tolerance=1e-3, cover_thickness=0.001, cover_modulus=40e6).compute(inputs, names)
     assert np.all(soft["spin_rate"].values > today)  # measured: kappa down, the reversal of the springs up
+
+
+COVER_STUDY = """name: cover
+ball: {preset: urethane_tour}
+impact: {speed: 30 m/s, angle: 30 deg}
+contact: {friction: 0.4, restitution: 0.8}
+models:
+  - maw
+  - {name: maw, id: cover, cover_thickness: 0.8 mm, cover_modulus: 70 MPa}
+outputs: [spin_rate]
+"""
+
+
+@pytest.mark.parametrize("change, fragment", [
+    # a bare number's unit is never guessed in a study (before, 0.0008 ran as metres and "0.8 mm" was refused)
+    (("0.8 mm", "0.0008"), "models[1].cover_thickness: expected a length with its unit"),
+    (("70 MPa", "70000000"), "models[1].cover_modulus: expected a modulus (pressure) with its unit"),
+    (("0.8 mm", "8 mm"), "models[1].cover_thickness: expected a cover thickness"),
+    (("70 MPa", "70 kg"), "models[1].cover_modulus: expected"),
+])
+def test_maw_cover_options_take_units_in_a_study_and_refuse_bare_numbers(change, fragment):
+    import impactlab
+    from test_study import assert_one_clear_message
+
+    study = impactlab.load_study(COVER_STUDY, file="study.yaml")  # as written, with units, it loads
+    options = study.models[1].model.options
+    assert options.cover_thickness == pytest.approx(0.0008) and options.cover_modulus == pytest.approx(70e6)
+    assert_one_clear_message(COVER_STUDY, change, 7, [fragment])
