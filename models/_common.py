@@ -291,6 +291,27 @@ FACE_FLEX_DOC = """face_frequency, face_modal_mass, face_loss
         face take the 3-D kernel."""
 
 
+
+@attrs.frozen(kw_only=True)
+class BallLawOptions:
+    """The ball and face laws every compliant model takes, declared once (``maw``'s and the DEM models' Options
+    subclass it; docs/models.md, "Ball laws"). Each is off by default: the paper's model unchanged."""
+
+    #: rolling resistance of the cover (ROLLING_HYSTERESIS_DOC); 0: none
+    rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    #: the friction law (FRICTION_LAW_DOC); "coulomb": the friction input
+    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    #: the core turning behind the shell (CORE_TORSION_DOC); core_radius 0: a rigid ball
+    core_radius: float = core_radius_field()
+    core_shear_modulus: float | None = core_shear_modulus_field()
+    core_specific_gravity: float | None = core_specific_gravity_field()
+    core_loss: float = core_loss_field()
+    core_modes: int = core_modes_field()
+    #: the face flexing behind the contact (FACE_FLEX_DOC); 0: a rigid face
+    face_frequency: float = face_frequency_field()
+    face_modal_mass: float = face_modal_mass_field()
+    face_loss: float = face_loss_field()
+
 def face_on(options) -> bool:
     """Whether a model's options switch the face law on; one of frequency and modal mass without the other is
     refused (ModelInputError)."""

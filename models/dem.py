@@ -9,9 +9,7 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
-                      core_shear_modulus_field, core_specific_gravity_field, face_frequency_field, face_loss_field,
-                      face_modal_mass_field)
+from ._common import BallLawOptions
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -22,7 +20,7 @@ MINDLIN = "R. D. Mindlin, Compliance of elastic bodies in contact, J. Appl. Mech
 
 
 @attrs.frozen
-class _SpringOptions(CompliantOptions):
+class _SpringOptions(BallLawOptions, CompliantOptions):
     """Options shared by the DEM laws (see the model docstrings)."""
 
     tolerance: float = attrs.field(default=1e-4, validator=in_range(1e-9, 0.1, "a tolerance between 1e-9 and 0.1"))
@@ -31,20 +29,6 @@ class _SpringOptions(CompliantOptions):
     history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
-    #: rolling resistance of the cover (models._common.ROLLING_HYSTERESIS_DOC); 0: none
-    rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
-    #: the friction law (models._common.FRICTION_LAW_DOC); "coulomb": the friction input
-    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
-    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
-    core_radius: float = core_radius_field()
-    core_shear_modulus: float | None = core_shear_modulus_field()
-    core_specific_gravity: float | None = core_specific_gravity_field()
-    core_loss: float = core_loss_field()
-    core_modes: int = core_modes_field()
-    #: the face flexing behind the contact (models._common.FACE_FLEX_DOC); 0: a rigid face
-    face_frequency: float = face_frequency_field()
-    face_modal_mass: float = face_modal_mass_field()
-    face_loss: float = face_loss_field()
 
     def resolution(self, chi: float, psi1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(one spring, tolerance not met) per case: the DEM laws reach a tolerance by time steps alone."""

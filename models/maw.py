@@ -10,10 +10,7 @@ from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._common import (FRICTION_LAW, ROLLING_HYSTERESIS, core_loss_field, core_modes_field, core_radius_field,
-                      cover_modulus_field, cover_thickness_field,
-                      core_shear_modulus_field, core_specific_gravity_field, face_frequency_field, face_loss_field,
-                      face_modal_mass_field)
+from ._common import BallLawOptions, cover_modulus_field, cover_thickness_field
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
@@ -28,7 +25,7 @@ RESOLVE_TOLERANCE = 3e-4
 
 
 @attrs.frozen
-class MawOptions(CompliantOptions):
+class MawOptions(BallLawOptions, CompliantOptions):
     """Options of ``maw``.
 
     Parameters
@@ -98,20 +95,9 @@ class MawOptions(CompliantOptions):
     history_points: int = attrs.field(default=HISTORY_LENGTH, validator=int_at_least(2))
     inelastic: str = attrs.field(default="adjusted_speed", validator=check(
         lambda v: v in INELASTIC, f"one of {', '.join(INELASTIC)}"))
-    rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
+    #: the cover in the tangential compliance (docs/models.md, "The ball's construction")
     cover_thickness: float = cover_thickness_field()
     cover_modulus: float | None = cover_modulus_field()
-    friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
-    #: the core turning behind the shell (models._common.CORE_TORSION_DOC); core_radius 0: a rigid ball
-    core_radius: float = core_radius_field()
-    core_shear_modulus: float | None = core_shear_modulus_field()
-    core_specific_gravity: float | None = core_specific_gravity_field()
-    core_loss: float = core_loss_field()
-    core_modes: int = core_modes_field()
-    #: the face flexing behind the contact (models._common.FACE_FLEX_DOC); 0: a rigid face
-    face_frequency: float = face_frequency_field()
-    face_modal_mass: float = face_modal_mass_field()
-    face_loss: float = face_loss_field()
 
     @tolerance.default
     def _default_tolerance(self):

@@ -57,3 +57,19 @@ def test_discovery_is_cached(monkeypatch):
     monkeypatch.setattr(registry, "_entry_points", lambda: [])
     assert "maw" in registry.available()  # cached
     assert registry.refresh() == {}  # refresh rediscovers
+
+
+def test_options_data_lists_every_option_once_the_models_own_first():
+    """The laws several models share are declared once (models._common.BallLawOptions) and inherited; provenance
+    and ``impactlab models`` still list every option, once, the model's own before the shared laws."""
+    import attrs
+
+    from impactlab.model.registry import get_model
+
+    for name, first in (("maw", "method"), ("hertz_mindlin", "history"), ("dem_linear", "stiffness_ratio")):
+        model = get_model(name)(core_radius=0.019)
+        listed = list(model.options_dict())
+        assert sorted(listed) == sorted(field.name for field in attrs.fields(type(model.options)))
+        assert listed[0] == first and listed[-1] == "face_loss"
+        assert model.options_dict()["core_radius"] == 0.019
+        assert get_model(name).describe()["options"].keys() == model.options_dict().keys()

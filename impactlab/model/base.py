@@ -34,6 +34,15 @@ class NoOptions:
     """Options of a model that has none."""
 
 
+
+def _options_data(options: Any) -> dict[str, Any]:
+    """Options as plain data (JSON-ready): the fields of the model's own Options class first, then those of each
+    class it inherits from, nearest first (the laws several models share come last), each in its declared order."""
+    values = attrs.asdict(options)
+    names = [field.name for klass in type(options).__mro__ if attrs.has(klass)
+             for field in attrs.fields(klass) if not field.inherited]
+    return {name: _jsonable(values[name]) for name in dict.fromkeys(names)}
+
 class ImpactModel:
     """Base class of every impact model.
 
@@ -156,7 +165,7 @@ class ImpactModel:
             "optional_inputs": sorted(INPUTS[name].path for name in cls.optional_inputs),
             "provides": sorted(cls.provides),
             # the defaults as an instance sees them (a default may depend on another option)
-            "options": {key: _jsonable(value) for key, value in attrs.asdict(cls.Options()).items()},
+            "options": _options_data(cls.Options()),
             "references": list(cls.references),
             # declared capabilities (rule 8); whether a configuration solves 3-D contacts is the instance's to say
             "capabilities": {"has_tolerance": cls.has_tolerance, "provides_histories": cls.provides_histories,
@@ -201,7 +210,7 @@ class ImpactModel:
 
     def options_dict(self) -> dict[str, Any]:
         """The resolved options as plain data (JSON-ready; infinities as strings), for provenance."""
-        return {key: _jsonable(value) for key, value in attrs.asdict(self.options).items()}
+        return _options_data(self.options)
 
     # -- the public entry point ---------------------------------------------------------------------------------
     def plan(self, outputs: Iterable[str], given_inputs: Iterable[str] | None = None) -> OutputPlan:
