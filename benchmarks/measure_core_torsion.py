@@ -32,7 +32,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from ball_laws import ROWS, per_unit, scene_inputs  # noqa: E402  (docs/ball_laws.py: the four tour rows)
+from ball_laws import (measured_cells, per_unit,  # noqa: E402  (docs/ball_laws.py: the tour rows)
+                       tour_and_wedge_inputs)
 from bench_ball_laws import per_impact  # noqa: E402
 
 from impactlab.data.shot_report import shot_table  # noqa: E402
@@ -42,8 +43,6 @@ from impactlab.physics import core_torsion  # noqa: E402
 from impactlab.testing import _complete, reference_inputs, reference_inputs_3d  # noqa: E402
 
 MASS, RADIUS, FACTOR = 0.04593, 0.021335, 0.4
-#: the WedgeCraft shot (observations.yaml: titleist_wedgecraft_58; delivery assumed there): urethane ball, 8300 rpm
-WEDGE = ("lob_wedge", 65, -4.0, 34.0, 8300)
 SHEARS = (2e6, 5e6, 10e6, 20e6, 47e6)
 CORES = (0.01905, 0.015)
 
@@ -78,18 +77,13 @@ def forms():
 
 
 def spin_table(model_name, rolling):
-    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
-    inputs = scene_inputs(rows)
-    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
-    measured = np.array([per_unit(row[5], row[2], row[6]) for row in ROWS])
+    inputs, speeds = tour_and_wedge_inputs()
     label = f"{model_name}{' + rolling_hysteresis 1 - e_ball^2' if rolling else ''}"
     print(f"\n#### {label}: spin per unit [rpm/mph] (contact time of the PGA driver row in brackets)\n")
     print("| form | PGA driver | LPGA driver | PGA 6-iron | LPGA 6-iron | wedge (assumed delivery) | iron/driver | "
           "PGA/LPGA driver spin | driver t_c ms |")
     print("|---|---|---|---|---|---|---|---|---|")
-    wedge_measured = WEDGE[4] / (WEDGE[1] * np.sin(np.radians(WEDGE[3] - WEDGE[2])))
-    print("| measured | " + " | ".join(f"{v:.1f}" for v in measured) + f" | {wedge_measured:.1f} (loft minus attack)"
-          f" | {measured[2:].mean() / measured[:2].mean():.2f} | {2545 / 2506:.2f} | |")
+    print(measured_cells() + " |")
     for name, options in forms():
         if rolling:
             options = dict(options, rolling_hysteresis="restitution")
@@ -105,9 +99,7 @@ def soft_core_sweep():
     """From a core that cannot follow within the contact (G -> 0: the shell alone takes the impulse) to a rigid
     ball; the default modes (up to 20 kHz); hertz_mindlin, no rolling law; the tangential restitution beta of each
     row as well."""
-    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
-    inputs = scene_inputs(rows)
-    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
+    inputs, speeds = tour_and_wedge_inputs()
     print("\n#### From a free shell to a rigid ball (hertz_mindlin, b 19.05 mm, SG 1.15, modes up to 20 kHz): spin "
           "per unit [rpm/mph], and beta\n")
     print("| G MPa | PGA driver | LPGA driver | PGA 6-iron | LPGA 6-iron | wedge | iron/driver | beta: PGA driver, "
@@ -128,9 +120,7 @@ def stiffer_contact():
     """Is the result a property of Mindlin's tangential stiffness? hertz_mindlin with k_t / k_n = 3 and 10 (about 4
     and 14 times Mindlin's kappa = 2 (1 - nu) / (2 - nu) = 0.71 of the ball on a near-rigid face): the core
     against the rigid ball."""
-    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
-    inputs = scene_inputs(rows)
-    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
+    inputs, speeds = tour_and_wedge_inputs()
     print("\nA stiffer tangential spring (hertz_mindlin stiffness_ratio), b 19.05 mm, SG 1.15: spin per unit "
           "(PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge) and iron/driver")
     for ratio in (3.0, 10.0):
@@ -147,8 +137,7 @@ def stiffer_contact():
 
 def truncation():
     """The spin's change with the number of modes kept, against 32 (hertz_mindlin, b 19.05 mm, SG 1.15)."""
-    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
-    inputs = scene_inputs(rows)
+    inputs, _ = tour_and_wedge_inputs()
     print("\nModes kept: spin against 32 modes [%] (PGA driver, LPGA driver, PGA 6-iron, LPGA 6-iron, wedge)")
     total = FACTOR * MASS * RADIUS**2
     for shear in (0.1e6, 2e6, 10e6, 20e6, 47e6):

@@ -32,7 +32,8 @@ from scipy import optimize
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from ball_laws import ROWS, per_unit, scene_inputs  # noqa: E402  (docs/ball_laws.py: the four tour rows)
+from ball_laws import (measured_cells, per_unit, scene_inputs,  # noqa: E402  (docs/ball_laws.py: the tour rows)
+                       tour_and_wedge_inputs)
 from bench_ball_laws import per_impact  # noqa: E402
 
 from impactlab.data.shot_report import shot_table  # noqa: E402
@@ -43,8 +44,6 @@ from impactlab.physics.contact import contact_state  # noqa: E402
 from impactlab.scene.materials import MATERIAL_PRESETS  # noqa: E402
 from impactlab.testing import _complete, _with, reference_inputs, reference_inputs_3d  # noqa: E402
 
-#: the WedgeCraft shot (observations.yaml: titleist_wedgecraft_58; delivery assumed there): urethane ball, 8300 rpm
-WEDGE = ("lob_wedge", 65, -4.0, 34.0, 8300)
 #: Ti-6Al-4V: E, nu of the titanium preset (ASM handbook); density 4430 kg/m^3 (ASM handbook, annealed grade 5)
 TITANIUM = (MATERIAL_PRESETS["titanium"].youngs_modulus, MATERIAL_PRESETS["titanium"].poisson_ratio, 4430.0)
 #: the driver preset's face, 110 x 60 mm (catalogue FACE_SIZES, an estimate): the disc of equal area
@@ -138,18 +137,13 @@ def forms():
 
 
 def spin_table(inelastic, rolling):
-    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
-    inputs = scene_inputs(rows)
-    speeds = np.array([row[2] for row in ROWS] + [WEDGE[1]])
-    measured = np.array([per_unit(row[5], row[2], row[6]) for row in ROWS])
+    inputs, speeds = tour_and_wedge_inputs()
     label = f"hertz_mindlin, inelastic {inelastic}{' + rolling_hysteresis 1 - e_ball^2' if rolling else ''}"
     print(f"\n#### {label}: spin per unit [rpm/mph]\n")
     print("| face | PGA driver | LPGA driver | PGA 6-iron | LPGA 6-iron | wedge (assumed delivery) | iron/driver | "
           "PGA/LPGA driver spin | driver ball speed vs off % (PGA, LPGA) | PGA driver t_c us |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    wedge_measured = WEDGE[4] / (WEDGE[1] * np.sin(np.radians(WEDGE[3] - WEDGE[2])))
-    print("| measured | " + " | ".join(f"{v:.1f}" for v in measured) + f" | {wedge_measured:.1f} (loft minus attack)"
-          f" | {measured[2:].mean() / measured[:2].mean():.2f} | {2545 / 2506:.2f} | | |")
+    print(measured_cells() + " | |")
     names = ["spin_rate", "spin_loft", "contact_time", "ball_speed"]
     reference = None
     for name, options in forms():

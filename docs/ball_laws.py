@@ -72,6 +72,26 @@ def per_unit(spin_rpm, speed_mph, spin_loft_deg):
     return spin_rpm / (speed_mph * np.sin(np.radians(spin_loft_deg)))
 
 
+#: the WedgeCraft shot (observations.yaml: titleist_wedgecraft_58; delivery assumed there): club preset, club speed
+#: mph, attack deg, dynamic loft deg, and the urethane ball's measured 8300 rpm
+WEDGE = ("lob_wedge", 65, -4.0, 34.0, 8300)
+
+
+def tour_and_wedge_inputs():
+    """Model inputs of the four tour rows and the WedgeCraft wedge shot, urethane ball, and their club speeds [mph]."""
+    rows = [("urethane_tour", *row[1:5]) for row in ROWS] + [("urethane_tour", *WEDGE[:4])]
+    return scene_inputs(rows), np.array([row[2] for row in ROWS] + [WEDGE[1]])
+
+
+def measured_cells() -> str:
+    """The measured row of a spin-per-unit table: the four tour rows (TrackMan's spin lofts), the wedge (loft minus
+    attack: its spin loft is not published), the iron/driver ratio of the means and the PGA/LPGA driver spin."""
+    measured = np.array([per_unit(row[5], row[2], row[6]) for row in ROWS])
+    wedge = per_unit(WEDGE[4], WEDGE[1], WEDGE[3] - WEDGE[2])
+    return ("| measured | " + " | ".join(f"{v:.1f}" for v in measured) + f" | {wedge:.1f} (loft minus attack)"
+            f" | {measured[2:].mean() / measured[:2].mean():.2f} | {ROWS[0][5] / ROWS[1][5]:.2f} |")
+
+
 def wet_losses(roughness_values, lands, film=20e-6):
     """The friction law's spin loss on the wedge observation's shot (urethane ball, maw) with a film on the face."""
     observation = load_observations()["cover"][0]
