@@ -19,18 +19,24 @@ Prints markdown: per configuration and reading, each row's errors (ball speed %,
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import attrs
 import numpy as np
 from scipy import optimize
 
-from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import predict, shot_errors, table_inputs
-from impactlab.model.registry import get_model
-from impactlab.physics.delivery import spin_loft
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 
-#: TrackMan's published spin lofts of the four tour rows, in the table's row order (deg; measurements)
-PUBLISHED_SPIN_LOFT = {"PGA driver": 14.7, "PGA 6-iron": 24.3, "LPGA driver": 15.0, "LPGA 6-iron": 25.9}
+from ball_laws import ROWS  # noqa: E402  (docs/ball_laws.py: the tour rows with TrackMan's spin lofts)
+
+from impactlab.data.shot_report import shot_table  # noqa: E402
+from impactlab.data.shots import predict, shot_errors, table_inputs  # noqa: E402
+from impactlab.model.registry import get_model  # noqa: E402
+from impactlab.physics.delivery import spin_loft  # noqa: E402
+
+#: TrackMan's published spin lofts of the four tour rows by label (deg; measurements)
+PUBLISHED_SPIN_LOFT = {row[0]: row[6] for row in ROWS}
 FACE = {"face_frequency": "6.88 kHz", "face_modal_mass": "10.9 g"}
 CONFIGURATIONS = [
     ("defaults", {}),
