@@ -770,3 +770,32 @@ def test_documented_fly_examples_run(page, capsys):
     for block in blocks:
         exec(compile(block, page, "exec"), {})  # noqa: S102 - our own documentation
     assert "yd" in capsys.readouterr().out or page == "README.md"
+
+
+def test_a_trajectory_lying_on_another_models_says_so_in_the_legend(tmp_path, monkeypatch):
+    """Two models with the same launch fly the same path; the later one covers the earlier, and its legend entry
+    names the model it lies on (standards: no curve hidden under another without saying so). A path a metre off
+    is not marked."""
+    import xarray as xr
+
+    import impactlab
+    from impactlab.plot import trajectories
+
+    result = impactlab.run_study(_golf_study(LAUNCH))
+    copy = result.sel(model=["rigid_coulomb"]).assign_coords(model=["rigid_copy"])
+    both = xr.concat([result.sel(model=["rigid_coulomb"]), copy], dim="model")
+    both.attrs = result.attrs
+    figures = []
+    monkeypatch.setattr(trajectories, "_save", lambda figure, path: figures.append(figure) or path)
+    trajectories.plot_trajectories(both, tmp_path / "t.png")
+    labels = [text.get_text() for text in figures[0].legends[0].get_texts()]
+    assert [label for label in labels if "(on " in label] == [
+        f"rigid_copy, {case} (on rigid_coulomb)" for case in ("toe -10 mm", "toe 0 mm", "toe 10 mm")], labels
+    # the test of coincidence by hand: the same path is on; one raised by a metre, or landing 2 m longer, is not
+    x = np.linspace(0.0, 250.0, 200)
+    z = 30.0 * np.sin(np.pi * x / 250.0)
+    y = -0.0005 * x**2
+    drawn = [(x, z, y, ("a", "case"))]
+    assert trajectories._lies_on(drawn, x, z + 0.05, y) == ("a", "case")
+    assert trajectories._lies_on(drawn, x, z + 1.0, y) is None
+    assert trajectories._lies_on(drawn, x * 1.008, z, y) is None

@@ -90,7 +90,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     figure = Figure(figsize=(10.5, 7.5))
     side, top = figure.subplots(2, 1, sharex=True)
     colours = rcParams["axes.prop_cycle"].by_key()["color"]
-    drawn = 0
+    drawn: list = []  # (x, height, offline, label) of each path drawn
     for m, model in enumerate(stacked[MODEL_DIM].values):
         row = stacked.sel({MODEL_DIM: model}).isel(case=shown)
         spin = np.hypot(row["back_spin"].values, row["side_spin"].values) * np.pi / 30.0
@@ -105,12 +105,17 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         for k in range(result["x"].shape[0]):
             style = _STYLES[k % len(_STYLES)]
             label = f"{model}" + (f", {labels[k]}" if labels[k] else "")
-            # a marker per model at the landing point, so that a path lying on another model's stays visible
+            flown = _flown_part(result["x"][k], result["z"][k], result["y"][k])
+            below = _lies_on(drawn, *flown)
+            drawn.append((*flown, (str(model), labels[k])))
+            # a marker per model at the landing point, so that a path lying on another model's stays visible; the
+            # legend names the model whose path of the same case this one covers
+            legend = label if below is None else \
+                f"{label} (on {below[0]}{'' if below[1] == labels[k] else ', ' + below[1]})"
             marks = dict(color=colours[m % len(colours)], linestyle=style, marker=_MARKERS[m % len(_MARKERS)],
                          markevery=[-1], markersize=5, markerfacecolor="none")
-            side.plot(result["x"][k], result["z"][k], label=label, **marks)
-            top.plot(result["x"][k], result["y"][k], label=label, **marks)
-            drawn += 1
+            side.plot(result["x"][k], result["z"][k], label=legend, **marks)
+            top.plot(result["x"][k], result["y"][k], label=legend, **marks)
     if not drawn:
         raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
     side.set_ylabel("height [m]")
@@ -140,12 +145,34 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     air_model = "" if "aerodynamics" in scene else f"{aerodynamics} aerodynamics, "
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
                     + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}", fontsize=9)
-    figure.tight_layout(rect=(0.0, 0.0, 0.80, 1.0))
+    longest = max(len(text) for text in side.get_legend_handles_labels()[1])
+    figure.tight_layout(rect=(0.0, 0.0, 0.80 if longest <= 28 else 0.72, 1.0))  # room for the legend's words
     return _save(figure, path)
 
 
 #: coordinate names a swept air field takes in a result (its last path component)
 INPUT_COORDS = {"air_temperature": "temperature", "air_pressure": "pressure"}
+
+
+def _flown_part(x, z, y):
+    """A path's points up to its landing (the integrator holds the landing point to the end of the array)."""
+    moving = np.concatenate([[True], np.diff(x) > 0.0])
+    return x[moving], z[moving], y[moving]
+
+
+def _lies_on(drawn, x, z, y) -> tuple[str, str] | None:
+    """The model and case of an earlier path this one lies on (and so hides), within about a line's width in both views
+    (0.4 % of the larger of its apex, its largest offline distance and 10 m; its landing within 0.4 % of its
+    carry), or None."""
+    width = 0.004 * max(float(np.max(z)), float(np.max(np.abs(y))), 10.0)
+    for other_x, other_z, other_y, label in drawn:
+        if abs(other_x[-1] - x[-1]) > 0.004 * max(abs(x[-1]), abs(other_x[-1]), 1.0):
+            continue
+        inside = (x >= other_x[0]) & (x <= other_x[-1])
+        if inside.any() and np.max(np.abs(np.interp(x[inside], other_x, other_z) - z[inside])) <= width \
+                and np.max(np.abs(np.interp(x[inside], other_x, other_y) - y[inside])) <= width:
+            return label
+    return None
 
 
 def _case_label(row, index: int) -> str:
