@@ -43,10 +43,15 @@ def main() -> Path:
                     ax.scatter(m["s"][ok], m[key][ok], marker=MARKERS[group], s=16, facecolors=fill,
                                edgecolors="0.3" if above else "0.55", c=None if fill else "0.3", linewidths=0.7,
                                label=label if key == "cl" else None)
+    lifts = {}
     for re, (colour, style, marker) in CURVES.items():
         cd, cl = aero_coefficients(s_grid, re, model="measured_fit")
         kwargs = {"color": colour, "linestyle": style, "marker": marker, "markevery": 20, "linewidth": 1.6}
-        axes[0].plot(s_grid, cl, label=f"measured_fit, Re {re:.0e}", **kwargs)
+        # a lift curve that lies on an earlier one says so (above the crisis the lift does not depend on Re)
+        on = next((f"{other:.0e}" for other, lift in lifts.items() if np.allclose(lift, cl, atol=2e-3)), None)
+        lifts[re] = cl
+        axes[0].plot(s_grid, cl, label=f"measured_fit, Re {re:.0e}" + (f" (lift on Re {on}'s)" if on else ""),
+                     **kwargs)
         axes[1].plot(s_grid, cd, **kwargs)
     cd, cl = aero_coefficients(s_grid, 1.5e5, model="smits_smith_1994")
     axes[0].plot(s_grid, cl, "k--", label="smits_smith_1994, Re 1.5e5")
