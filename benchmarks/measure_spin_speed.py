@@ -6,7 +6,8 @@ against club speed: what controlled data say").
 Measured (TrackMan 2023 tour averages, trackman_tour.yaml; TrackMan's published spin lofts, docs/ball_laws.py ROWS),
 the two tours' drivers spin alike (PGA 2545 rpm at 115 mph, LPGA 2506 rpm at 96 mph) at nearly the same spin loft
 (14.7 and 15.0 deg). Written as spin ~ v^k sin(spin loft), the two rows say k = 0.19 for drivers and k = 0.68 for the
-6-irons (94 and 80 mph). That k is APPARENT: the two tours differ in more than club speed (strike, head rotation,
+6-irons (94 and 80 mph); read with dynamic loft minus attack angle (13.7 and 12.7 deg), k = -0.33 and 0.77. That k is
+APPARENT: the two tours differ in more than club speed (strike, head rotation,
 shaft, ball fitting), so it is not a measurement of how one delivery's spin depends on its speed. No controlled
 measurement of that (one club, one strike, one spin loft, several speeds) with its delivery was found in the stored
 corpora (docs/validation.md lists what was searched).
@@ -101,13 +102,15 @@ def spins(model, table, ball=None, hook=None):
     return np.asarray(out["spin_rate"]) * RPM, np.asarray(out["ball_speed"])
 
 
-def apparent_exponents():
-    """k of spin ~ v^k sin(spin loft) between the tours, from the measured rows (not controlled)."""
+def apparent_exponents(reading="3-D"):
+    """k of spin ~ v^k sin(spin loft) between the tours, from the measured rows (not controlled): with TrackMan's
+    published 3-D spin lofts (``"3-D"``) or with dynamic loft minus attack angle (``"2-D"``, the shipped rows)."""
     by = {row[0]: row for row in ROWS}
     out = {}
     for club in ("driver", "6-iron"):
         p, lp = by[f"PGA {club}"], by[f"LPGA {club}"]
-        unit_ratio = per_unit(p[5], p[2], p[6]) / per_unit(lp[5], lp[2], lp[6])
+        loft_p, loft_l = (p[6], lp[6]) if reading == "3-D" else (p[4] - p[3], lp[4] - lp[3])
+        unit_ratio = per_unit(p[5], p[2], loft_p) / per_unit(lp[5], lp[2], loft_l)
         out[club] = 1.0 + math.log(unit_ratio) / math.log(p[2] / lp[2])
     return out
 
@@ -123,9 +126,11 @@ def exponent_table(table):
         slow[p], fast[lp] = speed[lp], speed[p]
     slow_table, fast_table = with_delivery(table, club_speed=slow), with_delivery(table, club_speed=fast)
     print("\n### 1. The exponent k of spin ~ v^k at a fixed delivery (model output; nothing fitted)\n")
-    apparent = apparent_exponents()
-    print(f"Apparent k between the tours (measured rows, deliveries differ): drivers {apparent['driver']:.2f}, "
-          f"6-irons {apparent['6-iron']:.2f}.\n")
+    for reading, what in (("3-D", "TrackMan's published spin lofts"), ("2-D", "dynamic loft minus attack angle")):
+        apparent = apparent_exponents(reading)
+        print(f"Apparent k between the tours (measured rows, deliveries differ; {what}): drivers "
+              f"{apparent['driver']:.2f}, 6-irons {apparent['6-iron']:.2f}.")
+    print()
     print("| configuration | " + " | ".join(f"k at the {label} delivery" for label in table.labels)
           + " | PGA/LPGA driver spin (rows as shipped; measured 1.016) |")
     print("|---|" + "---|" * (table.size + 1))

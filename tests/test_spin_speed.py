@@ -5,7 +5,7 @@ Oracles, written apart from the code: dimensional analysis of the impact (a Hert
 with Coulomb friction and a constant coefficient of restitution has no speed scale, so every impulse, hence the spin,
 is proportional to the approach speed at a fixed geometry: Maw, Barber & Fawcett, Wear 38 (1976) 101, whose outcome
 depends on the incidence angle and the material ratios only); Hertz's contact radius a ~ v^(2/5) (Johnson, Contact
-Mechanics, 1985, eq. 11.24), which makes the rolling couple d J_n, d = (3/16) alpha a, grow as v^(7/5); and a linear
+Mechanics, 1985, ch. 11), which makes the rolling couple d J_n, d = (3/16) alpha a, grow as v^(7/5); and a linear
 restitution law evaluated by hand at the normal approach speed v cos(spin loft) of a centred, square strike.
 """
 
