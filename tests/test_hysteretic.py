@@ -84,3 +84,16 @@ def test_laws_with_a_constant_load_factor_are_not_checked():
     for normal in (hertz.ELASTIC, hertz.DampedNormal(0.0)):
         solved = mdr.solve_scaled(np.full(2, CHI), np.array([0.5, 2.0]), springs=40, steps=240, normal=normal)
         assert solved.breaks_3d_limit is None
+
+
+def test_compiled_limit_check_flags_the_cases_the_numpy_reference_flags():
+    # oracle: the numpy path checks the full inverse transform (mdr.coulomb_excess) of every case at the same steps;
+    # the kernel sums only inside the outermost jump of the springs' forces that exceeds the caps' and reuses the
+    # grid's pressure, which must flag exactly the same cases
+    normal = hertz.DampedNormal(hertz.damping_for_restitution(0.7))
+    psi1 = np.linspace(0.2, 4.0, 24)
+    chi = np.repeat([0.9, CHI, 3.0], 8)
+    compiled = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal)
+    reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
+    assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size  # both kinds of case are in the batch
+    np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)

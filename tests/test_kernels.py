@@ -40,6 +40,19 @@ def test_annuli_kernel_matches_the_dense_solve(normal):
     assert_same_solution(fast, dense, rtol=1e-11)
 
 
+def test_annuli_kernel_updates_of_the_inverse_keep_to_the_dense_solve_over_many_changes():
+    # 60 annuli under a damped law: hundreds of annuli entering, leaving and turning between stick and slip, each
+    # an O(n^2) update of the kernel's inverse, with refreshes between; the dense path solves every system afresh
+    from impactlab.physics import annuli
+
+    normal = hertz.DampedNormal(hertz.damping_for_restitution(0.6))
+    chi, psi1 = np.array([0.9, 1.24, 5.0]), np.array([0.4, 2.0, 6.0])
+    fast = annuli.solve_scaled(chi, psi1, rings=60, steps=300, normal=normal)
+    dense = annuli.solve_scaled(chi, psi1, rings=60, steps=300, normal=normal, dense=True)
+    np.testing.assert_allclose(fast.slip_change, dense.slip_change, rtol=1e-10, atol=0)
+    np.testing.assert_allclose(fast.dissipation, dense.dissipation, rtol=1e-10, atol=0)
+
+
 @pytest.mark.slow
 def test_a_freshly_compiled_kernel_and_one_loaded_from_the_cache_give_the_same_bits(tmp_path):
     # every process of an executor must run the same machine code: workers load numba's cache that the

@@ -113,6 +113,12 @@ def _spring_grid(normal, springs: int, steps: int):
     return xi**2, tau, h_nodes, normal.load_factor(tau), inside
 
 
+def _check_grid(cap_offset, h_nodes, load_nodes, inside, springs, check_every):
+    """The compiled kernel's 3-D limit check on one grid: transform kernel, pressures at the steps checked."""
+    kernel = transform_kernel(springs)
+    return (kernel, *_kernels.mdr_pressures(cap_offset, h_nodes, load_nodes, inside, kernel, check_every))
+
+
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
                  normal: NormalLaw | None = None, observe=None, _force_numpy: bool = False) -> TangentialSolution:
     """Solve the scaled tangential impact for each (chi, psi1) pair, vectorised over cases.
@@ -150,10 +156,16 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     if _kernels.HAVE_NUMBA and not _force_numpy and observe is None:
         history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
+        if detect:  # the transform and the 3-D pressure at the steps checked depend on the grid alone
+            kernel, pressure, jumps, in_contact = cached_grid(normal, ("mdr-check", springs, steps), lambda: (
+                _check_grid(cap_offset, h_nodes, load_nodes, inside, springs, check_every)))
+        else:
+            kernel, pressure, jumps, in_contact = np.zeros((1, 1)), np.zeros((1, 1)), np.zeros((1, 1)), np.zeros(
+                1, dtype=np.int64)
         velocity_change, dissipation = _kernels.mdr_cases(chi, psi1, cap_offset, tau, h_nodes, load_nodes, inside,
                                                           weight, TANGENTIAL_GAIN, record, history, stick, detect,
-                                                          transform_kernel(springs) if detect else np.zeros((1, 1)),
-                                                          check_every, EXCESS, interior)
+                                                          kernel, check_every, EXCESS, interior, pressure, jumps,
+                                                          in_contact)
         return TangentialSolution(velocity_change, tau if record else None, 1.5 * history if record else None,
                                   stick if record else None, tau.size - 1, dissipation,
                                   interior if detect else None)

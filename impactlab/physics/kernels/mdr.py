@@ -7,13 +7,47 @@ import numpy as np
 from ._numba import compiled as _compiled
 
 
+def _mdr_pressures(xi2, h_nodes, load_nodes, inside, kernel, check_every):
+    """The 3-D pressure (inverse MDR transform of the springs' caps) at every step checked, and the springs in contact.
+
+    It depends on the grid alone, not on the case: computed once per grid (mdr.solve_scaled caches it), so that a
+    case's check in :func:`_mdr_cases` costs one triangular product, its traction. Row c is step (c + 1) check_every;
+    the two cells at the contact's edge are left out (0). Also the jumps of the caps from cell to cell (> 0), whose
+    transform the pressure is.
+    """
+    springs = xi2.size
+    checks = (h_nodes.size - 1) // check_every
+    pressure = np.zeros((max(checks, 1), springs))
+    pressure_jump = np.zeros((max(checks, 1), springs))
+    in_contact = np.zeros(max(checks, 1), dtype=np.int64)
+    for c in range(checks):
+        k = (c + 1) * check_every
+        h = h_nodes[k]
+        load = load_nodes[k]
+        reach = max(inside[k], inside[k - 1])
+        m = 0
+        while m < reach and (h - xi2[m]) * load > 0.0:
+            m += 1
+        in_contact[c] = m
+        for j in range(m):
+            pressure_jump[c, j] = (h - xi2[j]) * load - ((h - xi2[j + 1]) * load if j + 1 < m else 0.0)
+        for i in range(m - 2):
+            total = 0.0
+            for j in range(i, m):
+                next_cap = (h - xi2[j + 1]) * load if j + 1 < m else 0.0
+                total += ((h - xi2[j]) * load - next_cap) * kernel[i, j]
+            pressure[c, i] = total
+    return pressure, pressure_jump, in_contact
+
+
 def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_factor, record, history, stick,
-               detect, kernel, check_every, excess, interior):
+               detect, kernel, check_every, excess, interior, pressure, pressure_jump, in_contact):
     """MDR time loop for each case; see mdr.solve_scaled for the method. Returns (slip change, dissipation).
 
     With ``detect``, ``interior[case]`` is set when, at one of the steps checked (every ``check_every``), the
     3-D traction the springs represent exceeds the 3-D Coulomb limit by more than ``excess`` somewhere (see
-    mdr.coulomb_excess); ``kernel`` is mdr.transform_kernel(springs).
+    mdr.coulomb_excess); ``kernel`` is mdr.transform_kernel(springs), ``pressure``, ``pressure_jump`` and
+    ``in_contact`` those of :func:`_mdr_pressures` on the same grid.
     """
     cases = chi.size
     springs = xi2.size
@@ -21,6 +55,7 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
     velocity_change_out = np.zeros(cases)
     dissipation_out = np.zeros(cases)
     u = np.zeros(springs)
+    jump = np.zeros(springs)
     for case in range(cases):
         for i in range(springs):
             u[i] = 0.0
@@ -64,20 +99,23 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
                     u[i] = value
                     total += value
             if detect and not interior[case] and k % check_every == 0:
-                # the 3-D traction and pressure the springs in contact represent (inverse MDR transform, at the
-                # cell mid-points, the two edge cells left out); a traction beyond the Coulomb limit flags the case
-                m = 0
-                while m < reach and (h - xi2[m]) * load > 0.0:
-                    m += 1
-                for i in range(m - 2):
+                # the 3-D traction the springs in contact represent (inverse MDR transform, at the cell mid-points,
+                # the two edge cells left out) against the step's 3-D pressure: beyond the Coulomb limit flags the case
+                c = k // check_every - 1
+                m = in_contact[c]
+                # the transform's weights are positive: where no jump of the springs' forces beyond the cell exceeds
+                # the caps' (1 + excess), neither can the traction exceed the pressure (1 + excess). Only the cells
+                # inside the outermost such jump are summed
+                last = -1
+                for j in range(m):
+                    jump[j] = u[j] - (u[j + 1] if j + 1 < m else 0.0)
+                    if abs(jump[j]) > pressure_jump[c, j] * (1.0 + excess):
+                        last = j
+                for i in range(min(last + 1, m - 2)):
                     traction = 0.0
-                    pressure = 0.0
                     for j in range(i, m):
-                        next_u = u[j + 1] if j + 1 < m else 0.0
-                        next_cap = (h - xi2[j + 1]) * load if j + 1 < m else 0.0
-                        traction += (u[j] - next_u) * kernel[i, j]
-                        pressure += ((h - xi2[j]) * load - next_cap) * kernel[i, j]
-                    if abs(traction) > pressure * (1.0 + excess):
+                        traction += jump[j] * kernel[i, j]
+                    if abs(traction) > pressure[c, i] * (1.0 + excess):
                         interior[case] = True
                         break
             dissipation += 0.5 * weight * (previous_total + total) * dx
@@ -97,3 +135,4 @@ def _mdr_cases(chi, psi1, xi2, tau, h_nodes, load_nodes, inside, weight, gain_fa
 # one function with its own flags: a fastmath helper linked into a plain kernel compiles differently when
 # fresh and when loaded from numba's cache, which would make results depend on the process (executors)
 mdr_cases = _compiled(_mdr_cases, fastmath={"reassoc", "nsz"})
+mdr_pressures = _compiled(_mdr_pressures, fastmath={"reassoc", "nsz"})
