@@ -144,32 +144,36 @@ def fit(sources, parameters, fixed=None) -> dict:
     """
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
+    unknown = sorted(set(parameters) - set(PARAMETERS))
+    if unknown or "c0" not in parameters or len([p for p in parameters if p in GRID]) > 1:
+        raise ValueError(f"parameters: expected 'c0' and any of {sorted(set(PARAMETERS) - {'c0'})} (one of {GRID} at "
+                         f"most), got {list(parameters)}")
     fixed = dict(fixed or {})
     grid = [p for p in parameters if p in GRID]
     smooth = [p for p in parameters if p not in GRID]
-    points = [np.linspace(*PARAMETERS[grid[0]][0], GRID_POINTS)] if grid else [[None]]
+    points: list = list(np.linspace(*PARAMETERS[grid[0]][0], GRID_POINTS)) if grid else [None]
 
     def residuals(x, extra):
         params = {**defaults(), **extra, **dict(zip(smooth, x))}
         params.update(_tied(params, fixed))
         return np.concatenate([flights(params, name)["carry_error"] for name in sources])
 
-    best = None
-    for value in points[0]:
+    start = [float(np.clip(PARAMETERS[p][1] + (0.005 if p == "c0" else 0.0), *PARAMETERS[p][0])) for p in smooth]
+    bounds = ([PARAMETERS[p][0][0] for p in smooth], [PARAMETERS[p][0][1] for p in smooth])
+    scale = [(PARAMETERS[p][0][1] - PARAMETERS[p][0][0]) / 10 for p in smooth]
+    tried = []
+    for value in points:
         extra = {grid[0]: value} if grid else {}
-        start = [float(np.clip(PARAMETERS[p][1] + (0.005 if p == "c0" else 0.0), *PARAMETERS[p][0])) for p in smooth]
-        bounds = ([PARAMETERS[p][0][0] for p in smooth], [PARAMETERS[p][0][1] for p in smooth])
-        scale = [(PARAMETERS[p][0][1] - PARAMETERS[p][0][0]) / 10 for p in smooth]
         solution = least_squares(residuals, start, bounds=bounds, x_scale=scale, diff_step=1e-3, xtol=1e-8,
                                  args=(extra,))
-        cost = float(np.sum(solution.fun**2))
-        if best is None or cost < best[0]:
-            best = (cost, {**extra, **dict(zip(smooth, map(float, solution.x)))}, solution.fun)
-    params = {**defaults(), **best[1]}
+        tried.append((float(np.sum(solution.fun**2)), {**extra, **dict(zip(smooth, map(float, solution.x)))},
+                      solution.fun))
+    _, best, errors = min(tried, key=lambda item: item[0])
+    params = {**defaults(), **best}
     params.update(_tied(params, fixed))
-    at_bound = [p for p in parameters if np.isclose(params[p], PARAMETERS[p][0], rtol=0, atol=1e-6 * max(
-        1.0, abs(params[p]))).any()]
-    return {**params, "rms": float(np.sqrt(np.mean(best[2] ** 2))), "at_bound": at_bound}
+    at_bound = [p for p in parameters
+                if np.isclose(params[p], PARAMETERS[p][0], rtol=0, atol=1e-4 * np.ptp(PARAMETERS[p][0])).any()]
+    return {**params, "rms": float(np.sqrt(np.mean(errors**2))), "at_bound": at_bound}
 
 
 def score(params: dict) -> dict:
@@ -228,7 +232,8 @@ def _params_text(params: dict, names) -> str:
 
 def format_report() -> str:
     """Every candidate's held-out numbers and the crisis scan as Markdown."""
-    short = {"trackman_carry": "classic", "trackman_carry_pga_2023": "PGA 2023", "trackman_carry_lpga_2023": "LPGA 2023"}
+    short = {"trackman_carry": "classic", "trackman_carry_pga_2023": "PGA 2023",
+             "trackman_carry_lpga_2023": "LPGA 2023"}
     lines = ["| candidate | fitted on the radar seasons | classic | PGA 2023 | LPGA 2023 | land (mean) | seasons: "
              "hang, apex | leave one table out: held-out RMS | seasons RMS then |", "|---" * 9 + "|"]
     for name in CANDIDATES:
