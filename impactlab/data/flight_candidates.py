@@ -234,18 +234,19 @@ def format_report() -> str:
     """Every candidate's held-out numbers and the crisis scan as Markdown."""
     short = {"trackman_carry": "classic", "trackman_carry_pga_2023": "PGA 2023",
              "trackman_carry_lpga_2023": "LPGA 2023"}
-    lines = ["| candidate | fitted on the radar seasons | classic | PGA 2023 | LPGA 2023 | land (mean) | seasons: "
-             "hang, apex | leave one table out: held-out RMS | seasons RMS then |", "|---" * 9 + "|"]
+    lines = ["| candidate | fitted on the radar seasons | classic | PGA 2023 | LPGA 2023 | land, height (mean) | "
+             "seasons: hang, apex | leave one table out: held-out RMS | seasons RMS then |", "|---" * 9 + "|"]
     for name in CANDIDATES:
         result = evaluate(name)
         radar, folds = result["radar"], result["folds"]
         parameters = CANDIDATES[name][0]
         land = np.mean([radar["score"][t]["land"] for t in TABLES])
+        height = np.mean([radar["score"][t]["height"] for t in TABLES])
         held = " / ".join(f"{100 * folds[t]['score'][t]['rms']:.2f}" for t in TABLES)
         seasons = " / ".join(f"{100 * folds[t]['score'][RADAR]['rms']:.1f}" for t in TABLES)
         lines.append(f"| {name} | {_params_text(radar['params'], parameters)} | "
                      + " | ".join(f"{100 * radar['score'][t]['rms']:.2f} %" for t in TABLES)
-                     + f" | {land:+.1f} deg | {radar['score'][RADAR]['hang']:+.2f} s, "
+                     + f" | {land:+.1f} deg, {height:+.1f} yd | {radar['score'][RADAR]['hang']:+.2f} s, "
                        f"{radar['score'][RADAR]['height']:+.1f} yd | {held} % | {seasons} % |")
     lines += ["", "| left out | " + " | ".join(CANDIDATES) + " |", "|---" * (len(CANDIDATES) + 1) + "|"]
     for table in TABLES:
