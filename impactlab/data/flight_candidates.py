@@ -17,7 +17,7 @@ the other two tables (optimistic: the tables share an instrument and partly play
 land angles and heights against the tables, hang times and apexes against the seasons show whether a candidate fixes
 the carry by breaking the flight's shape. :func:`crisis_scan` shows what the seasons and the tables say about the crisis
 position. ``python -m impactlab.data.flight_candidates`` prints the tables of docs/flight.md ("Which change removes
-the spin-ratio residual"), about three minutes.
+the spin-ratio residual"), about five minutes.
 
 References
 ----------
