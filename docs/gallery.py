@@ -27,6 +27,10 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "flight_fit_c0": ("Carry RMS against the ball's drag level c0 on the PGA TOUR radar seasons (fitted) and on "
                            "TrackMan's three tour tables without their drivers (held out), and the held-out rows' "
                            "carry errors against launch spin ratio", "python docs/flight_fit_c0.py"),
+         "flight_candidates": ("The drag crisis' position: held-out tour-table carry errors against launch spin "
+                               "ratio with the drag level only and with measured_fit_late_crisis, carry RMS against "
+                               "the crisis midpoint (radar seasons and tables), and the late crisis against the "
+                               "measured drag of spinning and non-spinning balls", "python docs/flight_candidates.py"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
                                      "the wedge cover difference, and a wet face's spin loss",
