@@ -442,3 +442,27 @@ def test_an_inert_padding_mode_changes_nothing_in_either_kernel():
     pad = compliant3d.solve_once(mobility, speeds, slips, core=padded3, **arguments)
     for name in ("impulse", "work", "core_energy"):
         np.testing.assert_array_equal(getattr(pad, name), getattr(plain, name))
+
+
+def test_shell_response_refuses_a_step_its_scheme_cannot_take():
+    """Velocity Verlet is stable for omega dt <= 2 only: undamped, its free step's eigenvalues are
+    1 - h^2/2 +- sqrt((1 - h^2/2)^2 - 1), h = omega dt (Hairer, Lubich & Wanner 2003, I.1.4), modulus 1 below
+    h = 2 and |1 - h^2/2| + sqrt(...) above it; a damped mode at a small step decays as exp(-c dt / 2) per step,
+    the continuous oscillator's envelope (to (c dt)^2 / 4). Beyond the limit shell_response refuses with one
+    message, where it used to return a history growing step by step without a word."""
+    omega = 3.0e4
+    for h in (0.5, 1.0, 1.9, 1.999):
+        assert core_torsion.verlet_growth([omega], [0.0], h / omega)[0] == pytest.approx(1.0, abs=1e-9)
+    for h in (2.1, 2.5, 4.0):
+        b = 1.0 - 0.5 * h * h
+        assert core_torsion.verlet_growth([omega], [0.0], h / omega)[0] == pytest.approx(
+            abs(b) + np.sqrt(b * b - 1.0), rel=1e-9)
+    c, dt = 0.2 * omega, 0.001 / omega  # the explicit damping errs by (c dt)^2 / 4 per step: 1e-8 here
+    assert core_torsion.verlet_growth([omega], [c], dt)[0] == pytest.approx(np.exp(-0.5 * c * dt), rel=3e-8)
+    one = core_torsion.CoreModes(TOTAL, 0.4 * TOTAL, 0.6 * TOTAL, np.array([omega, 5.0 * omega]),
+                                 np.array([2.0 / TOTAL, 1.0 / TOTAL]), np.array([0.0, 0.1 * omega]))
+    torque = np.full(200, 0.3)
+    with pytest.raises(ValueError, match="mode 2"):
+        core_torsion.shell_response(one, torque, 2.1 / (5.0 * omega))
+    rate, _, _ = core_torsion.shell_response(one, torque, 1.9 / (5.0 * omega))  # just inside: bounded
+    assert np.all(np.isfinite(rate)) and np.abs(rate).max() < 1e3

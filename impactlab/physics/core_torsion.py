@@ -210,6 +210,12 @@ def shell_response(modes: CoreModes, torque, dt: float):
         Kinetic and strain energy of the rigid rotation and the modes [J].
     """
     torque = np.asarray(torque, float)
+    growth = verlet_growth(modes.frequency, modes.damping, dt)
+    if np.any(growth > 1.0 + 1e-12):
+        worst = int(np.argmax(growth))
+        raise ValueError(f"time step dt = {dt:.3g} s is too long for the core's mode {worst + 1} (omega "
+                         f"{modes.frequency[worst]:.4g} rad/s): velocity Verlet grows it by {growth[worst]:.4g} per "
+                         f"step; take dt below about {1.9 / modes.frequency.max():.3g} s (omega dt < 2)")
     w0 = 0.0
     rate = np.zeros(modes.frequency.size)
     angle = np.zeros_like(rate)
@@ -227,3 +233,37 @@ def shell_response(modes: CoreModes, torque, dt: float):
         energy[i] = 0.5 * modes.total_inertia * w0**2 + 0.5 * np.sum(inertia * (rate**2 + (modes.frequency
                                                                                              * angle) ** 2))
     return shell, momentum, energy
+
+
+def verlet_growth(frequency, damping, dt: float) -> np.ndarray:
+    """Largest factor by which :func:`shell_response`'s scheme multiplies a free mode per step (stable: <= 1).
+
+    The free step maps (theta, theta') linearly, theta' being the full-step rate: with
+    a = (-omega^2 theta - c theta') / (1 - c dt / 2), half = theta' + a dt / 2, theta_new = theta + dt half,
+    a_new = -omega^2 theta_new - c half, theta'_new = half + a_new dt / 2. The spectral radius of that 2x2 map is
+    computed, not a bound guessed from it (undamped, it is 1 for omega dt <= 2 and grows beyond; Hairer, Lubich &
+    Wanner 2003, section I.1.4).
+
+    Parameters
+    ----------
+    frequency, damping : array_like (modes,)
+        omega_k [rad/s] and c_k = eta omega_k [1/s].
+    dt : float
+        Time step [s].
+
+    Returns
+    -------
+    ndarray (modes,)
+        The spectral radius of each mode's step map [-].
+    """
+    omega2 = np.asarray(frequency, float) ** 2
+    c = np.asarray(damping, float) + 0.0 * omega2
+    maps = np.empty(omega2.shape + (2, 2))
+    for column, (theta, rate) in enumerate(((1.0, 0.0), (0.0, 1.0))):
+        accel = (-omega2 * theta - c * rate) / (1.0 - 0.5 * c * dt)
+        half = rate + 0.5 * dt * accel
+        new_theta = theta + dt * half
+        maps[..., 0, column] = new_theta
+        maps[..., 1, column] = half + 0.5 * dt * (-omega2 * new_theta - c * half)
+    growth = np.abs(np.linalg.eigvals(maps)).max(axis=-1)
+    return np.where(0.5 * c * dt < 1.0, growth, np.inf)  # there the rate's damping term flips sign: no scheme left
