@@ -17,6 +17,7 @@ from collections.abc import Sequence
 
 from impactlab._version import __version__
 from impactlab.cli.data_commands import _cmd_fit, _cmd_shots, _cmd_validate
+from impactlab.cli.fly_command import add_parser as add_fly_parser
 from impactlab.cli.study_commands import (_cmd_convergence, _cmd_export, _cmd_models, _cmd_paper, _cmd_plot,
                                           _cmd_run, _cmd_show)
 from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
@@ -159,6 +160,8 @@ def build_parser() -> argparse.ArgumentParser:
                        help="count estimated and clamped values as usable (left out of fits by default)")
     shots.add_argument("--club", action="append", help=CLUB_HELP)
     shots.set_defaults(handler=_cmd_shots)
+
+    add_fly_parser(commands)
 
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
     fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them), or a shot table "

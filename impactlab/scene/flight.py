@@ -133,8 +133,9 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
         return magnitude * factor
     if isinstance(value, str):
         if _bare_text(value):
+            example = "50 %" if dimension == "dimensionless" else f"{value} {_EXAMPLE[dimension]}"
             raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
-                                   f"'{value} {_EXAMPLE[dimension]}', or a number in SI)", value)
+                                   f"'{example}', or a number in SI)", value)
         return np.asarray(to_si(value, dimension, path), dtype=float)
     if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) for item in value):
         return np.array([float(quantity_array(item, dimension, f"{path}[{index}]"))
@@ -144,6 +145,11 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
     except (TypeError, ValueError):
         raise FieldError(path, _words(dimension), value) from None
     return array
+
+
+def _in_unit(array: np.ndarray, unit: str) -> str:
+    """Values for a message, with the unit they are in (an SI value shown without its unit reads as the user's)."""
+    return ", ".join(f"{value:.6g} {unit}" for value in np.ravel(array))
 
 
 _EXAMPLE = {"speed": "mph", "angle": "deg", "angular_speed": "rpm", "temperature": "degC", "pressure": "hPa",
@@ -260,13 +266,19 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     for name, array in values.items():
         if not np.all(np.isfinite(array)):
             raise FieldError(name, "finite values", array.tolist() if array.ndim else float(array))
+    try:
+        np.broadcast_shapes(*(array.shape for array in values.values()))
+    except ValueError:
+        raise FieldError("launch", "values of one shape, or single values, that broadcast together (one per shot)",
+                         ", ".join(f"{name} {array.shape}" for name, array in values.items())) from None
     if np.any(values["ball_speed"] <= 0.0):
-        raise FieldError("ball_speed", "a positive ball speed", values["ball_speed"].tolist())
+        raise FieldError("ball_speed", "a positive ball speed", _in_unit(values["ball_speed"], "m/s"))
     if np.any(values["spin_rate"] < 0.0):
         raise FieldError("spin_rate", "a spin rate >= 0 (the direction of the spin is the spin axis)",
-                         values["spin_rate"].tolist())
+                         _in_unit(values["spin_rate"] * 30.0 / math.pi, "rpm"))
     if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
-        raise FieldError("launch_angle", "a launch angle between -90 and 90 deg", values["launch_angle"].tolist())
+        raise FieldError("launch_angle", "a launch angle between -90 and 90 deg",
+                         _in_unit(np.degrees(values["launch_angle"]), "deg"))
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())

@@ -1,0 +1,197 @@
+"""``impactlab fly``: yards from a launch, or from every shot of a launch-monitor session.
+
+Two forms:
+
+- ``impactlab fly --ball-speed "167 mph" --launch-angle "10.9 deg" --spin-rate "2686 rpm"`` flies the launch (or
+  launches: each option takes several values, which broadcast) given on the command line;
+- ``impactlab fly SESSION`` flies each shot of an export with its measured launch
+  (:func:`impactlab.data.session_flight.fly_session`) and prints the monitor's own carry beside the prediction.
+
+Every value carries its unit (a bare number is refused: no unit is guessed); the air is the standard air unless
+``--temperature``, ``--pressure`` or ``--altitude``, ``--humidity``, ``--headwind``, ``--crosswind`` say otherwise.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+import numpy as np
+import xarray as xr
+
+from impactlab.data.session import read_session
+from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
+from impactlab.errors import FieldError, StudyError
+from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
+from impactlab.scene import flight
+from impactlab.units import MPH
+
+YARD = 0.9144
+#: command-line option -> key of impactlab.fly's ``conditions``
+AIR_OPTIONS = {"temperature": "temperature", "pressure": "pressure", "altitude": "altitude",
+               "humidity": "relative_humidity", "headwind": "headwind", "crosswind": "crosswind"}
+#: command-line option -> argument of impactlab.fly (the launch)
+LAUNCH_OPTIONS = {"ball_speed": "ball speed", "launch_angle": "launch angle", "spin_rate": "spin rate",
+                  "spin_axis": "spin axis (positive: curving right)",
+                  "launch_direction": "launch direction (positive: right of the target)"}
+#: printed columns: (title, variable, factor from the dataset's unit, format)
+COLUMNS = [("carry yd", "carry_distance", 1 / YARD, "{:.1f}"), ("offline yd", "offline_distance", 1 / YARD, "{:+.1f}"),
+           ("apex yd", "apex_height", 1 / YARD, "{:.1f}"), ("land deg", "landing_angle", 1.0, "{:.1f}"),
+           ("time s", "flight_time", 1.0, "{:.2f}")]
+
+
+def add_parser(commands) -> None:
+    """The ``fly`` subcommand's arguments."""
+    fly = commands.add_parser("fly", help="carry, offline, apex, landing angle and flight time of a launch, or of "
+                                          "every shot of a launch-monitor session beside the monitor's own")
+    fly.add_argument("file", nargs="?", help="a session file as exported (any `impactlab shots` reads); or give a "
+                                             "launch with --ball-speed, --launch-angle and --spin-rate")
+    for option, words in LAUNCH_OPTIONS.items():
+        fly.add_argument(f"--{option.replace('_', '-')}", nargs="+", metavar="VALUE",
+                         help=f"{words}, with its unit (e.g. {_EXAMPLES[option]}); several values broadcast")
+    for option, key in AIR_OPTIONS.items():
+        fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}")
+    fly.add_argument("--model", default=DEFAULT_MODEL, choices=sorted(MODELS),
+                     help=f"aerodynamic model (default {DEFAULT_MODEL}; docs/flight.md)")
+    fly.add_argument("--vendor", help="a session: read with this vendor layout (default: recognised)")
+    fly.add_argument("--include-flagged", action="store_true",
+                     help="a session: also fly shots whose launch the monitor marks estimated or clamped")
+    fly.add_argument("--csv", help="also write the table (every value in the units its header names)")
+    fly.set_defaults(handler=_cmd_fly)
+
+
+_EXAMPLES = {"ball_speed": "'167 mph'", "launch_angle": "'10.9 deg'", "spin_rate": "'2686 rpm'",
+             "spin_axis": "'-3 deg'", "launch_direction": "'1.5 deg'"}
+_AIR_WORDS = {"temperature": "temperature (e.g. '25 degC'; default 15 degC)",
+              "pressure": "station pressure (e.g. '1013 hPa'; default the ISA pressure at --altitude)",
+              "altitude": "height of the tee above sea level (e.g. '5280 ft'; sets the ISA pressure)",
+              "relative_humidity": "relative humidity (e.g. '50 %'; default 50 %)",
+              "headwind": "wind against the shot (e.g. '10 mph'; negative: a tailwind)",
+              "crosswind": "wind across the shot, positive blowing to the right (e.g. '5 mph')"}
+
+
+def _cmd_fly(args) -> int:
+    if args.csv:
+        check_output(args.csv, what="--csv file", suffix=".csv")
+    given = {option: getattr(args, option) for option in LAUNCH_OPTIONS if getattr(args, option) is not None}
+    conditions = {key: getattr(args, option) for option, key in AIR_OPTIONS.items()
+                  if getattr(args, option) is not None}
+    if args.file and given:
+        raise StudyError("impactlab fly: give a session file or a launch (--ball-speed, --launch-angle, "
+                         "--spin-rate), not both")
+    try:
+        if args.file:
+            result = fly_session(read_session(args.file, args.vendor), model=args.model, conditions=conditions,
+                                 include_flagged=args.include_flagged)
+        else:
+            result = _fly_launch(given, conditions, args.model)
+    except FieldError as exc:  # a value's path in the command's words: conditions.temperature -> --temperature
+        raise _as_option(exc) from None
+    print(describe(result, args.model))
+    if args.csv:
+        write_atomically(args.csv, table_csv(result).encode())
+        print(f"wrote {args.csv} ({result.sizes['shot']} shot(s))")
+    return 0
+
+
+def _fly_launch(given: dict, conditions: dict, model: str) -> xr.Dataset:
+    missing = [option for option in ("ball_speed", "launch_angle", "spin_rate") if option not in given]
+    if missing:
+        raise StudyError("impactlab fly: a launch needs " + ", ".join(f"--{m.replace('_', '-')}" for m in missing)
+                         + " (each with its unit), or give a session file")
+    values = {option: (texts[0] if len(texts) == 1 else texts) for option, texts in given.items()}
+    result = flight.fly(conditions=conditions, model=model, **values)
+    launch = {name: flight.quantity_array(values.get(name, 0.0), dimension, name) for name, dimension in (
+        ("ball_speed", "speed"), ("launch_angle", "angle"), ("spin_rate", "angular_speed"), ("spin_axis", "angle"))}
+    shape = result["carry_distance"].shape
+    shots = int(np.prod(shape))
+    out = {name: ("shot", np.asarray(result[name].values, float).reshape(shots), dict(result[name].attrs))
+           for name in PREDICTED}
+    out["ball_speed"] = ("shot", np.broadcast_to(launch["ball_speed"], shape).reshape(shots), {"units": "m/s"})
+    out["vertical_launch_angle"] = ("shot", np.degrees(np.broadcast_to(launch["launch_angle"], shape)).reshape(
+        shots), {"units": "degree"})
+    out["spin_rate"] = ("shot", (np.broadcast_to(launch["spin_rate"], shape) * 30.0 / np.pi).reshape(shots),
+                        {"units": "rpm"})
+    out["spin_axis"] = ("shot", np.degrees(np.broadcast_to(launch["spin_axis"], shape)).reshape(shots),
+                        {"units": "degree"})
+    return xr.Dataset(out, attrs=dict(result.attrs))
+
+
+def _as_option(exc: FieldError) -> FieldError:
+    path = exc.path or ""
+    key = path.split(".", 1)[1] if path.startswith("conditions.") else path
+    names = {value: option for option, value in AIR_OPTIONS.items()} | {o: o for o in LAUNCH_OPTIONS}
+    stem = key.split("[")[0]
+    if stem not in names:
+        return exc
+    option = "--" + names[stem].replace("_", "-") + key[len(stem):]
+    return FieldError(option, exc.expected, exc.given, exc.choices, file=exc.file, line=exc.line)
+
+
+def describe(result: xr.Dataset, model: str) -> str:
+    """The printed table: one row per shot, the launch flown, the predictions in yards and degrees, and for a
+    session the monitor's carry beside each with the error summary."""
+    a = result.attrs
+    out = [f"model: {model} ({MODEL_REFERENCES.get(model, '')})",
+           f"air: {a['air_temperature_K'] - 273.15:.1f} degC, {a['air_pressure_Pa'] / 100:.1f} hPa, "
+           f"{100 * a['air_relative_humidity']:.0f} % humidity (density {a['air_density_kg_m3']:.4f} kg/m^3), "
+           f"headwind {a['headwind_m_s'] / MPH:+.1f} mph, crosswind {a['crosswind_m_s'] / MPH:+.1f} mph"]
+    session = "line" in result.coords
+    if session:
+        out.insert(0, f"{result.attrs['file']}: {result.attrs['vendor']}, {result.sizes['shot']} shot(s) flown")
+    monitor = MONITOR + "carry_distance" in result
+    titles = (["line", "club"] if session else ["shot"]) + ["ball mph", "launch deg", "spin rpm", "axis deg"] + [
+        title for title, *_ in COLUMNS] + (["monitor carry yd", "model - monitor"] if monitor else [])
+    out += ["", "| " + " | ".join(titles) + " |", "|" + "---|" * len(titles)]
+    for index in range(result.sizes["shot"]):
+        cells = ([str(int(result.line[index])), str(result.club.values[index]) or "-"] if session
+                 else [str(index + 1)])
+        cells += [_cell(result.ball_speed[index] / MPH, "{:.1f}"), _cell(result.vertical_launch_angle[index],
+                                                                          "{:.1f}"),
+                  _cell(result.spin_rate[index], "{:.0f}"), _cell(result.spin_axis[index], "{:+.1f}")]
+        cells += [_cell(result[name][index] * factor, form) for _, name, factor, form in COLUMNS]
+        if monitor:
+            reported = float(result[MONITOR + "carry_distance"][index])
+            cells += [_cell(reported / YARD, "{:.1f}"),
+                      _cell(100 * (float(result.carry_distance[index]) / reported - 1), "{:+.1f} %")
+                      if np.isfinite(reported) and reported > 0 else "-"]
+        out.append("| " + " | ".join(cells) + " |")
+    if monitor:
+        monitor_carry = np.asarray(result[MONITOR + "carry_distance"].values, dtype=float)
+        usable = np.isfinite(monitor_carry) & (monitor_carry > 0) & np.isfinite(result.carry_distance.values)
+        if usable.any():
+            error = result.carry_distance.values[usable] / monitor_carry[usable] - 1
+            rms = 100 * np.sqrt(np.mean(error ** 2))
+            out += ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean "
+                        f"{100 * error.mean():+.1f} %, RMS {rms:.1f} % (the monitor's carry is what it exported: "
+                        "measured where a radar tracked the flight, its own model indoors or when normalised)"]
+    if session and np.isnan(result.offline_distance.values).any():
+        out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
+    if session and result.attrs.get("skipped"):
+        out += ["", "not flown: " + result.attrs["skipped"]]
+    return "\n".join(out)
+
+
+
+def _cell(value, form: str) -> str:
+    value = float(value)
+    return form.format(value) if np.isfinite(value) else "-"
+
+
+def table_csv(result: xr.Dataset) -> str:
+    """``result`` as CSV, one row per shot, each header naming its unit (``carry_distance [m]``)."""
+    names = [name for name in result.data_vars if result[name].dims == ("shot",)]
+    coords = [name for name in ("line", "club") if name in result.coords]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(coords + [f"{name} [{result[name].attrs['units']}]" if "units" in result[name].attrs else name
+                              for name in names])
+    for index in range(result.sizes["shot"]):
+        row = [str(result[name].values[index]) for name in coords]
+        for name in names:
+            value = result[name].values[index]
+            row.append(str(bool(value)) if result[name].dtype == bool else
+                       ("" if not np.isfinite(value) else f"{float(value):.10g}"))
+        writer.writerow(row)
+    return buffer.getvalue()

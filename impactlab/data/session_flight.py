@@ -1,0 +1,124 @@
+"""A launch-monitor session flown: each shot's measured launch through the air, beside what the monitor reported.
+
+``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as :func:`impactlab.data.session.read_session`
+reads it, flies every shot that has a ball speed, a launch angle and a spin rate with
+:func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and flight time
+beside each prediction where the export has them. Nothing is guessed for a shot:
+
+- a shot without ball speed, launch angle or spin is not flown, and the result says why (``skipped``);
+- a shot whose spin (or ball speed, or launch) the monitor marks estimated or clamped is not flown unless asked
+  (``include_flagged``): an estimated spin is the monitor's model, not a measurement;
+- a shot without a spin axis is flown as pure backspin and without a launch direction as straight, and its offline
+  distance is then not given (NaN): the carry barely depends on them (cos of the tilt in the lift), the offline
+  entirely.
+
+The monitor's carry is what the export says. Whether it is measured depends on the unit: radar units outdoors
+track much of the flight; camera units and indoor sessions fly the launch with their own model, and some exports
+state that their rows are normalised to a standard air (docs/vendors.md, docs/flight.md).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from impactlab.data.session import Session
+from impactlab.errors import StudyError
+from impactlab.physics.aerodynamics import DEFAULT_MODEL
+from impactlab.scene import flight
+from impactlab.scene.plausibility import wrong_sign
+
+#: the launch a shot needs to be flown
+LAUNCH = ("ball_speed", "vertical_launch_angle", "spin_rate")
+#: what the flight predicts, and the session field the monitor reports it in (the same names)
+PREDICTED = ("carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time")
+#: the prefix of the monitor's own value of a predicted quantity in the result
+MONITOR = "monitor_"
+
+
+def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Mapping | None = None,
+                include_flagged: bool = False) -> xr.Dataset:
+    """Fly every shot of ``session`` that has a launch; the monitor's values beside the predictions.
+
+    Parameters
+    ----------
+    session : Session
+        A session as :func:`impactlab.data.session.read_session` returns it (SI values).
+    model : str
+        Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS`.
+    conditions : mapping, optional
+        The air, as :func:`impactlab.fly` takes it (``temperature``, ``pressure`` or ``altitude``,
+        ``relative_humidity``, ``headwind``, ``crosswind``, each with its unit); None: 15 degC, 101 325 Pa, 50 %,
+        still. Exports do not state their air, so a comparison with a monitor that normalises its rows should give
+        that monitor's standard air.
+    include_flagged : bool
+        Also fly shots whose launch values the monitor marks estimated or clamped.
+
+    Returns
+    -------
+    xarray.Dataset
+        On dim ``shot`` (the shots flown, in file order), coordinates ``line`` (the file line) and ``club``;
+        the launch flown (``ball_speed`` [m/s], ``vertical_launch_angle`` [degree], ``spin_rate`` [rpm],
+        ``spin_axis`` [degree], NaN where the export has none); the predictions of :data:`PREDICTED` in the units
+        of :data:`impactlab.vocabulary.OUTPUTS` (``offline_distance`` NaN where the spin axis or launch direction
+        is missing); ``monitor_<name>`` for each predicted quantity the export has (NaN in the rows without
+        it); ``flagged`` (bool: a launch value flown though the monitor flags it). Attributes: ``file``,
+        ``vendor``, ``aerodynamic_model``, ``skipped`` (one "line N: reason" per shot not flown, ``; ``-joined).
+
+    Raises
+    ------
+    StudyError
+        A shot with a negative ball speed or spin (a sign or column error, never a shot to fly), at its
+        file:line; or a session with no shot to fly, saying why each was left out.
+    """
+    v = session.values
+    present = np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0)
+    flagged = np.zeros(session.size, dtype=bool)
+    for (field, _kind), rows in session.flags.items():
+        if field in LAUNCH + ("spin_axis",):
+            flagged |= rows
+    fly_rows = present & (include_flagged | ~flagged)
+    skipped = []
+    for row in np.flatnonzero(~fly_rows).tolist():
+        missing = [name for name in LAUNCH if not np.isfinite(v[name][row])] + (
+            ["ball speed above 0 (the row's is 0: no shot)"] if v["ball_speed"][row] == 0.0 else [])
+        reason = ("no " + ", no ".join(missing)) if missing else (
+            "launch values flagged by the monitor (estimated or clamped; --include-flagged flies them)")
+        skipped.append(f"line {session.lines[row]}: {reason}")
+    rows = np.flatnonzero(fly_rows)
+    if rows.size == 0:
+        raise StudyError(f"{session.file}: no shot to fly (each needs a ball speed, a launch angle and a spin "
+                         f"rate): " + "; ".join(skipped or ["the file has no shots"]))
+    problems = [problem for row in rows.tolist() for problem in wrong_sign(
+        {"ball_speed": v["ball_speed"], "spin_rate": v["spin_rate"]}, row, f"{session.file}:{session.lines[row]}")]
+    if problems:
+        raise StudyError("; ".join(problems))
+    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
+    flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
+                       np.nan_to_num(axis), np.nan_to_num(direction), conditions, model=model)
+    data = {
+        "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
+        "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),
+                                  {"units": "degree", "long_name": "launch angle flown"}),
+        "spin_rate": ("shot", v["spin_rate"][rows] * 30.0 / np.pi, {"units": "rpm", "long_name": "spin rate flown"}),
+        "spin_axis": ("shot", np.degrees(axis), {"units": "degree", "long_name": "spin axis flown (NaN: not in the "
+                                                 "export, flown as 0)"}),
+        "flagged": ("shot", flagged[rows], {"long_name": "a launch value the monitor flags (estimated or clamped)"}),
+    }
+    for name in PREDICTED:
+        values = np.array(flown[name].values, dtype=float)
+        if name == "offline_distance":
+            values[~(np.isfinite(axis) & np.isfinite(direction))] = np.nan
+        data[name] = ("shot", values, dict(flown[name].attrs))
+        if np.isfinite(v[name][rows]).any():
+            reported = v[name][rows] if name != "landing_angle" else np.degrees(v[name][rows])
+            data[MONITOR + name] = ("shot", reported, {"units": flown[name].attrs["units"],
+                                                       "long_name": f"{name.replace('_', ' ')} the monitor reports"})
+    coords = {"line": ("shot", np.asarray(session.lines)[rows]),
+              "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
+    attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
+                  "skipped": "; ".join(skipped)}
+    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
+    return xr.Dataset(data, coords=coords, attrs=attributes)

@@ -1,0 +1,155 @@
+"""``impactlab fly``: a launch or a launch-monitor session in, yards out (issue 22: "yards and a simulator out").
+
+Oracles: the projectile in a vacuum (carry v^2 sin 2a / g, apex v^2 sin^2 a / 2g, time 2 v sin a / g, landing at the
+launch angle), the export's own cells read from the file here, and the directions the physics fixes (a headwind
+shortens, thin air lengthens, a wind from the left pushes right). Every user error: one message, exit 2.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from impactlab.cli import main
+
+DATA = Path(__file__).parent / "data" / "vendors"
+G = 9.80665
+MPH, YARD = 0.44704, 0.9144
+
+
+def _csv(path):
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
+def test_a_launch_in_a_vacuum_is_the_projectile(tmp_path, capsys):
+    out = tmp_path / "fly.csv"
+    assert main(["fly", "--ball-speed", "120 mph", "60 mph", "--launch-angle", "30 deg", "--spin-rate", "0 rpm",
+                 "--model", "vacuum", "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    rows = _csv(out)
+    assert len(rows) == 2
+    for row, mph in zip(rows, (120.0, 60.0)):
+        v, a = mph * MPH, math.radians(30.0)
+        assert float(row["carry_distance [m]"]) == pytest.approx(v * v * math.sin(2 * a) / G, rel=2e-3)
+        assert float(row["apex_height [m]"]) == pytest.approx((v * math.sin(a)) ** 2 / (2 * G), rel=2e-3)
+        assert float(row["flight_time [s]"]) == pytest.approx(2 * v * math.sin(a) / G, rel=2e-3)
+        assert float(row["landing_angle [degree]"]) == pytest.approx(30.0, abs=0.05)
+        assert float(row["offline_distance [m]"]) == pytest.approx(0.0, abs=1e-9)
+    # the printed table is in yards: the 120 mph shot's carry
+    carry_yd = (120 * MPH) ** 2 * math.sin(math.radians(60)) / G / YARD
+    line = next(text for text in printed.splitlines() if text.startswith("| 1 |"))
+    assert float(line.split("|")[6]) == pytest.approx(carry_yd, abs=0.2)
+
+
+def test_the_air_moves_the_carry_the_way_physics_says(tmp_path):
+    launch = ["--ball-speed", "160 mph", "--launch-angle", "11 deg", "--spin-rate", "2700 rpm"]
+
+    def flown(*extra):
+        out = tmp_path / f"f{len(list(tmp_path.iterdir()))}.csv"
+        assert main(["fly", *launch, *extra, "--csv", str(out)]) == 0
+        row = _csv(out)[0]
+        return float(row["carry_distance [m]"]), float(row["offline_distance [m]"])
+
+    still, _ = flown()
+    assert flown("--headwind", "10 mph")[0] < still < flown("--headwind", "-10 mph")[0]
+    assert flown("--altitude", "1600 m")[0] > still  # thinner air: less drag (and less lift)
+    assert flown("--crosswind", "10 mph")[1] > 1.0  # blowing towards the right
+    assert flown("--temperature", "35 degC")[0] > still
+
+
+def test_a_session_is_flown_beside_the_monitors_own_carry(tmp_path, capsys):
+    path = DATA / "garmin_r10.csv"
+    out = tmp_path / "session.csv"
+    assert main(["fly", str(path), "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    # the file, read here: line 6 is the only row with a measured spin ('Measured') whose spin axis is not at the
+    # R10's +-30 deg clamp (line 5's is 30.0): the only one flown by default
+    raw = _csv_rows(path)
+    shot = raw[6 - 3]  # data rows start at file line 3 (header, units row)
+    assert shot["Spin Rate Type"] == "Measured" and abs(float(shot["Spin Axis"])) < 30.0
+    assert raw[5 - 3]["Spin Rate Type"] == "Measured" and float(raw[5 - 3]["Spin Axis"]) == 30.0
+    rows = _csv(out)
+    assert [row["line"] for row in rows] == ["6"]
+    assert float(rows[0]["monitor_carry_distance [m]"]) == pytest.approx(float(shot["Carry Distance"]) * YARD)
+    assert float(rows[0]["ball_speed [m/s]"]) == pytest.approx(float(shot["Ball Speed"]) * MPH)
+    assert float(rows[0]["spin_rate [rpm]"]) == pytest.approx(float(shot["Spin Rate"]))
+    assert "line 3: launch values flagged by the monitor" in printed and "line 5: launch values flagged" in printed
+    assert "model against the monitor's carry, 1 shot(s)" in printed
+    # the flagged shots fly when asked
+    assert main(["fly", str(path), "--include-flagged", "--csv", str(out)]) == 0
+    assert [row["line"] for row in _csv(out)] == ["3", "4", "5", "6"]
+
+
+def _csv_rows(path):
+    with open(path, newline="") as stream:
+        lines = stream.read().splitlines()
+    return list(csv.DictReader([lines[0]] + lines[2:]))
+
+
+def test_a_shot_without_spin_axis_has_no_offline(tmp_path):
+    table = tmp_path / "shots.csv"
+    table.write_text("club,ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],carry_distance [yd]\n"
+                     "Driver,165,11,2600,270\n")
+    out = tmp_path / "out.csv"
+    assert main(["fly", str(table), "--csv", str(out)]) == 0
+    row = _csv(out)[0]
+    assert row["offline_distance [m]"] == "" and float(row["carry_distance [m]"]) > 200.0
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--ball-speed", "167", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"], "--ball-speed: expected a speed"),
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg"], "a launch needs --spin-rate"),
+    ([str(DATA / "garmin_r10.csv"), "--ball-speed", "167 mph"], "not both"),
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--temperature", "25"],
+     "--temperature: expected a temperature"),
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--humidity", "0.5"],
+     "write e.g. '50 %'"),
+    (["--ball-speed", "167 mph", "150 mph", "140 mph", "--launch-angle", "10 deg", "12 deg", "--spin-rate",
+      "2500 rpm"], "broadcast together"),
+    (["--ball-speed", "-167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"], "-74.6557 m/s"),
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--altitude", "1 km",
+      "--pressure", "900 hPa"], "--altitude: expected either a pressure or an altitude"),
+    ([str(DATA / "garmin_r10_b.csv")], "no shot to fly"),
+])
+def test_every_user_error_is_one_message_and_exit_2(args, says, tmp_path, capsys):
+    out = tmp_path / "never.csv"
+    assert main(["fly", *args, "--csv", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert says in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_the_python_api_refuses_launches_that_do_not_broadcast():
+    import impactlab
+    from impactlab.errors import FieldError
+
+    with pytest.raises(FieldError, match="broadcast together"):
+        impactlab.fly(ball_speed=[70.0, 60.0, 50.0], launch_angle=[0.2, 0.3], spin_rate=300.0)
+    shots = impactlab.fly(ball_speed=[70.0, 60.0], launch_angle=0.2, spin_rate=[300.0, 250.0])
+    assert np.all(shots.carry_distance.values > 100.0)
+
+
+def test_the_monitors_landing_angle_and_apex_stand_in_the_results_units(tmp_path):
+    path = DATA / "trackman_tps_drivers.csv"
+    out = tmp_path / "tm.csv"
+    assert main(["fly", str(path), "--csv", str(out)]) == 0
+    with open(path, newline="") as stream:
+        lines = stream.read().splitlines()
+    raw = list(csv.DictReader([lines[1]] + lines[3:]))  # 'sep=,', the header, the units row ([deg], [ft], [yds])
+    assert lines[2].split(",")[lines[1].split(",").index("Carry Flat - Land. Angle")] == "[deg]"
+    by_line = {int(row["line"]): row for row in _csv(out)}
+    compared = 0
+    for line, cells in enumerate(raw, start=4):
+        if line not in by_line or not cells["Carry Flat - Land. Angle"]:
+            continue
+        compared += 1
+        row = by_line[line]
+        assert float(row["monitor_landing_angle [degree]"]) == pytest.approx(float(cells["Carry Flat - Land. Angle"]))
+        assert float(row["monitor_apex_height [m]"]) == pytest.approx(float(cells["Max Height - Height"]) * 0.3048)
+        assert float(row["monitor_carry_distance [m]"]) == pytest.approx(float(cells["Carry Flat - Length"]) * YARD)
+    assert compared == 7
