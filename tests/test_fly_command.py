@@ -153,3 +153,15 @@ def test_the_monitors_landing_angle_and_apex_stand_in_the_results_units(tmp_path
         assert float(row["monitor_apex_height [m]"]) == pytest.approx(float(cells["Max Height - Height"]) * 0.3048)
         assert float(row["monitor_carry_distance [m]"]) == pytest.approx(float(cells["Carry Flat - Length"]) * YARD)
     assert compared == 7
+
+
+def test_the_air_given_in_a_garmin_rows_units_has_the_density_garmin_states(capsys):
+    """Garmin's export states each shot's air and its density (the fixture: 73 degF, 99.25728 kPa, 83 %, 1.1582365
+    g/L); given as options in those units, the flight's air has Garmin's density (degF's offset, kPa, percent)."""
+    raw = _csv_rows(DATA / "garmin_r10.csv")[3]
+    temperature, pressure, humidity = raw["Temperature"], raw["Air Pressure"], raw["Relative Humidity"]
+    assert main(["fly", "--ball-speed", "131 mph", "--launch-angle", "11 deg", "--spin-rate", "3361 rpm",
+                 "--temperature", f"{temperature} degF", "--pressure", f"{pressure} kPa", "--humidity",
+                 f"{humidity} %"]) == 0
+    air = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("air:"))
+    assert f"(density {float(raw['Air Density']):.4f} kg/m^3)" in air
