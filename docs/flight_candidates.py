@@ -29,10 +29,9 @@ from impactlab.data.carry import TABLES, carry_table, validate_carry  # noqa: E4
 from impactlab.physics.aerodynamics import BALL_RADIUS, MEASURED_FIT, aero_coefficients  # noqa: E402
 from impactlab.physics.atmosphere import air_density, air_viscosity  # noqa: E402
 
+from flight_fit_c0 import STYLE  # noqa: E402  (docs/: each table's colour, marker and name, as in that figure)
+
 ROOT = Path(__file__).resolve().parent.parent
-STYLE = {"trackman_carry": ("tab:blue", "s", "classic PGA table"),
-         "trackman_carry_pga_2023": ("tab:orange", "^", "PGA 2023 table"),
-         "trackman_carry_lpga_2023": ("tab:green", "D", "LPGA 2023 table")}
 
 
 def main() -> Path:
