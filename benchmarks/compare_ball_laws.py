@@ -28,7 +28,11 @@ CORE = {"core_radius": 0.01905, "core_shear_modulus": 10e6, "core_specific_gravi
 FACE = {"face_frequency": 2 * 3.141592653589793 * 4e3, "face_modal_mass": 0.010}
 EXTRA = [("maw hysteretic + core", "maw", {"inelastic": "hysteretic", **CORE}),
          ("maw hysteretic + face", "maw", {"inelastic": "hysteretic", **FACE}),
-         ("hertz_mindlin + face", "hertz_mindlin", FACE), ("hertz_mindlin + core", "hertz_mindlin", CORE)]
+         ("hertz_mindlin + face", "hertz_mindlin", FACE), ("hertz_mindlin + core", "hertz_mindlin", CORE),
+         ("maw + core", "maw", CORE), ("hertz_mindlin + face + rolling", "hertz_mindlin",
+                                       {"rolling_hysteresis": "restitution", **FACE}),
+         ("hertz_mindlin + core + rolling", "hertz_mindlin", {"rolling_hysteresis": "restitution", **CORE}),
+         ("dem_linear hysteretic + face", "dem_linear", {"inelastic": "hysteretic", **FACE})]
 OUTPUTS = {"spin_rate": "spin [rpm]", "tangential_restitution": "beta", "ball_speed": "ball speed [m/s]",
            "launch_angle": "launch [deg]"}
 
@@ -54,7 +58,7 @@ def main():
         np.savez(path, **now)
         return
     before = np.load(path)
-    print(f"{'batch':4s} {'form':28s} " + " ".join(f"{label:>17s}" for label in OUTPUTS.values()))
+    print(f"{'batch':4s} {'form':32s} " + " ".join(f"{label:>17s}" for label in OUTPUTS.values()))
     for key in sorted({k.rsplit('|', 1)[0] for k in now}):
         diffs = []
         for output in OUTPUTS:
@@ -63,7 +67,7 @@ def main():
             same_nan = np.array_equal(np.isnan(old), np.isnan(new))
             diffs.append(f"{np.max(np.abs(new - old)[both], initial=0.0):17.3g}" + ("" if same_nan else " (NaN moved)"))
         batch, form = key.split("|")
-        print(f"{batch:4s} {form:28s} " + " ".join(diffs))
+        print(f"{batch:4s} {form:32s} " + " ".join(diffs))
 
 
 if __name__ == "__main__":
