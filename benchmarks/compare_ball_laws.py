@@ -9,6 +9,10 @@ of each per form and batch.
 Measured 2026-11-24 (perf6: MDR's limit check and the annular-strip kernel made faster), against the tree before:
 every form identical except maw hysteretic (1-D; and with the face, 3-D), which moved by round-off: at most
 3e-9 rpm of spin, 4e-13 in beta, 1e-12 m/s of ball speed, 5e-12 deg of launch.
+Measured 2026-11-24 (perf7: the 3-D kernel's cases on one line run kernels/line.py), against the tree before
+(840006f): every 3-D form identical; the 1-D forms that reach the 3-D kernel (the face, maw's core and rolling, the
+core with rolling, maw hysteretic with core, face or rolling) moved by round-off: at most 1.2e-10 rpm of spin,
+2.4e-13 in beta, 1.6e-13 m/s of ball speed, 1.4e-13 deg of launch; every other form identical.
 
 Run: .venv/bin/python benchmarks/compare_ball_laws.py save before.npz   (on the old code)
      .venv/bin/python benchmarks/compare_ball_laws.py compare before.npz (on the new code)

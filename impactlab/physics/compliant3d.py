@@ -22,6 +22,11 @@ approximation of the 3-D Mindlin contact (it is exact for a slip along one line;
 Popov & Hess 2015, ch. 5): the local traction directions of a real contact
 differ across it.
 
+A case that stays on one line (:func:`on_line`: W diagonal, a planar couple), sent
+here by a law the scaled 1-D solvers do not carry (a flexing face, a core with a
+couple, ...), runs :mod:`.kernels.line`: the same arithmetic on the line's
+components only, the same results to round-off, 2-3x cheaper per step.
+
 References
 ----------
 V. L. Popov, M. Hess, *Method of Dimensionality Reduction in Contact Mechanics
@@ -182,6 +187,25 @@ def on_line(ratio_tt, coupling, arm, couple_n, couple_t, couple_rr, rolling0, to
     entry of B, of D and of the rolling rate, as models/_compliant.py's ``planar_couple``). Such a case's
     components off the line stay 0 in :func:`impactlab.physics.kernels.contact3d._contact3d_cases` (to that
     tolerance), and :mod:`impactlab.physics.kernels.line` skips them.
+
+    Parameters
+    ----------
+    ratio_tt : ndarray (n, 2, 2)
+        a = W_tt / W_nn [1].
+    coupling : ndarray (n, 2)
+        b = W_tn / W_nn [1].
+    arm : ndarray (n,)
+        The couple's arm factor d / a [1] (0: no couple).
+    couple_n, couple_t, couple_rr : ndarray (n, 2), (n, 2, 2), (n, 2, 2)
+        The couple's scaled mobilities m* a_max B_n, m* a_max B_t and m* a_max^2 D [1] (:func:`solve_once`).
+    rolling0 : ndarray (n, 2)
+        The scaled relative rolling rate before impact, Omega a_max / V_z [1].
+    tolerance : float
+        Relative size under which a coupling counts as zero.
+
+    Returns
+    -------
+    ndarray (n,) of bool
     """
     small = tolerance
     plain = ((np.abs(ratio_tt[:, 0, 1]) <= small) & (np.abs(ratio_tt[:, 1, 0]) <= small)
