@@ -177,10 +177,19 @@ def test_a_lossy_ball_on_the_face_agrees_with_the_rk4_impact(restitution, freque
     assert float(result["contact_time"].values[0]) == pytest.approx(duration, rel=3e-3)
 
 
-def test_a_slow_face_meets_the_ball_again_after_it_has_left():
+def _three_d_kernel_only(monkeypatch):
+    """Every case through the 3-D kernel, none through its form on one line (kernels/line.py)."""
+    original = compliant3d.solve
+    monkeypatch.setattr(compliant3d, "solve", lambda *a, **k: original(*a, **dict(k, line=False)))
+
+
+@pytest.mark.parametrize("line", [True, False])
+def test_a_slow_face_meets_the_ball_again_after_it_has_left(monkeypatch, line):
     """A ball on a slow face (20 g, 1 kHz) bounces off the face's mass, passes the face's rest plane on its way
     out, and the face swinging back meets it again (three contacts in all): the kernel follows them (the contact
-    time is the end of the last one)."""
+    time is the end of the last one); the line kernel (the centred plate case) and the 3-D kernel alike."""
+    if not line:
+        _three_d_kernel_only(monkeypatch)
     inputs = _plate(0.0, friction=0.0)
     modal, frequency = 0.02, 1e3
     jn, _, _, duration, contacts = _oracle(inputs, modal * (2 * np.pi * frequency) ** 2, modal, steps=40_000)
@@ -191,8 +200,12 @@ def test_a_slow_face_meets_the_ball_again_after_it_has_left():
     assert float(result["normal_impulse"].values[0]) == pytest.approx(jn, rel=2e-3)
 
 
-def test_an_elastic_ball_loses_to_the_face_exactly_what_the_face_holds():
-    """Head fixed, elastic ball, no friction: ball energy lost = the face's vibration energy (kernel and oracle)."""
+@pytest.mark.parametrize("line", [True, False])
+def test_an_elastic_ball_loses_to_the_face_exactly_what_the_face_holds(monkeypatch, line):
+    """Head fixed, elastic ball, no friction: ball energy lost = the face's vibration energy (kernel and oracle);
+    the line kernel (the centred plate case) and the 3-D kernel alike."""
+    if not line:
+        _three_d_kernel_only(monkeypatch)
     inputs = _plate(0.0, friction=0.0)
     m, speed = float(inputs["ball_mass"][0]), float(inputs["speed"][0])
     modal, frequency = 0.008, 4e3
@@ -405,18 +418,21 @@ def test_a_gain_swept_through_zero_with_the_face_on_is_refused_at_its_line(tail,
                          file="study.yaml")
 
 
+@pytest.mark.parametrize("line", [True, False])
 @pytest.mark.parametrize("loss", [0.0, 0.1])
-def test_the_face_energy_the_kernel_reports_is_what_an_elastic_ball_lost(loss):
+def test_the_face_energy_the_kernel_reports_is_what_an_elastic_ball_lost(loss, line):
     """Energy conservation, an oracle apart from the face's bookkeeping: an elastic ball without friction on a
     flexing face loses exactly what the face holds at separation plus what its loss took, so the reported
     face_energy equals -work (the rigid bodies' loss, summed from the contact force on their approach) to the
     integration's error; a lossy ball loses more than the face takes. Before, no test read face_energy's value
-    (a halved held energy, or the loss's share dropped, passed)."""
+    (a halved held energy, or the loss's share dropped, passed). The cases are on one line: with ``line`` False
+    the 3-D kernel's own bookkeeping is checked, not its form on the line (kernels/line.py)."""
     n, mass = 4, 0.04593
     mobility = np.broadcast_to(np.diag([1 / mass + 1 / (0.4 * mass)] * 2 + [1 / mass + 1 / 0.2]), (n, 3, 3)).copy()
     face = face_flex.modal_inputs(np.array([5e6, 8e6, 1.2e7, 3e6]), np.array([0.008, 0.006, 0.01, 0.012]), loss)
     arguments = dict(friction=np.zeros(n), kappa=np.full(n, 0.7), modulus=np.full(n, 1.5e8),
                      radius=np.full(n, 0.021335), springs=1, steps=300, law="mindlin", face=face)
+    arguments["line"] = line
     elastic = compliant3d.solve(mobility, np.full(n, 40.0), np.zeros(n), normal=hertz.ELASTIC, **arguments)
     kinetic = 0.5 * 40.0**2 / mobility[0, 2, 2]
     assert np.all(elastic.face_energy > 1e-3 * kinetic)
@@ -522,3 +538,41 @@ def test_energy_never_rises_with_the_face_the_core_rolling_and_the_adhesion_law_
                               tolerance=1e-3).compute(inputs, names)
     before, after = kinetic_energy(inputs), kinetic_energy(inputs, result)
     assert np.all(np.isfinite(after)) and np.all(after <= before * (1.0 + 1e-9)), np.max((after - before) / before)
+
+
+def _line_spy(monkeypatch):
+    """Record the cases each call of the line kernel solves (compliant3d.solve_once's cases on one line)."""
+    from impactlab.physics import kernels as _kernels
+
+    seen = []
+    name = "line_cases" if _kernels.HAVE_NUMBA else "_line_cases"
+    original = getattr(_kernels, name)
+
+    def spy(*arguments):
+        seen.extend(int(row) for row in arguments[-1])
+        return original(*arguments)
+
+    monkeypatch.setattr(_kernels, name, spy)
+    return seen
+
+
+@pytest.mark.parametrize("name, options", [
+    ("hertz_mindlin", {}), ("dem_linear", {"inelastic": "hysteretic"}),
+    ("hertz_mindlin", {"rolling_hysteresis": "restitution", "face_loss": 0.1})])
+def test_the_face_is_continuous_across_the_centred_strike(monkeypatch, name, options):
+    """The centred strike on a free head (on one line: the line kernel, kernels/line.py) and strikes 1 micrometre
+    off it (the 3-D kernel) agree: J_t to 1e-6 of mu J_n (the offset's own effect is ~1e-11), J_n and the spin
+    likewise, and only the centred case took the line kernel."""
+    from test_ball_laws import _centred_head_cases
+
+    inputs = _centred_head_cases([0.0, 1e-6, -1e-6])
+    inputs["club_restitution_gain"] = np.full(3, 0.05)
+    seen = _line_spy(monkeypatch)
+    model = get_model(name)(face_frequency="5 kHz", face_modal_mass="10 g", **options)
+    result = model.compute(inputs, ["tangential_impulse", "normal_impulse", "spin_rate"])
+    assert set(seen) == {0}
+    jt, jn = result["tangential_impulse"].values, result["normal_impulse"].values
+    assert np.max(np.abs(jt - jt[0])) <= 1e-6 * 0.15 * jn[0]
+    assert np.max(np.abs(jn - jn[0])) <= 1e-6 * jn[0]
+    rigid = get_model(name)(**options).compute(inputs, ["spin_rate"])["spin_rate"].values
+    assert abs(result["spin_rate"].values[0] - rigid[0]) > 100.0  # the face acts on both paths

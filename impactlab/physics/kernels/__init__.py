@@ -15,11 +15,12 @@ from ._numba import HAVE_NUMBA
 from .annuli import _annuli_cases, annuli_cases
 from .contact3d import _contact3d_cases, contact3d_cases
 from .dem import _dem_cases, dem_cases
+from .line import _line_cases, line_cases
 from .mdr import _mdr_cases, _mdr_pressures, mdr_cases, mdr_pressures
 from .rigid import _stronge_cases, stronge_cases
 from .rolling import _rolling_cases, rolling_cases
 
-__all__ = ["HAVE_NUMBA", "annuli_cases", "contact3d_cases", "dem_cases", "mdr_cases", "mdr_pressures", "stronge_cases",
-           "rolling_cases",
-           "_annuli_cases", "_contact3d_cases", "_dem_cases", "_mdr_cases", "_mdr_pressures", "_stronge_cases",
-           "_rolling_cases"]
+__all__ = ["HAVE_NUMBA", "annuli_cases", "contact3d_cases", "dem_cases", "line_cases", "mdr_cases", "mdr_pressures",
+           "stronge_cases", "rolling_cases",
+           "_annuli_cases", "_contact3d_cases", "_dem_cases", "_line_cases", "_mdr_cases", "_mdr_pressures",
+           "_stronge_cases", "_rolling_cases"]

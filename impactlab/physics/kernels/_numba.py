@@ -1,8 +1,8 @@
 """numba switch and compile helper shared by the kernel modules.
 
 numba caches a compiled function by the file it is defined in, so each kernel family has its own module
-(:mod:`.mdr`, :mod:`.annuli`, :mod:`.dem`, :mod:`.rigid`, :mod:`.contact3d`): editing one recompiles only that
-family. Set IMPACTLAB_KERNELS=numpy to force the numpy path.
+(:mod:`.mdr`, :mod:`.annuli`, :mod:`.dem`, :mod:`.rigid`, :mod:`.contact3d`, :mod:`.line`): editing one recompiles
+only that family. Set IMPACTLAB_KERNELS=numpy to force the numpy path.
 """
 
 from __future__ import annotations

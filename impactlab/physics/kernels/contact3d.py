@@ -42,8 +42,9 @@ if HAVE_NUMBA:  # inlined into the kernel's IR (the kernel looks its globals up 
 def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, max_steps, law, stiffness_factor,
                      store_force, rescale, tangential_damping, relaxation, xi2, weight, record, history_normal,
                      history_tangential, history_stick, out, couple_n, couple_t, couple_rr, rolling0, arm,
-                     mode_gain, mode_frequency, mode_damping, mode_arm, face_gain, face_frequency, face_damping):
-    """Compliant 3-D contact per case, in MBF's scaled variables with the normal and tangential directions coupled.
+                     mode_gain, mode_frequency, mode_damping, mode_arm, face_gain, face_frequency, face_damping,
+                     rows):
+    """Compliant 3-D contact of the cases ``rows``, in MBF's scaled variables, normal and tangential coupled.
 
     Scaled state: approach h and its rate H = h' (1 at first touch), slip S (2-vector, units mu V_z/kappa),
     and the tangential springs: MDR springs u_i (2-vectors on the Coulomb circle |u_i| <= (h - xi_i^2) L)
@@ -99,7 +100,6 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     separate and the face's swing (amplitude sqrt(y^2 + (y'/Omega)^2)) can no longer reach the ball; the contact
     time is the last instant with a force.
     """
-    cases = psi.shape[0]
     springs = xi2.size
     u = np.zeros((springs, 2))
     modes = mode_gain.shape[1]
@@ -108,7 +108,7 @@ def _contact3d_cases(ratio_tt, coupling, kappa, friction, psi, damping, dtau, ma
     am = np.zeros((modes, 2))
     hm = np.zeros((modes, 2))
     coef = np.zeros((modes, 5))  # per mode: (5/4) kappa g, Omega^2, d, (5/4)(kappa/mu) g a_max/R, its damping's weight
-    for case in range(cases):
+    for case in rows:
         mu = friction[case]
         k = kappa[case]
         c = damping[case]
