@@ -97,3 +97,18 @@ def test_compiled_limit_check_flags_the_cases_the_numpy_reference_flags():
     reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
     assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size  # both kinds of case are in the batch
     np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)
+
+
+def test_compiled_limit_check_flags_tractions_beyond_the_limit_of_either_sign():
+    # oracle: mdr.coulomb_excess (numpy, the full transform of every case) at the same steps. In restitution a heavy
+    # ball's springs reverse (chi 2-5, low e): the 3-D traction beyond the limit is then negative, and a kernel that
+    # screened its rows by the signed force jumps instead of their size missed 75 of 1920 such cases (review7); the
+    # batch above (e 0.7, chi <= 3) has none of them
+    chi = np.repeat([2.0, 5.0], 12)
+    psi1 = np.tile(np.geomspace(0.2, 1.2, 12), 2)
+    for e in (0.5, 0.9):
+        normal = hertz.DampedNormal(hertz.damping_for_restitution(e))
+        compiled = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal)
+        reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
+        assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size
+        np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)
