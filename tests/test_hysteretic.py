@@ -112,3 +112,16 @@ def test_compiled_limit_check_flags_tractions_beyond_the_limit_of_either_sign():
         reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
         assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size
         np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)
+
+
+def test_compiled_limit_check_keeps_one_pressure_transform_per_grid():
+    # the kernel's 3-D pressures at the steps checked are cached per (law, springs, steps): one law solved on several
+    # grids in a row (a study with two resolutions) must give each grid's own flags, as the numpy reference does; a
+    # cache keyed without the steps reused the first grid's pressures (review7)
+    normal = hertz.DampedNormal(hertz.damping_for_restitution(0.6))
+    chi = np.repeat([0.9, 2.0, 5.0], 8)
+    psi1 = np.tile(np.geomspace(0.2, 3.0, 8), 3)
+    for springs, steps in ((48, 480), (48, 200), (48, 96), (30, 200)):
+        compiled = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal)
+        reference = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal, _force_numpy=True)
+        np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit, err_msg=f"{springs, steps}")
