@@ -47,11 +47,13 @@ RADAR = flight_fit.SOURCES[0]
 PARAMETERS = {
     "c0": (flight_fit.C0_BOUNDS, MEASURED_FIT["c0"],
            "supercritical drag offsets of the measured ball groups (modern, 1998 USGA, 1976)"),
-    "spin_decay": ((1.35e-5, 2.5e-5), 2.0e-5,
-                   "lambda of d omega/dt = -lambda v omega / R: 2.5e-5 Tavares et al. 1999 (radar; 4.6 %/s over a "
-                   "PGA TOUR drive); 1.35e-5 gives 2.5 %/s over that drive, the slowest rate reported (75 rpm/s, a "
-                   "TrackMan-measured Pro V1x drive in Acushnet US 7,591,742 B2 as reported by jhoblitt/tmelevation, "
-                   "not read here); 2e-5 gives 3.7 %/s (TrackMan: 'typically 4 %', Tutelman's model 3.3 %/s)"),
+    "spin_decay": ((1.53e-5, 2.5e-5), 2.0e-5,
+                   "lambda of d omega/dt = -lambda v omega / R: 2.5e-5 Tavares et al. 1999 (radar; 4.7 %/s over a "
+                   "PGA TOUR drive); 1.53e-5 the slowest rate reported, 75 rpm/s on average through a "
+                   "TrackMan-measured Pro V1x drive (Acushnet US 7,591,742 B2 as reported by jhoblitt/tmelevation, "
+                   "not read here), taken at 3000 rpm, the top of the 2500-3000 rpm such a drive has (1.76e-5 at "
+                   "2500): 2.8 %/s over the tour drive; 2e-5 gives 3.7 %/s (TrackMan: 'typically 4 %', Tutelman's "
+                   "model 3.3 %/s)"),
     "drag_spin_slope": ((0.0, 0.41), 0.0,
                         "c1 of an added drag c1 S: the measured CD rows give c1 = 0.04 +- 0.19 beside the induced "
                         "drag (upper bound + 2 sigma; Smits & Smith's 0.18 S lies inside)"),
@@ -172,7 +174,7 @@ def fit(sources, parameters, fixed=None) -> dict:
     params = {**defaults(), **best}
     params.update(_tied(params, fixed))
     at_bound = [p for p in parameters
-                if np.isclose(params[p], PARAMETERS[p][0], rtol=0, atol=1e-4 * np.ptp(PARAMETERS[p][0])).any()]
+                if np.isclose(params[p], PARAMETERS[p][0], rtol=0, atol=1e-3 * np.ptp(PARAMETERS[p][0])).any()]
     return {**params, "rms": float(np.sqrt(np.mean(errors**2))), "at_bound": at_bound}
 
 
