@@ -49,6 +49,16 @@ def test_each_parameter_changes_what_its_formula_says():
         flight_candidates.coefficients(k=1.0)
 
 
+@pytest.mark.parametrize("params", [{"crisis_width": -1275.0}, {"crisis_width": 0.0}, {"crisis_shift": -1.2},
+                                    {"lift_loss_shift": 0.0}, {"lift_saturation": -3.9}, {"c0": float("nan")}])
+def test_a_value_no_ball_can_have_is_refused_not_flown(params):
+    # a negative width turned the drag step upside down (the crisis adding drag above Re_d) without a word
+    with pytest.raises(ValueError, match="impossible value"):
+        flight_candidates.coefficients(**params)
+    with pytest.raises(ValueError, match="impossible value"):
+        flight_candidates.flights({"spin_decay": -1e-5} if "c0" in params else params, "trackman_carry")
+
+
 def test_bounds_are_two_sigma_of_the_measured_rows_own_least_squares():
     from scipy.optimize import curve_fit
 

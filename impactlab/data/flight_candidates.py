@@ -69,6 +69,8 @@ PARAMETERS = {
                      "Re 5e4, 7.5e4, 1e5, Lyu 2018 Fig. 3a)"),
     "lift_loss_shift": ((0.9, 1.2), 1.0, "centre Re_l of the lift lost in the crisis times this (as crisis_shift)"),
 }
+#: parameters that are scales or positions: a value <= 0 describes no ball (an inverted or infinitely sharp step)
+POSITIVE = ("crisis_shift", "crisis_width", "lift_loss_shift", "lift_saturation")
 #: parameters whose effect on carry is a step (the crisis): fitted on a grid of this many points, the rest by least
 #: squares at each grid point
 GRID = ("crisis_shift", "lift_loss_shift")
@@ -101,11 +103,18 @@ def coefficients(**params):
     Raises
     ------
     ValueError
-        A parameter that is not one of :data:`PARAMETERS`.
+        A parameter that is not one of :data:`PARAMETERS`, or a value no ball can have (not finite; a crisis
+        position, width or lift saturation that is not positive, a negative spin decay). Values outside the measured
+        bounds but physical are allowed (:func:`crisis_scan` goes beyond them).
     """
     unknown = sorted(set(params) - set(PARAMETERS))
     if unknown:
         raise ValueError(f"unknown parameter {unknown}; choose from {sorted(PARAMETERS)}")
+    impossible = sorted(name for name, value in params.items() if not np.isfinite(value) or (
+        name in POSITIVE and value <= 0.0) or (name == "spin_decay" and value < 0.0))
+    if impossible:
+        raise ValueError(f"impossible value of {impossible}: {[params[name] for name in impossible]} (crisis "
+                         f"positions, widths and the lift saturation are > 0, the spin decay >= 0)")
     p = {**defaults(), **params}
     m = MEASURED_FIT
 
@@ -124,9 +133,9 @@ def coefficients(**params):
 def flights(params: dict, name: str, **options) -> dict:
     """The measured table ``name`` flown with ``params`` (:func:`impactlab.data.carry.validate_carry` in the table's
     own air)."""
-    aero = {key: value for key, value in params.items() if key in PARAMETERS and key != "spin_decay"}
+    known = {key: value for key, value in params.items() if key in PARAMETERS}  # checked there, spin decay too
     decay = params.get("spin_decay", PARAMETERS["spin_decay"][1])
-    return validate_carry(coefficients(**aero), carry_table(name), spin_decay=decay, **options)
+    return validate_carry(coefficients(**known), carry_table(name), spin_decay=decay, **options)
 
 
 def _tied(params: dict, fixed: dict) -> dict:
