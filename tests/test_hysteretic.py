@@ -125,3 +125,27 @@ def test_compiled_limit_check_keeps_one_pressure_transform_per_grid():
         compiled = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal)
         reference = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal, _force_numpy=True)
         np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit, err_msg=f"{springs, steps}")
+
+
+def test_many_laws_limit_checks_leave_their_grids_in_the_cache(monkeypatch):
+    # a batch of many restitutions holds one damped law each. The check's arrays (a transform that depends on the
+    # springs alone, held once per law, and the law's pressures) shared the grids' cache and pushed the laws' own
+    # grids out (FIFO over a working set beyond the budget), and every call rebuilt every grid: 20 restitutions at the
+    # default tolerance ran 10 s instead of 3.4 (review7). Here 4 laws under a 2 MB budget: their grids fit (about
+    # 0.1 MB a law), with the check's arrays (1 MB a law) they would not
+    from impactlab.physics import hertz
+
+    monkeypatch.setattr(hertz, "_GRIDS", {})
+    monkeypatch.setattr(hertz, "_GRIDS_BYTES", 2 * 2**20)
+    built = []
+    real = mdr._spring_grid
+    monkeypatch.setattr(mdr, "_spring_grid", lambda normal, springs, steps: built.append(springs) or real(
+        normal, springs, steps))
+    laws = [hertz.DampedNormal(hertz.damping_for_restitution(e)) for e in (0.55, 0.65, 0.75, 0.85)]
+    for _ in range(2):
+        for law in laws:
+            solved = mdr.solve_scaled(np.array([CHI]), np.array([0.5]), springs=300, steps=1800, normal=law)
+            assert solved.breaks_3d_limit is not None
+    assert len(built) == len(laws)  # each law's grid built once, then found
+    held = [a for entry in hertz._GRIDS.values() for a in entry[1] if isinstance(a, np.ndarray)]
+    assert not any(a.shape == (300, 300) for a in held)
