@@ -69,7 +69,7 @@ def main() -> Path:
     ax.axhline(3, color="0.5", linewidth=0.8)
     ax.set_xlabel("drag-crisis midpoint Re_d")
     ax.set_ylabel("carry RMS (%)")
-    ax.set_title("The seasons cannot place the crisis; the tables can")
+    ax.set_title("Within the measured positions only the tables place the crisis")
     ax.legend(fontsize=7, loc="upper right")
 
     ax = axes[2]

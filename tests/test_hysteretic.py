@@ -97,3 +97,55 @@ def test_compiled_limit_check_flags_the_cases_the_numpy_reference_flags():
     reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
     assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size  # both kinds of case are in the batch
     np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)
+
+
+def test_compiled_limit_check_flags_tractions_beyond_the_limit_of_either_sign():
+    # oracle: mdr.coulomb_excess (numpy, the full transform of every case) at the same steps. In restitution a heavy
+    # ball's springs reverse (chi 2-5, low e): the 3-D traction beyond the limit is then negative, and a kernel that
+    # screened its rows by the signed force jumps instead of their size missed 75 of 1920 such cases (review7); the
+    # batch above (e 0.7, chi <= 3) has none of them
+    chi = np.repeat([2.0, 5.0], 12)
+    psi1 = np.tile(np.geomspace(0.2, 1.2, 12), 2)
+    for e in (0.5, 0.9):
+        normal = hertz.DampedNormal(hertz.damping_for_restitution(e))
+        compiled = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal)
+        reference = mdr.solve_scaled(chi, psi1, springs=60, steps=360, normal=normal, _force_numpy=True)
+        assert 0 < np.count_nonzero(reference.breaks_3d_limit) < psi1.size
+        np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit)
+
+
+def test_compiled_limit_check_keeps_one_pressure_transform_per_grid():
+    # the kernel's 3-D pressures at the steps checked are cached per (law, springs, steps): one law solved on several
+    # grids in a row (a study with two resolutions) must give each grid's own flags, as the numpy reference does; a
+    # cache keyed without the steps reused the first grid's pressures (review7)
+    normal = hertz.DampedNormal(hertz.damping_for_restitution(0.6))
+    chi = np.repeat([0.9, 2.0, 5.0], 8)
+    psi1 = np.tile(np.geomspace(0.2, 3.0, 8), 3)
+    for springs, steps in ((48, 480), (48, 200), (48, 96), (30, 200)):
+        compiled = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal)
+        reference = mdr.solve_scaled(chi, psi1, springs=springs, steps=steps, normal=normal, _force_numpy=True)
+        np.testing.assert_array_equal(compiled.breaks_3d_limit, reference.breaks_3d_limit, err_msg=f"{springs, steps}")
+
+
+def test_many_laws_limit_checks_leave_their_grids_in_the_cache(monkeypatch):
+    # a batch of many restitutions holds one damped law each. The check's arrays (a transform that depends on the
+    # springs alone, held once per law, and the law's pressures) shared the grids' cache and pushed the laws' own
+    # grids out (FIFO over a working set beyond the budget), and every call rebuilt every grid: 20 restitutions at the
+    # default tolerance ran 10 s instead of 3.4 (review7). Here 4 laws under a 2 MB budget: their grids fit (about
+    # 0.1 MB a law), with the check's arrays (1 MB a law) they would not
+    from impactlab.physics import hertz
+
+    monkeypatch.setattr(hertz, "_GRIDS", {})
+    monkeypatch.setattr(hertz, "_GRIDS_BYTES", 2 * 2**20)
+    built = []
+    real = mdr._spring_grid
+    monkeypatch.setattr(mdr, "_spring_grid", lambda normal, springs, steps: built.append(springs) or real(
+        normal, springs, steps))
+    laws = [hertz.DampedNormal(hertz.damping_for_restitution(e)) for e in (0.55, 0.65, 0.75, 0.85)]
+    for _ in range(2):
+        for law in laws:
+            solved = mdr.solve_scaled(np.array([CHI]), np.array([0.5]), springs=300, steps=1800, normal=law)
+            assert solved.breaks_3d_limit is not None
+    assert len(built) == len(laws)  # each law's grid built once, then found
+    held = [a for entry in hertz._GRIDS.values() for a in entry[1] if isinstance(a, np.ndarray)]
+    assert not any(a.shape == (300, 300) for a in held)

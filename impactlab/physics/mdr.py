@@ -113,10 +113,33 @@ def _spring_grid(normal, springs: int, steps: int):
     return xi**2, tau, h_nodes, normal.load_factor(tau), inside
 
 
-def _check_grid(cap_offset, h_nodes, load_nodes, inside, springs, check_every):
-    """The compiled kernel's 3-D limit check on one grid: transform kernel, pressures at the steps checked."""
-    kernel = transform_kernel(springs)
-    return (kernel, *_kernels.mdr_pressures(cap_offset, h_nodes, load_nodes, inside, kernel, check_every))
+#: bytes kept of the compiled limit check's arrays: the inverse-transform kernels (they depend on the springs alone, so
+#: one copy serves every normal law) and each law's 3-D pressures at the steps checked. Kept apart from
+#: hertz.cached_grid's budget so that they never push a law's own grids out: held there, with one kernel per law, a
+#: batch of 20 restitutions (20 laws) at the default tolerance rebuilt every grid at every call and ran 3x slower than
+#: with no cache. Beyond these budgets an array is built for its call only (never slower than that).
+KERNEL_BYTES = 16 * 2**20
+CHECK_BYTES = 32 * 2**20
+_KERNELS: dict = {}
+_CHECKS: dict = {}
+
+
+def _kept(store: dict, budget: int, key: tuple, owner, build) -> tuple:
+    """The arrays ``build()`` returns, read-only, kept in ``store`` under ``key`` while ``budget`` bytes allow (oldest
+    dropped first); ``owner`` is held with them so that an id in the key cannot be reused while kept."""
+    hit = store.get(key)
+    if hit is not None and hit[0] is owner:
+        return hit[1]
+    arrays = build()
+    for array in arrays:
+        array.setflags(write=False)
+    size = sum(array.nbytes for array in arrays)
+    if size <= budget:
+        total = size + sum(entry[2] for entry in store.values())
+        while store and total > budget:
+            total -= store.pop(next(iter(store)))[2]
+        store[key] = (owner, arrays, size)
+    return arrays
 
 
 def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: bool = False,
@@ -156,9 +179,10 @@ def solve_scaled(chi, psi1, *, springs: int = 200, steps: int = 400, record: boo
     if _kernels.HAVE_NUMBA and not _force_numpy and observe is None:
         history = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
         stick = np.zeros((chi.size, tau.size)) if record else np.zeros((1, 1))
-        if detect:  # the transform and the 3-D pressure at the steps checked depend on the grid alone
-            kernel, pressure, jumps, in_contact = cached_grid(normal, ("mdr-check", springs, steps), lambda: (
-                _check_grid(cap_offset, h_nodes, load_nodes, inside, springs, check_every)))
+        if detect:  # the 3-D pressure at the steps checked depends on the grid alone, the transform on the springs
+            kernel, = _kept(_KERNELS, KERNEL_BYTES, (springs,), None, lambda: (transform_kernel(springs),))
+            pressure, jumps, in_contact = _kept(_CHECKS, CHECK_BYTES, (id(normal), springs, steps), normal, lambda: (
+                _kernels.mdr_pressures(cap_offset, h_nodes, load_nodes, inside, kernel, check_every)))
         else:
             kernel, pressure, jumps, in_contact = np.zeros((1, 1)), np.zeros((1, 1)), np.zeros((1, 1)), np.zeros(
                 1, dtype=np.int64)

@@ -250,7 +250,7 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     >>> import impactlab
     >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
     >>> round(float(shot.carry_distance) / 0.9144)  # yards
-    249
+    276
     """
     import xarray as xr
 
