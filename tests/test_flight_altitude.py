@@ -180,10 +180,10 @@ def test_no_measured_fit_parameter_inside_its_bounds_reaches_the_bracket():
 def test_density_residual_is_zero_inside_the_bracket_and_grows_outside():
     low, high = fa.bracket()["relative"]
     params = {"c0": 0.22, "lift_scale": 1.0, "crisis_shift": 1.0}
-    fa_res = fa._residuals(params, True)
+    fa_res = fa._residuals(params)
     relative = fa.density_response(fa.coefficients(0.22), ratios=())["relative"]
     assert fa_res[-1] == pytest.approx(fa.WEIGHTS["density"] * (relative - low) / low, rel=1e-6)
-    assert len(fa_res) == len(fa._residuals(params, False)) + 1
+    assert len(fa_res) == len(fa._residuals(params, fa.OBSERVABLES[:3])) + 1
 
 
 def test_fitted_with_the_density_slope_regression_guard_hang_time_contradiction_stays():
@@ -201,7 +201,7 @@ def test_fitted_constants_are_the_least_cost_of_the_fit():
     base = {"crisis_shift": 1.0, "lift_loss_shift": 1.0}
 
     def cost(c0, lift_scale):
-        return 0.5 * np.sum(fa._residuals({"c0": c0, "lift_scale": lift_scale, **base}, True) ** 2)
+        return 0.5 * np.sum(fa._residuals({"c0": c0, "lift_scale": lift_scale, **base}) ** 2)
 
     best = cost(**fa.FITTED)
     for dc0, dscale in ((0.002, 0.0), (-0.002, 0.0), (0.0, 0.02), (0.0, -0.02)):
@@ -212,6 +212,7 @@ def test_fitted_constants_are_the_least_cost_of_the_fit():
     (lambda: fa.fit(("lift_scale",)), "parameters"),
     (lambda: fa.fit(crisis_shift=1.5), "crisis_shift"),
     (lambda: fa.fit(spin_decay=2e-5), "spin_decay"),
+    (lambda: fa.fit(observables=("max_height",)), "observables"),
     (lambda: fa.density_response(by="altitude"), "by"),
 ])
 def test_fit_refuses_what_it_cannot_fit(call, fragment):
@@ -223,3 +224,19 @@ def test_the_command_refuses_an_argument_with_exit_code_2(capsys):
     with pytest.raises(SystemExit) as exc:
         fa.main(["extra"])
     assert exc.value.code == 2 and "unrecognized arguments" in capsys.readouterr().err
+
+
+def test_freezing_the_re_of_the_drag_or_the_lift_alone():
+    # a model whose drag alone depends on Re: freezing the lift's Re changes nothing, freezing the drag's is freezing all
+    def drag_on_re(s, re):
+        return 0.2 + 0.05 * 1.0e5 / np.asarray(re), np.full(np.shape(s), 0.17)
+
+    launch = (75.0, np.radians(11.0), 2600 * np.pi / 30)
+    got = {which: fa.density_response(drag_on_re, launch=launch, ratios=(0.8,), freeze_re=which)
+           for which in (False, True, "drag", "lift")}
+    assert got["lift"]["relative"] == pytest.approx(got[False]["relative"], rel=1e-12)
+    assert got["drag"]["relative"] == pytest.approx(got[True]["relative"], rel=1e-12)
+    # CD rising as Re falls (thinner air) takes carry away: frozen, the same air gains more
+    assert got[True]["gains"][0] > got[False]["gains"][0]
+    with pytest.raises(ValueError, match="freeze_re"):
+        fa.density_response(drag_on_re, freeze_re="both")

@@ -47,6 +47,8 @@ STEP = 0.05
 #: weights of the fit's residuals against a relative carry residual: apex (as flight_fit), hang time (0.1 s resolution
 #: on 6.3 s), and the density slope's relative distance outside the bracket
 WEIGHTS = {"max_height": flight_fit.APEX_WEIGHT, "flight_time": 0.5, "density": 0.2}
+#: what :func:`fit` fits: the seasons' carry, apex and hang time, and the density slope
+OBSERVABLES = ("carry", "max_height", "flight_time", "density")
 #: parameters :func:`fit` may fit, and their bounds (flight_fit's c0 and lift scale, flight_candidates' crisis shift)
 #: :func:`fit` with its defaults (c0 and lift scale on the seasons' carry, apex, hang time and the density slope);
 #: tests check the fit's cost is least there and fly the tables with it
@@ -56,6 +58,9 @@ BOUNDS = {"c0": flight_fit.C0_BOUNDS, "lift_scale": flight_fit.lift_scale_bounds
           "lift_loss_shift": flight_candidates.PARAMETERS["lift_loss_shift"][0]}
 #: the parameters :func:`fit` holds and :func:`fit_grid` scans (carry is a step function of them)
 GRID = ("crisis_shift", "lift_loss_shift")
+#: relative cost difference below which :func:`fit_grid` calls two grid points equal (the drivers never reach a crisis
+#: moved from Re_d x 1 to x 0.9: the costs differ by 1e-5 relative)
+TIE = 1e-4
 
 
 @functools.cache
@@ -102,12 +107,18 @@ def temperature_for(ratio: float) -> float:
     return temperature
 
 
-def _reynolds_frozen(model, factor):
+def _reynolds_frozen(model, factor, which):
     base = MODELS[model][0] if isinstance(model, str) else model
-    return lambda s, re: base(s, re / factor)
+
+    def cd_cl(s, re):
+        frozen, flown = base(s, re / factor), base(s, re)
+        cd = frozen[0] if which in (True, "drag") else flown[0]
+        return cd, (frozen[1] if which in (True, "lift") else flown[1])
+
+    return cd_cl
 
 
-def density_response(model="measured_fit", launch=None, freeze_re: bool = False, ratios=None, spin_decay=None,
+def density_response(model="measured_fit", launch=None, freeze_re=False, ratios=None, spin_decay=None,
                      by: str = "pressure") -> dict:
     """A model's driver carry against air density at the seasons' mean launch.
 
@@ -117,9 +128,9 @@ def density_response(model="measured_fit", launch=None, freeze_re: bool = False,
         A key of :data:`impactlab.physics.aerodynamics.MODELS` or a function ``(S, Re) -> (CD, CL)``.
     launch : tuple, optional
         (ball speed [m/s], launch angle [rad], spin [rad/s]); default :func:`season_launch`.
-    freeze_re : bool
-        Evaluate the coefficients at the Reynolds number the same speed has in the seasons' air (the density's effect
-        alone, without the model's Re dependence): a diagnostic.
+    freeze_re : bool or {"drag", "lift"}
+        Evaluate the coefficients (or only CD, or only CL) at the Reynolds number the same speed has in the seasons'
+        air (the density's effect alone, without the model's Re dependence): a diagnostic.
     ratios : sequence of float, optional
         Density ratios (of :data:`RHO_25`) to fly besides the slope's; default the altitude venues'.
     spin_decay : float, optional
@@ -135,6 +146,8 @@ def density_response(model="measured_fit", launch=None, freeze_re: bool = False,
         drop of density ratio, yd); ``relative`` (per cent of carry per per cent of density); ``gains`` (relative
         carry gain at each of ``ratios`` against the seasons' density) and ``apex_gains`` likewise.
     """
+    if freeze_re not in (False, True, "drag", "lift"):
+        raise ValueError(f"freeze_re: expected False, True, 'drag' or 'lift', got {freeze_re!r}")
     if by not in ("pressure", "temperature"):
         raise ValueError(f"by: expected 'pressure' or 'temperature', got {by!r}")
     speed, angle, spin = launch or season_launch()
@@ -147,7 +160,7 @@ def density_response(model="measured_fit", launch=None, freeze_re: bool = False,
                {"temperature": temperature_for(ratio), "pressure": 101325.0})
         # Re = rho v d / mu(T): frozen at the seasons' air, the factor is the density's and the viscosity's
         factor = (ratio / season) * float(air_viscosity(TEMPERATURE) / air_viscosity(air["temperature"]))
-        flown = _reynolds_frozen(model, factor) if freeze_re else model
+        flown = _reynolds_frozen(model, factor, freeze_re) if freeze_re else model
         result = flight.fly(speed, angle, spin, model=flown, relative_humidity=HUMIDITY, spin_decay=spin_decay, **air)
         out.append((float(result["carry_distance"]) / YARD, float(result["apex_height"]) / YARD,
                     float(result["flight_time"])))
@@ -172,29 +185,33 @@ def coefficients(c0: float = MEASURED_FIT["c0"], lift_scale: float = 1.0, crisis
     return cd_cl
 
 
-def _residuals(params: dict, use_density: bool) -> np.ndarray:
+def _residuals(params: dict, observables=OBSERVABLES) -> np.ndarray:
     check = validate_carry(coefficients(**params), carry_table(flight_fit.SOURCES[0]))
     table = check["table"]
-    parts = [check["carry_error"], WEIGHTS["max_height"] * (check["apex_height"] / table.max_height - 1.0)]
-    hang = check["flight_time"] / table.flight_time - 1.0
-    parts.append(WEIGHTS["flight_time"] * hang[np.isfinite(hang)])
-    if use_density:
+    parts = [check["carry_error"]]
+    if "max_height" in observables:
+        parts.append(WEIGHTS["max_height"] * (check["apex_height"] / table.max_height - 1.0))
+    if "flight_time" in observables:
+        hang = check["flight_time"] / table.flight_time - 1.0
+        parts.append(WEIGHTS["flight_time"] * hang[np.isfinite(hang)])
+    if "density" in observables:
         low, high = bracket()["relative"]
         relative = density_response(coefficients(**params), ratios=())["relative"]
         parts.append([WEIGHTS["density"] * (relative - np.clip(relative, low, high)) / low])
     return np.concatenate([np.atleast_1d(p) for p in parts])
 
 
-def fit(parameters=("c0", "lift_scale"), use_density: bool = True, **held) -> dict:
-    """Least squares over ``parameters`` (within :data:`BOUNDS`) of the seasons' carry, apex and hang time
-    (:data:`WEIGHTS`), plus the density slope's relative distance outside :func:`bracket` when ``use_density``.
+def fit(parameters=("c0", "lift_scale"), observables=OBSERVABLES, **held) -> dict:
+    """Least squares over ``parameters`` (within :data:`BOUNDS`) of the seasons' carry and, as ``observables`` says,
+    apex and hang time (weighted by :data:`WEIGHTS`) and the density slope's relative distance outside
+    :func:`bracket`.
 
     Parameters
     ----------
     parameters : tuple
         Among ``"c0"`` and ``"lift_scale"`` (``c0`` required).
-    use_density : bool
-        Include the density slope.
+    observables : tuple
+        ``"carry"`` and any of ``"max_height"``, ``"flight_time"``, ``"density"`` (default all).
     **held
         ``crisis_shift`` and ``lift_loss_shift`` held during the fit (default 1; :func:`fit_grid` scans them).
 
@@ -207,19 +224,21 @@ def fit(parameters=("c0", "lift_scale"), use_density: bool = True, **held) -> di
     Raises
     ------
     ValueError
-        Parameters it cannot fit, or a held shift unknown or outside its bounds.
+        Parameters or observables it cannot fit, or a held shift unknown or outside its bounds.
     """
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
     if not set(parameters) <= {"c0", "lift_scale"} or "c0" not in parameters:
         raise ValueError(f"parameters: expected 'c0' and optionally 'lift_scale', got {list(parameters)}")
+    if not set(observables) <= set(OBSERVABLES) or "carry" not in observables:
+        raise ValueError(f"observables: expected 'carry' and any of {OBSERVABLES[1:]}, got {list(observables)}")
     for name, value in held.items():
         if name not in GRID or not BOUNDS[name][0] <= value <= BOUNDS[name][1]:
             raise ValueError(f"{name}: expected one of {GRID} within {BOUNDS.get(name, '?')} (the measured crisis "
                              f"positions), got {value}")
     fixed = {"c0": MEASURED_FIT["c0"], "lift_scale": 1.0, "crisis_shift": 1.0, "lift_loss_shift": 1.0, **held}
     solution = least_squares(
-        lambda x: _residuals({**fixed, **dict(zip(parameters, x))}, use_density),
+        lambda x: _residuals({**fixed, **dict(zip(parameters, x))}, observables),
         [{"c0": 0.215, "lift_scale": 1.0}[p] for p in parameters],
         bounds=([BOUNDS[p][0] for p in parameters], [BOUNDS[p][1] for p in parameters]),
         x_scale=[0.01 if p == "c0" else 0.1 for p in parameters], diff_step=1e-4, xtol=1e-8)
@@ -230,8 +249,12 @@ def fit(parameters=("c0", "lift_scale"), use_density: bool = True, **held) -> di
 
 def fit_grid(name: str = "crisis_shift", shifts=(0.9, 1.0, 1.1, 1.2), **options) -> dict:
     """:func:`fit` at each value of ``shifts`` of the :data:`GRID` parameter ``name`` (a step in carry: a grid, not
-    least squares); the one of least cost, with ``name`` in ``at_bound`` when it is an end of :data:`BOUNDS`."""
-    best = min((fit(**{name: shift}, **options) for shift in shifts), key=lambda r: r["cost"])
+    least squares); the one of least cost (``scan``: each value and its cost) (costs within :data:`TIE` relative: the one nearest measured_fit's 1, since
+    the flights fitted cannot tell them apart), with ``name`` in ``at_bound`` when it is an end of :data:`BOUNDS`."""
+    tried = [fit(**{name: shift}, **options) for shift in shifts]
+    least = min(r["cost"] for r in tried)
+    best = dict(min((r for r in tried if r["cost"] <= least * (1 + TIE)), key=lambda r: abs(r[name] - 1.0)))
+    best["scan"] = [(r[name], r["cost"]) for r in tried]
     if np.isclose(best[name], BOUNDS[name]).any():
         best["at_bound"] = [*best["at_bound"], name]
     return best
@@ -281,7 +304,7 @@ def format_report() -> str:
     events = evidence()["events"]
     lines = [f"measured: {bracket()['yd'][0]:.2f}-{bracket()['yd'][1]:.2f} yd per 0.01 of density ratio, "
              f"{low:.3f}-{high:.3f} % carry per % density (launch-adjusted - raw)", "",
-             "| model | carry yd | yd per 0.01 | % per % | Re frozen | "
+             "| model | carry yd | yd per 0.01 | % per % | Re frozen: all, drag, lift | "
              + " | ".join(f"{e['event'].split()[-1]} {e['venue'].split()[0]} "
                           f"({e['adjusted_percent']:+.1f}..{e['carry_percent']:+.1f} %)" for e in events) + " |",
              "|---" * (5 + len(events)) + "|"]
@@ -290,34 +313,46 @@ def format_report() -> str:
         if isinstance(model, tuple):
             model, decay = model
         r = density_response(model, spin_decay=decay)
-        frozen = density_response(model, spin_decay=decay, freeze_re=True, ratios=())
+        frozen = [density_response(model, spin_decay=decay, freeze_re=which, ratios=())["relative"]
+                  for which in (True, "drag", "lift")]
         lines.append(f"| {title} | {r['carry']:.1f} | {r['slope_yd']:.2f} | {r['relative']:.3f} | "
-                     f"{frozen['relative']:.3f} | " + " | ".join(f"{100 * g:+.1f}" for g in r["gains"]) + " |")
-    fits = [("seasons' carry, apex, hang; c0", fit(("c0",), use_density=False)),
-            ("seasons' carry, apex, hang; c0, lift scale", fit(use_density=False)),
-            ("the same + density slope; c0, lift scale", fit()),
-            ("the same + density slope; c0, lift scale, crisis position", fit_grid("crisis_shift")),
-            ("the same + density slope; c0, lift scale, lift-loss position", fit_grid("lift_loss_shift"))]
-    lines += ["", "| fitted on | c0 | lift scale | crisis, lift-loss shift | % per % (Re frozen) | "
+                     + ", ".join(f"{f:.3f}" for f in frozen) + " | "
+                     + " | ".join(f"{100 * g:+.1f}" for g in r["gains"]) + " |")
+    seasons = OBSERVABLES[:3]
+    every = "seasons' carry, apex, hang + density slope"
+    fits = [("seasons' carry, apex, hang; c0", fit(("c0",), seasons)),
+            ("seasons' carry, apex, hang; c0, lift scale", fit(observables=seasons)),
+            ("seasons' carry + density slope; c0, lift scale", fit(observables=("carry", "density"))),
+            ("seasons' carry, hang + density slope; c0, lift scale",
+             fit(observables=("carry", "flight_time", "density"))),
+            ("seasons' carry, apex + density slope; c0, lift scale",
+             fit(observables=("carry", "max_height", "density"))),
+            (f"{every}; c0, lift scale", fit()),
+            (f"{every}; c0, lift scale, crisis position", fit_grid("crisis_shift")),
+            (f"{every}; c0, lift scale, lift-loss position", fit_grid("lift_loss_shift"))]
+    lines += ["", "| fitted on | c0 | lift scale | crisis, lift-loss shift | % per % (Re frozen: all, drag, lift) | "
               "seasons RMS, apex, hang | "
               + " | ".join(f"{t} RMS (without driver)" for t in TABLES) + " | land, height (mean) |",
               "|---" * (6 + len(TABLES) + 1) + "|"]
     for title, params in fits:
         model = coefficients(*(params[k] for k in ("c0", "lift_scale", *GRID)))
         r = density_response(model, ratios=())["relative"]
-        frozen = density_response(model, ratios=(), freeze_re=True)["relative"]
+        frozen = ", ".join(f"{density_response(model, ratios=(), freeze_re=which)['relative']:.3f}"
+                           for which in (True, "drag", "lift"))
         scores = held_out(params)
         seasons = scores[flight_fit.SOURCES[0]]
-        bound = ", ".join(params["at_bound"])
-        lines.append(f"| {title} | {params['c0']:.4f} | {params['lift_scale']:.3f} | "
-                     f"{params['crisis_shift']:.2f}, {params['lift_loss_shift']:.2f} | "
-                     f"{r:.3f} ({frozen:.3f}) | {100 * seasons['rms']:.2f} %, {seasons['height']:+.1f} yd, "
+        bound = params["at_bound"]
+        cells = {k: f"{params[k]:.4g}" + (" (bound)" if k in bound else "") for k in ("c0", "lift_scale", *GRID)}
+        lines.append(f"| {title} | {cells['c0']} | {cells['lift_scale']} | "
+                     f"{cells['crisis_shift']}, {cells['lift_loss_shift']} | "
+                     f"{r:.3f} ({frozen}) | {100 * seasons['rms']:.2f} %, {seasons['height']:+.1f} yd, "
                      f"{seasons['hang']:+.2f} s | "
                      + " | ".join(f"{100 * scores[t]['rms']:.2f} % ({100 * scores[t]['rms_without_driver']:.2f} %)"
                                   for t in TABLES)
                      + f" | {np.mean([scores[t]['land'] for t in TABLES]):+.1f} deg, "
-                       f"{np.mean([scores[t]['height'] for t in TABLES]):+.1f} yd |"
-                     + (f" on bound: {bound}" if bound else ""))
+                       f"{np.mean([scores[t]['height'] for t in TABLES]):+.1f} yd |")
+    for title, params in fits[-2:]:
+        lines += ["", f"{title}: cost per grid value " + ", ".join(f"{v:g}: {c:.6f}" for v, c in params["scan"])]
     return "\n".join(lines)
 
 
