@@ -288,7 +288,7 @@ def held_out(params: dict, tables=TABLES) -> dict:
 def _variants() -> list:
     """(title, model) of every registered flight model but the vacuum, and each flight_candidates parameter at the
     ends of its measured bounds (the others at measured_fit's values)."""
-    out = [(name, name) for name in MODELS if name != "vacuum"]
+    out: list = [(name, name) for name in MODELS if name != "vacuum"]
     for name, ((low, high), _, _) in flight_candidates.PARAMETERS.items():
         for value in (low, high):
             if name == "spin_decay":
@@ -338,16 +338,16 @@ def format_report() -> str:
     for title, params in fits:
         model = coefficients(*(params[k] for k in ("c0", "lift_scale", *GRID)))
         r = density_response(model, ratios=())["relative"]
-        frozen = ", ".join(f"{density_response(model, ratios=(), freeze_re=which)['relative']:.3f}"
+        held_re = ", ".join(f"{density_response(model, ratios=(), freeze_re=which)['relative']:.3f}"
                            for which in (True, "drag", "lift"))
         scores = held_out(params)
-        seasons = scores[flight_fit.SOURCES[0]]
+        radar = scores[flight_fit.SOURCES[0]]
         bound = params["at_bound"]
         cells = {k: f"{params[k]:.4g}" + (" (bound)" if k in bound else "") for k in ("c0", "lift_scale", *GRID)}
         lines.append(f"| {title} | {cells['c0']} | {cells['lift_scale']} | "
                      f"{cells['crisis_shift']}, {cells['lift_loss_shift']} | "
-                     f"{r:.3f} ({frozen}) | {100 * seasons['rms']:.2f} %, {seasons['height']:+.1f} yd, "
-                     f"{seasons['hang']:+.2f} s | "
+                     f"{r:.3f} ({held_re}) | {100 * radar['rms']:.2f} %, {radar['height']:+.1f} yd, "
+                     f"{radar['hang']:+.2f} s | "
                      + " | ".join(f"{100 * scores[t]['rms']:.2f} % ({100 * scores[t]['rms_without_driver']:.2f} %)"
                                   for t in TABLES)
                      + f" | {np.mean([scores[t]['land'] for t in TABLES]):+.1f} deg, "
