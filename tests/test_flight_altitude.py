@@ -227,7 +227,7 @@ def test_the_command_refuses_an_argument_with_exit_code_2(capsys):
 
 
 def test_freezing_the_re_of_the_drag_or_the_lift_alone():
-    # a model whose drag alone depends on Re: freezing the lift's Re changes nothing, freezing the drag's is freezing all
+    # a model whose drag alone depends on Re: freezing the lift's Re changes nothing, freezing the drag's freezes all
     def drag_on_re(s, re):
         return 0.2 + 0.05 * 1.0e5 / np.asarray(re), np.full(np.shape(s), 0.17)
 
