@@ -27,6 +27,10 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
          "flight_fit_c0": ("Carry RMS against the ball's drag level c0 on the PGA TOUR radar seasons (fitted) and on "
                            "TrackMan's three tour tables without their drivers (held out), and the held-out rows' "
                            "carry errors against launch spin ratio", "python docs/flight_fit_c0.py"),
+         "flight_altitude": ("Driver carry against air density at the PGA TOUR radar seasons' mean launch: the "
+                             "measured dose-response (raw and launch-adjusted) and altitude venues beside the models, "
+                             "as flown and with Re frozen; the density slope over c0 and lift scale within their "
+                             "bounds", "python docs/flight_altitude.py"),
          "flight_candidates": ("The drag crisis' position: held-out tour-table carry errors against launch spin "
                                "ratio with the drag level only and with measured_fit_late_crisis, carry RMS against "
                                "the crisis midpoint (radar seasons and tables), and the late crisis against the "
