@@ -52,11 +52,17 @@ def main() -> Path:
         ax.plot(x, event["carry_percent"], "o", color="tab:red", markersize=5)
         ax.plot(x, event["adjusted_percent"], "o", mfc="white", color="tab:red", markersize=5)
         if "Chapultepec" not in event["venue"] or event["event"].endswith("2017"):
-            name = "Chapultepec" if "Chapultepec" in event["venue"] else event["venue"].split()[0]
-            offset = {"Castle": (-30, 6), "Old": (6, 2)}.get(name, (4, 4))
+            name = {"Club de Golf Chapultepec": "Chapultepec\n(4 years)", "Castle Pines Golf Club": "Castle Pines",
+                    "Old Greenwood": "Old\nGreenwood"}.get(event["venue"], event["venue"])
+            if name.startswith("Chapultepec"):  # at the plot's left edge: below the cluster, with an arrow
+                ax.annotate(name, (x, event["adjusted_percent"]), xytext=(0.79, 1.0), textcoords="data", fontsize=8,
+                            color="tab:red", arrowprops={"arrowstyle": "-", "color": "tab:red", "linewidth": 0.6})
+                continue
+            offset = {"Castle Pines": (-28, 8), "Old\nGreenwood": (7, -4)}[name]
             ax.annotate(name, (x, event["carry_percent"]), textcoords="offset points", xytext=offset, fontsize=8,
                         color="tab:red")
     ax.plot([], [], "o", color="tab:red", label="altitude venues (raw; open: launch-adjusted)")
+    ax.plot([], [], "k--", linewidth=2.0, label="measured lines extrapolated below the 40 events' densities")
     models = (("measured_fit", "measured_fit", "tab:blue"),
               (f"fitted: c0 {fa.FITTED['c0']:.3f}, lift x {fa.FITTED['lift_scale']:.3f}",
                fa.coefficients(**fa.FITTED), "tab:purple"),
