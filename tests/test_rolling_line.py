@@ -122,3 +122,17 @@ def test_model_continuous_across_the_line():
     for name in ("spin_rate", "ball_speed", "rolling_moment"):
         np.testing.assert_allclose(on[name].values, off[name].values, rtol=2e-5, err_msg=name)
     np.testing.assert_allclose(on["launch_angle"].values, off["launch_angle"].values, atol=2e-4)
+
+
+def test_frictionless_couple_stops_the_rolling_by_hand():
+    """mu = 0: no friction impulse; the couple d dP opposes the rolling until it stops, C = -sgn(r0) min(d J_n,
+    |r0| / D_ll) (hand solution: r falls at d D_ll per unit P, the couple then holds it at zero)."""
+    initial, mobility, b, d, rates, _, e, arm = CASES
+    impulse, moment, flags = rolling_line.rolling_line_impulses(initial, mobility, b, d, rates, 0.0, e, arm)
+    reference, reference_moment, _ = ball_laws.rolling_impulses(initial, mobility, b, d, rates, 0.0, e, arm,
+                                                                steps=4000)
+    jn = (1.0 + e) * (-initial[:, 2]) / mobility[:, 2, 2]
+    expected = -np.sign(rates[:, 1]) * np.minimum(arm * jn, np.abs(rates[:, 1]) / d[:, 1, 1])
+    assert not np.any(flags) and np.all(impulse[:, 0] == 0.0)
+    np.testing.assert_allclose(moment[:, 1], expected, rtol=1e-12, atol=1e-20)
+    np.testing.assert_allclose(reference_moment[:, 1], expected, rtol=1e-3, atol=1e-3 * np.max(np.abs(expected)))
