@@ -8,7 +8,7 @@ import numpy as np
 
 from impactlab.errors import ModelInputError
 from impactlab.model import ImpactModel
-from impactlab.physics import ball_laws, hertz
+from impactlab.physics import ball_laws, hertz, rolling_line
 from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_impulses
 
@@ -110,7 +110,7 @@ class RigidCoulombModel(ImpactModel):
         return {**impulse_outputs(impulse), **diagnostics, **rolling}
 
     def _rolling(self, inputs, state, friction, restitution, impulse, diagnostics, rolling):
-        """Cases with a rolling offset d > 0 and friction through the integrator with the couple (ball_laws).
+        """Cases with a rolling offset d > 0 and friction: in closed form on one line, else the integrator (ball_laws).
 
         Fills their rows of ``impulse``, ``diagnostics`` and ``rolling``; returns the cases left to solve.
         """
@@ -131,12 +131,18 @@ class RigidCoulombModel(ImpactModel):
         coupling, rotation, rates = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
                                                     inputs["ball_inertia_factor"])
         rows = (arm > 0.0) & ((friction > 0.0) | np.any(rates != 0.0, axis=-1))
-        if np.any(rows):
-            solved, moment, flags = ball_laws.rolling_impulses(
-                state["initial_velocity"][rows], mobility[rows], coupling[rows], rotation[rows], rates[rows],
-                friction[rows], restitution[rows], arm[rows])
-            impulse[rows] = solved
-            diagnostics["steps"][rows] = 3 * ball_laws.ROLLING_STEPS
-            diagnostics["validity"][rows] = np.where(flags & 1, 8.0, 0.0)
-            rolling["rolling_moment"][rows], rolling["rolling_moment_slip"][rows] = moment[:, 1], moment[:, 0]
+        # cases on one line take the exact event-driven solution (impactlab.physics.rolling_line), the others the
+        # integrator over the normal impulse
+        line = rows & rolling_line.on_line(state["initial_velocity"], mobility, coupling, rotation, rates)
+        for cases, solve, steps in ((line, rolling_line.rolling_line_impulses, 0),
+                                    (rows & ~line, ball_laws.rolling_impulses, 3 * ball_laws.ROLLING_STEPS)):
+            if not np.any(cases):
+                continue
+            solved, moment, flags = solve(state["initial_velocity"][cases], mobility[cases], coupling[cases],
+                                          rotation[cases], rates[cases], friction[cases], restitution[cases],
+                                          arm[cases])
+            impulse[cases] = solved
+            diagnostics["steps"][cases] = steps
+            diagnostics["validity"][cases] = np.where(flags & 1, 8.0, 0.0)
+            rolling["rolling_moment"][cases], rolling["rolling_moment_slip"][cases] = moment[:, 1], moment[:, 0]
         return ~rows
