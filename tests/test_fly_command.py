@@ -165,3 +165,82 @@ def test_the_air_given_in_a_garmin_rows_units_has_the_density_garmin_states(caps
                  f"{humidity} %"]) == 0
     air = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("air:"))
     assert f"(density {float(raw['Air Density']):.4f} kg/m^3)" in air
+
+
+def test_a_topped_shot_and_a_topspin_shot_are_not_flown(tmp_path, capsys):
+    """Square Golf's G-Wedge row at line 10 was launched below the horizontal with negative back spin (the file:
+    Launch Angle -0.2, Back Spin -1266): from the ground the ball meets the ground at once, and a carry of 0 beside
+    the monitor's 0.5 yd put -100 % into the session's mean. A row with topspin (back spin below 0) would be flown
+    as backspin from its spin rate and axis. Neither is flown; each is listed with its reason."""
+    path = DATA / "square_golf.csv"
+    with open(path, newline="") as stream:
+        lines = stream.read().splitlines()
+    header = lines[2].split(",")
+    cells = lines[9].split(",")  # file line 10
+    assert float(cells[header.index("Launch Angle")]) < 0 and float(cells[header.index("Back Spin")]) < 0
+    out = tmp_path / "sq.csv"
+    assert main(["fly", str(path), "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "10" not in [row["line"] for row in _csv(out)]
+    assert "line 10: launch angle -0.2 deg, below the horizontal" in printed
+    assert f"model against the monitor's carry, {len(_csv(out))} shot(s)" in printed
+    table = tmp_path / "shots.csv"
+    table.write_text("club,ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],back_spin [rpm],"
+                     "side_spin [rpm]\nDriver,150,8,1500,-1500,0\nDriver,150,12,2500,2500,0\n")
+    assert main(["fly", str(table), "--csv", str(out)]) == 0
+    assert [row["line"] for row in _csv(out)] == ["3"]
+    assert "line 2: back spin -1500 rpm, below 0 (topspin)" in capsys.readouterr().out
+
+
+def test_a_spin_rate_derived_from_measured_back_and_side_spin_is_flown(tmp_path, capsys):
+    """PiTrac's message (line 3 of the GSPro fixture) sends TotalSpin 0.0, a placeholder, beside its measured
+    BackSpin 5300 and SideSpin 372.4: the reader takes the spin rate as their hypot and marks the placeholder 'no
+    data'. That shot is measured and is flown by default (it was left out as 'estimated or clamped')."""
+    out = tmp_path / "gspro.csv"
+    assert main(["fly", str(DATA / "gspro_open_connect.json"), "--csv", str(out)]) == 0
+    assert "line 3" not in capsys.readouterr().out
+    row = {row["line"]: row for row in _csv(out)}["3"]
+    assert float(row["spin_rate [rpm]"]) == pytest.approx(math.hypot(5300.0, 372.4))
+    assert row["flagged"] == "False"
+
+
+def test_offline_follows_the_launch_direction_and_the_spin_axis_in_the_vocabularys_sign(tmp_path, capsys):
+    """In a vacuum the ball lands on the launch direction at the projectile's range R: offline = R sin(direction),
+    whatever the spin axis (no lift); in air a spin axis tilted right (positive) curves the ball right. A session's
+    launch direction and spin axis, each sign and not swapped, and the printed offline in yards."""
+    table = tmp_path / "shots.csv"
+    table.write_text("club,ball_speed [mph],vertical_launch_angle [deg],horizontal_launch_angle [deg],"
+                     "spin_rate [rpm],spin_axis [deg]\n"
+                     "7 Iron,100,20,3,0,15\n7 Iron,100,20,-3,0,-15\n")
+    out = tmp_path / "out.csv"
+    assert main(["fly", str(table), "--model", "vacuum", "--csv", str(out)]) == 0
+    v, a = 100 * MPH, math.radians(20.0)
+    for row, sign in zip(_csv(out), (1, -1)):
+        reach = v * v * math.sin(2 * a) / G
+        assert float(row["carry_distance [m]"]) == pytest.approx(reach, rel=2e-3)
+        assert float(row["offline_distance [m]"]) == pytest.approx(sign * reach * math.sin(math.radians(3)), rel=5e-3)
+    table.write_text("club,ball_speed [mph],vertical_launch_angle [deg],horizontal_launch_angle [deg],"
+                     "spin_rate [rpm],spin_axis [deg]\nDriver,150,12,0,2500,10\nDriver,150,12,0,2500,-10\n")
+    assert main(["fly", str(table), "--csv", str(out)]) == 0
+    right, left = (float(row["offline_distance [m]"]) for row in _csv(out))
+    assert right > 5.0 and left == pytest.approx(-right)
+    capsys.readouterr()
+    assert main(["fly", "--ball-speed", "150 mph", "--launch-angle", "12 deg", "--spin-rate", "2500 rpm",
+                 "--spin-axis", "10 deg", "-10 deg", "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    typed = [float(row["offline_distance [m]"]) for row in _csv(out)]
+    assert typed == pytest.approx([right, left])
+    for index, offline in enumerate(typed, start=1):
+        cells = next(text for text in printed.splitlines() if text.startswith(f"| {index} |")).split("|")
+        assert float(cells[7]) == pytest.approx(offline / YARD, abs=0.06)
+
+
+def test_the_printed_mean_and_rms_are_those_of_the_table(tmp_path, capsys):
+    out = tmp_path / "tm.csv"
+    assert main(["fly", str(DATA / "trackman_tps_drivers.csv"), "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    error = np.array([float(row["carry_distance [m]"]) / float(row["monitor_carry_distance [m]"]) - 1
+                      for row in _csv(out)])
+    assert error.std() > 0.01  # the mean and the RMS differ here
+    summary = next(text for text in printed.splitlines() if text.startswith("model against the monitor's carry"))
+    assert f"mean {100 * error.mean():+.1f} %, RMS {100 * np.sqrt(np.mean(error ** 2)):.1f} %" in summary
