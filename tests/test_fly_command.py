@@ -244,3 +244,18 @@ def test_the_printed_mean_and_rms_are_those_of_the_table(tmp_path, capsys):
     assert error.std() > 0.01  # the mean and the RMS differ here
     summary = next(text for text in printed.splitlines() if text.startswith("model against the monitor's carry"))
     assert f"mean {100 * error.mean():+.1f} %, RMS {100 * np.sqrt(np.mean(error ** 2)):.1f} %" in summary
+
+
+@pytest.mark.parametrize("option, given, says", [
+    ("--temperature", "200 degC", "got 473.15 K (given as '200 degC')"),  # 200 + 273.15
+    ("--pressure", "-5 hPa", "got -500 Pa (given as '-5 hPa')"),
+    ("--headwind", "200 mph", "got 89.408 m/s (given as '200 mph')"),  # 200 x 0.44704
+    ("--altitude", "50 km", "got 50000 m (given as '50 km')"),
+])
+def test_an_air_value_out_of_range_is_shown_with_its_unit(option, given, says, capsys):
+    """The air's range checks run on SI values: the refused value is shown with its SI unit and as the user wrote
+    it (before: 'got 473.15' for '200 degC', which reads as the user's number in the user's unit)."""
+    assert main(["fly", "--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm",
+                 option, given]) == 2
+    err = capsys.readouterr().err
+    assert f"{option}: expected" in err and says in err and len(err.strip().splitlines()) == 1

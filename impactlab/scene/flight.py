@@ -184,6 +184,15 @@ def conditions_from(conditions) -> Conditions:
     try:
         return Conditions(**values)
     except FieldError as exc:
+        key = exc.path or ""
+        if key in values and not isinstance(exc.given, str):
+            # the value refused is in SI: shown with its unit and as given (a bare 473.15 for '200 degC' reads as
+            # the user's number)
+            dimension = CONDITION_KEYS[key]
+            shown = f"{values[key]:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
+            if isinstance(conditions[key], str):
+                shown += f" (given as {conditions[key]!r})"
+            exc = FieldError(exc.path, exc.expected, shown, exc.choices, file=exc.file, line=exc.line)
         raise exc.at(prefix="conditions") from None
 
 
