@@ -259,3 +259,15 @@ def test_an_air_value_out_of_range_is_shown_with_its_unit(option, given, says, c
                  option, given]) == 2
     err = capsys.readouterr().err
     assert f"{option}: expected" in err and says in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_launch_without_a_landing_says_so(capsys):
+    """1000 mph at 80 deg: in a vacuum it would stay up 2 v sin(a) / g = 89.8 s, far past the flight's 15 s limit,
+    and drag does not bring it down by then; its row showed only dashes, with exit 0 and no word why."""
+    v, a = 1000 * MPH, math.radians(80.0)
+    assert 2 * v * math.sin(a) / G > 15.0
+    assert main(["fly", "--ball-speed", "1000 mph", "150 mph", "--launch-angle", "80 deg", "--spin-rate",
+                 "9000 rpm"]) == 0
+    printed = capsys.readouterr().out
+    assert "no carry for shot 1: still in the air after the flight's 15 s limit" in printed
+    assert "shot 2" not in printed

@@ -166,6 +166,12 @@ def describe(result: xr.Dataset, model: str) -> str:
             out += ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean "
                         f"{100 * error.mean():+.1f} %, RMS {rms:.1f} % (the monitor's carry is what it exported: "
                         "measured where a radar tracked the flight, its own model indoors or when normalised)"]
+    unflown = ~np.isfinite(result.carry_distance.values)
+    if unflown.any():
+        names = ([f"line {int(line)}" for line in result.line.values[unflown]] if session
+                 else [f"shot {index + 1}" for index in np.flatnonzero(unflown)])
+        out.append(f"no carry for {', '.join(names)}: still in the air after the flight's 15 s limit, or a flight "
+                   "that could not be integrated (a launch far outside golf's); nothing is given for it")
     if session and np.isnan(result.offline_distance.values).any():
         out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
     if session and result.attrs.get("skipped"):
