@@ -271,3 +271,17 @@ def test_a_launch_without_a_landing_says_so(capsys):
     printed = capsys.readouterr().out
     assert "no carry for shot 1: still in the air after the flight's 15 s limit" in printed
     assert "shot 2" not in printed
+
+
+@pytest.mark.parametrize("command", ["fly", "shots"])
+def test_the_table_written_never_replaces_the_export_read(command, tmp_path, capsys):
+    """`impactlab fly session.csv --csv session.csv` (or `shots`) replaced the user's export by the result table,
+    exit 0; refused, the export untouched. Through another spelling of the same path too."""
+    export = tmp_path / "session.csv"
+    export.write_bytes((DATA / "garmin_r10.csv").read_bytes())
+    before = export.read_bytes()
+    for output in (export, tmp_path / "." / "session.csv"):
+        assert main([command, str(export), "--csv", str(output)]) == 2
+        err = capsys.readouterr().err
+        assert "is the file read" in err and len(err.strip().splitlines()) == 1
+        assert export.read_bytes() == before
