@@ -285,3 +285,15 @@ def test_the_table_written_never_replaces_the_export_read(command, tmp_path, cap
         err = capsys.readouterr().err
         assert "is the file read" in err and len(err.strip().splitlines()) == 1
         assert export.read_bytes() == before
+
+
+def test_a_refused_value_in_a_long_launch_is_named_alone(capsys):
+    """One bad value among 2000 ball speeds: the message named every value (29 kB for one NaN); it names the one
+    refused, at its index."""
+    speeds = [f"{100 + index / 100:g} mph" for index in range(2000)]
+    for bad, says in (("nan mph", "--ball-speed[2000]: expected finite values, got nan"),
+                      ("-5 mph", "--ball-speed[2000]: expected a positive ball speed, got -2.2352 m/s")):
+        assert main(["fly", "--ball-speed", *speeds, bad, "--launch-angle", "12 deg", "--spin-rate",
+                     "2500 rpm"]) == 2
+        err = capsys.readouterr().err
+        assert says in err and len(err) < 300

@@ -147,6 +147,15 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
     return array
 
 
+def _first(name: str, array: np.ndarray, bad: np.ndarray) -> tuple[str, float]:
+    """The first refused value of ``array`` and its path (``ball_speed[2000]``): a message names that one value,
+    not every value of a long array."""
+    if not array.ndim:
+        return name, float(array)
+    index = np.unravel_index(int(np.flatnonzero(bad)[0]), array.shape)
+    return f"{name}[{', '.join(str(int(i)) for i in index)}]", float(array[index])
+
+
 def _in_unit(array: np.ndarray, unit: str) -> str:
     """Values for a message, with the unit they are in (an SI value shown without its unit reads as the user's)."""
     return ", ".join(f"{value:.6g} {unit}" for value in np.ravel(array))
@@ -274,20 +283,23 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     radius = quantity_array(ball_radius, "length", "ball_radius")
     for name, array in values.items():
         if not np.all(np.isfinite(array)):
-            raise FieldError(name, "finite values", array.tolist() if array.ndim else float(array))
+            where, value = _first(name, array, ~np.isfinite(array))
+            raise FieldError(where, "finite values", float(value))
     try:
         np.broadcast_shapes(*(array.shape for array in values.values()))
     except ValueError:
         raise FieldError("launch", "values of one shape, or single values, that broadcast together (one per shot)",
                          ", ".join(f"{name} {array.shape}" for name, array in values.items())) from None
     if np.any(values["ball_speed"] <= 0.0):
-        raise FieldError("ball_speed", "a positive ball speed", _in_unit(values["ball_speed"], "m/s"))
+        where, value = _first("ball_speed", values["ball_speed"], values["ball_speed"] <= 0.0)
+        raise FieldError(where, "a positive ball speed", _in_unit(value, "m/s"))
     if np.any(values["spin_rate"] < 0.0):
-        raise FieldError("spin_rate", "a spin rate >= 0 (the direction of the spin is the spin axis)",
-                         _in_unit(values["spin_rate"] * 30.0 / math.pi, "rpm"))
+        where, value = _first("spin_rate", values["spin_rate"], values["spin_rate"] < 0.0)
+        raise FieldError(where, "a spin rate >= 0 (the direction of the spin is the spin axis)",
+                         _in_unit(value * 30.0 / math.pi, "rpm"))
     if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
-        raise FieldError("launch_angle", "a launch angle between -90 and 90 deg",
-                         _in_unit(np.degrees(values["launch_angle"]), "deg"))
+        where, value = _first("launch_angle", values["launch_angle"], np.abs(values["launch_angle"]) >= math.pi / 2)
+        raise FieldError(where, "a launch angle between -90 and 90 deg", _in_unit(np.degrees(value), "deg"))
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
