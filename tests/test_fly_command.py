@@ -297,3 +297,15 @@ def test_a_refused_value_in_a_long_launch_is_named_alone(capsys):
                      "2500 rpm"]) == 2
         err = capsys.readouterr().err
         assert says in err and len(err) < 300
+
+
+def test_a_launch_typed_below_the_horizontal_is_said(tmp_path, capsys):
+    """-5 deg from tee height: the ball is at the ground going down, carry 0 (the flight's definition, to tee
+    height); the row alone read as a prediction of no distance with no word why."""
+    out = tmp_path / "low.csv"
+    assert main(["fly", "--ball-speed", "100 mph", "--launch-angle", "-5 deg", "12 deg", "--spin-rate", "3000 rpm",
+                 "--csv", str(out)]) == 0
+    rows = _csv(out)
+    assert float(rows[0]["carry_distance [m]"]) == 0.0 and float(rows[1]["carry_distance [m]"]) > 100.0
+    printed = capsys.readouterr().out
+    assert "shot 1: launched below the horizontal" in printed and "shot 2:" not in printed

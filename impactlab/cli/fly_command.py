@@ -174,6 +174,10 @@ def describe(result: xr.Dataset, model: str) -> str:
                  else [f"shot {index + 1}" for index in np.flatnonzero(unflown)])
         out.append(f"no carry for {', '.join(names)}: still in the air after the flight's 15 s limit, or a flight "
                    "that could not be integrated (a launch far outside golf's); nothing is given for it")
+    downward = np.flatnonzero(np.asarray(result.vertical_launch_angle.values) < 0.0)
+    if not session and downward.size:
+        out.append(f"shot {', '.join(str(index + 1) for index in downward)}: launched below the horizontal, from "
+                   "the ground it meets the ground at once (carry 0; the landing angle is the launch's)")
     if session and np.isnan(result.offline_distance.values).any():
         out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
     if session and result.attrs.get("skipped"):
