@@ -242,7 +242,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         ``carry_distance``, ``offline_distance``, ``apex_height`` [m], ``landing_angle`` [degree] and
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
         scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
-        aerodynamic model and its references in ``attrs``.
+        aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
+        integration's limit; e.g. 1000 mph at 80 deg). A shot launched below the horizontal is at the ground going
+        down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
