@@ -309,3 +309,12 @@ def test_a_launch_typed_below_the_horizontal_is_said(tmp_path, capsys):
     assert float(rows[0]["carry_distance [m]"]) == 0.0 and float(rows[1]["carry_distance [m]"]) > 100.0
     printed = capsys.readouterr().out
     assert "shot 1: launched below the horizontal" in printed and "shot 2:" not in printed
+
+
+def test_fly_help_prints(capsys):
+    """`impactlab fly --help` ended in a traceback (argparse %-formats help texts, and --humidity's said '50 %')."""
+    with pytest.raises(SystemExit) as done:
+        main(["fly", "--help"])
+    assert done.value.code == 0
+    printed = capsys.readouterr().out
+    assert "relative humidity (e.g. '50 %'; default 50 %)" in printed and "--include-flagged" in printed

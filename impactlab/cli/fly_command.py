@@ -51,7 +51,8 @@ def add_parser(commands) -> None:
         fly.add_argument(f"--{option.replace('_', '-')}", nargs="+", metavar="VALUE",
                          help=f"{words}, with its unit (e.g. {_EXAMPLES[option]}); several values broadcast")
     for option, key in AIR_OPTIONS.items():
-        fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}")
+        # argparse %-formats help texts: a literal % (humidity's '50 %') is written %%
+        fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}".replace("%", "%%"))
     fly.add_argument("--model", default=DEFAULT_MODEL, choices=sorted(MODELS),
                      help=f"aerodynamic model (default {DEFAULT_MODEL}; docs/flight.md)")
     fly.add_argument("--vendor", help="a session: read with this vendor layout (default: recognised)")
