@@ -318,3 +318,11 @@ def test_fly_help_prints(capsys):
     assert done.value.code == 0
     printed = capsys.readouterr().out
     assert "relative humidity (e.g. '50 %'; default 50 %)" in printed and "--include-flagged" in printed
+
+
+@pytest.mark.parametrize("command", ["run", "models", "show", "plot", "convergence", "export", "validate", "shots",
+                                     "fly", "fit", "paper"])
+def test_every_commands_help_prints(command, capsys):
+    with pytest.raises(SystemExit) as done:
+        main([command, "--help"])
+    assert done.value.code == 0 and "usage: impactlab" in capsys.readouterr().out
