@@ -115,6 +115,10 @@ def test_a_shot_without_spin_axis_has_no_offline(tmp_path):
     (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--altitude", "1 km",
       "--pressure", "900 hPa"], "--altitude: expected either a pressure or an altitude"),
     ([str(DATA / "garmin_r10_b.csv")], "no shot to fly"),
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--vendor", "garmin_golf"],
+     "--vendor applies to a session file"),  # was silently ignored
+    (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--include-flagged"],
+     "--include-flagged applies to a session file"),
 ])
 def test_every_user_error_is_one_message_and_exit_2(args, says, tmp_path, capsys):
     out = tmp_path / "never.csv"

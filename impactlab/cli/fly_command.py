@@ -83,6 +83,9 @@ def _cmd_fly(args) -> int:
     if args.file and given:
         raise StudyError("impactlab fly: give a session file or a launch (--ball-speed, --launch-angle, "
                          "--spin-rate), not both")
+    if not args.file and (args.vendor or args.include_flagged):
+        raise StudyError("impactlab fly: " + ("--vendor" if args.vendor else "--include-flagged") + " applies to a "
+                         "session file, and none is given (a launch typed in has no vendor and no flags)")
     try:
         if args.file:
             result = fly_session(read_session(args.file, args.vendor), model=args.model, conditions=conditions,
