@@ -330,3 +330,21 @@ def test_every_commands_help_prints(command, capsys):
     with pytest.raises(SystemExit) as done:
         main([command, "--help"])
     assert done.value.code == 0 and "usage: impactlab" in capsys.readouterr().out
+
+
+def test_a_no_data_spin_axis_flies_the_shot_without_offline(tmp_path, capsys):
+    """Foresight's no-data sentinel 16777215 in one shot's SpinAxis_DEG (an FSX session): the axis is missing,
+    flagged 'no data'. The shot flies straight with its measured total spin and no offline, as docs/vendors.md says;
+    it was left out as 'launch values flagged by the monitor (estimated or clamped)'."""
+    text = (DATA / "foresight_fsx.session").read_text()
+    assert text.count('"SpinAxis_DEG":1.866554') == 1  # shot 2850
+    export = tmp_path / "player.session"
+    export.write_text(text.replace('"SpinAxis_DEG":1.866554', '"SpinAxis_DEG":16777215'))
+    out = tmp_path / "out.csv"
+    assert main(["fly", str(export), "--csv", str(out)]) == 0
+    rows = _csv(out)
+    assert len(rows) == 4
+    row = rows[0]
+    assert row["offline_distance [m]"] == "" and row["spin_axis [degree]"] == "" and row["flagged"] == "False"
+    assert float(row["spin_rate [rpm]"]) == pytest.approx(5249.0)  # the file's TotalSpin_RPM
+    assert "offline not given" in capsys.readouterr().out
