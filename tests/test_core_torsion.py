@@ -486,3 +486,27 @@ def test_the_core_is_continuous_across_the_centred_strike(monkeypatch, name, opt
     assert np.max(np.abs(jt - jt[0])) <= 1e-6 * 0.15 * jn[0]
     rigid = get_model(name)(**options).compute(inputs, ["spin_rate"])["spin_rate"].values
     assert np.all(np.abs(result["spin_rate"].values - rigid) > 100.0)
+
+
+def test_shell_responses_step_advice_holds_for_a_damped_core():
+    """Damping lowers velocity Verlet's limit: the free step's polynomial z^2 - (2 - c dt - h^2) z + (1 - c dt)
+    (h = omega dt) keeps both roots in the unit disc while h^2 + 2 c dt < 4 (Jury), i.e. h < sqrt(eta^2 + 4) - eta
+    for c = eta omega (1.72 at eta = 0.3, not 2). The step the refusal advises must be one shell_response takes
+    (before: 1.9 / omega, refused again at eta = 0.3); beyond c dt = 2 the growth is the root 1 - c dt (omega = 0:
+    exactly c dt - 1), not an infinity."""
+    import re
+
+    omega, eta = 3.0e4, 0.3
+    limit = np.sqrt(eta * eta + 4.0) - eta
+    assert core_torsion.verlet_growth([omega], [eta * omega], 0.999 * limit / omega)[0] <= 1.0
+    assert core_torsion.verlet_growth([omega], [eta * omega], 1.001 * limit / omega)[0] > 1.0
+    assert core_torsion.verlet_step_limit([omega], [eta * omega])[0] == pytest.approx(limit / omega, rel=1e-12)
+    assert core_torsion.verlet_growth([0.0], [3.0e4], 1.0e-4)[0] == pytest.approx(2.0, rel=1e-12)
+    damped = core_torsion.CoreModes(TOTAL, 0.4 * TOTAL, 0.6 * TOTAL, np.array([omega]), np.array([2.0 / TOTAL]),
+                                    np.array([eta * omega]))
+    torque = np.full(200, 0.3)
+    with pytest.raises(ValueError, match="take dt below") as refused:
+        core_torsion.shell_response(damped, torque, 1.9 / omega)
+    advised = float(re.search(r"take dt below about (\S+) s", str(refused.value)).group(1))
+    rate, _, _ = core_torsion.shell_response(damped, torque, advised)
+    assert np.all(np.isfinite(rate))

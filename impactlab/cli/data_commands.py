@@ -21,7 +21,7 @@ from impactlab.data.validation.benchmark_report import describe as describe_benc
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
 from impactlab.vocabulary import OUTPUTS
@@ -144,6 +144,7 @@ def _cmd_fit(args) -> int:
 def _cmd_shots(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
+        refuse_overwriting(args.csv, args.file, "--csv file")
 
     session = read_session(args.file, args.vendor)
     with user_clubs(read_club_spec(path) for path in args.club or ()):

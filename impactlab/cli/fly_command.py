@@ -22,7 +22,7 @@ import xarray as xr
 from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
 from impactlab.scene import flight
 from impactlab.units import MPH
@@ -51,7 +51,8 @@ def add_parser(commands) -> None:
         fly.add_argument(f"--{option.replace('_', '-')}", nargs="+", metavar="VALUE",
                          help=f"{words}, with its unit (e.g. {_EXAMPLES[option]}); several values broadcast")
     for option, key in AIR_OPTIONS.items():
-        fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}")
+        # argparse %-formats help texts: a literal % (humidity's '50 %') is written %%
+        fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}".replace("%", "%%"))
     fly.add_argument("--model", default=DEFAULT_MODEL, choices=sorted(MODELS),
                      help=f"aerodynamic model (default {DEFAULT_MODEL}; docs/flight.md)")
     fly.add_argument("--vendor", help="a session: read with this vendor layout (default: recognised)")
@@ -74,12 +75,17 @@ _AIR_WORDS = {"temperature": "temperature (e.g. '25 degC'; default 15 degC)",
 def _cmd_fly(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv")
+        if args.file:
+            refuse_overwriting(args.csv, args.file, "--csv file")
     given = {option: getattr(args, option) for option in LAUNCH_OPTIONS if getattr(args, option) is not None}
     conditions = {key: getattr(args, option) for option, key in AIR_OPTIONS.items()
                   if getattr(args, option) is not None}
     if args.file and given:
         raise StudyError("impactlab fly: give a session file or a launch (--ball-speed, --launch-angle, "
                          "--spin-rate), not both")
+    if not args.file and (args.vendor or args.include_flagged):
+        raise StudyError("impactlab fly: " + ("--vendor" if args.vendor else "--include-flagged") + " applies to a "
+                         "session file, and none is given (a launch typed in has no vendor and no flags)")
     try:
         if args.file:
             result = fly_session(read_session(args.file, args.vendor), model=args.model, conditions=conditions,
@@ -166,6 +172,16 @@ def describe(result: xr.Dataset, model: str) -> str:
             out += ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean "
                         f"{100 * error.mean():+.1f} %, RMS {rms:.1f} % (the monitor's carry is what it exported: "
                         "measured where a radar tracked the flight, its own model indoors or when normalised)"]
+    unflown = ~np.isfinite(result.carry_distance.values)
+    if unflown.any():
+        names = ([f"line {int(line)}" for line in result.line.values[unflown]] if session
+                 else [f"shot {index + 1}" for index in np.flatnonzero(unflown)])
+        out.append(f"no carry for {', '.join(names)}: still in the air after the flight's 15 s limit, or a flight "
+                   "that could not be integrated (a launch far outside golf's); nothing is given for it")
+    downward = np.flatnonzero(np.asarray(result.vertical_launch_angle.values) < 0.0)
+    if not session and downward.size:
+        out.append(f"shot {', '.join(str(index + 1) for index in downward)}: launched below the horizontal, from "
+                   "the ground it meets the ground at once (carry 0; the landing angle is the launch's)")
     if session and np.isnan(result.offline_distance.values).any():
         out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
     if session and result.attrs.get("skipped"):

@@ -6,8 +6,12 @@ reads it, flies every shot that has a ball speed, a launch angle and a spin rate
 beside each prediction where the export has them. Nothing is guessed for a shot:
 
 - a shot without ball speed, launch angle or spin is not flown, and the result says why (``skipped``);
-- a shot whose spin (or ball speed, or launch) the monitor marks estimated or clamped is not flown unless asked
-  (``include_flagged``): an estimated spin is the monitor's model, not a measurement;
+- a shot whose spin (or ball speed, or launch) the monitor marks estimated, clamped or inconsistent is not flown
+  unless asked (``include_flagged``): an estimated spin is the monitor's model, not a measurement; a spin rate the
+  export lacks but the reader derives from measured back and side spin (flagged ``no data`` there) is flown;
+- a shot launched below the horizontal (a topped ball) is not flown: from the ground it meets the ground at once,
+  and a carry of 0 beside the monitor's would only say so; nor a shot whose back spin is below 0 (topspin: the
+  spin rate and spin axis the export gives would fly it as backspin);
 - a shot without a spin axis is flown as pure backspin and without a launch direction as straight, and its offline
   distance is then not given (NaN): the carry barely depends on them (cos of the tilt in the lift), the offline
   entirely.
@@ -54,7 +58,7 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         still. Exports do not state their air, so a comparison with a monitor that normalises its rows should give
         that monitor's standard air.
     include_flagged : bool
-        Also fly shots whose launch values the monitor marks estimated or clamped.
+        Also fly shots whose launch values the monitor marks estimated, clamped or inconsistent.
 
     Returns
     -------
@@ -74,18 +78,36 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         file:line; or a session with no shot to fly, saying why each was left out.
     """
     v = session.values
-    present = np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0)
+    with np.errstate(invalid="ignore"):
+        downward = v["vertical_launch_angle"] < 0.0
+        topspin = v["back_spin"] < 0.0
+    present = (np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0) & ~downward
+               & ~topspin)
     flagged = np.zeros(session.size, dtype=bool)
-    for (field, _kind), rows in session.flags.items():
-        if field in LAUNCH + ("spin_axis",):
+    why: dict[int, list[str]] = {}
+    for (field, kind), rows in session.flags.items():
+        # a 'no data' flag marks a value the export lacks: it is NaN (missing, said below) unless the reader derived
+        # it from measured values (a spin rate from back and side spin), which is no estimate
+        if field in LAUNCH + ("spin_axis",) and kind != "no data":
             flagged |= rows
+            for row in np.flatnonzero(rows).tolist():
+                why.setdefault(row, []).append(f"{field} {kind}")
     fly_rows = present & (include_flagged | ~flagged)
     skipped = []
     for row in np.flatnonzero(~fly_rows).tolist():
         missing = [name for name in LAUNCH if not np.isfinite(v[name][row])] + (
             ["ball speed above 0 (the row's is 0: no shot)"] if v["ball_speed"][row] == 0.0 else [])
-        reason = ("no " + ", no ".join(missing)) if missing else (
-            "launch values flagged by the monitor (estimated or clamped; --include-flagged flies them)")
+        if missing:
+            reason = "no " + ", no ".join(missing)
+        elif downward[row]:
+            reason = (f"launch angle {np.degrees(v['vertical_launch_angle'][row]):.1f} deg, below the horizontal: the "
+                      "ball meets the ground at once, there is no carry to predict")
+        elif topspin[row]:
+            reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
+                      "and a tilt of the axis do not carry: flown, it would be backspin")
+        else:
+            reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
+                      "them)")
         skipped.append(f"line {session.lines[row]}: {reason}")
     rows = np.flatnonzero(fly_rows)
     if rows.size == 0:

@@ -88,6 +88,18 @@ def name_in(folder: Path, name: str, suffix: str) -> Path:
     return folder / f"{name}{suffix}"
 
 
+def refuse_overwriting(output: str | os.PathLike, source: str | os.PathLike, what: str) -> None:
+    """An output that names the file the command reads would replace the user's data with the result: refuse."""
+    output, source = Path(output), Path(source)
+    try:
+        same = os.path.samefile(output, source)
+    except OSError:  # one of them does not exist (yet)
+        same = os.path.normcase(os.path.abspath(output)) == os.path.normcase(os.path.abspath(source))
+    if same:
+        raise StudyError(f"{output} ({what}): is the file read ({source}); writing there would replace it: give "
+                         "another name")
+
+
 def refuse_clashes(outputs: list[tuple[str, Path]]) -> None:
     """Two studies of one run writing the same file would overwrite each other: refuse before running either."""
     seen: dict[str, str] = {}

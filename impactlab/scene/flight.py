@@ -147,6 +147,15 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
     return array
 
 
+def _first(name: str, array: np.ndarray, bad: np.ndarray) -> tuple[str, float]:
+    """The first refused value of ``array`` and its path (``ball_speed[2000]``): a message names that one value,
+    not every value of a long array."""
+    if not array.ndim:
+        return name, float(array)
+    index = np.unravel_index(int(np.flatnonzero(bad)[0]), array.shape)
+    return f"{name}[{', '.join(str(int(i)) for i in index)}]", float(array[index])
+
+
 def _in_unit(array: np.ndarray, unit: str) -> str:
     """Values for a message, with the unit they are in (an SI value shown without its unit reads as the user's)."""
     return ", ".join(f"{value:.6g} {unit}" for value in np.ravel(array))
@@ -184,6 +193,15 @@ def conditions_from(conditions) -> Conditions:
     try:
         return Conditions(**values)
     except FieldError as exc:
+        key = exc.path or ""
+        if key in values and not isinstance(exc.given, str):
+            # the value refused is in SI: shown with its unit and as given (a bare 473.15 for '200 degC' reads as
+            # the user's number)
+            dimension = CONDITION_KEYS[key]
+            shown = f"{values[key]:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
+            if isinstance(conditions[key], str):
+                shown += f" (given as {conditions[key]!r})"
+            exc = FieldError(exc.path, exc.expected, shown, exc.choices, file=exc.file, line=exc.line)
         raise exc.at(prefix="conditions") from None
 
 
@@ -224,7 +242,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         ``carry_distance``, ``offline_distance``, ``apex_height`` [m], ``landing_angle`` [degree] and
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
         scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
-        aerodynamic model and its references in ``attrs``.
+        aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
+        integration's limit; e.g. 1000 mph at 80 deg). A shot launched below the horizontal is at the ground going
+        down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
@@ -265,20 +285,23 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     radius = quantity_array(ball_radius, "length", "ball_radius")
     for name, array in values.items():
         if not np.all(np.isfinite(array)):
-            raise FieldError(name, "finite values", array.tolist() if array.ndim else float(array))
+            where, value = _first(name, array, ~np.isfinite(array))
+            raise FieldError(where, "finite values", float(value))
     try:
         np.broadcast_shapes(*(array.shape for array in values.values()))
     except ValueError:
         raise FieldError("launch", "values of one shape, or single values, that broadcast together (one per shot)",
                          ", ".join(f"{name} {array.shape}" for name, array in values.items())) from None
     if np.any(values["ball_speed"] <= 0.0):
-        raise FieldError("ball_speed", "a positive ball speed", _in_unit(values["ball_speed"], "m/s"))
+        where, value = _first("ball_speed", values["ball_speed"], values["ball_speed"] <= 0.0)
+        raise FieldError(where, "a positive ball speed", _in_unit(value, "m/s"))
     if np.any(values["spin_rate"] < 0.0):
-        raise FieldError("spin_rate", "a spin rate >= 0 (the direction of the spin is the spin axis)",
-                         _in_unit(values["spin_rate"] * 30.0 / math.pi, "rpm"))
+        where, value = _first("spin_rate", values["spin_rate"], values["spin_rate"] < 0.0)
+        raise FieldError(where, "a spin rate >= 0 (the direction of the spin is the spin axis)",
+                         _in_unit(value * 30.0 / math.pi, "rpm"))
     if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
-        raise FieldError("launch_angle", "a launch angle between -90 and 90 deg",
-                         _in_unit(np.degrees(values["launch_angle"]), "deg"))
+        where, value = _first("launch_angle", values["launch_angle"], np.abs(values["launch_angle"]) >= math.pi / 2)
+        raise FieldError(where, "a launch angle between -90 and 90 deg", _in_unit(np.degrees(value), "deg"))
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
