@@ -358,16 +358,11 @@ def format_report() -> str:
 
 
 def main(argv=None) -> int:
-    """``python -m impactlab.data.flight_altitude``: the tables of docs/flight.md. It takes no argument: one given
-    is one message and exit code 2 (argparse)."""
-    import argparse
-
-    argparse.ArgumentParser(prog="python -m impactlab.data.flight_altitude",
-                            description="Every flight model's driver carry against air density beside the PGA TOUR "
-                                        "radar's measured dose-response, and fits with it (docs/flight.md)."
-                            ).parse_args(argv)
-    print(format_report())
-    return 0
+    """``python -m impactlab.data.flight_altitude``: the tables of docs/flight.md
+    (:func:`impactlab.data.flight_fit.report_command`)."""
+    return flight_fit.report_command("flight_altitude", "Every flight model's driver carry against air density "
+                                     "beside the PGA TOUR radar's measured dose-response, and fits with it "
+                                     "(docs/flight.md).", format_report, argv)
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md

@@ -276,16 +276,20 @@ def format_report(sources=SOURCES) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> int:
-    """``python -m impactlab.data.flight_fit``: the tables of docs/flight.md. It takes no argument: one given is
-    one message and exit code 2 (argparse), not ignored."""
+def report_command(module: str, description: str, report, argv=None) -> int:
+    """``python -m impactlab.data.<module>``: print ``report()`` (the module's tables of docs/flight.md). The
+    command takes no argument: one given is one message and exit code 2 (argparse), not ignored."""
     import argparse
 
-    argparse.ArgumentParser(prog="python -m impactlab.data.flight_fit",
-                            description="Fit the ball's drag level on measured radar flights and fly TrackMan's "
-                                        "tour tables held out (docs/flight.md).").parse_args(argv)
-    print(format_report())
+    argparse.ArgumentParser(prog=f"python -m impactlab.data.{module}", description=description).parse_args(argv)
+    print(report())
     return 0
+
+
+def main(argv=None) -> int:
+    """``python -m impactlab.data.flight_fit``: the tables of docs/flight.md (:func:`report_command`)."""
+    return report_command("flight_fit", "Fit the ball's drag level on measured radar flights and fly TrackMan's "
+                                        "tour tables held out (docs/flight.md).", format_report, argv)
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/flight.md
