@@ -800,3 +800,17 @@ def test_a_trajectory_lying_on_another_models_says_so_in_the_legend(tmp_path, mo
     assert trajectories._lies_on(drawn, x, z + 0.05, y) == ("a", "case")
     assert trajectories._lies_on(drawn, x, z + 1.0, y) is None
     assert trajectories._lies_on(drawn, x * 1.008, z, y) is None
+
+
+def test_a_flight_shorter_than_one_step_lands_where_the_projectile_does():
+    """A 0.2 mph lob at 45 deg in a vacuum lands after 2 v sin(a) / g = 0.0129 s, inside the integrator's first
+    0.02 s step: carry v^2 sin(2a) / g, landing at the launch angle. The landing search took the interpolant's root
+    at the tee (the launch itself): carry 0, time 0 and the landing angle of the launch, sign flipped (-45 deg)."""
+    import impactlab
+
+    mph = np.array([0.2, 0.5, 3.0])
+    shots = impactlab.fly(ball_speed=mph * 0.44704, launch_angle=np.radians(45.0), spin_rate=0.0, model="vacuum")
+    v, g = mph * 0.44704, 9.80665
+    np.testing.assert_allclose(shots.carry_distance.values, v * v / g, rtol=1e-9)
+    np.testing.assert_allclose(shots.flight_time.values, 2 * v * np.sin(np.radians(45.0)) / g, rtol=1e-9)
+    np.testing.assert_allclose(shots.landing_angle.values, 45.0, atol=1e-6)

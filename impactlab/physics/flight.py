@@ -394,6 +394,21 @@ def fly(
                 tau = tau - sl[2] / np.where(sl[5] == 0, -1e-12, sl[5])
                 tau = np.clip(tau, 0.0, dt)
                 sl = _rk4(sd, tau, pi_)
+            # a flight shorter than one step starts this step on the tee, rising: the root found at tau = 0 is the
+            # launch, not the landing (it gave carry 0 and the launch's velocity as the landing's). The landing is
+            # the interpolant's other root; bisection on the RK4 sub-step finds it (z > 0 just after launch, <= 0
+            # at the step's end).
+            early = (tau <= 1e-12 * dt) & (sd[5] > 0.0)
+            if np.any(early):
+                ie = np.nonzero(early)[0]
+                pe, se = _subset(pi_, ie), sd[:, ie]
+                lo, hi = np.zeros(ie.size), np.full(ie.size, dt)
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    above = _rk4(se, mid, pe)[2] > 0.0
+                    lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+                tau[ie] = hi
+                sl[:, ie] = _rk4(se, hi, pe)
             g_idx = active[idx]
             carry_x[g_idx] = sl[0]
             carry_y[g_idx] = sl[1]
