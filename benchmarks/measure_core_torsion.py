@@ -32,7 +32,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from ball_laws import (measured_cells, per_unit,  # noqa: E402  (docs/ball_laws.py: the tour rows)
+from ball_laws import (measured_cells, model_cells, per_unit,  # noqa: E402  (docs/ball_laws.py: the tour rows)
                        tour_and_wedge_inputs)
 from bench_ball_laws import per_impact  # noqa: E402
 
@@ -88,11 +88,8 @@ def spin_table(model_name, rolling):
         if rolling:
             options = dict(options, rolling_hysteresis="restitution")
         out = get_model(model_name)(**options).compute(inputs, ["spin_rate", "spin_loft", "contact_time"])
-        spin = out["spin_rate"].values
-        values = per_unit(spin, speeds, out["spin_loft"].values)
-        ratio = values[2:4].mean() / values[:2].mean()
-        print(f"| {name} | " + " | ".join(f"{v:.1f}" for v in values) + f" | {ratio:.2f}"
-              f" | {spin[0] / spin[1]:.2f} | {out['contact_time'].values[0] * 1e3:.3f} |")
+        print(f"| {name} | {model_cells(out['spin_rate'].values, out['spin_loft'].values, speeds)}"
+              f" | {out['contact_time'].values[0] * 1e3:.3f} |")
 
 
 def soft_core_sweep():

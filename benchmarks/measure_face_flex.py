@@ -32,7 +32,7 @@ from scipy import optimize
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from ball_laws import (measured_cells, per_unit, scene_inputs,  # noqa: E402  (docs/ball_laws.py: the tour rows)
+from ball_laws import (measured_cells, model_cells, scene_inputs,  # noqa: E402  (docs/ball_laws.py: the tour rows)
                        tour_and_wedge_inputs)
 from bench_ball_laws import per_impact  # noqa: E402
 
@@ -151,12 +151,10 @@ def spin_table(inelastic, rolling):
         if rolling:
             options["rolling_hysteresis"] = "restitution"
         out = get_model("hertz_mindlin")(**options).compute(inputs, names)
-        spin, speed = out["spin_rate"].values, out["ball_speed"].values
+        speed = out["ball_speed"].values
         reference = speed if reference is None else reference
-        values = per_unit(spin, speeds, out["spin_loft"].values)
-        ratio = values[2:4].mean() / values[:2].mean()
         gain = 100 * (speed[:2] / reference[:2] - 1)
-        print(f"| {name} | " + " | ".join(f"{v:.1f}" for v in values) + f" | {ratio:.2f} | {spin[0] / spin[1]:.2f}"
+        print(f"| {name} | {model_cells(out['spin_rate'].values, out['spin_loft'].values, speeds)}"
               f" | {gain[0]:+.1f}, {gain[1]:+.1f} | {out['contact_time'].values[0] * 1e6:.0f} |")
 
 

@@ -92,6 +92,14 @@ def measured_cells() -> str:
             f" | {measured[2:].mean() / measured[:2].mean():.2f} | {ROWS[0][5] / ROWS[1][5]:.2f} |")
 
 
+def model_cells(spin_rpm, spin_loft_deg, speeds_mph) -> str:
+    """A model's cells of a spin-per-unit table, beside :func:`measured_cells`: the four tour rows and the wedge
+    (spin per unit at the model's own spin loft), the iron/driver ratio of the means and the PGA/LPGA driver spin."""
+    values = per_unit(spin_rpm, speeds_mph, spin_loft_deg)
+    return (" | ".join(f"{v:.1f}" for v in values) + f" | {values[2:4].mean() / values[:2].mean():.2f}"
+            f" | {spin_rpm[0] / spin_rpm[1]:.2f}")
+
+
 def wet_losses(roughness_values, lands, film=20e-6):
     """The friction law's spin loss on the wedge observation's shot (urethane ball, maw) with a film on the face."""
     observation = load_observations()["cover"][0]
