@@ -167,7 +167,9 @@ def _hand_rolling_1d(speed, angle, mu, e, arm, m, radius, k2):
     return jn, jt, -arm * jn
 
 
-def test_rolling_integrator_matches_the_hand_solution_on_one_line():
+def hand_line_cases():
+    """The hand solution's cases (fixed rigid faces, no incoming spin, lofts above 0.3 rad, arm 0.6 mm): the
+    arguments of ``rolling_impulses`` (without ``steps``) and the hand answer (J_n, J_t, couple)."""
     from impactlab.physics.contact import contact_state, couple_mobility
 
     inputs = _with(REFERENCE_1D, spin=0.0, club_mass=np.inf)
@@ -176,10 +178,16 @@ def test_rolling_integrator_matches_the_hand_solution_on_one_line():
     state = contact_state(inputs)
     b, d, rates = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"])
     arm = np.full(inputs["speed"].size, 0.6e-3)
-    impulse, moment, flags = ball_laws.rolling_impulses(state["initial_velocity"], state["mobility"], b, d, rates,
-                                                        inputs["friction"], inputs["restitution"], arm, 4000)
-    jn, jt, couple = _hand_rolling_1d(inputs["speed"], inputs["angle"], inputs["friction"], inputs["restitution"],
-                                      arm, inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"])
+    arguments = (state["initial_velocity"], state["mobility"], b, d, rates, inputs["friction"], inputs["restitution"],
+                 arm)
+    hand = _hand_rolling_1d(inputs["speed"], inputs["angle"], inputs["friction"], inputs["restitution"], arm,
+                            inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"])
+    return arguments, hand
+
+
+def test_rolling_integrator_matches_the_hand_solution_on_one_line():
+    arguments, (jn, jt, couple) = hand_line_cases()
+    impulse, moment, flags = ball_laws.rolling_impulses(*arguments, 4000)
     assert not np.any(flags)
     np.testing.assert_allclose(impulse[:, 2], jn, rtol=1e-7)
     np.testing.assert_allclose(-impulse[:, 0], jt, rtol=2e-4)

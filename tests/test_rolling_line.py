@@ -13,7 +13,7 @@ from impactlab.physics import ball_laws, rolling_line
 from impactlab.physics.contact import contact_state, couple_mobility
 from impactlab.testing import reference_inputs
 
-from test_ball_laws import REFERENCE_1D, _hand_rolling_1d, _with
+from test_ball_laws import hand_line_cases
 
 
 def _line_cases(n=240, seed=7):
@@ -65,16 +65,8 @@ def test_closed_form_matches_the_integrator(steps, extrapolate, normal_tol, slip
 
 
 def test_closed_form_is_the_hand_solution():
-    inputs = _with(REFERENCE_1D, spin=0.0, club_mass=np.inf)
-    keep = (inputs["face_youngs_modulus"] == np.inf) & (inputs["angle"] > 0.3)
-    inputs = {key: value[keep] for key, value in inputs.items()}
-    state = contact_state(inputs)
-    b, d, rates = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"])
-    arm = np.full(inputs["speed"].size, 0.6e-3)
-    impulse, moment, flags = rolling_line.rolling_line_impulses(
-        state["initial_velocity"], state["mobility"], b, d, rates, inputs["friction"], inputs["restitution"], arm)
-    jn, jt, couple = _hand_rolling_1d(inputs["speed"], inputs["angle"], inputs["friction"], inputs["restitution"],
-                                      arm, inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"])
+    arguments, (jn, jt, couple) = hand_line_cases()
+    impulse, moment, flags = rolling_line.rolling_line_impulses(*arguments)
     assert not np.any(flags)
     np.testing.assert_allclose(impulse[:, 2], jn, rtol=1e-12)
     np.testing.assert_allclose(-impulse[:, 0], jt, rtol=1e-12)
