@@ -14,7 +14,8 @@ from impactlab.model import ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz, mdr
 
 from impactlab.physics import ball_laws
-from impactlab.physics.contact import DIAGONAL_TOLERANCE, couple_mobility
+from impactlab.physics.contact import couple_mobility
+from impactlab.physics.rolling_line import planar_couple
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
                       core_inputs, face_inputs, face_restitution, law_friction, rolling_on)
@@ -23,25 +24,6 @@ from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BOD
 MAX_DAMPED_LAWS = 8
 #: how a restitution e < 1 enters the compliant models (option ``inelastic``)
 INELASTIC = ("adjusted_speed", "hysteretic")
-
-
-def planar_couple(coupling, rotation, rate, tolerance: float = DIAGONAL_TOLERANCE):
-    """Whether a rolling couple stays on the line of a 1-D case: couple and rolling about the lateral axis alone.
-
-    On a case whose mobility is diagonal (the slip along s, the normal uncoupled), the couple of
-    :func:`impactlab.physics.contact.couple_mobility` keeps to the line when it moves neither the normal
-    (B_n = 0) nor the slip through its own axis (B_ss = B_ll = 0), a couple along l turns nothing along s
-    (D_sl = 0) and nothing rolls along s before impact: then the friction along s drives the rolling along l
-    only, and the couple along l the slip along s only (a sphere on a fixed face or a point-mass head; a head
-    struck on its centre-of-mass line with principal axes along the face). Zero to ``tolerance`` of the
-    largest entry of B, D and the rolling rate.
-    """
-    scale_b = np.abs(coupling).max(axis=(1, 2))
-    scale_d = np.abs(rotation).max(axis=(1, 2))
-    return ((np.abs(coupling[:, 2, :]).max(axis=1) <= tolerance * scale_b)
-            & (np.abs(coupling[:, 0, 0]) <= tolerance * scale_b) & (np.abs(coupling[:, 1, 1]) <= tolerance * scale_b)
-            & (np.abs(rotation[:, 0, 1]) <= tolerance * scale_d)
-            & (np.abs(rate[:, 0]) <= tolerance * np.maximum(np.abs(rate[:, 1]), 1.0)))
 
 
 def int_at_least(low: int):

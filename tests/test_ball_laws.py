@@ -284,7 +284,7 @@ def test_the_couple_on_the_line_equals_the_3d_kernel(name, options):
 def test_the_couple_stays_on_the_line_only_where_nothing_turns_it_off_it():
     """planar_couple on hand-built B, D and rates: a fixed face's sphere (B = R/I_b [n x], D = 1/I_b) keeps the
     couple on the line; a normal coupling, a product of inertia (D_sl) or rolling about the slip axis do not."""
-    from impactlab_models._compliant import planar_couple
+    from impactlab.physics.rolling_line import planar_couple
 
     b = np.zeros((4, 3, 2))
     b[:, 0, 1], b[:, 1, 0] = -2551.2, 2551.2

@@ -184,7 +184,7 @@ def on_line(ratio_tt, coupling, arm, couple_n, couple_t, couple_rr, rolling0, to
     :mod:`impactlab.physics.contact`). A couple (arm > 0) keeps to the lateral axis when it moves neither the
     normal nor the slip through its own axis (B_n = 0, B_ss = B_ll = 0; B_ls acts only on a couple about s, which
     stays 0), D_sl = D_ls = 0 and nothing rolls about s before impact (each under ``tolerance`` of the largest
-    entry of B, of D and of the rolling rate, as models/_compliant.py's ``planar_couple``). Such a case's
+    entry of B, of D and of the rolling rate, as :func:`impactlab.physics.rolling_line.planar_couple`). Such a case's
     components off the line stay 0 in :func:`impactlab.physics.kernels.contact3d._contact3d_cases` (to that
     tolerance), and :mod:`impactlab.physics.kernels.line` skips them.
 

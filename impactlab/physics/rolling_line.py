@@ -17,7 +17,7 @@ v the relative contact velocity in the contact frame (s, l, n) [m/s], Omega the 
 (s, l) [rad/s]. **The line.** A case is on one line when (i) W is diagonal (the slip along s and the normal
 uncoupled, ``contact_state``'s ``one_dimensional``), (ii) the couple moves neither the normal (B_ns = B_nl = 0)
 nor the slip through its own axis (B_ss = B_ll = 0), (iii) D_sl = 0, and (iv) nothing moves along the lateral
-line before impact (v_l = 0, Omega_s = 0): the test of ``models/_compliant.py``'s ``planar_couple`` with the
+line before impact (v_l = 0, Omega_s = 0): the test of :func:`planar_couple` with the
 mobility and the lateral slip added (:func:`on_line`). Then v_l and Omega_s receive nothing from J_s, J_n, C_l,
 stay zero, and maximal dissipation keeps J_l = C_s = 0; what remains is
 
@@ -88,22 +88,48 @@ def on_line(initial, mobility, coupling, rotation, rolling, tolerance: float = D
         :func:`impactlab.physics.contact.couple_mobility`.
     tolerance : float
         Zero to this fraction of the largest entry of W (as ``contact_state``'s ``one_dimensional``), of B and D
-        and of the rolling rate (as ``planar_couple``), and of the speed for the lateral slip [1].
+        and of the rolling rate (as :func:`planar_couple`), and of the speed for the lateral slip [1].
 
     Returns
     -------
     ndarray (n,) of bool
     """
     off = np.abs(mobility[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
+    speed = np.abs(initial).max(axis=1)
+    return ((off <= tolerance * mobility[:, 2, 2]) & planar_couple(coupling, rotation, rolling, tolerance)
+            & (np.abs(initial[:, 1]) <= tolerance * speed))
+
+
+def planar_couple(coupling, rotation, rate, tolerance: float = DIAGONAL_TOLERANCE):
+    """Whether a rolling couple stays on the line of a 1-D case: couple and rolling about the lateral axis alone.
+
+    On a case whose mobility is diagonal (the slip along s, the normal uncoupled), the couple of
+    :func:`impactlab.physics.contact.couple_mobility` keeps to the line when it moves neither the normal
+    (B_n = 0) nor the slip through its own axis (B_ss = B_ll = 0), a couple along l turns nothing along s
+    (D_sl = 0) and nothing rolls along s before impact: then the friction along s drives the rolling along l
+    only, and the couple along l the slip along s only (a sphere on a fixed face or a point-mass head; a head
+    struck on its centre-of-mass line with principal axes along the face). Zero to ``tolerance`` of the
+    largest entry of B, D and the rolling rate. The compliant models keep such cases on their 1-D solver;
+    :func:`on_line` adds the mobility and the lateral slip for the rigid impact's closed form.
+
+    Parameters
+    ----------
+    coupling, rotation, rate : ndarray
+        B (n, 3, 2) [1/(kg m)], D (n, 2, 2) [1/(kg m^2)] and the relative rolling rate (n, 2) [rad/s] of
+        :func:`impactlab.physics.contact.couple_mobility`.
+    tolerance : float
+        Zero to this fraction of the largest entry [1].
+
+    Returns
+    -------
+    ndarray (n,) of bool
+    """
     scale_b = np.abs(coupling).max(axis=(1, 2))
     scale_d = np.abs(rotation).max(axis=(1, 2))
-    speed = np.abs(initial).max(axis=1)
-    return ((off <= tolerance * mobility[:, 2, 2])
-            & (np.abs(coupling[:, 2, :]).max(axis=1) <= tolerance * scale_b)
+    return ((np.abs(coupling[:, 2, :]).max(axis=1) <= tolerance * scale_b)
             & (np.abs(coupling[:, 0, 0]) <= tolerance * scale_b) & (np.abs(coupling[:, 1, 1]) <= tolerance * scale_b)
             & (np.abs(rotation[:, 0, 1]) <= tolerance * scale_d)
-            & (np.abs(rolling[:, 0]) <= tolerance * np.maximum(np.abs(rolling[:, 1]), 1.0))
-            & (np.abs(initial[:, 1]) <= tolerance * speed))
+            & (np.abs(rate[:, 0]) <= tolerance * np.maximum(np.abs(rate[:, 1]), 1.0)))
 
 
 def _rates(slip, roll, mu, d, a, b, c):
