@@ -36,6 +36,13 @@ LAUNCH_OPTIONS = {"ball_speed": "ball speed", "launch_angle": "launch angle", "s
                   "spin_axis": "spin axis (positive: curving right)",
                   "launch_direction": "launch direction (positive: right of the target)"}
 #: printed columns: (title, variable, factor from the dataset's unit, format)
+#: the launch options' dimensions (impactlab.units.DIMENSIONS)
+LAUNCH_DIMENSIONS = {"ball_speed": "speed", "launch_angle": "angle", "spin_rate": "angular_speed",
+                     "spin_axis": "angle", "launch_direction": "angle"}
+#: the launch flown, in the result: (option, variable, factor from SI, unit)
+LAUNCH_COLUMNS = [("ball_speed", "ball_speed", 1.0, "m/s"), ("launch_angle", "vertical_launch_angle", 180 / np.pi,
+                                                             "degree"),
+                  ("spin_rate", "spin_rate", 30 / np.pi, "rpm"), ("spin_axis", "spin_axis", 180 / np.pi, "degree")]
 COLUMNS = [("carry yd", "carry_distance", 1 / YARD, "{:.1f}"), ("offline yd", "offline_distance", 1 / YARD, "{:+.1f}"),
            ("apex yd", "apex_height", 1 / YARD, "{:.1f}"), ("land deg", "landing_angle", 1.0, "{:.1f}"),
            ("time s", "flight_time", 1.0, "{:.2f}")]
@@ -106,21 +113,16 @@ def _fly_launch(given: dict, conditions: dict, model: str) -> xr.Dataset:
     if missing:
         raise StudyError("impactlab fly: a launch needs " + ", ".join(f"--{m.replace('_', '-')}" for m in missing)
                          + " (each with its unit), or give a session file")
-    values = {option: (texts[0] if len(texts) == 1 else texts) for option, texts in given.items()}
-    result = flight.fly(conditions=conditions, model=model, **values)
-    launch = {name: flight.quantity_array(values.get(name, 0.0), dimension, name) for name, dimension in (
-        ("ball_speed", "speed"), ("launch_angle", "angle"), ("spin_rate", "angular_speed"), ("spin_axis", "angle"))}
+    # each value read once, to SI (its unit required); fly checks them and the broadcast, and flies them
+    launch = {name: flight.quantity_array(texts[0] if len(texts) == 1 else texts, LAUNCH_DIMENSIONS[name], name)
+              for name, texts in given.items()}
+    result = flight.fly(conditions=conditions, model=model, **launch)
     shape = result["carry_distance"].shape
-    shots = int(np.prod(shape))
-    out = {name: ("shot", np.asarray(result[name].values, float).reshape(shots), dict(result[name].attrs))
+    out = {name: ("shot", np.asarray(result[name].values, float).ravel(), dict(result[name].attrs))
            for name in PREDICTED}
-    out["ball_speed"] = ("shot", np.broadcast_to(launch["ball_speed"], shape).reshape(shots), {"units": "m/s"})
-    out["vertical_launch_angle"] = ("shot", np.degrees(np.broadcast_to(launch["launch_angle"], shape)).reshape(
-        shots), {"units": "degree"})
-    out["spin_rate"] = ("shot", (np.broadcast_to(launch["spin_rate"], shape) * 30.0 / np.pi).reshape(shots),
-                        {"units": "rpm"})
-    out["spin_axis"] = ("shot", np.degrees(np.broadcast_to(launch["spin_axis"], shape)).reshape(shots),
-                        {"units": "degree"})
+    for name, column, factor, unit in LAUNCH_COLUMNS:
+        value = launch.get(name, np.zeros(()))
+        out[column] = ("shot", (np.broadcast_to(value, shape) * factor).ravel(), {"units": unit})
     return xr.Dataset(out, attrs=dict(result.attrs))
 
 
