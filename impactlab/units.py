@@ -41,6 +41,8 @@ DIMENSIONS: dict[str, tuple[str, str, str]] = {
     "inverse_speed": ("s/m", "s/m", "a slope per speed"),
     # the air of the ball flight's conditions: "15 degC" and "59 degF" are read as temperatures (registry below)
     "temperature": ("K", "K", "a temperature"),
+    # the air's density a launch monitor states beside its temperature, pressure and humidity (Garmin: g/L)
+    "density": ("kg/m**3", "kg/m^3", "a density"),
     "dimensionless": ("dimensionless", "dimensionless", "a number"),
     # sqrt(k rho c) of a face's or a cover's material (the friction law's flash temperature)
     "effusivity": ("J/(m**2*K*s**0.5)", "J m-2 K-1 s-1/2", "a thermal effusivity sqrt(k rho c)"),
@@ -52,6 +54,7 @@ EXAMPLE_UNITS: dict[str, tuple[str, float]] = {
     "length": ("mm", 1e-3), "mass": ("g", 1e-3), "pressure": ("MPa", 1e6), "speed": ("mph", 0.44704),
     "angle": ("deg", math.pi / 180.0), "angular_speed": ("rpm", math.pi / 30.0), "time": ("ms", 1e-3),
     "inertia": ("g*cm**2", 1e-7), "inverse_speed": ("s/m", 1.0), "effusivity": ("J/(m**2*K*s**0.5)", 1.0),
+    "density": ("kg/m**3", 1.0),
     "temperature": ("degC", 1.0),  # an offset unit: _example adds its zero, 273.15 K, instead of multiplying
 }
 
@@ -70,6 +73,22 @@ UNIT_NOTES = {
 def unit_factor(unit: str, si_unit: str) -> float:
     """SI per ``unit``: how many ``si_unit`` one ``unit`` is (``unit_factor("mph", "m/s")`` = 0.44704)."""
     return 1.0 if unit == si_unit else float(registry().Quantity(1.0, unit).to(si_unit).magnitude)
+
+
+@functools.lru_cache(maxsize=64)
+def unit_affine(unit: str, si_unit: str) -> tuple[float, float]:
+    """(scale, offset) with SI value = scale x + offset for x in ``unit``: ``unit_affine("degF", "K")`` =
+    (5/9, 255.372...); for every unit without an offset the scale is :func:`unit_factor` and the offset 0.
+
+    A column of a launch-monitor export in ``[deg F]`` needs the offset, which a factor cannot carry (0 degF is
+    255.37 K, not 0 K): pint converts the two points 0 and 1 of the unit, so its own definition of the offset
+    is used (pint's ``autoconvert_offset_to_baseunit``, :func:`registry`).
+    """
+    if unit == si_unit:
+        return 1.0, 0.0
+    zero = float(registry().Quantity(0.0, unit).to(si_unit).magnitude)
+    one = float(registry().Quantity(1.0, unit).to(si_unit).magnitude)
+    return one - zero, zero
 
 
 def _example(value: float, dimension: str) -> str:

@@ -348,3 +348,115 @@ def test_a_no_data_spin_axis_flies_the_shot_without_offline(tmp_path, capsys):
     assert row["offline_distance [m]"] == "" and row["spin_axis [degree]"] == "" and row["flagged"] == "False"
     assert float(row["spin_rate [rpm]"]) == pytest.approx(5249.0)  # the file's TotalSpin_RPM
     assert "offline not given" in capsys.readouterr().out
+
+
+def test_a_garmin_session_flies_each_shot_in_the_air_its_row_states(tmp_path, capsys):
+    """Garmin states each shot's air (the fixture's lines 3-6: 60 degF, 100.40956 kPa, 39 % and 73 degF, 99.25728
+    kPa, 83 %). Each shot is flown in its own: its carry is a launch typed in with that row's cells as options
+    (the file's cells read here, in the units of its units row), not the standard air's; --standard-air flies the
+    standard air, and options replace the export's air for every shot."""
+    rows = _csv_rows(DATA / "garmin_r10.csv")
+    out, standard, options = (tmp_path / name for name in ("own.csv", "standard.csv", "options.csv"))
+    assert main(["fly", str(DATA / "garmin_r10.csv"), "--include-flagged", "--csv", str(out)]) == 0
+    assert "the export's own, per shot" in capsys.readouterr().out
+    assert main(["fly", str(DATA / "garmin_r10.csv"), "--include-flagged", "--standard-air", "--csv",
+                 str(standard)]) == 0
+    assert "the standard air (the export's own air, stated for 4 shot(s) flown, not used)" in capsys.readouterr().out
+    assert main(["fly", str(DATA / "garmin_r10.csv"), "--include-flagged", "--temperature", "30 degC", "--csv",
+                 str(options)]) == 0
+    assert "the options (the export's own air" in capsys.readouterr().out
+    own, plain, optioned = _csv(out), _csv(standard), _csv(options)
+    assert len(own) == 4
+    for flown, still, with_options in zip(own, plain, optioned):
+        raw = rows[int(flown["line"]) - 3]  # file line 3 is the first shot (header, units row)
+        launch = tmp_path / f"launch{flown['line']}.csv"
+        assert main(["fly", "--ball-speed", f"{raw['Ball Speed']} mph", "--launch-angle", f"{raw['Launch Angle']} deg",
+                     "--spin-rate", f"{flown['spin_rate [rpm]']} rpm", "--spin-axis",
+                     f"{flown['spin_axis [degree]']} deg", "--launch-direction", f"{raw['Launch Direction']} deg",
+                     "--temperature", f"{raw['Temperature']} degF", "--pressure", f"{raw['Air Pressure']} kPa",
+                     "--humidity", f"{raw['Relative Humidity']} %", "--csv", str(launch)]) == 0
+        typed = _csv(launch)[0]
+        assert float(flown["carry_distance [m]"]) == pytest.approx(float(typed["carry_distance [m]"]), rel=1e-9)
+        assert float(flown["air_density [kg/m^3]"]) == pytest.approx(float(raw["Air Density"]), rel=1e-3)
+        # Garmin's air (1.158-1.208 kg/m^3) is not the standard 1.2211 kg/m^3: the carries differ (in either
+        # direction: a slow shot's Reynolds number falls into the drag crisis in thinner air)
+        assert float(flown["carry_distance [m]"]) != pytest.approx(float(still["carry_distance [m]"]), rel=1e-3)
+        assert float(still["air_density [kg/m^3]"]) == pytest.approx(1.2211, abs=1e-4)
+        assert float(with_options["air_density [kg/m^3]"]) < 1.19  # 30 degC at sea level, 50 %
+
+
+def test_a_temperature_in_the_wrong_unit_is_caught_by_the_density_garmin_states(tmp_path, capsys):
+    """The second fixture states [deg C] (18.33 degC, 99.49 kPa, 94 %, 1.180137 g/L). Relabelled [deg F], its
+    temperature would be -7.6 degC and its air 10 % denser than the density the row states: the reader flags the
+    air inconsistent, and the shots fly in the standard air, said, never in the misread air."""
+    text = (DATA / "garmin_r10_b.csv").read_text()
+    good = tmp_path / "metric.csv"
+    good.write_text(text)
+    assert main(["shots", str(good)]) == 0
+    assert "air density: as its temperature, pressure and humidity give it, within 1 %" in capsys.readouterr().out
+    bad = tmp_path / "relabelled.csv"
+    bad.write_text(text.replace("[deg C]", "[deg F]"))
+    assert main(["shots", str(bad)]) == 0
+    report = capsys.readouterr().out
+    assert "air density differs from the density of its temperature" in report
+    assert "1.1801 kg/m^3 stated, 1.3035 computed from -7.6 degC" in report
+    assert main(["fly", str(bad), "--include-flagged"]) == 0
+    printed = capsys.readouterr().out
+    assert "air: 15.0 degC, 1013.2 hPa, 50 % humidity" in printed
+    assert "the air of 3 shot(s) is flagged inconsistent by the reader" in printed
+
+
+def test_the_normalised_table_writes_garmins_temperature_in_degc(tmp_path):
+    """60 degF is 15.5556 degC and 73 degF 22.7778 degC (an offset, not a factor: (F - 32) 5/9); 39 % is 0.39."""
+    out = tmp_path / "normalised.csv"
+    assert main(["shots", str(DATA / "garmin_r10.csv"), "--csv", str(out)]) == 0
+    rows = _csv(out)
+    assert float(rows[0]["air_temperature [degC]"]) == pytest.approx((60.0 - 32.0) * 5.0 / 9.0, abs=1e-7)
+    assert float(rows[3]["air_temperature [degC]"]) == pytest.approx((73.0 - 32.0) * 5.0 / 9.0, abs=1e-7)
+    assert float(rows[0]["air_pressure [kPa]"]) == pytest.approx(100.40956)
+    assert float(rows[0]["relative_humidity [1]"]) == pytest.approx(0.39)
+    assert float(rows[0]["air_density [kg/m^3]"]) == pytest.approx(1.208465)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--standard-air", "--ball-speed", "160 mph", "--launch-angle", "11 deg", "--spin-rate", "2700 rpm"],
+     "--standard-air applies to a session file"),
+    ([str(DATA / "garmin_r10.csv"), "--standard-air", "--altitude", "300 m"], "--standard-air and --altitude"),
+])
+def test_standard_air_is_refused_where_it_means_nothing(argv, message, capsys):
+    assert main(["fly", *argv]) == 2
+    captured = capsys.readouterr()
+    assert message in captured.err and "Traceback" not in captured.err
+
+
+def test_air_the_flight_cannot_take_is_refused_at_its_line(tmp_path, capsys):
+    """A row stating 200 degF (93 degC, beyond the flight's 77 degC) is refused with its file and line, not flown
+    in some other air; its density is set to agree so that the reader's check passes it on."""
+    text = (DATA / "garmin_r10.csv").read_text().splitlines()
+    cells = text[5].split(",")
+    header = text[0].split(",")
+    cells[header.index("Temperature")] = "200.0"
+    cells[header.index("Air Density")] = "0.7064"  # what 200 degF, 99.25728 kPa, 83 % give (within 1 %)
+    text[5] = ",".join(cells)
+    hot = tmp_path / "hot.csv"
+    hot.write_text("\n".join(text) + "\n")
+    assert main(["fly", str(hot)]) == 2
+    err = capsys.readouterr().err
+    assert f"{hot}:6: air.temperature: expected an air temperature between 150 and 350 K" in err
+    assert "Traceback" not in err
+
+
+def test_a_table_in_impactlabs_own_names_flies_in_the_air_it_states(tmp_path):
+    """fly's own names (launch_angle, launch_direction) are read as column names too, and the air columns in any
+    units (70 degF = 21.11 degC, 29.92 inHg = 101.32 kPa, 40 %): the same carry as the launch typed in."""
+    table = tmp_path / "own.csv"
+    table.write_text("ball_speed [mph],launch_angle [deg],launch_direction [deg],spin_rate [rpm],"
+                     "air_temperature [degF],air_pressure [inHg],relative_humidity [%]\n150,12,1.5,2500,70,29.92,40\n")
+    session, typed = tmp_path / "session.csv", tmp_path / "typed.csv"
+    assert main(["fly", str(table), "--csv", str(session)]) == 0
+    assert main(["fly", "--ball-speed", "150 mph", "--launch-angle", "12 deg", "--launch-direction", "1.5 deg",
+                 "--spin-rate", "2500 rpm", "--temperature", "21.1111 degC", "--pressure", "101.3206 kPa",
+                 "--humidity", "40 %", "--csv", str(typed)]) == 0
+    flown, launch = _csv(session)[0], _csv(typed)[0]
+    assert float(flown["carry_distance [m]"]) == pytest.approx(float(launch["carry_distance [m]"]), rel=1e-5)
+    assert float(flown["air_density [kg/m^3]"]) == pytest.approx(1.1950, abs=2e-4)

@@ -108,3 +108,28 @@ def test_incoming_spin_sign_in_the_users_frames():
     # club frame: a shot's own spin is positive, and a ball already spinning that way leaves with more of it
     spin_out = get_model("rigid_coulomb")().compute(dict(inputs, spin=np.array([0.0, w])), ["spin_rate"])["spin_rate"]
     assert spin_out.values[0] > 0 and spin_out.values[1] > spin_out.values[0]
+
+
+def test_offset_units_convert_as_an_affine_map():
+    """0 degF = 459.67 R x 5/9 = 255.3722 K and a degF step is 5/9 K (NIST SP 811, B.8); 0 degC = 273.15 K."""
+    from impactlab.units import unit_affine
+
+    scale, offset = unit_affine("degF", "K")
+    assert scale == pytest.approx(5.0 / 9.0, rel=1e-12)
+    assert offset == pytest.approx(459.67 * 5.0 / 9.0, rel=1e-12)
+    assert unit_affine("degC", "K") == pytest.approx((1.0, 273.15))
+    assert unit_affine("kPa", "Pa") == pytest.approx((1000.0, 0.0))
+
+
+@pytest.mark.parametrize("unit", ["F", "C", "deg"])
+def test_a_temperature_column_in_no_temperature_unit_is_refused(tmp_path, unit):
+    """'[F]' is pint's farad and '[C]' its coulomb, '[deg]' an angle: none is read as a temperature (never
+    guessed); the row and column are named."""
+    from impactlab.data.session import read_session
+    from impactlab.errors import StudyError
+
+    path = tmp_path / "air.csv"
+    path.write_text(f"ball_speed [mph],launch_angle [deg],spin_rate [rpm],air_temperature [{unit}]\n"
+                    "150,12,2500,70\n")
+    with pytest.raises(StudyError, match=r"air\.csv:1:4 \(air_temperature"):
+        read_session(path)

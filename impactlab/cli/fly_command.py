@@ -65,6 +65,9 @@ def add_parser(commands) -> None:
     fly.add_argument("--vendor", help="a session: read with this vendor layout (default: recognised)")
     fly.add_argument("--include-flagged", action="store_true",
                      help="a session: also fly shots whose launch the monitor marks estimated or clamped")
+    fly.add_argument("--standard-air", action="store_true",
+                     help="a session: fly every shot in the standard air, not in the air its export states "
+                          "(Garmin's Temperature, Air Pressure, Relative Humidity)")
     fly.add_argument("--csv", help="also write the table (every value in the units its header names)")
     fly.set_defaults(handler=_cmd_fly)
 
@@ -90,13 +93,20 @@ def _cmd_fly(args) -> int:
     if args.file and given:
         raise StudyError("impactlab fly: give a session file or a launch (--ball-speed, --launch-angle, "
                          "--spin-rate), not both")
-    if not args.file and (args.vendor or args.include_flagged):
-        raise StudyError("impactlab fly: " + ("--vendor" if args.vendor else "--include-flagged") + " applies to a "
-                         "session file, and none is given (a launch typed in has no vendor and no flags)")
+    session_only = [option for option, given_ in (("--vendor", args.vendor), ("--include-flagged",
+                                                                                 args.include_flagged),
+                                                   ("--standard-air", args.standard_air)) if given_]
+    if not args.file and session_only:
+        raise StudyError(f"impactlab fly: {session_only[0]} applies to a session file, and none is given (a launch "
+                         "typed in has no vendor, no flags and no air of its own)")
+    if args.standard_air and conditions:
+        raise StudyError("impactlab fly: --standard-air and " + ", ".join(
+            f"--{option}" for option in AIR_OPTIONS if getattr(args, option) is not None) + " both set the air; give "
+            "one (the options alone already replace the export's air)")
     try:
         if args.file:
             result = fly_session(read_session(args.file, args.vendor), model=args.model, conditions=conditions,
-                                 include_flagged=args.include_flagged)
+                                 include_flagged=args.include_flagged, session_air=not args.standard_air)
         else:
             result = _fly_launch(given, conditions, args.model)
     except FieldError as exc:  # a value's path in the command's words: conditions.temperature -> --temperature
@@ -141,10 +151,17 @@ def describe(result: xr.Dataset, model: str) -> str:
     """The printed table: one row per shot, the launch flown, the predictions in yards and degrees, and for a
     session the monitor's carry beside each with the error summary."""
     a = result.attrs
-    out = [f"model: {model} ({MODEL_REFERENCES.get(model, '')})",
-           f"air: {a['air_temperature_K'] - 273.15:.1f} degC, {a['air_pressure_Pa'] / 100:.1f} hPa, "
-           f"{100 * a['air_relative_humidity']:.0f} % humidity (density {a['air_density_kg_m3']:.4f} kg/m^3), "
-           f"headwind {a['headwind_m_s'] / MPH:+.1f} mph, crosswind {a['crosswind_m_s'] / MPH:+.1f} mph"]
+    out = [f"model: {model} ({MODEL_REFERENCES.get(model, '')})"]
+    if "air_temperature_K" in a:  # one air for every shot
+        out.append(f"air: {a['air_temperature_K'] - 273.15:.1f} degC, {a['air_pressure_Pa'] / 100:.1f} hPa, "
+                   f"{100 * a['air_relative_humidity']:.0f} % humidity (density {a['air_density_kg_m3']:.4f} "
+                   f"kg/m^3), headwind {a['headwind_m_s'] / MPH:+.1f} mph, crosswind {a['crosswind_m_s'] / MPH:+.1f} "
+                   "mph")
+    else:
+        density = result.air_density.values
+        out.append(f"air: density {density.min():.4f}-{density.max():.4f} kg/m^3 over the shots, still")
+    if a.get("air_source"):
+        out[-1] += f"; {a['air_source']}"
     session = "line" in result.coords
     if session:
         out.insert(0, f"{result.attrs['file']}: {result.attrs['vendor']}, {result.sizes['shot']} shot(s) flown")

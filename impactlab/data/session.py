@@ -39,9 +39,9 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
-                                           _flag_estimated, _flag_excluded, _flag_no_data, _progress, _read_bytes,
-                                           _read_flags, _rows_of, _to_numbers)
+from impactlab.data.session_values import (_UNITS_CELL, _check_air, _check_spin_signs, _decimal_mark, _derive,
+                                           _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data, _progress,
+                                           _read_bytes, _read_flags, _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -380,8 +380,9 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if field in layout.zero_is_no_data and (placeholder := numbers == 0.0).any():
             flags[(field, "no data")] = flags.get((field, "no data"), np.zeros(size, bool)) | placeholder
             numbers = np.where(placeholder, np.nan, numbers)
-        assert factor is not None, "every numeric column of the plan has its unit's factor"
-        values[field] = sign * factor * numbers
+        assert factor is not None, "every numeric column of the plan has its unit's scale and offset"
+        scale, offset = factor
+        values[field] = sign * scale * numbers + offset
         used.append((cell, field, unit or "", sign))
     bar.close()
     if problems:
@@ -400,6 +401,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     _flag_all_zero(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
+    _check_air(values, notes, flags)
     handedness = text_values["handedness"]
     bad_hand = sorted({h for h in handedness if h and h.lower() not in ("right", "left", "r", "l", "rh", "lh")})
     if bad_hand:

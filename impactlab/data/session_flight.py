@@ -16,6 +16,11 @@ beside each prediction where the export has them. Nothing is guessed for a shot:
   distance is then not given (NaN): the carry barely depends on them (cos of the tilt in the lift), the offline
   entirely.
 
+The air: a shot whose export states its air (Garmin's Temperature, Air Pressure and Relative Humidity, checked
+against its Air Density by the reader) is flown in that air, unless ``conditions`` are given (they then set the air
+of every shot, and the result says the session's own was not used) or ``session_air`` is False; a shot without it
+(or with air the reader flags inconsistent) flies in the standard air, and the result counts them.
+
 The monitor's carry is what the export says. Whether it is measured depends on the unit: radar units outdoors
 track much of the flight; camera units and indoor sessions fly the launch with their own model, and some exports
 state that their rows are normalised to a standard air (docs/vendors.md, docs/flight.md).
@@ -29,7 +34,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.data.session import Session
-from impactlab.errors import StudyError
+from impactlab.errors import FieldError, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
 from impactlab.scene.plausibility import wrong_sign
@@ -40,10 +45,12 @@ LAUNCH = ("ball_speed", "vertical_launch_angle", "spin_rate")
 PREDICTED = ("carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time")
 #: the prefix of the monitor's own value of a predicted quantity in the result
 MONITOR = "monitor_"
+#: the air a shot states (session fields), as :class:`impactlab.scene.flight.Conditions` takes it
+SESSION_AIR = {"air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "relative_humidity"}
 
 
 def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Mapping | None = None,
-                include_flagged: bool = False) -> xr.Dataset:
+                include_flagged: bool = False, session_air: bool = True) -> xr.Dataset:
     """Fly every shot of ``session`` that has a launch; the monitor's values beside the predictions.
 
     Parameters
@@ -54,11 +61,13 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS`.
     conditions : mapping, optional
         The air, as :func:`impactlab.fly` takes it (``temperature``, ``pressure`` or ``altitude``,
-        ``relative_humidity``, ``headwind``, ``crosswind``, each with its unit); None: 15 degC, 101 325 Pa, 50 %,
-        still. Exports do not state their air, so a comparison with a monitor that normalises its rows should give
-        that monitor's standard air.
+        ``relative_humidity``, ``headwind``, ``crosswind``, each with its unit), for every shot; None (or empty):
+        each shot in the air its export states, else 15 degC, 101 325 Pa, 50 %, still. A comparison with a
+        monitor that normalises its rows should give that monitor's standard air.
     include_flagged : bool
         Also fly shots whose launch values the monitor marks estimated, clamped or inconsistent.
+    session_air : bool
+        Fly a shot in the air its export states (when ``conditions`` are not given); False: the standard air.
 
     Returns
     -------
@@ -68,14 +77,17 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         ``spin_axis`` [degree], NaN where the export has none); the predictions of :data:`PREDICTED` in the units
         of :data:`impactlab.vocabulary.OUTPUTS` (``offline_distance`` NaN where the spin axis or launch direction
         is missing); ``monitor_<name>`` for each predicted quantity the export has (NaN in the rows without
-        it); ``flagged`` (bool: a launch value flown though the monitor flags it). Attributes: ``file``,
-        ``vendor``, ``aerodynamic_model``, ``skipped`` (one "line N: reason" per shot not flown, ``; ``-joined).
+        it); ``flagged`` (bool: a launch value flown though the monitor flags it); ``air_density`` [kg/m^3], the
+        air each shot was flown in. Attributes: ``file``, ``vendor``, ``aerodynamic_model``, ``skipped`` (one
+        "line N: reason" per shot not flown, ``; ``-joined), ``air_source`` (whose air, in words); where every shot
+        flew in one air, its ``air_*`` attributes as :func:`impactlab.fly` gives them.
 
     Raises
     ------
     StudyError
-        A shot with a negative ball speed or spin (a sign or column error, never a shot to fly), at its
-        file:line; or a session with no shot to fly, saying why each was left out.
+        A shot with a negative ball speed or spin (a sign or column error, never a shot to fly), or air the
+        flight cannot take (e.g. a temperature above 77 degC), at its file:line; or a session with no shot to fly,
+        saying why each was left out.
     """
     v = session.values
     with np.errstate(invalid="ignore"):
@@ -118,8 +130,8 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     if problems:
         raise StudyError("; ".join(problems))
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
-                       np.nan_to_num(axis), np.nan_to_num(direction), conditions, model=model)
+    airs, air_source = _airs(session, rows, conditions, session_air)
+    flown, air_density = _fly_in(airs, v, rows, model, session)
     data = {
         "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
         "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),
@@ -128,6 +140,7 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         "spin_axis": ("shot", np.degrees(axis), {"units": "degree", "long_name": "spin axis flown (NaN: not in the "
                                                  "export, flown as 0)"}),
         "flagged": ("shot", flagged[rows], {"long_name": "a launch value the monitor flags (estimated or clamped)"}),
+        "air_density": ("shot", air_density, {"units": "kg/m^3", "long_name": "density of the air flown in"}),
     }
     for name in PREDICTED:
         values = np.array(flown[name].values, dtype=float)
@@ -141,6 +154,66 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     coords = {"line": ("shot", np.asarray(session.lines)[rows]),
               "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
     attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
-                  "skipped": "; ".join(skipped)}
-    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
+                  "skipped": "; ".join(skipped), "air_source": air_source}
+    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes
+                       and (len({repr(air) for air in airs}) == 1 or not key.startswith("air_"))})
     return xr.Dataset(data, coords=coords, attrs=attributes)
+
+
+def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, session_air: bool):
+    """(the air of each row flown: a Conditions, or the ``conditions`` mapping for all; whose air, in words)."""
+    v = session.values
+    states = np.all([np.isfinite(v[field]) for field in SESSION_AIR], axis=0)
+    doubtful = np.zeros_like(states)
+    for (field, _), marked in session.flags.items():  # any flag on the air: estimated, inconsistent
+        if field in SESSION_AIR or field == "air_density":
+            doubtful |= marked & states
+    usable = states & ~doubtful
+    stated, rejected = int(usable[rows].sum()), int(doubtful[rows].sum())
+    caveat = (f"; the air of {rejected} shot(s) is flagged inconsistent by the reader (`impactlab shots` says why) "
+              "and not used" if rejected else "")
+    if conditions or not session_air or not stated:
+        if conditions:
+            words = "the options" + (f" (the export's own air, stated for {stated} shot(s) flown, not used)"
+                                     if stated else "")
+        elif stated:
+            words = f"the standard air (the export's own air, stated for {stated} shot(s) flown, not used)"
+        else:
+            words = "the standard air" + ("" if rejected else " (the export states no air)")
+        return [conditions if conditions else None] * rows.size, words + caveat
+    airs: list[flight.Conditions | None] = []
+    for row in rows.tolist():
+        if not usable[row]:
+            airs.append(None)
+            continue
+        try:
+            airs.append(flight.Conditions(**{key: float(v[field][row]) for field, key in SESSION_AIR.items()}))
+        except FieldError as exc:
+            raise exc.at(prefix="air", file=str(session.file), line=session.lines[row]) from None
+    standard = rows.size - stated
+    return airs, ("the export's own, per shot (each row's temperature, pressure and humidity)"
+                  + (f"; {standard} shot(s) in the standard air" if standard else "") + caveat)
+
+
+def _fly_in(airs: list, v: dict, rows: np.ndarray, model: str, session: Session):
+    """Fly ``rows`` of ``v``, each in its air (shots sharing an air in one call); (the flights, with the dataset of
+    the first air's attributes, and each shot's air density [kg/m^3])."""
+    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
+    keys = [repr(air) for air in airs]
+    results: dict[str, np.ndarray] = {name: np.full(rows.size, np.nan) for name in PREDICTED}
+    density = np.full(rows.size, np.nan)
+    first = None
+    for key in dict.fromkeys(keys):
+        same = np.array([k == key for k in keys])
+        picked = rows[same]
+        flown = flight.fly(v["ball_speed"][picked], v["vertical_launch_angle"][picked], v["spin_rate"][picked],
+                           np.nan_to_num(axis[same]), np.nan_to_num(direction[same]), airs[keys.index(key)],
+                           model=model)
+        for name in PREDICTED:
+            results[name][same] = flown[name].values
+        density[same] = flown.attrs["air_density_kg_m3"]
+        first = first if first is not None else flown
+    assert first is not None, "at least one shot is flown"
+    dataset = xr.Dataset({name: ("shot", results[name], dict(first[name].attrs)) for name in PREDICTED},
+                         attrs=dict(first.attrs))
+    return dataset, density

@@ -15,7 +15,7 @@ from importlib import resources
 import attrs
 
 from impactlab.errors import FieldError, StudyError
-from impactlab.units import to_si
+from impactlab.units import ZERO_DEPENDS_ON_UNIT, to_si
 from impactlab.data.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
@@ -26,6 +26,10 @@ FIELDS = {
     "back_spin": "angular_speed", "side_spin": "angular_speed", "smash_factor": "dimensionless",
     "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",
     "landing_angle": "angle", "flight_time": "time",
+    # the air the monitor states for a shot (Garmin: Temperature [deg F], Air Pressure [kPa], Relative Humidity [%],
+    # Air Density [g/L]); `impactlab fly SESSION` flies each shot in it
+    "air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "dimensionless",
+    "air_density": "density",
 }
 TEXT_FIELDS = ("label", "club", "handedness")
 #: per-row one-sigma uncertainties of the predicted quantities (impactlab's own layout: ``ball_speed_sigma [mph]``)
@@ -41,17 +45,24 @@ DESCRIPTIONS = {
     "spin_rate": "spin rate", "spin_axis": "spin axis", "back_spin": "back spin", "side_spin": "side spin",
     "smash_factor": "smash factor", "carry_distance": "carry", "total_distance": "total distance",
     "apex_height": "apex height", "offline_distance": "offline distance", "landing_angle": "landing angle",
-    "flight_time": "flight time", **{key: f"uncertainty of the {key[:-6].replace('_', ' ')}" for key in SIGMA_FIELDS},
+    "flight_time": "flight time", "air_temperature": "air temperature", "air_pressure": "air pressure",
+    "relative_humidity": "relative humidity (a fraction; '[%]' in a units row)",
+    "air_density": "air density (checked against the temperature, pressure and humidity)",
+    **{key: f"uncertainty of the {key[:-6].replace('_', ' ')}" for key in SIGMA_FIELDS},
     "label": "shot label", "club": "club name", "handedness": "handedness",
 }
 #: units written by the normalised table (--csv): the vocabulary's display units
 DISPLAY_UNITS = {"speed": "m/s", "angle": "deg", "angular_speed": "rpm", "length": "m", "time": "s",
-                 "dimensionless": "1"}
+                 "dimensionless": "1", "temperature": "degC", "pressure": "kPa", "density": "kg/m^3"}
 #: vendor spellings of units -> pint spellings
 UNIT_SPELLINGS = {
     "yds": "yd", "yards": "yd", "yard": "yd", "meters": "m", "metres": "m", "meter": "m", "metre": "m",
     "°": "deg", "*": "deg", "degrees": "deg", "degree": "deg", "sec": "s", "inches": "in", "inch": "in",
     "feet": "ft", "kph": "km/h", "km/t": "km/h", "kmh": "km/h", "mi/h": "mph", "": "",
+    # temperatures: Garmin writes "[deg F]" ("[deg C]" in metric sessions); a bare "F" or "C" is not read as one
+    # (pint reads F as the farad, C as the coulomb: refused as not a temperature, never guessed)
+    "deg f": "degF", "deg c": "degC", "°f": "degF", "°c": "degC", "℉": "degF", "℃": "degC",
+    "g/l": "g/L",
 }
 
 
@@ -207,14 +218,20 @@ def split_header(header: str) -> tuple[str, str | None]:
     return match.group(1), match.group(2)
 
 
-def _unit_factor(unit: str, dimension: str, where: str) -> float:
-    """SI value of one ``unit`` of ``dimension`` (vendor spellings accepted); FieldError when it is not one."""
+def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
+    """(scale, offset) of ``unit`` of ``dimension``: SI value = scale x + offset (vendor spellings accepted; the
+    offset is 0 but for temperatures: 0 degF is 255.37 K); FieldError when it is not a unit of ``dimension``."""
     spelled = UNIT_SPELLINGS.get(unit.strip().lower(), unit.strip())
     if dimension == "dimensionless":
         if spelled in ("", "1", "-"):
-            return 1.0
-        raise FieldError(where, "a number without unit", unit)
-    return to_si(f"1 {spelled}", dimension, where)
+            return 1.0, 0.0
+        if spelled == "%":  # a relative humidity's [%]: the vocabulary's fractions
+            return 0.01, 0.0
+        raise FieldError(where, "a number without unit (or a percentage, [%])", unit)
+    if dimension in ZERO_DEPENDS_ON_UNIT:
+        offset = to_si(f"0 {spelled}", dimension, where)
+        return to_si(f"1 {spelled}", dimension, where) - offset, offset
+    return to_si(f"1 {spelled}", dimension, where), 0.0
 
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
     maps = vendor_maps()
@@ -257,7 +274,9 @@ def _generic_field(header: str) -> tuple[str | None, str | None]:
         key = {"carry": "carry_distance", "total": "total_distance", "apex": "apex_height",
                "backspin": "back_spin", "sidespin": "side_spin", "back_spin": "back_spin",
                "offline": "offline_distance", "smash": "smash_factor", "face_to_path": "face_to_path",
-               "club_path": "path", "club_face": "face_angle"}.get(key, key)
+               "club_path": "path", "club_face": "face_angle",
+               # impactlab.fly's and `impactlab fly`'s names of the launch (one vocabulary in and out)
+               "launch_angle": "vertical_launch_angle", "launch_direction": "horizontal_launch_angle"}.get(key, key)
         if key in FIELDS or key in TEXT_FIELDS:
             return key, unit
         return None, unit

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from impactlab.io.safe_output import write_atomically
-from impactlab.units import DIMENSIONS, unit_factor
+from impactlab.units import DIMENSIONS, unit_affine
 from impactlab.data.session_layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
 from impactlab.scene.plausibility import MAGNITUDES, wrong_sign
 
@@ -40,7 +40,8 @@ def write_normalised(session: Session, path) -> Path:
     for field in present:
         dimension = FIELDS[field]
         si_unit = DIMENSIONS[dimension][0]
-        scale[field] = 1.0 if dimension == "dimensionless" else 1.0 / unit_factor(units[field], si_unit)
+        # a display unit with an offset (degC): x = (SI - offset) / scale
+        scale[field] = (1.0, 0.0) if dimension == "dimensionless" else unit_affine(units[field], si_unit)
     flag_text: list[list[str]] = [[] for _ in range(session.size)]
     for (field, kind), rows in session.flags.items():
         for index in np.flatnonzero(rows).tolist():
@@ -49,7 +50,8 @@ def write_normalised(session: Session, path) -> Path:
         cells = [str(session.lines[index]), *(session.text[field][index] for field in texts)]
         for field in present:
             value = session.values[field][index]
-            cells.append("" if not math.isfinite(value) else f"{value * scale[field]:.10g}")
+            size, zero = scale[field]
+            cells.append("" if not math.isfinite(value) else f"{(value - zero) / size:.10g}")
         cells.append(";".join(sorted(flag_text[index])))
         writer.writerow(cells)
     return write_atomically(path, buffer.getvalue().encode())

@@ -20,6 +20,7 @@ import numpy as np
 from impactlab.errors import StudyError
 from impactlab.study.yaml_lines import checked_bytes, utf8_text
 from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
+from impactlab.physics.atmosphere import air_density
 
 #: the largest file read as a session [bytes]
 MAX_SESSION_BYTES = 512 * 2**20
@@ -272,6 +273,39 @@ def _check_spin_signs(layout, values, used, notes, flags) -> None:
         flags[(field, "inconsistent")] = disagree
     notes.append(f"side spin and spin axis disagree in sign in {int(disagree.sum())} of {int(clear.sum())} row(s) "
                  f"with clear spin: those rows' spin axis and side spin are flagged inconsistent and left out")
+
+
+#: how far a stated air density may lie from the density of the stated temperature, pressure and humidity (Garmin's
+#: own agrees with impactlab.physics.atmosphere.air_density to 0.01 % on the real exports; a temperature read in the
+#: wrong unit moves it by 5 % or more: 1 degF against 1 degC at 15 degC is 1.9 %, 60 degF read as degC 15 %)
+AIR_DENSITY_TOLERANCE = 0.01
+
+
+def _check_air(values: dict, notes: list, flags: dict) -> None:
+    """Rows stating their air density beside its temperature, pressure and humidity: where the density is not the
+    one those give (:data:`AIR_DENSITY_TOLERANCE`), a unit or a column is wrong; the four are flagged
+    ``inconsistent`` (that air is not flown) and the report gives the first row's two densities."""
+    fields = ("air_temperature", "air_pressure", "relative_humidity", "air_density")
+    stated = values["air_density"]
+    complete = np.all([np.isfinite(values[field]) for field in fields], axis=0)
+    if not complete.any():
+        return
+    with np.errstate(invalid="ignore", divide="ignore"):
+        computed = air_density(values["air_temperature"], values["air_pressure"], values["relative_humidity"])
+        off = complete & ~(np.abs(stated / computed - 1.0) <= AIR_DENSITY_TOLERANCE)
+    if not off.any():
+        notes.append(f"air density: as its temperature, pressure and humidity give it, within "
+                     f"{100 * AIR_DENSITY_TOLERANCE:g} %, in all {int(complete.sum())} row(s) stating the four")
+        return
+    for field in fields:
+        flags[(field, "inconsistent")] = off
+    first = int(np.flatnonzero(off)[0])
+    notes.append(f"air density differs from the density of its temperature, pressure and humidity by more than "
+                 f"{100 * AIR_DENSITY_TOLERANCE:g} % in {int(off.sum())} of {int(complete.sum())} row(s) (first: "
+                 f"{stated[first]:.4f} kg/m^3 stated, {computed[first]:.4f} computed from "
+                 f"{values['air_temperature'][first] - 273.15:.1f} degC, {values['air_pressure'][first] / 1e3:.2f} "
+                 f"kPa, {100 * values['relative_humidity'][first]:.0f} %): a unit or a column is wrong; that air is "
+                 f"flagged inconsistent and not flown")
 
 
 def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
