@@ -656,3 +656,17 @@ def test_gspro_units_are_read_whatever_their_case_and_meters_still_refused():
         np.testing.assert_array_equal(lower.values["ball_speed"], plain.values["ball_speed"])
     with pytest.raises(StudyError, match=r"Units: expected 'Yards' or '', got .*'meters'.*not guessed"):
         read_session_text(text.replace('"Units": "Yards"', '"Units": "meters"'), "capture.json")
+
+
+@pytest.mark.parametrize("forced", ["trackman_tps", "impactlab"])
+def test_a_vendor_forced_onto_another_vendors_export_is_refused(forced, capsys):
+    """The Garmin fixture read with TrackMan's map (or impactlab's own names) would take Garmin's Sidespin as
+    positive curving right and leave its +-30 deg spin-axis clamp unflagged: refused, naming the layout the header
+    is; forcing the layout it is, or one of two that both match, still reads."""
+    path = DATA / "garmin_r10.csv"
+    assert main(["shots", str(path), "--vendor", forced]) == 2
+    err = capsys.readouterr().err
+    assert f"--vendor {forced}: the header is that of the Garmin Golf app" in err
+    assert "give --vendor garmin_golf" in err and "Traceback" not in err
+    session = read_session(path, "garmin_golf")
+    assert session.flags[("spin_axis", "clamped")].any()

@@ -235,18 +235,22 @@ def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
 
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
     maps = vendor_maps()
-    if forced is not None:
-        if forced == GENERIC.id:
-            return GENERIC
-        if forced not in maps:
-            raise FieldError("--vendor", "a vendor layout", forced, choices=[GENERIC.id, *maps])
-        return maps[forced]
     names = {_norm(split_header(cell)[0]) for cell in header}
     found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names]
-    if not found:
-        return GENERIC
     found.sort(key=lambda vendor: -len(vendor.recognise))
-    return found[0]
+    if forced is not None:
+        if forced != GENERIC.id and forced not in maps:
+            raise FieldError("--vendor", "a vendor layout", forced, choices=[GENERIC.id, *maps])
+        chosen = GENERIC if forced == GENERIC.id else maps[forced]
+        if found and chosen not in found:
+            # another vendor's columns, read with this layout's signs, units and flags, would be wrong silently
+            # (a Garmin file read as TrackMan's: its Sidespin's sign, its +-30 deg spin-axis clamp unflagged)
+            raise StudyError(f"{file}: --vendor {forced}: the header is that of the {found[0].name} "
+                             f"({found[0].id}; columns {', '.join(repr(name) for name in found[0].recognise)}), not "
+                             f"of the {chosen.name}; read with the {forced} layout, its signs and flags would be "
+                             f"wrong. Leave --vendor out, or give --vendor {found[0].id}")
+        return chosen
+    return found[0] if found else GENERIC
 
 
 def _header_index(rows: list[list[str]], forced: str | None) -> int:
