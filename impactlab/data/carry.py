@@ -17,10 +17,10 @@ import numpy as np
 import yaml
 
 from impactlab.data.session import read_session
+from impactlab.data.session_flight import fly_session
 from impactlab.errors import StudyError
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS
-from impactlab.scene.plausibility import wrong_sign
 from impactlab.units import MPH
 
 YARD = 0.9144  #: m (exact, the international yard)
@@ -151,8 +151,13 @@ def validate_carry(model: str | Callable = DEFAULT_MODEL, table: CarryTable | No
             "rms_carry_error": float(np.sqrt(np.mean(np.square(error)))), "table": table}
 
 
-def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
+def session_carry(path, model: str = DEFAULT_MODEL, conditions=None, include_flagged: bool = True,
+                  session_air: bool = False) -> dict:
     """Fly the launch of every shot of a launch-monitor export that has the vendor's carry; model beside vendor.
+
+    The table of docs/flight.md ("Launch-monitor exports"): :func:`impactlab.data.session_flight.fly_session` (the
+    one code path of ``impactlab fly SESSION``), kept to the shots with a carry, by default with the monitor's
+    flagged launches too and in the standard air (the vendors' own models are compared on one air).
 
     Parameters
     ----------
@@ -160,44 +165,46 @@ def session_carry(path, model: str = DEFAULT_MODEL, **options) -> dict:
         An export :func:`impactlab.data.session.read_session` reads.
     model : str
         A key of :data:`impactlab.physics.aerodynamics.MODELS`.
-    **options
-        Passed to :func:`impactlab.physics.flight.fly` (default the standard air: exports state no weather).
+    conditions : mapping, optional
+        The air, as :func:`impactlab.fly` takes it (each value with its unit); None: the standard air.
+    include_flagged, session_air : bool
+        As :func:`~impactlab.data.session_flight.fly_session`: fly launches the monitor flags (estimated spins);
+        fly each shot in the air its export states.
 
     Returns
     -------
     dict
         ``vendor`` (name), ``club``, ``ball_speed`` [m/s], ``launch_angle`` [rad], ``spin_rate`` [rad/s], ``spin_axis``
-        [rad] (0 where the export has none),
-        ``vendor_carry`` and ``carry`` [m], ``carry_error`` (model over vendor minus 1), for the shots with ball
-        speed, launch angle, spin (total, or back and side) and carry.
+        [rad] (0 where the export has none), ``vendor_carry`` and ``carry`` [m], ``carry_error`` (model over vendor
+        minus 1), for the shots flown that have a carry.
 
     Raises
     ------
     StudyError
-        A kept shot with a ball speed or spin below zero, or a carry that is not positive (each at its file:line).
+        A shot with a ball speed or spin below zero, or a carry that is not positive (each at its file:line).
     """
     session = read_session(path)
     v = session.values
-    spin = v["spin_rate"]  # the reader already fills it from back and side spin where a row has only those
-    axis = np.nan_to_num(v["spin_axis"])
-    keep = np.isfinite(v["ball_speed"]) & np.isfinite(v["vertical_launch_angle"]) & np.isfinite(spin) & np.isfinite(
-        v["carry_distance"])
-    # a magnitude below zero or a carry that is not positive is a sign or column error (or a placeholder), never a
-    # shot to fly: refused at its line, as the shot table refuses it, rather than flown or divided by
-    rows = np.flatnonzero(keep).tolist()
-    problems = [problem for row in rows for problem in wrong_sign(
-        {"ball_speed": v["ball_speed"], "spin_rate": spin}, row, f"{session.file}:{session.lines[row]}")]
-    problems += [f"{session.file}:{session.lines[row]}: carry_distance: expected a carry > 0, got "
-                 f"{v['carry_distance'][row]:.6g} m" for row in rows if not v["carry_distance"][row] > 0.0]
+    # a carry that is not positive is a placeholder or a column error: refused at its line rather than divided by
+    problems = [f"{session.file}:{line}: carry_distance: expected a carry > 0, got {carry:.6g} m"
+                for line, carry in zip(session.lines, v["carry_distance"]) if np.isfinite(carry) and not carry > 0.0]
+    try:
+        flown = fly_session(session, model=model, conditions=conditions, include_flagged=include_flagged,
+                            session_air=session_air)
+    except StudyError as exc:  # the launches' problems (a negative speed or spin) beside the carries'
+        raise StudyError("; ".join([str(exc), *problems])) from None
     if problems:
         raise StudyError("; ".join(problems))
-    result = flight.fly(v["ball_speed"][keep], v["vertical_launch_angle"][keep], spin[keep], axis[keep], model=model,
-                        **options)
-    return {"vendor": session.vendor.name, "club": [c for c, k in zip(session.text["club"], keep) if k],
-            "ball_speed": v["ball_speed"][keep], "launch_angle": v["vertical_launch_angle"][keep],
-            "spin_rate": spin[keep], "spin_axis": axis[keep], "vendor_carry": v["carry_distance"][keep],
-            "carry": result["carry_distance"],
-            "carry_error": result["carry_distance"] / v["carry_distance"][keep] - 1.0}
+    if "monitor_carry_distance" not in flown:
+        raise StudyError(f"{session.file}: no shot flown has the monitor's carry to compare with")
+    keep = np.isfinite(flown["monitor_carry_distance"].values)
+    picked = flown.isel(shot=np.flatnonzero(keep))
+    vendor_carry = picked["monitor_carry_distance"].values
+    return {"vendor": session.vendor.name, "club": [str(club) for club in picked.club.values],
+            "ball_speed": picked.ball_speed.values, "launch_angle": np.radians(picked.vertical_launch_angle.values),
+            "spin_rate": picked.spin_rate.values * np.pi / 30.0,
+            "spin_axis": np.nan_to_num(np.radians(picked.spin_axis.values)), "vendor_carry": vendor_carry,
+            "carry": picked.carry_distance.values, "carry_error": picked.carry_distance.values / vendor_carry - 1.0}
 
 
 def format_validation(model: str = DEFAULT_MODEL, table: str = "trackman_carry", **options) -> str:
