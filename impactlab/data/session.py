@@ -40,7 +40,7 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
 from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
-                                           _flag_estimated, _flag_excluded, _flag_no_data, _progress, _read_bytes,
+                                           _flag_estimated, _flag_without, _flag_excluded, _flag_no_data, _progress, _read_bytes,
                                            _read_flags, _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
@@ -212,6 +212,24 @@ class Session:
                          row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
 
 
+def _row_key(cells) -> tuple:
+    """A row's cells for comparing rows (case, spaces and trailing empty cells aside)."""
+    key = [_norm(cell) for cell in cells]
+    while key and not key[-1]:
+        key.pop()
+    return tuple(key)
+
+
+def _units_difference(header, first, other) -> str:
+    """The first column whose unit differs between two units rows, said as 'Carry [m], was [Yards]'."""
+    for column, name in enumerate(header):
+        was = first[column].strip() if column < len(first) else ""
+        now = other[column].strip() if column < len(other) else ""
+        if _norm(was) != _norm(now):
+            return f"{name!r} {now or '(none)'}, was {was or '(none)'}"
+    return "a column beyond the header"
+
+
 def read_session(path, vendor: str | None = None) -> Session:
     """Read a launch-monitor export (or an impactlab shot-table CSV) as exported; see the module docstring.
 
@@ -245,6 +263,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     if body and any(cell.strip() for cell in body[0]) and all(
             _UNITS_CELL.match(cell) or not cell.strip() for cell in body[0]):
         units_row = [cell.strip()[1:-1].strip() if cell.strip() else "" for cell in body[0]]
+        body_units, units_line = body[0], body_lines[0]
         notes.append(f"units row at line {body_lines[0]}")
         body, body_lines = body[1:], body_lines[1:]
     keep = [i for i, cells in enumerate(body) if any(cell.strip() for cell in cells)]
@@ -319,9 +338,28 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     required_values = {_norm(str(value)) for value in required["values"]}
     refused = []
     shots, shot_lines = [], []
+    header_key = _row_key(header)
+    units_key = None if units_row is None else _row_key(body_units)
+    after_header = False
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
+        # the header again: a new block of the export (Rapsodo writes it above every club's shots) or a second
+        # session appended to the first; its units row must be the first block's, else the units would be mixed
+        if _row_key(cells) == header_key:
+            skipped.append((line, "the header again (a new block of the export), not a shot"))
+            after_header = True
+            continue
+        if after_header and units_row is not None and all(_UNITS_CELL.match(c) or not c.strip() for c in cells):
+            if _row_key(cells) != units_key:
+                problems.append(f"{file}:{line}: a units row that differs from the one at line {units_line} "
+                                f"({_units_difference(header, body_units, cells)}): the file joins blocks in "
+                                f"different units; export or read them separately")
+            else:
+                skipped.append((line, "the units row again, under the repeated header"))
+            after_header = False
+            continue
+        after_header = False
         summary_row = next(((column, why) for column, values, why in summary
                             if column < len(cells) and _norm(cells[column]) in values), None)
         if summary_row is not None:
@@ -388,7 +426,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         shown = "; ".join(problems[:40]) + (f" (and {len(problems) - 40} more)" if len(problems) > 40 else "")
         raise StudyError(f"{file}: {len(problems)} bad cell(s) or row(s): {shown}")
 
-    _flag_estimated(layout, header, columns, values, flags, used, unused)
+    _flag_estimated(layout, header, columns, values, flags, used, unused, notes)
     _flag_excluded(layout, header, columns, flags, used, unused)
     _flag_no_data(layout, header, columns, values, flags, used, unused)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
@@ -398,6 +436,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if clamped.any():
             flags[(field, "clamped")] = clamped
     _flag_all_zero(layout, values, flags, notes)
+    _flag_without(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
     handedness = text_values["handedness"]

@@ -109,6 +109,10 @@ class VendorMap:
     spin_axis_follows_side_spin: bool = False
     #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
     excluded: dict | None = attrs.field(default=None, eq=False)
+    #: [{field, without, only_zero, why}]: a value written where a field it is made from is missing is a placeholder
+    #: (Garmin writes Club Face 0.0 or Face to Path 0.0 with no club path, and a Smash Factor of -26.25 with no club
+    #: speed): read as missing, flagged ``no data``; ``only_zero: true`` limits the rule to exact zeros
+    no_data_without: tuple = ()
 
     def rule(self, header: str) -> ColumnRule | None:
         """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
@@ -130,7 +134,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
-            "zero_is_no_data", "no_data", "required"}
+            "zero_is_no_data", "no_data", "required", "no_data_without"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -150,9 +154,23 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         for field in fields:
             if field not in FIELDS:
                 raise StudyError(f"{where}: {key}: {field!r} is not a numeric session field")
+    without = []
+    for rule in document.get("no_data_without") or ():
+        if not isinstance(rule, dict) or not {"field", "without"} <= set(rule) or \
+                set(rule) - {"field", "without", "only_zero", "why"}:
+            raise StudyError(f"{where}: no_data_without: {rule!r}: expected {{field, without, only_zero, why}}")
+        for field in (rule["field"], *rule["without"]):
+            if field not in FIELDS:
+                raise StudyError(f"{where}: no_data_without: {field!r} is not a numeric session field")
+        without.append({"field": rule["field"], "without": tuple(rule["without"]),
+                        "only_zero": bool(rule.get("only_zero", False)),
+                        "why": str(rule.get("why", ""))})
     summary = document.get("summary_rows")
     summary = [] if summary is None else (summary if isinstance(summary, list) else [summary])
-    for rule in (*summary, document.get("no_data"), document.get("required")):
+    estimated = document.get("estimated")
+    if estimated is not None and set(estimated) - {"column", "values", "measured", "fields"}:
+        raise StudyError(f"{where}: estimated: {estimated!r}: expected {{column, values, measured, fields}}")
+    for rule in (*summary, document.get("no_data"), document.get("required"), estimated):
         if rule is not None and not ({"column", "values"} <= set(rule)):
             raise StudyError(f"{where}: {rule!r}: a row rule needs a column and its values")
     if document.get("left_right_suffix") and document.get("left_right_prefix"):
@@ -174,7 +192,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         summary_rows=summary or None, left_right_suffix=bool(document.get("left_right_suffix", False)),
         left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
         zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
-        excluded=document.get("excluded"),
+        excluded=document.get("excluded"), no_data_without=tuple(without),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 
 

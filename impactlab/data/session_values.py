@@ -159,13 +159,29 @@ def _rule_marks(rule, header, columns, used, unused, meaning: str):
     return np.array([_norm(cell) in marks for cell in columns[column]])
 
 
-def _flag_estimated(layout, header, columns, values, flags, used, unused) -> None:
+def _flag_estimated(layout, header, columns, values, flags, used, unused, notes) -> None:
+    """Rows whose estimated-flag column holds one of the layout's ``values``; where the layout also lists the
+    values that mean measured, a value in neither list (a localised export's word the layout does not know, a value
+    a new app version writes) cannot be told from an estimate: those rows are flagged estimated too, and said."""
     rule = layout.estimated
     estimated = _rule_marks(rule, header, columns, used, unused, rule and (
         "estimated flag: " + " or ".join(map(str, rule["values"])) + " marks " + ", ".join(rule["fields"])
         + " as estimated"))
     if estimated is None:
         return
+    if rule.get("measured") is not None:
+        names = [_norm(split_header(c)[0]) for c in header]
+        cells = [_norm(cell) for cell in columns[names.index(_norm(rule["column"]))]]
+        known = {_norm(v) for v in (*rule["values"], *rule["measured"])} | {""}
+        unknown = np.array([cell not in known for cell in cells])
+        if unknown.any():
+            seen = sorted({cell for cell in cells if cell not in known})
+            notes.append(f"{rule['column']}: {int(unknown.sum())} row(s) hold {', '.join(map(repr, seen[:5]))}, "
+                         f"neither a value that marks an estimate ({', '.join(map(repr, rule['values'])) or 'none'}) "
+                         f"nor one that marks a measurement ({', '.join(map(repr, rule['measured'])) or 'none'}) "
+                         f"in this layout: their {', '.join(rule['fields'])} are flagged estimated (not told apart "
+                         f"from an estimate)")
+            estimated = estimated | unknown
     if estimated.any():
         for field in rule["fields"]:
             present = estimated & np.isfinite(values[field])
@@ -290,6 +306,28 @@ def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
         flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(zero)) | zero
     notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-club-data "
                  f"marker): read as missing")
+
+
+def _flag_without(layout, values: dict, flags: dict, notes: list) -> None:
+    """Values written where a field they are made from is missing (``layout.no_data_without``): placeholders, read
+    as missing and flagged ``no data``, each rule said once with its count."""
+    for rule in layout.no_data_without:
+        value = values[rule["field"]]
+        lacking = np.zeros(value.shape, bool)
+        for field in rule["without"]:
+            lacking |= np.isnan(values[field])
+        placeholder = lacking & np.isfinite(value)
+        if rule["only_zero"]:  # an exact 0 (0 in every unit)
+            placeholder &= value == 0.0
+        if not placeholder.any():
+            continue
+        values[rule["field"]] = np.where(placeholder, np.nan, value)
+        flags[(rule["field"], "no data")] = flags.get((rule["field"], "no data"), np.zeros_like(placeholder)) | \
+            placeholder
+        written = "exactly 0" if rule["only_zero"] else "a value"
+        notes.append(f"{int(placeholder.sum())} row(s) give {rule['field']} {written} with no "
+                     f"{' or no '.join(rule['without'])}: read as missing" + (f" ({rule['why']})" if rule['why']
+                                                                               else ""))
 
 
 def _inherit(flags: dict, field: str, sources) -> None:
