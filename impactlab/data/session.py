@@ -40,7 +40,8 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
 from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
-                                           _flag_estimated, _flag_without, _flag_excluded, _flag_no_data, _progress, _read_bytes,
+                                           _club_names, _flag_estimated, _flag_without, _flag_excluded, _flag_no_data,
+                                           _progress, _read_bytes,
                                            _read_flags, _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
@@ -308,6 +309,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                                 f"else the row is read as a shot); a number without its unit is not read (115 could "
                                 f"be mph or m/s)")
                 continue
+            unit = layout.unit_spellings.get(_norm(unit), unit) if unit else unit  # the layout's own spellings
             try:
                 factor = _unit_factor(unit or "", FIELDS[field], where)
             except FieldError as exc:
@@ -439,6 +441,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     _flag_without(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
+    text_values["club"] = _club_names(layout, text_values["club"], notes)
     handedness = text_values["handedness"]
     bad_hand = sorted({h for h in handedness if h and h.lower() not in ("right", "left", "r", "l", "rh", "lh")})
     if bad_hand:

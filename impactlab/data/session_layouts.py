@@ -113,6 +113,10 @@ class VendorMap:
     #: (Garmin writes Club Face 0.0 or Face to Path 0.0 with no club path, and a Smash Factor of -26.25 with no club
     #: speed): read as missing, flagged ``no data``; ``only_zero: true`` limits the rule to exact zeros
     no_data_without: tuple = ()
+    #: the layout's own unit spellings in its units row (a Thai export's ``[ม.]`` is metres): spelling -> unit
+    unit_spellings: dict = attrs.field(factory=dict, eq=False)
+    #: words of the layout's club names -> the catalogue's (German ``Eisen 7`` -> ``Iron 7``), whole words only
+    club_words: dict = attrs.field(factory=dict, eq=False)
 
     def rule(self, header: str) -> ColumnRule | None:
         """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
@@ -134,7 +138,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
-            "zero_is_no_data", "no_data", "required", "no_data_without"}
+            "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -193,20 +197,65 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
         zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
         excluded=document.get("excluded"), no_data_without=tuple(without),
+        unit_spellings={_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
+        club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+
+
+#: rules of a layout that name a column and the words written in it: a translated layout restates them
+_WORDED_RULES = ("estimated", "excluded", "no_data", "required", "summary_rows")
+
+
+def _with_base(document: dict, documents: dict, where: str) -> dict:
+    """A translated layout (``base: garmin_golf`` and ``headers: {Datum: Date, ...}``): the base layout's document
+    with the translated header names added to its columns (each with the rule of the base's column it translates,
+    signs included) and the layout's own keys over the base's. Rules that name a column and its words
+    (:data:`_WORDED_RULES`) must be restated in the layout's words; implied units follow the translated names."""
+    if "base" not in document:
+        if "headers" in document:
+            raise StudyError(f"{where}: headers: translates a base layout's headers; name the layout in 'base'")
+        return document
+    base = documents.get(document["base"])
+    if base is None or "base" in base:
+        raise StudyError(f"{where}: base: expected the id of a shipped layout that has no base itself, got "
+                         f"{document['base']!r}")
+    headers = document.get("headers") or {}
+    if not headers:
+        raise StudyError(f"{where}: headers: a layout with a base gives its header names (name: base layout's name)")
+    base_columns = {_norm(k): v for k, v in (base.get("columns") or {}).items()}
+    merged = {key: value for key, value in base.items() if key not in _WORDED_RULES}
+    merged.update({key: value for key, value in document.items() if key not in ("base", "headers")})
+    columns = dict(base.get("columns") or {})
+    english = {}
+    for local, name in headers.items():
+        if _norm(name) not in base_columns:
+            raise StudyError(f"{where}: headers.{local}: {name!r} is no column of the {document['base']} layout")
+        columns[local] = base_columns[_norm(name)]
+        english[_norm(name)] = local
+    merged["columns"] = {**columns, **(document.get("columns") or {})}
+    missing = [key for key in _WORDED_RULES if base.get(key) and key not in document]
+    if missing:
+        raise StudyError(f"{where}: {', '.join(missing)}: the {document['base']} layout's rule names its column and "
+                         f"values in its own words; restate it in this layout's")
+    merged["implied_units"] = {english.get(_norm(k), k): v for k, v in (base.get("implied_units") or {}).items()}
+    merged["implied_units"].update(document.get("implied_units") or {})
+    return merged
 
 
 @functools.cache
 def vendor_maps() -> dict[str, VendorMap]:
-    """Every vendor layout shipped with impactlab, by id."""
+    """Every vendor layout shipped with impactlab, by id (a translated layout built on its base, :func:`_with_base`)."""
     import yaml
 
-    maps = {}
+    documents = {}
     for entry in sorted(resources.files("impactlab.data.vendors").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".yaml"):
-            vendor = _vendor_from_document(yaml.safe_load(entry.read_text(encoding="utf-8")),
-                                           f"impactlab/data/vendors/{entry.name}")
-            maps[vendor.id] = vendor
+            documents[f"impactlab/data/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
+    by_id = {document.get("id"): document for document in documents.values() if isinstance(document, dict)}
+    maps = {}
+    for where, document in documents.items():
+        vendor = _vendor_from_document(_with_base(document, by_id, where), where)
+        maps[vendor.id] = vendor
     return maps
 
 

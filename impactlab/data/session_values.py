@@ -330,6 +330,23 @@ def _flag_without(layout, values: dict, flags: dict, notes: list) -> None:
                                                                                else ""))
 
 
+def _club_names(layout, names: tuple, notes: list) -> tuple:
+    """Club names with the layout's words turned into the catalogue's (``Eisen 7`` -> ``Iron 7``), word by word;
+    said once with an example."""
+    if not layout.club_words:
+        return names
+    turned = {}
+    for name in set(names):
+        words = [layout.club_words.get(_norm(word), word) for word in name.split()]
+        if " ".join(words) != " ".join(name.split()):
+            turned[name] = " ".join(words)
+    if turned:
+        example = next(iter(sorted(turned.items())))
+        notes.append(f"club names in the layout's words read as the catalogue's: {len(turned)} name(s), e.g. "
+                     f"{example[0]!r} as {example[1]!r}")
+    return tuple(turned.get(name, name) for name in names)
+
+
 def _inherit(flags: dict, field: str, sources) -> None:
     for (name, kind), rows in list(flags.items()):
         if name in sources and kind in ("estimated", "clamped"):

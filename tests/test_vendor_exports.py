@@ -1,0 +1,192 @@
+"""Launch-monitor exports as their users export them, beyond the first layouts of tests/test_vendors.py: a header
+repeated above every block (Rapsodo), a second session appended, placeholders written where a monitor read no club
+(Garmin R10 and R50), spin-rate types a layout does not know, and the Garmin Golf app's exports in German, Spanish,
+Dutch and Thai. Fixtures and their sources: tests/data/vendors/README.md. The oracles are numbers typed from the
+fixtures and units converted by their definitions (1 km/h = 1/3.6 m/s, 1 yd = 0.9144 m), not values the reader
+computed."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from impactlab.cli import main
+from impactlab.data.session import read_session, read_session_text
+from impactlab.errors import StudyError
+from impactlab.scene.catalogue import club_key
+
+DATA = Path(__file__).parent / "data" / "vendors"
+YD = 0.9144  # m
+FT = 0.3048  # m
+MPH = 0.44704  # m/s
+KMH = 1 / 3.6  # m/s
+RPM = 2 * math.pi / 60  # rad/s
+DEG = math.pi / 180
+
+
+def test_rapsodo_blocks_repeat_their_header_and_every_block_is_read():
+    # real rows (DocNR/raid.golf rapsodo_mlm2pro_mixed_club_sample.csv) in the per-club block layout: the header
+    # again above the 5i, each block closed by Average and Std. Dev.; before, the second header was read as a shot
+    # and the file refused at its cells ('expected a number, got 'Carry Distance'')
+    session = read_session(DATA / "rapsodo_mlm2pro_blocks.csv")
+    assert session.vendor.id == "rapsodo_mlm2pro"
+    assert session.lines.tolist() == [4, 5, 10, 11]
+    assert list(session.text["club"]) == ["7i", "7i", "5i", "5i"]
+    v = session.values
+    assert v["carry_distance"].tolist() == pytest.approx([142.2 * YD, 146.8 * YD, 157.8 * YD, 157.0 * YD])
+    assert v["apex_height"][2] == pytest.approx(67.9 * FT)
+    assert v["offline_distance"][2] == pytest.approx(-10.3 * YD)  # negative = left, as exported
+    assert v["spin_axis"][3] == pytest.approx(6.8 * DEG)
+    reasons = dict(session.skipped)
+    assert reasons[9] == "the header again (a new block of the export), not a shot"
+    assert {6, 7, 12, 13} <= set(reasons) and "Average" in reasons[12]
+
+
+GARMIN_HEADER = ("Date,Player,Club Type,Club Speed,Ball Speed,Launch Angle,Backspin,Sidespin,Spin Rate,"
+                 "Spin Rate Type,Spin Axis,Carry Distance,Carry Deviation Distance")
+GARMIN_UNITS = ",,,[mph],[mph],[deg],[rpm],[rpm],[rpm],,[deg],[yds],[yds]"
+GARMIN_ROW = "6/6/26 08:40:02,P,7 Iron,59.7,77.4,15.8,3545.8,-702.5,3614.7,Measured,11.2,85.3,7.4"
+
+
+def test_a_second_session_appended_reads_if_its_units_agree_and_is_refused_if_not():
+    same = "\n".join([GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW, GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW]) + "\n"
+    session = read_session_text(same, "two.csv")
+    assert session.size == 2 and session.lines.tolist() == [3, 6]
+    assert dict(session.skipped) == {4: "the header again (a new block of the export), not a shot",
+                                     5: "the units row again, under the repeated header"}
+    assert session.values["ball_speed"].tolist() == pytest.approx([77.4 * MPH] * 2)
+    metric = "\n".join([GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW, GARMIN_HEADER,
+                        GARMIN_UNITS.replace("[mph],[mph]", "[km/h],[km/h]"), GARMIN_ROW]) + "\n"
+    with pytest.raises(StudyError, match=r"two.csv:5: a units row that differs from the one at line 2 "
+                                         r"\('Club Speed' \[km/h\], was \[mph\]\)"):
+        read_session_text(metric, "two.csv")
+
+
+def test_garmin_r50_club_face_and_smash_factor_written_without_club_data_are_no_data():
+    # the R50 export's pattern (luis-godinez/golf-analytics CSVs/25:04:01.csv; the fixture's numbers are ours): no
+    # club speed, attack angle, path or face to path, yet Club Face 0.0 and Smash Factor = -(ball speed in m/s)
+    session = read_session(DATA / "garmin_r50.csv")
+    assert session.vendor.id == "garmin_golf"
+    v = session.values
+    assert v["ball_speed"].tolist() == pytest.approx([95.0 * KMH, 153.0 * KMH])  # [km/h]
+    assert v["apex_height"].tolist() == pytest.approx([21.0, 29.5])  # [m]
+    assert v["carry_distance"].tolist() == pytest.approx([58.0 * YD, 135.0 * YD])  # [Yards]
+    assert v["side_spin"].tolist() == pytest.approx([-150.0 * RPM, 400.0 * RPM])  # Sidespin positive left: turned
+    assert v["spin_axis"].tolist() == pytest.approx([-4.763642 * DEG, 8.130102 * DEG])
+    for field in ("face_angle", "smash_factor"):
+        assert np.isnan(v[field]).all(), field  # not a square face, not a smash of -26.4
+        assert session.flags[(field, "no data")].tolist() == [True, True], field
+    assert any("face_angle exactly 0 with no path" in note for note in session.notes)
+    assert any("smash_factor a value with no club_speed" in note for note in session.notes)
+    # the R10 fixture's row without club data writes Face to Path 0.0 (jgamblin/golf 2026-04-19 11:48:31 does)
+    r10 = read_session(DATA / "garmin_r10.csv")
+    assert np.isnan(r10.values["face_to_path"][3]) and r10.flags[("face_to_path", "no data")].tolist() == \
+        [False, False, False, True]
+    assert r10.values["face_to_path"][0] == pytest.approx(11.013476371765137 * DEG)  # a measured one is kept
+
+
+def test_a_spin_rate_type_the_layout_does_not_know_is_flagged_not_read_as_measured():
+    # TrackMan writes Measured or Estimated (the export of record); a word it does not know, here 'Calculated' in
+    # the 7:07:22 PM row, cannot be told from an estimate: flagged and said (before: read as measured)
+    text = (DATA / "trackman_tps_drivers.csv").read_text(encoding="utf-8-sig")
+    lines = text.split("\n")
+    lines[4] = lines[4].replace('"Measured"', '"Calculated"')
+    session = read_session_text("\n".join(lines), "tps.csv")
+    assert session.flags[("spin_rate", "estimated")].tolist() == [False, True, False, False, False, False, False]
+    assert any("Spin Rate Type: 1 row(s) hold 'calculated'" in note for note in session.notes)
+    assert not any("Spin Rate Type" in note for note in read_session(DATA / "trackman_tps_drivers.csv").notes)
+
+
+def test_garmin_german_export_headers_spin_type_and_club_names():
+    # the real row of thraizz/r10progress csvLocalization.ts (14.02.24 13:33:18, Eisen 9, 'Berechnet') and a row of
+    # ours ('Gemessen', 'Holz 3'), under the German header; units row ours (km/h and m, as the row's numbers are)
+    session = read_session(DATA / "garmin_golf_de.csv")
+    assert session.vendor.id == "garmin_golf_de"
+    v = session.values
+    assert v["club_speed"][0] == pytest.approx(113.42900776786246 * KMH)
+    assert v["ball_speed"][0] == pytest.approx(128.24671443709485 * KMH)
+    assert v["carry_distance"][0] == pytest.approx(88.6080322265625)  # [m]
+    assert v["offline_distance"][0] == pytest.approx(1.655823826789856)
+    # Sidespin -644.06 rpm is positive curving left in Garmin's export: +644.06 in the vocabulary, with Drehachse +7.54
+    assert v["side_spin"][0] == pytest.approx(644.055908203125 * RPM)
+    assert v["spin_axis"][0] == pytest.approx(7.544279098510742 * DEG)
+    # the row's own identities: face to path = face - path, spin = hypot(back, side), axis = atan(side/back)
+    assert v["face_angle"][0] - v["path"][0] == pytest.approx(2.9994254112243652 * DEG, abs=1e-6)
+    assert v["spin_rate"][0] == pytest.approx(math.hypot(4863.04638671875, 644.055908203125) * RPM, rel=1e-6)
+    assert session.flags[("spin_rate", "estimated")].tolist() == [True, False]  # Berechnet / Gemessen
+    assert list(session.text["club"]) == ["Iron 9", "Wood 3"]
+    assert [club_key(name) for name in session.text["club"]] == ["9_iron", "3_wood"]
+
+
+def test_garmin_thai_export_units_in_thai_and_an_unknown_spin_type():
+    session = read_session(DATA / "garmin_golf_th.csv")
+    assert session.vendor.id == "garmin_golf_th"
+    v = session.values
+    assert v["apex_height"].tolist() == pytest.approx([25.0, 28.0])  # [ม.]: metres
+    assert v["carry_distance"][0] == pytest.approx(230.0 * YD) and np.isnan(v["carry_distance"][1])  # [หลา]: yards
+    assert v["ball_speed"][0] == pytest.approx(135.0 * MPH)
+    assert v["side_spin"][0] == pytest.approx(300.0 * RPM) and v["spin_axis"][0] == pytest.approx(6.843 * DEG)
+    assert session.flags[("spin_rate", "estimated")].tolist() == [True, True]  # 'วัด': not a word the layout knows
+    assert any("hold 'วัด'" in note for note in session.notes)
+    assert [club_key(name) for name in session.text["club"]] == ["driver", "7_iron"]
+
+
+@pytest.mark.parametrize("vendor, header", [
+    # the Dutch header line of thraizz/r10progress src/types/GolfSwingData.ts, verbatim
+    ("garmin_golf_nl", "Datum,Speler,Clubnaam,Type club,Clubsnelh.,Aanvalshoek,Clubtraject,Slagvlak van de club,"
+                       "Slagvlak t.o.v. traject,Balsnelheid,Smashfactor,Slaghoek,Slagrichting,Backspin,Sidespin,"
+                       "Spinsnelheid,Type draaisnelheid,Spinas,Apexhoogte,Carry-afstand,Carry-afwijkingshoek,"
+                       "Carry-afwijkingsafstand,Totale afstand"),
+    # the Spanish names of the same file (type GolfSwingDataES), in the English export's order
+    ("garmin_golf_es", "Fecha,Jugador,Nombre,Tipo de palo,Vel. palo,Ángulo de ataque,Línea cabeza del palo,"
+                       "Cara del palo,Cara a línea,Velocidad de la pelota,Calidad del impacto,Ángulo de lanzamiento,"
+                       "Dirección de lanzamiento,Retroceso,Efecto lateral,Velocidad de rotación,"
+                       "Tipo de velocidad de rotación,Eje de rotación,Altura máxima,Dist.vuelo,"
+                       "Ángulo de desviación de vuelo,Distancia de desviación de vuelo,Distancia total"),
+])
+def test_garmin_dutch_and_spanish_headers_map_onto_the_english_columns(vendor, header):
+    units = ",,,,[km/h],[deg],[deg],[deg],[deg],[km/h],,[deg],[deg],[rpm],[rpm],[rpm],,[deg],[m],[m],[deg],[m],[m]"
+    row = ("1.6.24 10:00:00,P,,7,120.0,-3.0,-2.0,1.0,3.0,160.0,1.33,17.0,0.5,5000.0,-400.0,5016.0,X,4.57,25.0,130.0,"
+           "2.0,4.5,140.0")
+    session = read_session_text("\n".join([header, units, row]) + "\n", "x.csv")
+    assert session.vendor.id == vendor
+    v = session.values
+    expected = {"club_speed": 120.0 * KMH, "attack_angle": -3.0 * DEG, "path": -2.0 * DEG, "face_angle": 1.0 * DEG,
+                "face_to_path": 3.0 * DEG, "ball_speed": 160.0 * KMH, "smash_factor": 1.33,
+                "vertical_launch_angle": 17.0 * DEG, "horizontal_launch_angle": 0.5 * DEG, "back_spin": 5000.0 * RPM,
+                "side_spin": 400.0 * RPM, "spin_rate": 5016.0 * RPM, "spin_axis": 4.57 * DEG, "apex_height": 25.0,
+                "carry_distance": 130.0, "offline_distance": 4.5, "total_distance": 140.0}
+    for field, value in expected.items():
+        assert v[field][0] == pytest.approx(value), field
+    assert session.flags[("spin_rate", "estimated")].tolist() == [True]  # 'X': this layout knows no spin-type word
+
+
+def test_a_translated_layout_names_its_base_translates_real_columns_and_restates_worded_rules():
+    from impactlab.data.session_layouts import _with_base
+
+    base = {"id": "b", "name": "b", "source": "", "recognise": ["Club"], "units": "row",
+            "columns": {"Club": "club", "Speed": "ball_speed"},
+            "estimated": {"column": "Type", "values": ["Estimated"], "fields": ["ball_speed"]}}
+    layout = {"id": "t", "base": "b", "name": "t", "source": "", "recognise": ["Schläger"],
+              "headers": {"Schläger": "Club", "Tempo": "Speed"},
+              "estimated": {"column": "Typ", "values": ["Berechnet"], "fields": ["ball_speed"]}}
+    merged = _with_base(layout, {"b": base}, "t.yaml")
+    assert merged["columns"]["Tempo"] == "ball_speed" and merged["recognise"] == ["Schläger"]
+    with pytest.raises(StudyError, match=r"t.yaml: base: expected the id of a shipped layout"):
+        _with_base({**layout, "base": "nope"}, {"b": base}, "t.yaml")
+    with pytest.raises(StudyError, match=r"t.yaml: headers.Tempo: 'Sped' is no column of the b layout"):
+        _with_base({**layout, "headers": {"Tempo": "Sped"}}, {"b": base}, "t.yaml")
+    without = {key: value for key, value in layout.items() if key != "estimated"}
+    with pytest.raises(StudyError, match=r"t.yaml: estimated: the b layout's rule names its column"):
+        _with_base(without, {"b": base}, "t.yaml")
+
+
+def test_shots_reads_the_german_export_and_fly_flies_the_r50_rows(capsys):
+    assert main(["shots", str(DATA / "garmin_golf_de.csv")]) == 0
+    report = capsys.readouterr().out
+    assert "(garmin_golf_de)" in report and "'Eisen 9' as 'Iron 9'" in report
+    assert "'Drehratentyp' -> estimated flag: Berechnet marks" in report
+    assert main(["fly", str(DATA / "garmin_r50.csv")]) == 0
+    flown = capsys.readouterr().out
+    assert "2 shot(s) flown" in flown and "| 58.0 |" in flown  # the monitor's carry [Yards] beside the model's
