@@ -190,3 +190,11 @@ def test_shots_reads_the_german_export_and_fly_flies_the_r50_rows(capsys):
     assert main(["fly", str(DATA / "garmin_r50.csv")]) == 0
     flown = capsys.readouterr().out
     assert "2 shot(s) flown" in flown and "| 58.0 |" in flown  # the monitor's carry [Yards] beside the model's
+
+
+def test_a_header_no_layout_knows_is_read_in_impactlabs_layout_and_said():
+    # the German export read without its layout: only Backspin, Sidespin and Smash Factor are names impactlab knows,
+    # and Sidespin would be read positive right (Garmin writes it positive left): the report says so
+    session = read_session(DATA / "garmin_golf_de.csv", vendor="impactlab")
+    assert any("no vendor layout recognises this header (28 of 31 columns unknown)" in note for note in session.notes)
+    assert not any("no vendor layout" in note for note in read_session(DATA / "garmin_golf_de.csv").notes)

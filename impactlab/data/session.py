@@ -324,6 +324,11 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     implied = [f"{cell} [{unit}]" for column, cell, field, unit, _, factor in plan
                if layout.units == "implied" and factor is not None and unit and split_header(cell)[1] is None
                and column not in in_row]
+    named = [cell for cell in header if cell]
+    if layout is GENERIC and len(unused) * 2 > len(named):  # most columns unknown: a vendor export not recognised?
+        notes.append(f"no vendor layout recognises this header ({len(unused)} of {len(named)} columns unknown): read "
+                     f"in impactlab's own layout, whose signs are the vocabulary's (side spin, spin axis and "
+                     f"directions positive to the right); if a launch monitor wrote it, name it with --vendor")
     if implied:
         notes.append(f"units not in the file for {', '.join(implied)}: taken from the {layout.name} layout "
                      f"({layout.source})")
