@@ -198,3 +198,41 @@ def test_a_header_no_layout_knows_is_read_in_impactlabs_layout_and_said():
     session = read_session(DATA / "garmin_golf_de.csv", vendor="impactlab")
     assert any("no vendor layout recognises this header (28 of 31 columns unknown)" in note for note in session.notes)
     assert not any("no vendor layout" in note for note in read_session(DATA / "garmin_golf_de.csv").notes)
+
+
+def test_skytrak_club_blocks_a_plain_units_row_and_two_columns_named_side():
+    # the legacy ShotsHistory layout (brandon-rice/golf_swing_stats's parser and fixtures; numbers ours)
+    session = read_session(DATA / "skytrak.csv")
+    assert session.vendor.id == "skytrak"
+    assert session.lines.tolist() == [7, 8, 12] and list(session.text["club"]) == ["PW", "PW", "7I"]
+    assert [club_key(name) for name in session.text["club"]] == ["pitching_wedge", "pitching_wedge", "7_iron"]
+    assert list(session.text["handedness"]) == ["right"] * 3
+    v = session.values
+    # the two SIDE columns, told apart by their units (RPM, DEG)
+    assert v["side_spin"].tolist() == pytest.approx([-400 * RPM, 470 * RPM, -200 * RPM])
+    assert v["horizontal_launch_angle"].tolist() == pytest.approx([4.0 * DEG, -3.0 * DEG, 2.0 * DEG])
+    assert v["ball_speed"][0] == pytest.approx(96.0 * MPH) and v["apex_height"][0] == pytest.approx(20.0 * YD)
+    assert v["flight_time"][0] == pytest.approx(5.0) and v["smash_factor"][0] == pytest.approx(1.30)
+    assert v["spin_rate"][0] == pytest.approx(math.hypot(6000, 400) * RPM)  # no spin column: from BACK and SIDE
+    assert v["spin_axis"][0] == pytest.approx(-math.atan(400 / 6000))
+    reasons = dict(session.skipped)
+    assert reasons[6] == "names the club of the shots below it ('PW')" and "average" in reasons[9]
+    assert reasons[16].startswith("the session's notes") and 17 in reasons  # NOTES and the free text under it
+
+
+def test_skytrak_newer_export_quoted_ragged_rows_and_face_to_path():
+    text = ('"PRACTICE GREENS: 08/23/2026 \u2022 04:30 PM"\n"PLAYER: "\n\n'
+            '"SHOT","HAND","SHOT SCORE","BALL SPEED","LAUNCH","BACK","SIDE","SIDE","OFFLINE","CARRY","ROLL","TOTAL",'
+            '"FLIGHT","DSCNT","HEIGHT","CLUB SPEED","SMASH","PATH","FTP","FTT"\n'
+            '"#","L/R","SCORE","MPH","DEG","RPM","RPM","DEG","YD","YD","YD","YD","SEC","DEG","YD","MPH","FACTOR",'
+            '"DEG","DEG","DEG"\n\n"9 IRON"\n'
+            '"1","R","100","104","18.5","5400","640","7.5","28","148","0","148","5","44","24","76","1.37","5.0",'
+            '"3.0","8.0"\n'
+            '"AVG","","100","104","18.5","5400","640","7.5","28","148","0","148","5","44","24","76","1.37","5.0",'
+            '"3.0","8.0"\n')
+    session = read_session_text(text, "activity.csv")
+    assert session.vendor.id == "skytrak" and session.size == 1 and list(session.text["club"]) == ["9 IRON"]
+    v = session.values
+    assert v["face_to_path"][0] == pytest.approx(3.0 * DEG) and v["face_angle"][0] == pytest.approx(8.0 * DEG)
+    assert v["path"][0] == pytest.approx(5.0 * DEG) and v["offline_distance"][0] == pytest.approx(28 * YD)
+    assert club_key(session.text["club"][0]) == "9_iron"

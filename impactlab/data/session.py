@@ -261,9 +261,9 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         notes.append(f"line(s) {', '.join(map(str, preamble))} before the header are a title, not shots")
     body, body_lines = rows[start + 1:], lines[start + 1:]
     units_row = None
-    if body and any(cell.strip() for cell in body[0]) and all(
-            _UNITS_CELL.match(cell) or not cell.strip() for cell in body[0]):
-        units_row = [cell.strip()[1:-1].strip() if cell.strip() else "" for cell in body[0]]
+    if body and any(cell.strip() for cell in body[0]) and (layout.units_row_plain or all(
+            _UNITS_CELL.match(cell) or not cell.strip() for cell in body[0])):  # SkyTrak: MPH, DEG without brackets
+        units_row = [cell.strip() if layout.units_row_plain else cell.strip()[1:-1].strip() for cell in body[0]]
         body_units, units_line = body[0], body_lines[0]
         notes.append(f"units row at line {body_lines[0]}")
         body, body_lines = body[1:], body_lines[1:]
@@ -282,7 +282,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             field, unit = _generic_field(cell)
             rule = None if field is None else ColumnRule(field)
         else:
-            rule = layout.rule(cell)
+            rule = layout.rule(cell, units_row[column] if units_row and column < len(units_row) else None)
             unit = split_header(cell)[1]
         if rule is None:
             unused.append(cell)
@@ -348,6 +348,10 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     header_key = _row_key(header)
     units_key = None if units_row is None else _row_key(body_units)
     after_header = False
+    trailer, trailer_values = None, {_norm(v) for v in (layout.trailer or {}).get("values", ())}
+    trailer_column = names.index(_norm(layout.trailer["column"])) if layout.trailer and \
+        _norm(layout.trailer["column"]) in names else None
+    block_club, shot_clubs = "", []
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
@@ -357,7 +361,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             skipped.append((line, "the header again (a new block of the export), not a shot"))
             after_header = True
             continue
-        if after_header and units_row is not None and all(_UNITS_CELL.match(c) or not c.strip() for c in cells):
+        if after_header and units_row is not None and (_row_key(cells) == units_key or all(
+                _UNITS_CELL.match(c) or not c.strip() for c in cells)):
             if _row_key(cells) != units_key:
                 problems.append(f"{file}:{line}: a units row that differs from the one at line {units_line} "
                                 f"({_units_difference(header, body_units, cells)}): the file joins blocks in "
@@ -367,6 +372,15 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             after_header = False
             continue
         after_header = False
+        if trailer is not None or (trailer_column is not None and trailer_column < len(cells)
+                                   and _norm(cells[trailer_column]) in trailer_values):
+            trailer = trailer or line  # notes after the shots: this row and every row below it
+            skipped.append((line, f"{(layout.trailer or {}).get('why', 'not a shot')} (from line {trailer})"))
+            continue
+        if layout.club_rows and cells and cells[0].strip() and not any(c.strip() for c in cells[1:]):
+            block_club = cells[0].strip()  # SkyTrak: a row holding only a club's name heads that club's shots
+            skipped.append((line, f"names the club of the shots below it ({block_club!r})"))
+            continue
         summary_row = next(((column, why) for column, values, why in summary
                             if column < len(cells) and _norm(cells[column]) in values), None)
         if summary_row is not None:
@@ -383,6 +397,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             continue
         shots.append(cells)
         shot_lines.append(line)
+        shot_clubs.append(block_club)
     if refused and required_column is not None:
         shown = ", ".join(f"{file}:{line} ({value!r})" for line, value in refused[:10])
         raise StudyError(f"{file}: {header[required_column]}: expected "
@@ -446,6 +461,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     _flag_without(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
+    if layout.club_rows:
+        text_values["club"] = tuple(shot_clubs)
     text_values["club"] = _club_names(layout, text_values["club"], notes)
     handedness = text_values["handedness"]
     bad_hand = sorted({h for h in handedness if h and h.lower() not in ("right", "left", "r", "l", "rh", "lh")})

@@ -117,10 +117,22 @@ class VendorMap:
     unit_spellings: dict = attrs.field(factory=dict, eq=False)
     #: words of the layout's club names -> the catalogue's (German ``Eisen 7`` -> ``Iron 7``), whole words only
     club_words: dict = attrs.field(factory=dict, eq=False)
+    #: the row under the header holds the units without brackets (SkyTrak: ``#,L/R,SCORE,MPH,DEG,RPM``)
+    units_row_plain: bool = False
+    #: a row holding only its first cell names the club of the shots below it (SkyTrak's club blocks)
+    club_rows: bool = False
+    #: {column, values, why}: the row whose column holds one of the values, and every row below it, are no shots
+    #: (SkyTrak's NOTES and the free text under it)
+    trailer: dict | None = attrs.field(default=None, eq=False)
 
-    def rule(self, header: str) -> ColumnRule | None:
-        """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
+    def rule(self, header: str, row_unit: str | None = None) -> ColumnRule | None:
+        """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit).
+
+        ``row_unit``, the column's unit in a units row, tells apart columns of one name (SkyTrak's two ``SIDE``:
+        ``SIDE [RPM]`` the side spin, ``SIDE [DEG]`` the launch direction)."""
         name, unit = split_header(header)
+        if row_unit and f"{_norm(name)} [{_norm(row_unit)}]" in self.columns:
+            return self.columns[f"{_norm(name)} [{_norm(row_unit)}]"]
         full = _norm(header)
         if full in self.columns:
             return self.columns[full]
@@ -138,7 +150,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "club_reference_point",
             "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
-            "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words"}
+            "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
+            "units_row_plain", "club_rows", "trailer"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -174,7 +187,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     estimated = document.get("estimated")
     if estimated is not None and set(estimated) - {"column", "values", "measured", "fields"}:
         raise StudyError(f"{where}: estimated: {estimated!r}: expected {{column, values, measured, fields}}")
-    for rule in (*summary, document.get("no_data"), document.get("required"), estimated):
+    for rule in (*summary, document.get("no_data"), document.get("required"), estimated, document.get("trailer")):
         if rule is not None and not ({"column", "values"} <= set(rule)):
             raise StudyError(f"{where}: {rule!r}: a row rule needs a column and its values")
     if document.get("left_right_suffix") and document.get("left_right_prefix"):
@@ -199,11 +212,13 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         excluded=document.get("excluded"), no_data_without=tuple(without),
         unit_spellings={_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
         club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
+        units_row_plain=bool(document.get("units_row_plain", False)), club_rows=bool(document.get("club_rows", False)),
+        trailer=document.get("trailer"),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 
 
 #: rules of a layout that name a column and the words written in it: a translated layout restates them
-_WORDED_RULES = ("estimated", "excluded", "no_data", "required", "summary_rows")
+_WORDED_RULES = ("estimated", "excluded", "no_data", "required", "summary_rows", "trailer")
 
 
 def _with_base(document: dict, documents: dict, where: str) -> dict:
