@@ -8,7 +8,8 @@ layout is a YAML column map in ``impactlab/data/vendors/`` (:func:`vendor_maps`)
 it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
 column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
 clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
-requires, and the point of the club head its club data describe. A map key ``Name [unit]``
+requires, the point of the club head its club data describe, and for an export in another language the layout it
+translates (``base``, ``headers``). A map key ``Name [unit]``
 matches the column ``Name`` only when the header gives it a unit (FlightScope's ``Club`` is the club's name,
 ``Club (mph)`` its speed).
 
