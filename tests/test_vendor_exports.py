@@ -236,3 +236,17 @@ def test_skytrak_newer_export_quoted_ragged_rows_and_face_to_path():
     assert v["face_to_path"][0] == pytest.approx(3.0 * DEG) and v["face_angle"][0] == pytest.approx(8.0 * DEG)
     assert v["path"][0] == pytest.approx(5.0 * DEG) and v["offline_distance"][0] == pytest.approx(28 * YD)
     assert club_key(session.text["club"][0]) == "9_iron"
+
+
+def test_garmin_r10_launch_angle_floor_is_flagged_and_a_value_above_it_is_not():
+    # jgamblin/golf 2026-05-22 (verbatim rows): 08:42:42 launches at 0.4999999701976776 deg, float32 just below 0.5
+    # (a 5 Iron at 89.6 mph carrying 7.9 yd), 08:52:35 at 0.5413 deg
+    session = read_session(DATA / "garmin_r10_0522.csv")
+    v = session.values
+    assert v["vertical_launch_angle"].tolist() == pytest.approx(
+        [3.3272037506103516 * DEG, 0.4999999701976776 * DEG, 8.20970630645752 * DEG, 0.5413448810577393 * DEG])
+    assert session.flags[("vertical_launch_angle", "clamped")].tolist() == [False, True, False, False]
+    assert session.flags[("spin_axis", "clamped")].tolist() == [False, False, True, False]  # 30.0
+    # 2.4063345335889608e-05 rpm (a number in exponent notation) is read, positive curving left: turned
+    assert v["side_spin"][0] == pytest.approx(-2.4063345335889608e-05 * RPM)
+    assert session.flagged("vertical_launch_angle").tolist() == [False, True, False, False]

@@ -454,10 +454,13 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     _flag_no_data(layout, header, columns, values, flags, used, unused)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
         _read_flags(header, columns, flags, used, unused, file, shot_lines)
-    for field, limit in layout.clamped.items():
-        clamped = np.abs(values[field]) >= limit * (1 - 1e-5)
+    stops = [(field, limit, False) for field, limit in layout.clamped.items()]
+    for field, limit, floor in stops + [(field, limit, True) for field, limit in layout.floored.items()]:
+        with np.errstate(invalid="ignore"):
+            clamped = values[field] <= limit + 1e-5 * abs(limit) if floor else \
+                np.abs(values[field]) >= limit * (1 - 1e-5)
         if clamped.any():
-            flags[(field, "clamped")] = clamped
+            flags[(field, "clamped")] = flags.get((field, "clamped"), np.zeros_like(clamped)) | clamped
     _flag_all_zero(layout, values, flags, notes)
     _flag_without(layout, values, flags, notes)
     _derive(values, used, notes, flags)

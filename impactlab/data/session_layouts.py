@@ -86,6 +86,9 @@ class VendorMap:
     sentinel_at_least: float | None = None
     estimated: dict | None = attrs.field(default=None, eq=False)
     clamped: dict = attrs.field(factory=dict, eq=False)
+    #: field -> SI floor: values at or below it are the monitor's floor, flagged ``clamped`` (the R10 writes a launch
+    #: angle of 0.4999999702 deg, float32 just below 0.5, for a ball it saw launch lower)
+    floored: dict = attrs.field(factory=dict, eq=False)
     #: [{column, values, why}]: rows that are no shot (summary rows, heartbeats), skipped with ``why``
     summary_rows: list | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
@@ -148,7 +151,7 @@ def _norm(text: str) -> str:
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
             "club_reference_point",
-            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
+            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "floored", "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
             "units_row_plain", "club_rows", "trailer"}
@@ -197,6 +200,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     clamped = {}
     for field, limit in (document.get("clamped") or {}).items():
         clamped[field] = to_si(str(limit), FIELDS[field], f"{where}: clamped.{field}")
+    floored = {field: to_si(str(limit), FIELDS[field], f"{where}: floored.{field}")
+               for field, limit in (document.get("floored") or {}).items()}
     return VendorMap(
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
@@ -206,6 +211,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         club_reference=" ".join(str(document.get("club_reference", "")).split()),
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
+        floored=floored,
         summary_rows=summary or None, left_right_suffix=bool(document.get("left_right_suffix", False)),
         left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
         zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
