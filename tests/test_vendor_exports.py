@@ -49,13 +49,19 @@ GARMIN_UNITS = ",,,[mph],[mph],[deg],[rpm],[rpm],[rpm],,[deg],[yds],[yds]"
 GARMIN_ROW = "6/6/26 08:40:02,P,7 Iron,59.7,77.4,15.8,3545.8,-702.5,3614.7,Measured,11.2,85.3,7.4"
 
 
+GARMIN_ROW_2 = "6/7/26 09:10:00,P,7 Iron,60.1,78.0,16.0,3500.0,-700.0,3569.3,Measured,11.3,86.0,7.5"
+
+
 def test_a_second_session_appended_reads_if_its_units_agree_and_is_refused_if_not():
-    same = "\n".join([GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW, GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW]) + "\n"
+    same = "\n".join([GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW, GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW_2,
+                      GARMIN_ROW]) + "\n"
     session = read_session_text(same, "two.csv")
     assert session.size == 2 and session.lines.tolist() == [3, 6]
-    assert dict(session.skipped) == {4: "the header again (a new block of the export), not a shot",
-                                     5: "the units row again, under the repeated header"}
-    assert session.values["ball_speed"].tolist() == pytest.approx([77.4 * MPH] * 2)
+    reasons = dict(session.skipped)
+    assert reasons[4] == "the header again (a new block of the export), not a shot"
+    assert reasons[5] == "the units row again, under the repeated header"
+    assert reasons[7].startswith("repeats line 3 cell for cell (the same shot twice")  # one session appended twice
+    assert session.values["ball_speed"].tolist() == pytest.approx([77.4 * MPH, 78.0 * MPH])
     metric = "\n".join([GARMIN_HEADER, GARMIN_UNITS, GARMIN_ROW, GARMIN_HEADER,
                         GARMIN_UNITS.replace("[mph],[mph]", "[km/h],[km/h]"), GARMIN_ROW]) + "\n"
     with pytest.raises(StudyError, match=r"two.csv:5: a units row that differs from the one at line 2 "

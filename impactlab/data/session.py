@@ -352,7 +352,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     trailer, trailer_values = None, {_norm(v) for v in (layout.trailer or {}).get("values", ())}
     trailer_column = names.index(_norm(layout.trailer["column"])) if layout.trailer and \
         _norm(layout.trailer["column"]) in names else None
-    block_club, shot_clubs = "", []
+    block_club, shot_clubs, seen = "", [], {}
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
@@ -396,6 +396,11 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if len(cells) != width:
             problems.append(f"{file}:{line}: expected {width} columns, got {len(cells)}")
             continue
+        if (key := tuple(cell.strip() for cell in cells)) in seen:  # float32 values to 16 digits: one shot, twice
+            skipped.append((line, f"repeats line {seen[key]} cell for cell (the same shot twice: a session exported "
+                                  f"or appended twice, a message sent again)"))
+            continue
+        seen[key] = line
         shots.append(cells)
         shot_lines.append(line)
         shot_clubs.append(block_club)

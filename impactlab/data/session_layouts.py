@@ -150,8 +150,8 @@ def _norm(text: str) -> str:
 
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
-            "club_reference_point",
-            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "floored", "summary_rows", "left_right_suffix",
+            "club_reference_point", "signs", "missing", "sentinel_at_least", "estimated", "clamped", "floored",
+            "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
             "units_row_plain", "club_rows", "trailer"}
