@@ -256,3 +256,25 @@ def test_garmin_r10_launch_angle_floor_is_flagged_and_a_value_above_it_is_not():
     # 2.4063345335889608e-05 rpm (a number in exponent notation) is read, positive curving left: turned
     assert v["side_spin"][0] == pytest.approx(-2.4063345335889608e-05 * RPM)
     assert session.flagged("vertical_launch_angle").tolist() == [False, True, False, False]
+
+
+def test_flightscope_simulator_windows_1252_repeated_columns_and_right_left_suffixes(tmp_path):
+    # the layout of GekoZRH/FlightScopeDataAnalysis's docs and tests (numbers ours): Windows-1252 text ('Jürg' is
+    # byte 0xfc), units in square brackets, 'Total [m]' and 'Club Speed [mph]' written twice, '3.2 L' and '1.2 R'
+    session = read_session(DATA / "flightscope_simulator.csv")
+    assert session.vendor.id == "flightscope_simulator"
+    assert session.notes[0].startswith("read as windows-1252 text (not UTF-8)")
+    v = session.values
+    assert v["total_distance"][:2].tolist() == pytest.approx([158.34, 230.1])  # the first, more precise column
+    assert v["club_speed"][:2].tolist() == pytest.approx([87.0 * MPH, 103.5 * MPH])  # the second where it is empty
+    assert v["offline_distance"][0] == pytest.approx(-3.2) and v["spin_axis"][0] == pytest.approx(-4.5 * DEG)
+    assert v["horizontal_launch_angle"][:2].tolist() == pytest.approx([1.2 * DEG, -0.5 * DEG])
+    assert v["face_angle"][0] - v["path"][0] == pytest.approx(v["face_to_path"][0])  # FTT - Club Path = FTP
+    assert v["face_to_path"][0] == pytest.approx(-1.5 * DEG) and v["flight_time"][0] == pytest.approx(6.6)
+    keep, skipped = session.usable()
+    assert keep.tolist() == [True, True, False] and "'7 Iron 245' is not in the club catalogue" in skipped[0][1]
+    # a file in Windows-1252 that no layout with that encoding claims is refused as before, at its byte
+    other = tmp_path / "r50.csv"
+    other.write_bytes((DATA / "garmin_r50.csv").read_text().replace("Player", "Jürg").encode("windows-1252"))
+    with pytest.raises(StudyError, match=r"r50.csv:1: is not UTF-8 text \(byte 0xfc\)"):
+        read_session(other)

@@ -40,9 +40,9 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _decimal_mark, _derive, _flag_all_zero,
-                                           _club_names, _flag_estimated, _flag_without, _flag_excluded, _flag_no_data,
-                                           _progress, _read_bytes,
+from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
+                                           _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
+                                           _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
                                            _read_flags, _rows_of, _to_numbers)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
@@ -243,7 +243,15 @@ def read_session(path, vendor: str | None = None) -> Session:
         A vendor id of :func:`vendor_maps` (default: recognised from the header).
     """
     path = Path(path)
-    return read_session_text(_read_bytes(path), str(path), vendor)
+    try:
+        text, encoding = _read_bytes(path), ""
+    except StudyError as exc:  # not UTF-8: read in a legacy encoding only where a layout says its exports use one
+        text, encoding = _legacy_text(path, exc, lambda rows: _recognise(
+            [cell.strip() for cell in rows[_header_index(rows, vendor)]], vendor, str(path)))
+    session = read_session_text(text, str(path), vendor)
+    if encoding:
+        session.notes.insert(0, f"read as {encoding} text (not UTF-8), the encoding of {session.vendor.name} files")
+    return session
 
 
 def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None) -> Session:
@@ -274,7 +282,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
 
     # columns: which field, which unit, which sign
     problems = []
-    plan, unused = [], []
+    plan, unused, repeated = [], [], []
     by_field: dict[str, int] = {}
     for column, cell in enumerate(header):
         if not cell:
@@ -289,6 +297,9 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             unused.append(cell)
             continue
         field = rule.field
+        if field in by_field and layout.merge_repeated_columns and _norm(cell) == _norm(header[by_field[field]]):
+            repeated.append((by_field[field], column))  # FlightScope writes some columns twice: merged, said
+            continue
         if field in by_field:
             problems.append(f"{file}:{header_line}: columns {header[by_field[field]]!r} and {cell!r} both give "
                             f"the {DESCRIPTIONS[field]} ({field}); keep one")
@@ -416,7 +427,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         raise StudyError(f"{file}: no shots below the header (line {header_line})")
     lines_array = np.array(shot_lines, dtype=np.int64)
 
-    columns = list(zip(*shots)) if shots else []
+    columns = _merge_repeated(list(zip(*shots)) if shots else [], repeated, layout, header, notes)
     values = {field: np.full(size, np.nan) for field in FIELDS}
     text_values = {field: ("",) * size for field in TEXT_FIELDS}
     flags = {}

@@ -120,6 +120,11 @@ class VendorMap:
     unit_spellings: dict = attrs.field(factory=dict, eq=False)
     #: words of the layout's club names -> the catalogue's (German ``Eisen 7`` -> ``Iron 7``), whole words only
     club_words: dict = attrs.field(factory=dict, eq=False)
+    #: the text encoding of the vendor's files when they are not UTF-8 (FlightScope's simulator: windows-1252); a
+    #: file in another encoding than UTF-8 is read only where the layout that recognises its header says so
+    encoding: str = attrs.field(default="utf-8", validator=attrs.validators.in_(("utf-8", "windows-1252")))
+    #: a column written twice under one header is merged (the first's value, the second's where it is empty)
+    merge_repeated_columns: bool = False
     #: the row under the header holds the units without brackets (SkyTrak: ``#,L/R,SCORE,MPH,DEG,RPM``)
     units_row_plain: bool = False
     #: a row holding only its first cell names the club of the shots below it (SkyTrak's club blocks)
@@ -154,7 +159,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
-            "units_row_plain", "club_rows", "trailer"}
+            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -219,7 +224,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         unit_spellings={_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
         club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
         units_row_plain=bool(document.get("units_row_plain", False)), club_rows=bool(document.get("club_rows", False)),
-        trailer=document.get("trailer"),
+        trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
+        merge_repeated_columns=bool(document.get("merge_repeated_columns", False)),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 
 

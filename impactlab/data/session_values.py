@@ -39,6 +39,35 @@ def _read_bytes(path: Path) -> str:
     return utf8_text(data, path, "shot table")
 
 
+def _legacy_text(path: Path, error: StudyError, recognise) -> tuple[str, str]:
+    """The text of a file that is not UTF-8, decoded in the legacy encoding of the layout that recognises its header
+    (``recognise(rows)`` -> VendorMap; FlightScope's simulator writes Windows-1252); else ``error`` is raised: no
+    encoding is guessed for a file no layout claims."""
+    data = checked_bytes(path, "shot table", MAX_SESSION_BYTES)
+    if b"\0" in data or data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise error
+    for encoding in ("windows-1252",):
+        try:
+            text = data.decode(encoding)
+        except UnicodeDecodeError:
+            continue
+        rows = _rows_of(text, str(path))[0]
+        if rows and recognise(rows).encoding == encoding:
+            return text, encoding
+    raise error
+
+
+def _merge_repeated(columns: list, repeated: list, layout, header: list, notes: list) -> list:
+    """Columns written twice under one header (``layout.merge_repeated_columns``): the first's cell, the second's
+    where the first is empty; said once per column."""
+    for first, second in repeated:
+        empty = set(layout.missing)
+        columns[first] = tuple(a if a.strip() not in empty else b for a, b in zip(columns[first], columns[second]))
+        notes.append(f"column {header[first]!r} is written twice (columns {first + 1} and {second + 1}): the first's "
+                     f"value is read, the second's where the first is empty")
+    return columns
+
+
 def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str]]:
     """Rows (cells) with their file lines, after the ``sep=`` line; the separator said in notes."""
     notes = []
