@@ -363,7 +363,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     trailer, trailer_values = None, {_norm(v) for v in (layout.trailer or {}).get("values", ())}
     trailer_column = names.index(_norm(layout.trailer["column"])) if layout.trailer and \
         _norm(layout.trailer["column"]) in names else None
-    block_club, shot_clubs, seen = "", [], {}
+    block_club, shot_clubs = "", []
+    seen: dict[tuple, int] = {}
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
