@@ -278,3 +278,12 @@ def test_flightscope_simulator_windows_1252_repeated_columns_and_right_left_suff
     other.write_bytes((DATA / "garmin_r50.csv").read_text().replace("Player", "Jürg").encode("windows-1252"))
     with pytest.raises(StudyError, match=r"r50.csv:1: is not UTF-8 text \(byte 0xfc\)"):
         read_session(other)
+
+
+def test_two_app_versions_joined_in_one_file_are_refused_at_the_second_header():
+    # the 42-column export of 2026-04-19 and the 32-column one of 2026-05-23 (jgamblin/golf, the fixtures' real
+    # lines) pasted into one file: the second header has other columns, so its rows cannot be read by the first's
+    first = (DATA / "garmin_r10.csv").read_text().splitlines()[:3]
+    second = (DATA / "garmin_r10_b.csv").read_text().splitlines()[:3]
+    with pytest.raises(StudyError, match=r"joined.csv:4: a second header, with other columns than line 1's"):
+        read_session_text("\n".join(first + second) + "\n", "joined.csv")

@@ -43,7 +43,7 @@ from impactlab.data.session_json import json_rows, looks_like_json
 from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
                                            _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
                                            _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
-                                           _read_flags, _rows_of, _to_numbers)
+                                           _read_flags, _row_key, _rows_of, _to_numbers, _units_difference)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -214,24 +214,6 @@ class Session:
                          row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
 
 
-def _row_key(cells) -> tuple:
-    """A row's cells for comparing rows (case, spaces and trailing empty cells aside)."""
-    key = [_norm(cell) for cell in cells]
-    while key and not key[-1]:
-        key.pop()
-    return tuple(key)
-
-
-def _units_difference(header, first, other) -> str:
-    """The first column whose unit differs between two units rows, said as 'Carry [m], was [Yards]'."""
-    for column, name in enumerate(header):
-        was = first[column].strip() if column < len(first) else ""
-        now = other[column].strip() if column < len(other) else ""
-        if _norm(was) != _norm(now):
-            return f"{name!r} {now or '(none)'}, was {was or '(none)'}"
-    return "a column beyond the header"
-
-
 def read_session(path, vendor: str | None = None) -> Session:
     """Read a launch-monitor export (or an impactlab shot-table CSV) as exported; see the module docstring.
 
@@ -385,6 +367,10 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             after_header = False
             continue
         after_header = False
+        if layout is not GENERIC and set(layout.recognise) <= {_norm(split_header(c)[0]) for c in cells}:
+            problems.append(f"{file}:{line}: a second header, with other columns than line {header_line}'s: the "
+                            f"file joins two exports (or app versions) of different columns; read them separately")
+            continue
         if trailer is not None or (trailer_column is not None and trailer_column < len(cells)
                                    and _norm(cells[trailer_column]) in trailer_values):
             trailer = trailer or line  # notes after the shots: this row and every row below it

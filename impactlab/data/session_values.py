@@ -39,6 +39,24 @@ def _read_bytes(path: Path) -> str:
     return utf8_text(data, path, "shot table")
 
 
+def _row_key(cells) -> tuple:
+    """A row's cells for comparing rows (case, spaces and trailing empty cells aside)."""
+    key = [_norm(cell) for cell in cells]
+    while key and not key[-1]:
+        key.pop()
+    return tuple(key)
+
+
+def _units_difference(header, first, other) -> str:
+    """The first column whose unit differs between two units rows, said as 'Carry [m], was [Yards]'."""
+    for column, name in enumerate(header):
+        was = first[column].strip() if column < len(first) else ""
+        now = other[column].strip() if column < len(other) else ""
+        if _norm(was) != _norm(now):
+            return f"{name!r} {now or '(none)'}, was {was or '(none)'}"
+    return "a column beyond the header"
+
+
 def _legacy_text(path: Path, error: StudyError, recognise) -> tuple[str, str]:
     """The text of a file that is not UTF-8, decoded in the legacy encoding of the layout that recognises its header
     (``recognise(rows)`` -> VendorMap; FlightScope's simulator writes Windows-1252); else ``error`` is raised: no
