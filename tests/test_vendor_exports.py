@@ -287,3 +287,21 @@ def test_two_app_versions_joined_in_one_file_are_refused_at_the_second_header():
     second = (DATA / "garmin_r10_b.csv").read_text().splitlines()[:3]
     with pytest.raises(StudyError, match=r"joined.csv:4: a second header, with other columns than line 1's"):
         read_session_text("\n".join(first + second) + "\n", "joined.csv")
+
+
+@pytest.mark.parametrize("name, vendor", [
+    ("garmin_golf_de.csv", "garmin_golf_de"), ("garmin_golf_th.csv", "garmin_golf_th"),
+    ("garmin_r50.csv", "garmin_golf"), ("garmin_r10_0522.csv", "garmin_golf"), ("skytrak.csv", "skytrak"),
+    ("rapsodo_mlm2pro_blocks.csv", "rapsodo_mlm2pro"), ("flightscope_simulator.csv", "flightscope_simulator"),
+])
+def test_each_new_fixture_reads_back_from_its_normalised_table(name, vendor, tmp_path, capsys):
+    out = tmp_path / "normal.csv"
+    assert main(["shots", str(DATA / name), "--csv", str(out)]) == 0
+    assert f"({vendor})" in capsys.readouterr().out.splitlines()[0]
+    session, again = read_session(DATA / name), read_session(out)
+    assert list(again.text["club"]) == list(session.text["club"])
+    for field in ("ball_speed", "spin_rate", "spin_axis", "side_spin", "horizontal_launch_angle", "face_angle",
+                  "carry_distance", "apex_height", "smash_factor"):
+        np.testing.assert_allclose(again.values[field], session.values[field], rtol=1e-9, equal_nan=True)
+    assert {key: rows.tolist() for key, rows in again.flags.items()} == \
+        {key: rows.tolist() for key, rows in session.flags.items()}
