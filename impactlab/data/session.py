@@ -8,7 +8,8 @@ layout is a YAML column map in ``impactlab/data/vendors/`` (:func:`vendor_maps`)
 it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
 column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
 clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
-requires, and the point of the club head its club data describe. A map key ``Name [unit]``
+requires, the point of the club head its club data describe, and for an export in another language the layout it
+translates (``base``, ``headers``). A map key ``Name [unit]``
 matches the column ``Name`` only when the header gives it a unit (FlightScope's ``Club`` is the club's name,
 ``Club (mph)`` its speed).
 
@@ -39,9 +40,10 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_values import (_UNITS_CELL, _check_air, _check_spin_signs, _decimal_mark, _derive,
-                                           _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data, _progress,
-                                           _read_bytes, _read_flags, _rows_of, _to_numbers)
+from impactlab.data.session_values import (_UNITS_CELL, _check_air, _check_spin_signs, _club_names, _decimal_mark,
+                                           _derive, _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
+                                           _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
+                                           _read_flags, _row_key, _rows_of, _to_numbers, _units_difference)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -223,7 +225,15 @@ def read_session(path, vendor: str | None = None) -> Session:
         A vendor id of :func:`vendor_maps` (default: recognised from the header).
     """
     path = Path(path)
-    return read_session_text(_read_bytes(path), str(path), vendor)
+    try:
+        text, encoding = _read_bytes(path), ""
+    except StudyError as exc:  # not UTF-8: read in a legacy encoding only where a layout says its exports use one
+        text, encoding = _legacy_text(path, exc, lambda rows: _recognise(
+            [cell.strip() for cell in rows[_header_index(rows, vendor)]], vendor, str(path)))
+    session = read_session_text(text, str(path), vendor)
+    if encoding:
+        session.notes.insert(0, f"read as {encoding} text (not UTF-8), the encoding of {session.vendor.name} files")
+    return session
 
 
 def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None) -> Session:
@@ -242,9 +252,10 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         notes.append(f"line(s) {', '.join(map(str, preamble))} before the header are a title, not shots")
     body, body_lines = rows[start + 1:], lines[start + 1:]
     units_row = None
-    if body and any(cell.strip() for cell in body[0]) and all(
-            _UNITS_CELL.match(cell) or not cell.strip() for cell in body[0]):
-        units_row = [cell.strip()[1:-1].strip() if cell.strip() else "" for cell in body[0]]
+    if body and any(cell.strip() for cell in body[0]) and (layout.units_row_plain or all(
+            _UNITS_CELL.match(cell) or not cell.strip() for cell in body[0])):  # SkyTrak: MPH, DEG without brackets
+        units_row = [cell.strip() if layout.units_row_plain else cell.strip()[1:-1].strip() for cell in body[0]]
+        body_units, units_line = body[0], body_lines[0]
         notes.append(f"units row at line {body_lines[0]}")
         body, body_lines = body[1:], body_lines[1:]
     keep = [i for i, cells in enumerate(body) if any(cell.strip() for cell in cells)]
@@ -253,7 +264,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
 
     # columns: which field, which unit, which sign
     problems = []
-    plan, unused = [], []
+    plan, unused, repeated = [], [], []
     by_field: dict[str, int] = {}
     for column, cell in enumerate(header):
         if not cell:
@@ -262,12 +273,15 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             field, unit = _generic_field(cell)
             rule = None if field is None else ColumnRule(field)
         else:
-            rule = layout.rule(cell)
+            rule = layout.rule(cell, units_row[column] if units_row and column < len(units_row) else None)
             unit = split_header(cell)[1]
         if rule is None:
             unused.append(cell)
             continue
         field = rule.field
+        if field in by_field and layout.merge_repeated_columns and _norm(cell) == _norm(header[by_field[field]]):
+            repeated.append((by_field[field], column))  # FlightScope writes some columns twice: merged, said
+            continue
         if field in by_field:
             problems.append(f"{file}:{header_line}: columns {header[by_field[field]]!r} and {cell!r} both give "
                             f"the {DESCRIPTIONS[field]} ({field}); keep one")
@@ -289,6 +303,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
                                 f"else the row is read as a shot); a number without its unit is not read (115 could "
                                 f"be mph or m/s)")
                 continue
+            unit = layout.unit_spellings.get(_norm(unit), unit) if unit else unit  # the layout's own spellings
             try:
                 factor = _unit_factor(unit or "", FIELDS[field], where)
             except FieldError as exc:
@@ -303,6 +318,11 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     implied = [f"{cell} [{unit}]" for column, cell, field, unit, _, factor in plan
                if layout.units == "implied" and factor is not None and unit and split_header(cell)[1] is None
                and column not in in_row]
+    named = [cell for cell in header if cell]
+    if layout is GENERIC and len(unused) * 2 > len(named):  # most columns unknown: a vendor export not recognised?
+        notes.append(f"no vendor layout recognises this header ({len(unused)} of {len(named)} columns unknown): read "
+                     f"in impactlab's own layout, whose signs are the vocabulary's (side spin, spin axis and "
+                     f"directions positive to the right); if a launch monitor wrote it, name it with --vendor")
     if implied:
         notes.append(f"units not in the file for {', '.join(implied)}: taken from the {layout.name} layout "
                      f"({layout.source})")
@@ -319,9 +339,47 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     required_values = {_norm(str(value)) for value in required["values"]}
     refused = []
     shots, shot_lines = [], []
+    header_key = _row_key(header)
+    units_key = None if units_row is None else _row_key(body_units)
+    after_header = False
+    trailer, trailer_values = None, {_norm(v) for v in (layout.trailer or {}).get("values", ())}
+    trailer_column = names.index(_norm(layout.trailer["column"])) if layout.trailer and \
+        _norm(layout.trailer["column"]) in names else None
+    block_club, shot_clubs = "", []
+    seen: dict[tuple, int] = {}
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
+        # the header again: a new block of the export (Rapsodo writes it above every club's shots) or a second
+        # session appended to the first; its units row must be the first block's, else the units would be mixed
+        if _row_key(cells) == header_key:
+            skipped.append((line, "the header again (a new block of the export), not a shot"))
+            after_header = True
+            continue
+        if after_header and units_row is not None and (_row_key(cells) == units_key or all(
+                _UNITS_CELL.match(c) or not c.strip() for c in cells)):
+            if _row_key(cells) != units_key:
+                problems.append(f"{file}:{line}: a units row that differs from the one at line {units_line} "
+                                f"({_units_difference(header, body_units, cells)}): the file joins blocks in "
+                                f"different units; export or read them separately")
+            else:
+                skipped.append((line, "the units row again, under the repeated header"))
+            after_header = False
+            continue
+        after_header = False
+        if layout is not GENERIC and set(layout.recognise) <= {_norm(split_header(c)[0]) for c in cells}:
+            problems.append(f"{file}:{line}: a second header, with other columns than line {header_line}'s: the "
+                            f"file joins two exports (or app versions) of different columns; read them separately")
+            continue
+        if trailer is not None or (trailer_column is not None and trailer_column < len(cells)
+                                   and _norm(cells[trailer_column]) in trailer_values):
+            trailer = trailer or line  # notes after the shots: this row and every row below it
+            skipped.append((line, f"{(layout.trailer or {}).get('why', 'not a shot')} (from line {trailer})"))
+            continue
+        if layout.club_rows and cells and cells[0].strip() and not any(c.strip() for c in cells[1:]):
+            block_club = cells[0].strip()  # SkyTrak: a row holding only a club's name heads that club's shots
+            skipped.append((line, f"names the club of the shots below it ({block_club!r})"))
+            continue
         summary_row = next(((column, why) for column, values, why in summary
                             if column < len(cells) and _norm(cells[column]) in values), None)
         if summary_row is not None:
@@ -336,8 +394,14 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if len(cells) != width:
             problems.append(f"{file}:{line}: expected {width} columns, got {len(cells)}")
             continue
+        if (key := tuple(cell.strip() for cell in cells)) in seen:  # float32 values to 16 digits: one shot, twice
+            skipped.append((line, f"repeats line {seen[key]} cell for cell (the same shot twice: a session exported "
+                                  f"or appended twice, a message sent again)"))
+            continue
+        seen[key] = line
         shots.append(cells)
         shot_lines.append(line)
+        shot_clubs.append(block_club)
     if refused and required_column is not None:
         shown = ", ".join(f"{file}:{line} ({value!r})" for line, value in refused[:10])
         raise StudyError(f"{file}: {header[required_column]}: expected "
@@ -350,7 +414,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         raise StudyError(f"{file}: no shots below the header (line {header_line})")
     lines_array = np.array(shot_lines, dtype=np.int64)
 
-    columns = list(zip(*shots)) if shots else []
+    columns = _merge_repeated(list(zip(*shots)) if shots else [], repeated, layout, header, notes)
     values = {field: np.full(size, np.nan) for field in FIELDS}
     text_values = {field: ("",) * size for field in TEXT_FIELDS}
     flags = {}
@@ -389,19 +453,26 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         shown = "; ".join(problems[:40]) + (f" (and {len(problems) - 40} more)" if len(problems) > 40 else "")
         raise StudyError(f"{file}: {len(problems)} bad cell(s) or row(s): {shown}")
 
-    _flag_estimated(layout, header, columns, values, flags, used, unused)
+    _flag_estimated(layout, header, columns, values, flags, used, unused, notes)
     _flag_excluded(layout, header, columns, flags, used, unused)
     _flag_no_data(layout, header, columns, values, flags, used, unused)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
         _read_flags(header, columns, flags, used, unused, file, shot_lines)
-    for field, limit in layout.clamped.items():
-        clamped = np.abs(values[field]) >= limit * (1 - 1e-5)
+    stops = [(field, limit, False) for field, limit in layout.clamped.items()]
+    for field, limit, floor in stops + [(field, limit, True) for field, limit in layout.floored.items()]:
+        with np.errstate(invalid="ignore"):
+            clamped = values[field] <= limit + 1e-5 * abs(limit) if floor else \
+                np.abs(values[field]) >= limit * (1 - 1e-5)
         if clamped.any():
-            flags[(field, "clamped")] = clamped
+            flags[(field, "clamped")] = flags.get((field, "clamped"), np.zeros_like(clamped)) | clamped
     _flag_all_zero(layout, values, flags, notes)
+    _flag_without(layout, values, flags, notes)
     _derive(values, used, notes, flags)
     _check_spin_signs(layout, values, used, notes, flags)
     _check_air(values, notes, flags)
+    if layout.club_rows:
+        text_values["club"] = tuple(shot_clubs)
+    text_values["club"] = _club_names(layout, text_values["club"], notes)
     handedness = text_values["handedness"]
     bad_hand = sorted({h for h in handedness if h and h.lower() not in ("right", "left", "r", "l", "rh", "lh")})
     if bad_hand:

@@ -97,6 +97,9 @@ class VendorMap:
     sentinel_at_least: float | None = None
     estimated: dict | None = attrs.field(default=None, eq=False)
     clamped: dict = attrs.field(factory=dict, eq=False)
+    #: field -> SI floor: values at or below it are the monitor's floor, flagged ``clamped`` (the R10 writes a launch
+    #: angle of 0.4999999702 deg, float32 just below 0.5, for a ball it saw launch lower)
+    floored: dict = attrs.field(factory=dict, eq=False)
     #: [{column, values, why}]: rows that are no shot (summary rows, heartbeats), skipped with ``why``
     summary_rows: list | None = attrs.field(default=None, eq=False)
     left_right_suffix: bool = False
@@ -120,10 +123,35 @@ class VendorMap:
     spin_axis_follows_side_spin: bool = False
     #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
     excluded: dict | None = attrs.field(default=None, eq=False)
+    #: [{field, without, only_zero, why}]: a value written where a field it is made from is missing is a placeholder
+    #: (Garmin writes Club Face 0.0 or Face to Path 0.0 with no club path, and a Smash Factor of -26.25 with no club
+    #: speed): read as missing, flagged ``no data``; ``only_zero: true`` limits the rule to exact zeros
+    no_data_without: tuple = ()
+    #: the layout's own unit spellings in its units row (a Thai export's ``[ม.]`` is metres): spelling -> unit
+    unit_spellings: dict = attrs.field(factory=dict, eq=False)
+    #: words of the layout's club names -> the catalogue's (German ``Eisen 7`` -> ``Iron 7``), whole words only
+    club_words: dict = attrs.field(factory=dict, eq=False)
+    #: the text encoding of the vendor's files when they are not UTF-8 (FlightScope's simulator: windows-1252); a
+    #: file in another encoding than UTF-8 is read only where the layout that recognises its header says so
+    encoding: str = attrs.field(default="utf-8", validator=attrs.validators.in_(("utf-8", "windows-1252")))
+    #: a column written twice under one header is merged (the first's value, the second's where it is empty)
+    merge_repeated_columns: bool = False
+    #: the row under the header holds the units without brackets (SkyTrak: ``#,L/R,SCORE,MPH,DEG,RPM``)
+    units_row_plain: bool = False
+    #: a row holding only its first cell names the club of the shots below it (SkyTrak's club blocks)
+    club_rows: bool = False
+    #: {column, values, why}: the row whose column holds one of the values, and every row below it, are no shots
+    #: (SkyTrak's NOTES and the free text under it)
+    trailer: dict | None = attrs.field(default=None, eq=False)
 
-    def rule(self, header: str) -> ColumnRule | None:
-        """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit)."""
+    def rule(self, header: str, row_unit: str | None = None) -> ColumnRule | None:
+        """The rule of a header cell (matched case- and space-insensitively; ``Name [unit]`` keys need a unit).
+
+        ``row_unit``, the column's unit in a units row, tells apart columns of one name (SkyTrak's two ``SIDE``:
+        ``SIDE [RPM]`` the side spin, ``SIDE [DEG]`` the launch direction)."""
         name, unit = split_header(header)
+        if row_unit and f"{_norm(name)} [{_norm(row_unit)}]" in self.columns:
+            return self.columns[f"{_norm(name)} [{_norm(row_unit)}]"]
         full = _norm(header)
         if full in self.columns:
             return self.columns[full]
@@ -138,10 +166,11 @@ def _norm(text: str) -> str:
 
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
     keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
-            "club_reference_point",
-            "signs", "missing", "sentinel_at_least", "estimated", "clamped", "summary_rows", "left_right_suffix",
+            "club_reference_point", "signs", "missing", "sentinel_at_least", "estimated", "clamped", "floored",
+            "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
-            "zero_is_no_data", "no_data", "required"}
+            "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
+            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -161,9 +190,23 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         for field in fields:
             if field not in FIELDS:
                 raise StudyError(f"{where}: {key}: {field!r} is not a numeric session field")
+    without = []
+    for rule in document.get("no_data_without") or ():
+        if not isinstance(rule, dict) or not {"field", "without"} <= set(rule) or \
+                set(rule) - {"field", "without", "only_zero", "why"}:
+            raise StudyError(f"{where}: no_data_without: {rule!r}: expected {{field, without, only_zero, why}}")
+        for field in (rule["field"], *rule["without"]):
+            if field not in FIELDS:
+                raise StudyError(f"{where}: no_data_without: {field!r} is not a numeric session field")
+        without.append({"field": rule["field"], "without": tuple(rule["without"]),
+                        "only_zero": bool(rule.get("only_zero", False)),
+                        "why": str(rule.get("why", ""))})
     summary = document.get("summary_rows")
     summary = [] if summary is None else (summary if isinstance(summary, list) else [summary])
-    for rule in (*summary, document.get("no_data"), document.get("required")):
+    estimated = document.get("estimated")
+    if estimated is not None and set(estimated) - {"column", "values", "measured", "fields"}:
+        raise StudyError(f"{where}: estimated: {estimated!r}: expected {{column, values, measured, fields}}")
+    for rule in (*summary, document.get("no_data"), document.get("required"), estimated, document.get("trailer")):
         if rule is not None and not ({"column", "values"} <= set(rule)):
             raise StudyError(f"{where}: {rule!r}: a row rule needs a column and its values")
     if document.get("left_right_suffix") and document.get("left_right_prefix"):
@@ -173,6 +216,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     clamped = {}
     for field, limit in (document.get("clamped") or {}).items():
         clamped[field] = to_si(str(limit), FIELDS[field], f"{where}: clamped.{field}")
+    floored = {field: to_si(str(limit), FIELDS[field], f"{where}: floored.{field}")
+               for field, limit in (document.get("floored") or {}).items()}
     return VendorMap(
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
@@ -182,24 +227,73 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         club_reference=" ".join(str(document.get("club_reference", "")).split()),
         signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
         sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
+        floored=floored,
         summary_rows=summary or None, left_right_suffix=bool(document.get("left_right_suffix", False)),
         left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
         zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
-        excluded=document.get("excluded"),
+        excluded=document.get("excluded"), no_data_without=tuple(without),
+        unit_spellings={_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
+        club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
+        units_row_plain=bool(document.get("units_row_plain", False)), club_rows=bool(document.get("club_rows", False)),
+        trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
+        merge_repeated_columns=bool(document.get("merge_repeated_columns", False)),
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+
+
+#: rules of a layout that name a column and the words written in it: a translated layout restates them
+_WORDED_RULES = ("estimated", "excluded", "no_data", "required", "summary_rows", "trailer")
+
+
+def _with_base(document: dict, documents: dict, where: str) -> dict:
+    """A translated layout (``base: garmin_golf`` and ``headers: {Datum: Date, ...}``): the base layout's document
+    with the translated header names added to its columns (each with the rule of the base's column it translates,
+    signs included) and the layout's own keys over the base's. Rules that name a column and its words
+    (:data:`_WORDED_RULES`) must be restated in the layout's words; implied units follow the translated names."""
+    if "base" not in document:
+        if "headers" in document:
+            raise StudyError(f"{where}: headers: translates a base layout's headers; name the layout in 'base'")
+        return document
+    base = documents.get(document["base"])
+    if base is None or "base" in base:
+        raise StudyError(f"{where}: base: expected the id of a shipped layout that has no base itself, got "
+                         f"{document['base']!r}")
+    headers = document.get("headers") or {}
+    if not headers:
+        raise StudyError(f"{where}: headers: a layout with a base gives its header names (name: base layout's name)")
+    base_columns = {_norm(k): v for k, v in (base.get("columns") or {}).items()}
+    merged = {key: value for key, value in base.items() if key not in _WORDED_RULES}
+    merged.update({key: value for key, value in document.items() if key not in ("base", "headers")})
+    columns = dict(base.get("columns") or {})
+    english = {}
+    for local, name in headers.items():
+        if _norm(name) not in base_columns:
+            raise StudyError(f"{where}: headers.{local}: {name!r} is no column of the {document['base']} layout")
+        columns[local] = base_columns[_norm(name)]
+        english[_norm(name)] = local
+    merged["columns"] = {**columns, **(document.get("columns") or {})}
+    missing = [key for key in _WORDED_RULES if base.get(key) and key not in document]
+    if missing:
+        raise StudyError(f"{where}: {', '.join(missing)}: the {document['base']} layout's rule names its column and "
+                         f"values in its own words; restate it in this layout's")
+    merged["implied_units"] = {english.get(_norm(k), k): v for k, v in (base.get("implied_units") or {}).items()}
+    merged["implied_units"].update(document.get("implied_units") or {})
+    return merged
 
 
 @functools.cache
 def vendor_maps() -> dict[str, VendorMap]:
-    """Every vendor layout shipped with impactlab, by id."""
+    """Every vendor layout shipped with impactlab, by id (a translated layout built on its base, :func:`_with_base`)."""
     import yaml
 
-    maps = {}
+    documents = {}
     for entry in sorted(resources.files("impactlab.data.vendors").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".yaml"):
-            vendor = _vendor_from_document(yaml.safe_load(entry.read_text(encoding="utf-8")),
-                                           f"impactlab/data/vendors/{entry.name}")
-            maps[vendor.id] = vendor
+            documents[f"impactlab/data/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
+    by_id = {document.get("id"): document for document in documents.values() if isinstance(document, dict)}
+    maps = {}
+    for where, document in documents.items():
+        vendor = _vendor_from_document(_with_base(document, by_id, where), where)
+        maps[vendor.id] = vendor
     return maps
 
 

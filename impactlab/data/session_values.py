@@ -40,6 +40,53 @@ def _read_bytes(path: Path) -> str:
     return utf8_text(data, path, "shot table")
 
 
+def _row_key(cells) -> tuple:
+    """A row's cells for comparing rows (case, spaces and trailing empty cells aside)."""
+    key = [_norm(cell) for cell in cells]
+    while key and not key[-1]:
+        key.pop()
+    return tuple(key)
+
+
+def _units_difference(header, first, other) -> str:
+    """The first column whose unit differs between two units rows, said as 'Carry [m], was [Yards]'."""
+    for column, name in enumerate(header):
+        was = first[column].strip() if column < len(first) else ""
+        now = other[column].strip() if column < len(other) else ""
+        if _norm(was) != _norm(now):
+            return f"{name!r} {now or '(none)'}, was {was or '(none)'}"
+    return "a column beyond the header"
+
+
+def _legacy_text(path: Path, error: StudyError, recognise) -> tuple[str, str]:
+    """The text of a file that is not UTF-8, decoded in the legacy encoding of the layout that recognises its header
+    (``recognise(rows)`` -> VendorMap; FlightScope's simulator writes Windows-1252); else ``error`` is raised: no
+    encoding is guessed for a file no layout claims."""
+    data = checked_bytes(path, "shot table", MAX_SESSION_BYTES)
+    if b"\0" in data or data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise error
+    for encoding in ("windows-1252",):
+        try:
+            text = data.decode(encoding)
+        except UnicodeDecodeError:
+            continue
+        rows = _rows_of(text, str(path))[0]
+        if rows and recognise(rows).encoding == encoding:
+            return text, encoding
+    raise error
+
+
+def _merge_repeated(columns: list, repeated: list, layout, header: list, notes: list) -> list:
+    """Columns written twice under one header (``layout.merge_repeated_columns``): the first's cell, the second's
+    where the first is empty; said once per column."""
+    for first, second in repeated:
+        empty = set(layout.missing)
+        columns[first] = tuple(a if a.strip() not in empty else b for a, b in zip(columns[first], columns[second]))
+        notes.append(f"column {header[first]!r} is written twice (columns {first + 1} and {second + 1}): the first's "
+                     f"value is read, the second's where the first is empty")
+    return columns
+
+
 def _rows_of(text: str, file: str) -> tuple[list[list[str]], list[int], list[str]]:
     """Rows (cells) with their file lines, after the ``sep=`` line; the separator said in notes."""
     notes = []
@@ -160,13 +207,29 @@ def _rule_marks(rule, header, columns, used, unused, meaning: str):
     return np.array([_norm(cell) in marks for cell in columns[column]])
 
 
-def _flag_estimated(layout, header, columns, values, flags, used, unused) -> None:
+def _flag_estimated(layout, header, columns, values, flags, used, unused, notes) -> None:
+    """Rows whose estimated-flag column holds one of the layout's ``values``; where the layout also lists the
+    values that mean measured, a value in neither list (a localised export's word the layout does not know, a value
+    a new app version writes) cannot be told from an estimate: those rows are flagged estimated too, and said."""
     rule = layout.estimated
     estimated = _rule_marks(rule, header, columns, used, unused, rule and (
         "estimated flag: " + " or ".join(map(str, rule["values"])) + " marks " + ", ".join(rule["fields"])
         + " as estimated"))
     if estimated is None:
         return
+    if rule.get("measured") is not None:
+        names = [_norm(split_header(c)[0]) for c in header]
+        cells = [_norm(cell) for cell in columns[names.index(_norm(rule["column"]))]]
+        known = {_norm(v) for v in (*rule["values"], *rule["measured"])} | {""}
+        unknown = np.array([cell not in known for cell in cells])
+        if unknown.any():
+            seen = sorted({cell for cell in cells if cell not in known})
+            notes.append(f"{rule['column']}: {int(unknown.sum())} row(s) hold {', '.join(map(repr, seen[:5]))}, "
+                         f"neither a value that marks an estimate ({', '.join(map(repr, rule['values'])) or 'none'}) "
+                         f"nor one that marks a measurement ({', '.join(map(repr, rule['measured'])) or 'none'}) "
+                         f"in this layout: their {', '.join(rule['fields'])} are flagged estimated (not told apart "
+                         f"from an estimate)")
+            estimated = estimated | unknown
     if estimated.any():
         for field in rule["fields"]:
             present = estimated & np.isfinite(values[field])
@@ -324,6 +387,45 @@ def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
         flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(zero)) | zero
     notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-club-data "
                  f"marker): read as missing")
+
+
+def _flag_without(layout, values: dict, flags: dict, notes: list) -> None:
+    """Values written where a field they are made from is missing (``layout.no_data_without``): placeholders, read
+    as missing and flagged ``no data``, each rule said once with its count."""
+    for rule in layout.no_data_without:
+        value = values[rule["field"]]
+        lacking = np.zeros(value.shape, bool)
+        for field in rule["without"]:
+            lacking |= np.isnan(values[field])
+        placeholder = lacking & np.isfinite(value)
+        if rule["only_zero"]:  # an exact 0 (0 in every unit)
+            placeholder &= value == 0.0
+        if not placeholder.any():
+            continue
+        values[rule["field"]] = np.where(placeholder, np.nan, value)
+        flags[(rule["field"], "no data")] = flags.get((rule["field"], "no data"), np.zeros_like(placeholder)) | \
+            placeholder
+        written = "exactly 0" if rule["only_zero"] else "a value"
+        notes.append(f"{int(placeholder.sum())} row(s) give {rule['field']} {written} with no "
+                     f"{' or no '.join(rule['without'])}: read as missing" + (f" ({rule['why']})" if rule['why']
+                                                                               else ""))
+
+
+def _club_names(layout, names: tuple, notes: list) -> tuple:
+    """Club names with the layout's words turned into the catalogue's (``Eisen 7`` -> ``Iron 7``), word by word;
+    said once with an example."""
+    if not layout.club_words:
+        return names
+    turned = {}
+    for name in set(names):
+        words = [layout.club_words.get(_norm(word), word) for word in name.split()]
+        if " ".join(words) != " ".join(name.split()):
+            turned[name] = " ".join(words)
+    if turned:
+        example = next(iter(sorted(turned.items())))
+        notes.append(f"club names in the layout's words read as the catalogue's: {len(turned)} name(s), e.g. "
+                     f"{example[0]!r} as {example[1]!r}")
+    return tuple(turned.get(name, name) for name in names)
 
 
 def _inherit(flags: dict, field: str, sources) -> None:
