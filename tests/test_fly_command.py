@@ -460,3 +460,37 @@ def test_a_table_in_impactlabs_own_names_flies_in_the_air_it_states(tmp_path):
     flown, launch = _csv(session)[0], _csv(typed)[0]
     assert float(flown["carry_distance [m]"]) == pytest.approx(float(launch["carry_distance [m]"]), rel=1e-5)
     assert float(flown["air_density [kg/m^3]"]) == pytest.approx(1.1950, abs=2e-4)
+
+
+def test_a_normalised_trackman_export_flies_in_the_air_its_condition_column_states(tmp_path, capsys):
+    """TrackMan's normalised rows say in words what air its model flew them in (the fixture's Condition: "Data are
+    normalized to no wind conditions at 0 ft altitude, 76.99999999999994 ℉ with a Premium ball"): 25.0 degC at sea
+    level, so each row flies as the launch typed in with --temperature "77 degF" --altitude "0 ft" (humidity not
+    stated: the standard 50 %, said)."""
+    out = tmp_path / "tm.csv"
+    assert main(["fly", str(DATA / "trackman_tps_drivers.csv"), "--csv", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "air: 25.0 degC, 1013.2 hPa, 50 % humidity" in printed
+    assert "humidity not stated for 7 shot(s): 50 % taken" in printed
+    first = _csv(out)[0]
+    typed = tmp_path / "typed.csv"
+    assert main(["fly", "--ball-speed", f"{float(first['ball_speed [m/s]'])} m/s", "--launch-angle",
+                 f"{first['vertical_launch_angle [degree]']} deg", "--spin-rate", f"{first['spin_rate [rpm]']} rpm",
+                 "--spin-axis", f"{first['spin_axis [degree]']} deg", "--temperature", "76.99999999999994 degF",
+                 "--altitude", "0 ft", "--csv", str(typed)]) == 0
+    assert float(first["carry_distance [m]"]) == pytest.approx(float(_csv(typed)[0]["carry_distance [m]"]), rel=1e-9)
+
+
+@pytest.mark.parametrize("condition, expected", [
+    ("at 0 ft altitude, 77 F with", "condition.csv:4:"),  # F is the farad to pint: refused at the cell
+    ("at 1500 m altitude, 20 °C with", "air: 20.0 degC, 845.6 hPa"),  # ISA pressure at 1500 m: 84 556 Pa
+    ("without the air in words", "the standard air (the export states no air)"),
+])
+def test_trackman_condition_text_is_read_with_its_units_or_refused(tmp_path, capsys, condition, expected):
+    text = (DATA / "trackman_tps.csv").read_text(encoding="utf-8-sig")
+    path = tmp_path / "condition.csv"
+    path.write_text(text.replace("at 0 ft altitude, 76.99999999999994 ℉ with", condition), encoding="utf-8")
+    code = main(["fly", str(path)])
+    captured = capsys.readouterr()
+    assert expected in (captured.out if code == 0 else captured.err)
+    assert code == (2 if "condition.csv:4" in expected else 0) and "Traceback" not in captured.err

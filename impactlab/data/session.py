@@ -40,10 +40,11 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_values import (_UNITS_CELL, _check_air, _check_spin_signs, _club_names, _decimal_mark,
-                                           _derive, _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
-                                           _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
-                                           _read_flags, _row_key, _rows_of, _to_numbers, _units_difference)
+from impactlab.data.session_values import (_UNITS_CELL, _air_from_text, _check_air, _check_spin_signs, _club_names,
+                                           _decimal_mark, _derive, _flag_all_zero, _flag_estimated, _flag_excluded,
+                                           _flag_no_data, _flag_without, _legacy_text, _merge_repeated, _progress,
+                                           _read_bytes, _read_flags, _row_key, _rows_of, _to_numbers,
+                                           _units_difference)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
@@ -456,6 +457,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     _flag_estimated(layout, header, columns, values, flags, used, unused, notes)
     _flag_excluded(layout, header, columns, flags, used, unused)
     _flag_no_data(layout, header, columns, values, flags, used, unused)
+    _air_from_text(layout, header, columns, values, used, unused, notes, file, shot_lines)
     if layout is GENERIC and "flags" in [_norm(cell) for cell in header]:
         _read_flags(header, columns, flags, used, unused, file, shot_lines)
     stops = [(field, limit, False) for field, limit in layout.clamped.items()]

@@ -45,8 +45,10 @@ LAUNCH = ("ball_speed", "vertical_launch_angle", "spin_rate")
 PREDICTED = ("carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time")
 #: the prefix of the monitor's own value of a predicted quantity in the result
 MONITOR = "monitor_"
-#: the air a shot states (session fields), as :class:`impactlab.scene.flight.Conditions` takes it
-SESSION_AIR = {"air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "relative_humidity"}
+#: the air a shot states (session fields), as :class:`impactlab.scene.flight.Conditions` takes it: a temperature
+#: and a pressure or an altitude (the ISA pressure there) state an air; a humidity not stated is the standard 50 %
+SESSION_AIR = {"air_temperature": "temperature", "air_pressure": "pressure", "altitude": "altitude",
+               "relative_humidity": "relative_humidity"}
 
 
 def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Mapping | None = None,
@@ -163,7 +165,8 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
 def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, session_air: bool):
     """(the air of each row flown: a Conditions, or the ``conditions`` mapping for all; whose air, in words)."""
     v = session.values
-    states = np.all([np.isfinite(v[field]) for field in SESSION_AIR], axis=0)
+    with_pressure = np.isfinite(v["air_pressure"])
+    states = np.isfinite(v["air_temperature"]) & (with_pressure | np.isfinite(v["altitude"]))
     doubtful = np.zeros_like(states)
     for (field, _), marked in session.flags.items():  # any flag on the air: estimated, inconsistent
         if field in SESSION_AIR or field == "air_density":
@@ -186,12 +189,20 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
         if not usable[row]:
             airs.append(None)
             continue
+        # a pressure, when stated, sets the air; an altitude only where no pressure is (Conditions takes one)
+        given = {key: float(v[field][row]) for field, key in SESSION_AIR.items() if np.isfinite(v[field][row])
+                 and not (field == "altitude" and with_pressure[row])}
         try:
-            airs.append(flight.Conditions(**{key: float(v[field][row]) for field, key in SESSION_AIR.items()}))
+            airs.append(flight.Conditions(**given))
         except FieldError as exc:
             raise exc.at(prefix="air", file=str(session.file), line=session.lines[row]) from None
     standard = rows.size - stated
-    return airs, ("the export's own, per shot (each row's temperature, pressure and humidity)"
+    stated_fields = [words for field, words in (("air_pressure", "pressure"), ("altitude", "altitude"),
+                                                ("relative_humidity", "humidity"))
+                     if np.isfinite(v[field][rows][usable[rows]]).any()]
+    no_humidity = int((usable[rows] & ~np.isfinite(v["relative_humidity"][rows])).sum())
+    return airs, (f"the export's own, per shot (each row's temperature, {' and '.join(stated_fields)})"
+                  + (f"; humidity not stated for {no_humidity} shot(s): 50 % taken" if no_humidity else "")
                   + (f"; {standard} shot(s) in the standard air" if standard else "") + caveat)
 
 

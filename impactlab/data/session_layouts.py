@@ -29,7 +29,7 @@ FIELDS = {
     # the air the monitor states for a shot (Garmin: Temperature [deg F], Air Pressure [kPa], Relative Humidity [%],
     # Air Density [g/L]); `impactlab fly SESSION` flies each shot in it
     "air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "dimensionless",
-    "air_density": "density",
+    "air_density": "density", "altitude": "length",
 }
 TEXT_FIELDS = ("label", "club", "handedness")
 #: per-row one-sigma uncertainties of the predicted quantities (impactlab's own layout: ``ball_speed_sigma [mph]``)
@@ -48,6 +48,7 @@ DESCRIPTIONS = {
     "flight_time": "flight time", "air_temperature": "air temperature", "air_pressure": "air pressure",
     "relative_humidity": "relative humidity (a fraction; '[%]' in a units row)",
     "air_density": "air density (checked against the temperature, pressure and humidity)",
+    "altitude": "altitude of the air (the ISA pressure there, where no pressure is given)",
     **{key: f"uncertainty of the {key[:-6].replace('_', ' ')}" for key in SIGMA_FIELDS},
     "label": "shot label", "club": "club name", "handedness": "handedness",
 }
@@ -121,6 +122,10 @@ class VendorMap:
     #: True: the file's spin-axis sign is checked against its side spin (whose sign the layout states) and turned
     #: when every row disagrees (Garmin Golf app versions write the axis with either sign)
     spin_axis_follows_side_spin: bool = False
+    #: {column, pattern}: the air stated in words in a text column (TrackMan's Condition: "Data are normalized to no
+    #: wind conditions at 0 ft altitude, 77 degF ..."): the pattern's named groups are session fields, each
+    #: captured as a number with its unit
+    air_text: dict | None = attrs.field(default=None, eq=False)
     #: {column, values}: rows the user marked not to use (TrackMan's Use In Stat = FALSE)
     excluded: dict | None = attrs.field(default=None, eq=False)
     #: [{field, without, only_zero, why}]: a value written where a field it is made from is missing is a placeholder
@@ -170,7 +175,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
-            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns"}
+            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -218,6 +223,17 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         clamped[field] = to_si(str(limit), FIELDS[field], f"{where}: clamped.{field}")
     floored = {field: to_si(str(limit), FIELDS[field], f"{where}: floored.{field}")
                for field, limit in (document.get("floored") or {}).items()}
+    air_text = document.get("air_text")
+    if air_text is not None:
+        if set(air_text) != {"column", "pattern"}:
+            raise StudyError(f"{where}: air_text: {air_text!r}: expected {{column, pattern}}")
+        try:
+            groups = re.compile(air_text["pattern"]).groupindex
+        except re.error as exc:
+            raise StudyError(f"{where}: air_text.pattern: {exc}") from None
+        if not groups or set(groups) - {"air_temperature", "air_pressure", "relative_humidity", "altitude"}:
+            raise StudyError(f"{where}: air_text.pattern: its named groups must be air fields (air_temperature, "
+                             f"air_pressure, relative_humidity, altitude), got {sorted(groups)}")
     return VendorMap(
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
@@ -236,7 +252,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
         units_row_plain=bool(document.get("units_row_plain", False)), club_rows=bool(document.get("club_rows", False)),
         trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
-        merge_repeated_columns=bool(document.get("merge_repeated_columns", False)),
+        merge_repeated_columns=bool(document.get("merge_repeated_columns", False)), air_text=air_text,
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
 
 
@@ -326,6 +342,7 @@ def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
         offset = to_si(f"0 {spelled}", dimension, where)
         return to_si(f"1 {spelled}", dimension, where) - offset, offset
     return to_si(f"1 {spelled}", dimension, where), 0.0
+
 
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
     maps = vendor_maps()

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from impactlab.errors import StudyError
+from impactlab.errors import FieldError, StudyError
 from impactlab.study.yaml_lines import checked_bytes, utf8_text
-from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
+from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, _unit_factor, split_header
 from impactlab.physics.atmosphere import air_density
 
 #: the largest file read as a session [bytes]
@@ -235,6 +235,63 @@ def _flag_estimated(layout, header, columns, values, flags, used, unused, notes)
             present = estimated & np.isfinite(values[field])
             if present.any():
                 flags[(field, "estimated")] = present
+
+
+def _air_from_text(layout, header, columns, values, used, unused, notes, file: str, lines) -> None:
+    """The air a layout's text column states in words (``layout.air_text``: TrackMan's Condition, "Data are
+    normalized to no wind conditions at 0 ft altitude, 76.99999999999994 ℉ with a Premium ball"): each named group
+    of its pattern, a number with its unit, read into its field (the unit spelled as the layout's units are; a
+    capture whose unit is not one of its field is refused at the cell, never guessed)."""
+    rule = layout.air_text
+    if not rule:
+        return
+    names = [_norm(split_header(cell)[0]) for cell in header]
+    if _norm(rule["column"]) not in names:
+        return
+    column = names.index(_norm(rule["column"]))
+    pattern = re.compile(rule["pattern"])
+    cells = columns[column]
+    found: dict[str, np.ndarray] = {field: np.full(len(cells), np.nan) for field in pattern.groupindex}
+    for row, cell in enumerate(cells):
+        match = pattern.search(str(cell))
+        if match is None:
+            continue
+        for field, text in match.groupdict().items():
+            if text is None:
+                continue
+            quantity = _NUMBER_AND_UNIT.match(text)
+            where = f"{file}:{lines[row]}:{column + 1} ({header[column]})"
+            if quantity is None:
+                raise StudyError(f"{where}: {field}: expected a number and its unit, got {text!r}")
+            try:
+                scale, offset = _unit_factor(quantity.group(2), FIELDS[field], f"{where}: {field}")
+            except FieldError as exc:  # a unit that is not one of the field's: refused at the cell, never guessed
+                raise StudyError(str(exc)) from None
+            found[field][row] = float(quantity.group(1)) * scale + offset
+    stated = {field: array for field, array in found.items() if np.isfinite(array).any()}
+    if not stated:
+        return
+    for field, array in stated.items():
+        values[field] = np.where(np.isfinite(array), array, values[field])
+    if header[column] in unused:
+        unused.remove(header[column])
+    used.append((header[column], "air stated in words: " + ", ".join(stated), "", 1.0))
+    rows = int(np.any([np.isfinite(array) for array in stated.values()], axis=0).sum())
+    notes.append(f"{header[column]}: the air stated in words in {rows} row(s) (" + ", ".join(
+        _air_words(field, array) for field, array in stated.items()) + ")")
+
+
+#: a number and the unit written after it, with or without a space ("0 ft", "76.99999999999994 ℉", "25℃")
+_NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(.*?)\s*$")
+
+
+def _air_words(field: str, array: np.ndarray) -> str:
+    finite = array[np.isfinite(array)]
+    low, high = finite.min(), finite.max()
+    shown = {"air_temperature": (lambda x: f"{x - 273.15:.1f} degC"), "altitude": (lambda x: f"{x:.0f} m"),
+             "air_pressure": (lambda x: f"{x / 1e3:.2f} kPa"), "relative_humidity": (lambda x: f"{100 * x:.0f} %")}
+    form = shown[field]
+    return f"{field.replace('_', ' ')} {form(low)}" + ("" if low == high else f" to {form(high)}")
 
 
 def _flag_no_data(layout, header, columns, values, flags, used, unused) -> None:
