@@ -6,7 +6,7 @@ import pytest
 
 import impactlab
 from impactlab.model import case_inputs as case_inputs_module
-from impactlab.run.assemble import _common_time, _on_time
+from impactlab.run.assemble import VALIDITY_FILL, _common_time, _integer_flags, _on_time, labelled_dataset
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.model.registry import get_model
@@ -141,6 +141,40 @@ def test_the_study_dataset_keeps_its_layout_and_provenance():
     # the cached provenance is a copy each time: changing one result's attributes leaves the next alone
     result.attrs["numpy_version"] = "changed"
     assert impactlab.run_study(STUDY).attrs["numpy_version"] == np.__version__
+
+
+def test_the_dataset_built_from_its_parts_is_the_one_xarrays_constructor_builds():
+    """labelled_dataset skips xarray's merge and alignment: the same variables, order, indexes and encodings."""
+    import xarray as xr
+
+    data_vars = {
+        "spin_rate": xr.Variable(("model", "club", "time"), np.arange(12.0).reshape(2, 3, 2), {"units": "rpm"}),
+        "validity": xr.Variable(("model", "club"), np.array([[1.0, np.nan, 0.0], [0.0, 0.0, 16.0]]),
+                                {"flag_meanings": "a b"}, {"dtype": "int16", "_FillValue": VALIDITY_FILL}),
+    }
+    coords = {"model": xr.Variable("model", ["maw", "rigid_coulomb"], {"long_name": "model"}),
+              "club": xr.Variable("club", ["driver", "6_iron", "pw"], {"long_name": "club (sets ...)"}),
+              "club_mass": xr.Variable("club", [0.2, 0.25, 0.3], {"units": "kg"}),  # a coordinate without an index
+              "time": xr.Variable("time", [0.0, 1e-4], {"units": "s"})}
+    attributes = {"title": "t", "plan": "p"}
+    built = labelled_dataset(data_vars, coords, attributes)
+    public = xr.Dataset(data_vars, coords=coords, attrs=attributes)
+    xr.testing.assert_identical(built, public)
+    assert list(built.variables) == list(public.variables) and list(built.dims) == list(public.dims)
+    assert set(built.xindexes) == set(public.xindexes) == {"model", "club", "time"}
+    assert all(built.xindexes[name].equals(public.xindexes[name]) for name in public.xindexes)
+    assert built["validity"].encoding == {"dtype": "int16", "_FillValue": VALIDITY_FILL}
+    assert built["model"].dtype == public["model"].dtype and built.attrs == attributes
+    with pytest.raises(ValueError, match="club"):
+        labelled_dataset(data_vars, dict(coords, club=xr.Variable("club", ["a", "b"])), attributes)
+
+
+def test_validity_flags_are_integers_unless_a_model_left_cases_out():
+    whole, encoding = _integer_flags(np.array([[1.0, 16.0], [0.0, 17.0]]))
+    assert whole.dtype == np.int16 and whole.tolist() == [[1, 16], [0, 17]] and encoding is None
+    partial, encoding = _integer_flags(np.array([[1.0, np.nan]]))
+    assert partial.dtype == float and np.isnan(partial[0, 1])  # NaN where absent, stored as int16 with a fill value
+    assert encoding == {"dtype": "int16", "_FillValue": VALIDITY_FILL}
 
 
 def test_a_worker_task_carries_its_own_cases_only(monkeypatch):
