@@ -9,6 +9,7 @@ import platform
 import subprocess
 from importlib import metadata
 from pathlib import Path
+from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -42,7 +43,7 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
         history = time is not None and is_history(name)
         stacked = np.stack([_on_time(result, name, time, history) for result in results])
         stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
-        attributes = {"units": spec.units, "long_name": spec.long_name}
+        attributes: dict[str, object] = {"units": spec.units, "long_name": spec.long_name}
         if name in FLIGHT_OUTPUTS:  # which air model flew the ball: the default can change between versions
             attributes.update(aerodynamic_model=DEFAULT_MODEL,
                               aerodynamic_references=MODEL_REFERENCES[DEFAULT_MODEL])
@@ -110,7 +111,7 @@ def labelled_dataset(data_vars: dict[str, xr.Variable], coords: dict[str, xr.Var
             indexes[name] = index
         else:
             variables[name] = variable
-    sizes: dict[str, int] = {}
+    sizes: dict[Hashable, int] = {}
     for variable in variables.values():
         for dim, size in zip(variable.dims, variable.shape):
             if sizes.setdefault(dim, size) != size:
