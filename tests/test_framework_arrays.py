@@ -208,6 +208,22 @@ def test_validity_is_warned_once_per_flag_for_all_models():
     assert all(text.startswith("maw, hertz_mindlin: in 9 of 9 case(s) each ") for text in texts)
 
 
+def test_validity_messages_count_each_flag_per_model_in_a_result_and_in_one_models_selection():
+    import xarray as xr
+
+    from impactlab.model.diagnostics import FLAGS, messages
+
+    large, soft = FLAGS[1][1], FLAGS[2][1]
+    # model a: bit 1 in 3 of its 4 cases, bit 2 in 1; model b: bit 1 in 3 (one case not computed: NaN); c: none
+    values = np.array([[[1, 1], [0, 3]], [[1, 1], [np.nan, 1]], [[0, 0], [0, 0]]])
+    result = xr.Dataset({"validity": (("model", "angle", "friction"), values)}, coords={"model": ["a", "b", "c"]})
+    assert messages(result) == [f"a, b: in 3 of 4 case(s) each {large}", f"a: in 1 of 4 case(s) {soft}"]
+    assert messages(result.sel(model="a")) == [f"a: in 3 of 4 case(s) {large}", f"a: in 1 of 4 case(s) {soft}"]
+    assert messages(result.sel(model="c")) == [] and messages(result.drop_vars("validity")) == []
+    assert messages(result.drop_vars("model"))[0] == f"0, 1: in 3 of 4 case(s) each {large}"  # unlabelled models
+    assert messages(result.isel(model=0).drop_vars("model"))[0] == f"model: in 3 of 4 case(s) {large}"
+
+
 def test_after_impact_asked_for_one_quantity_gives_what_the_full_computation_gives():
     from impactlab.physics.contact import AFTER_IMPACT_OUTPUTS, after_impact, impulse_vector
     from impactlab.testing import reference_inputs_3d

@@ -8,6 +8,7 @@ models and the number of their cases concerned.
 from __future__ import annotations
 
 import warnings
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -83,14 +84,19 @@ def messages(dataset: xr.Dataset) -> list[str]:
     """
     if "validity" not in dataset:
         return []
-    flags = dataset["validity"]
+    # the variables themselves, no DataArray with its coordinates: this runs after every study
+    flags = dataset.variables["validity"]
     per_model = "model" in flags.dims
     values = flags.values
-    # models first, every case of a model on one row (plain arrays: this runs after every study)
+    # models first, every case of a model on one row (plain arrays)
     values = np.moveaxis(values, flags.get_axis_num("model"), 0) if per_model else values[None]
     values = np.nan_to_num(values.reshape(values.shape[0], -1)).astype(np.int64)
-    # one model's selection keeps its name as a scalar coordinate
-    names = flags["model"].values if per_model else [flags["model"].item() if "model" in flags.coords else "model"]
+    model = dataset.variables["model"] if "model" in dataset.coords else None
+    names: Any
+    if per_model:  # a model dimension without labels (not one impactlab writes) counts its models from 0
+        names = model.values if model is not None else np.arange(values.shape[0])
+    else:  # one model's selection keeps its name as a scalar coordinate
+        names = [model.values.item() if model is not None and model.ndim == 0 else "model"]
     found = []
     for bit, (_, meaning) in FLAGS.items():
         counts = np.count_nonzero(values & bit, axis=1)
