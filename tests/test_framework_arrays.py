@@ -238,6 +238,36 @@ def test_after_impact_asked_for_one_quantity_gives_what_the_full_computation_giv
         np.testing.assert_array_equal(after_impact(state, impulse, names={name}, **batch)[name], full[name])
 
 
+def test_one_launch_plane_per_chunk_for_every_models_derivation(monkeypatch):
+    calls = []
+    real = case_inputs_module.launch_plane
+
+    def counting(state):
+        calls.append(state["normal"].shape[0])
+        return real(state)
+
+    monkeypatch.setattr(case_inputs_module, "launch_plane", counting)
+    impactlab.run_study(STUDY, executor="serial", chunk_size=4)
+    assert calls == [4, 4, 1]  # three chunks of the 9 cases, each shared by the derivations of three models
+
+
+def test_the_launch_plane_of_a_plate_experiment_is_the_plane_of_the_impact_angle():
+    from impactlab.physics.contact import after_impact, impulse_vector
+
+    # a plate experiment: the path along +X, the face normal tilted up by the impact angle in the X-Z plane
+    batch = CaseInputs({"speed": 40.0, "angle": [-0.2, 0.1, 0.5], "ball_mass": 0.0459, "ball_radius": 0.02135,
+                        "ball_inertia_factor": 0.4})
+    plane = batch.launch_plane()
+    np.testing.assert_allclose(plane["angle"], [-0.2, 0.1, 0.5], rtol=1e-15)
+    np.testing.assert_array_equal(plane["across"], [[0.0, 0.0, 1.0]] * 3)
+    assert batch.launch_plane() is plane and not plane["angle"].flags.writeable  # once per batch, read-only
+    state = batch.contact_state()
+    impulse = impulse_vector(state, np.array([3.0, 3.0, 3.0]), np.array([0.5, 0.5, 0.5]))
+    given = after_impact(state, impulse, plane=plane, **batch)
+    for name, value in after_impact(state, impulse, **batch).items():
+        np.testing.assert_array_equal(given[name], value)
+
+
 def test_the_shared_state_mapping_cannot_be_rebound_by_a_model():
     """A model replacing an entry (not writing in place) would change the next model's results in a serial run
     only: the mapping is read-only too."""

@@ -291,7 +291,22 @@ AFTER_IMPACT_OUTPUTS = frozenset({
     "ball_speed", "energy_loss", "smash_factor", "club_speed_after", "club_angular_velocity"})
 _NEEDS_HEAD = frozenset({"club_velocity", "club_spin", "normal_velocity", "tangential_velocity", "rebound_angle",
                          "total_angle", "club_speed_after", "club_angular_velocity"})
-_NEEDS_PLANE = frozenset({"launch_angle", "launch_ratio", "total_angle"})
+#: what needs the plane of the club's path and the contact normal (:func:`launch_plane`)
+LAUNCH_PLANE_OUTPUTS = frozenset({"launch_angle", "launch_ratio", "total_angle"})
+
+
+def launch_plane(state):
+    """The plane of the club's path and the contact normal (``state``: :func:`contact_state`), where the launch and
+    the face are measured: ``across`` (n, 3), its unit vector normal to the path on the side of a normal tilted up
+    the face, and ``angle`` (n,), the normal's angle from the path, positive up the face (the 1-D models' sign)
+    [rad]. A function of the state alone: the models of one batch share it (``CaseInputs.launch_plane``).
+    """
+    direction = state["club_direction"]
+    towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
+    orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
+    across_unit = orientation[:, None] * _unit(towards_normal)
+    angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
+    return {"across": across_unit, "angle": angle}
 
 
 def couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor):
@@ -347,7 +362,7 @@ def couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor):
 
 
 def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf,
-                 names=None, moment=None, **_):
+                 names=None, moment=None, plane=None, **_):
     """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
 
     Returns the ground-frame vectors (right-handed golfer) and the face-frame quantities of the 1-D problem,
@@ -363,6 +378,7 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     the contact's relative velocity are computed only where an asked-for quantity needs them (the dict may
     hold more than asked, never less). ``moment`` (n, 2), optional: the angular impulse of a couple on the ball
     along (s, l) [N m s] (a rolling-resistance law), the head taking the opposite; see :func:`couple_mobility`.
+    ``plane``, optional: :func:`launch_plane` of ``state`` where the caller has it (the models of one batch share it).
     """
     names = AFTER_IMPACT_OUTPUTS if names is None else frozenset(names)
     n = impulse.shape[0]
@@ -429,15 +445,10 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
                 np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
             "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
         })
-    if names & _NEEDS_PLANE:
-        # angles in the plane of the path and the contact normal, counted positive from the path towards a
-        # normal tilted up the face (the 1-D models' sign: a face tilted down has a negative angle)
-        direction = state["club_direction"]
-        towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
-        orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
-        across_unit = orientation[:, None] * _unit(towards_normal)
+    if names & LAUNCH_PLANE_OUTPUTS:  # angles in the plane of the path and the contact normal (launch_plane)
+        plane = launch_plane(state) if plane is None else plane
+        direction, across_unit, angle = state["club_direction"], plane["across"], plane["angle"]
         launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
-        angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
         with np.errstate(divide="ignore", invalid="ignore"):
             out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
         out["launch_angle"] = launch_angle
