@@ -5,6 +5,7 @@ from __future__ import annotations
 import datetime as _dt
 import functools
 import json
+import math
 import platform
 import subprocess
 from importlib import metadata
@@ -203,7 +204,8 @@ def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:
     """What made this result: the study, its models with resolved options, versions, the plan."""
     models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
                "references": list(entry.model.references)} for entry in study.models]
-    scene = {name: (value if np.isfinite(value) else str(value)) for name, value in study.scene.inputs().items()}
+    # math.isfinite: the same answer for a float as np.isfinite, at a tenth of its cost on ~60 scalars a run
+    scene = {name: (value if math.isfinite(value) else str(value)) for name, value in study.scene.inputs().items()}
     created = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
     return {
         "title": f"impactlab study {study.name}",
