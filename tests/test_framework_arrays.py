@@ -236,6 +236,13 @@ def test_after_impact_asked_for_one_quantity_gives_what_the_full_computation_giv
     assert set(full) == AFTER_IMPACT_OUTPUTS
     for name in AFTER_IMPACT_OUTPUTS:
         np.testing.assert_array_equal(after_impact(state, impulse, names={name}, **batch)[name], full[name])
+    # with a rolling couple on the ball, whose work counts in the energy lost
+    moment = 1e-4 * np.stack([np.ones(batch.n_cases), -np.ones(batch.n_cases)], -1)
+    full = after_impact(state, impulse, moment=moment, **batch)
+    assert not np.array_equal(full["energy_loss"], after_impact(state, impulse, **batch)["energy_loss"])
+    for name in AFTER_IMPACT_OUTPUTS:
+        np.testing.assert_array_equal(after_impact(state, impulse, names={name}, moment=moment, **batch)[name],
+                                      full[name])
 
 
 def test_one_launch_plane_per_chunk_for_every_models_derivation(monkeypatch):

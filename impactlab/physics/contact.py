@@ -410,17 +410,18 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         if has_moment:
             coupling, rotation, rolling = couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor)
             relative_after = relative_after + np.einsum("nij,nj->ni", coupling, moment)
-            rolling_after = rolling + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum(
-                "nij,nj->ni", rotation, moment)
         slip = state["slip_speed"]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out["tangential_restitution"] = np.where(
-                slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
-        # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
-        out["energy_loss"] = -np.sum(
-            impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
-        if has_moment:  # and the couple's work on the mean relative rolling rate
-            out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
+        if "tangential_restitution" in names:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out["tangential_restitution"] = np.where(
+                    slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
+        if "energy_loss" in names:  # the work of the impulse on the mean relative velocity, -(J . (v0 + v1)/2)
+            out["energy_loss"] = -np.sum(
+                impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
+            if has_moment:  # and the couple's work on the mean relative rolling rate
+                rolling_after = rolling + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum(
+                    "nij,nj->ni", rotation, moment)
+                out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
     if names & _NEEDS_HEAD:
         club = np.broadcast_to(np.asarray(club_mass, float), (n,))
         club_velocity = state["club_velocity"] - np.where(
@@ -449,8 +450,10 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         plane = launch_plane(state) if plane is None else plane
         direction, across_unit, angle = state["club_direction"], plane["across"], plane["angle"]
         launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
+        if "launch_ratio" in names:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0),
+                                               np.nan)
         out["launch_angle"] = launch_angle
         if "rebound_angle" in out:
             out["total_angle"] = angle + out["rebound_angle"]
