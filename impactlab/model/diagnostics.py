@@ -98,7 +98,10 @@ def messages(dataset: xr.Dataset) -> list[str]:
     else:  # one model's selection keeps its name as a scalar coordinate
         names = [model.values.item() if model is not None and model.ndim == 0 else "model"]
     found = []
+    present = int(np.bitwise_or.reduce(values, axis=None)) if values.size else 0  # the flags any case raised
     for bit, (_, meaning) in FLAGS.items():
+        if not present & bit:  # no case raised it: nothing to count (most flags, most runs)
+            continue
         counts = np.count_nonzero(values & bit, axis=1)
         raised = [(str(model), int(count), values.shape[1]) for model, count in zip(names, counts) if count]
         if len({(count, size) for _, count, size in raised}) == 1:
