@@ -219,6 +219,8 @@ def test_validity_messages_count_each_flag_per_model_in_a_result_and_in_one_mode
     result = xr.Dataset({"validity": (("model", "angle", "friction"), values)}, coords={"model": ["a", "b", "c"]})
     assert messages(result) == [f"a, b: in 3 of 4 case(s) each {large}", f"a: in 1 of 4 case(s) {soft}"]
     assert messages(result.sel(model="a")) == [f"a: in 3 of 4 case(s) {large}", f"a: in 1 of 4 case(s) {soft}"]
+    assert messages(result.transpose("angle", "model", "friction")) == messages(result)  # models on any axis
+    assert messages(result.fillna(0).astype(np.int16)) == messages(result)  # integer flags, as a run's result
     assert messages(result.sel(model="c")) == [] and messages(result.drop_vars("validity")) == []
     assert messages(result.drop_vars("model"))[0] == f"0, 1: in 3 of 4 case(s) each {large}"  # unlabelled models
     assert messages(result.isel(model=0).drop_vars("model"))[0] == f"model: in 3 of 4 case(s) {large}"
