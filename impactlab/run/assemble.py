@@ -42,7 +42,8 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
     for name in study.all_outputs:
         spec = OUTPUTS[name]
         history = time is not None and is_history(name)
-        stacked = np.stack([_on_time(result, name, time, history) for result in results])
+        # np.stack's result (the models' arrays have one shape), without its Python-level wrapper: ~30 us cold
+        stacked = np.array([_on_time(result, name, time, history) for result in results])
         stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
         attributes: dict[str, object] = {"units": spec.units, "long_name": spec.long_name}
         if name in FLIGHT_OUTPUTS:  # which air model flew the ball: the default can change between versions
