@@ -384,10 +384,11 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     n = impulse.shape[0]
     frame = state["frame"]
     impulse_ground = np.einsum("nij,nj->ni", frame, impulse)
-    m = np.broadcast_to(np.asarray(ball_mass, float), (n,))
-    radius = np.broadcast_to(np.asarray(ball_radius, float), (n,))
-    inertia = np.broadcast_to(np.asarray(ball_inertia_factor, float), (n,)) * m * radius**2
-    speed = np.broadcast_to(np.asarray(speed, float), (n,))
+    # a batch's own arrays as they are (np.broadcast_to's Python code is cold after a kernel), else broadcast
+    m, radius, factor, speed = (value if type(value) is np.ndarray and value.shape == (n,) and value.dtype == float
+                                else np.broadcast_to(np.asarray(value, float), (n,))
+                                for value in (ball_mass, ball_radius, ball_inertia_factor, speed))
+    inertia = factor * m * radius**2
 
     ball_velocity = impulse_ground / m[:, None]
     # dw = I^-1 (-R n) x J = (R/I) J x n; in the contact frame J x n = (J_l, -J_s, 0) (exactly 0 for a normal J)
