@@ -284,3 +284,14 @@ def test_the_shared_state_mapping_cannot_be_rebound_by_a_model():
     state = batch.contact_state()
     with pytest.raises(TypeError):
         state["normal_speed"] = 0.5 * state["normal_speed"]
+
+
+def test_a_scenes_inputs_are_computed_once_and_handed_out_as_new_dicts():
+    import attrs
+
+    scene = _scene()
+    first = scene.inputs()
+    first["speed"] = -1.0  # a caller changing its dict changes no other caller's
+    assert scene.inputs()["speed"] == pytest.approx(40.0) and scene.inputs() is not scene.inputs()
+    faster = attrs.evolve(scene, impact=attrs.evolve(scene.impact, speed=50.0))  # a new scene: its own inputs
+    assert faster.inputs()["speed"] == 50.0 and scene.inputs()["speed"] == pytest.approx(40.0)
