@@ -87,7 +87,8 @@ def derive(names: Iterable[str], raw: dict[str, Any], inputs: Mapping[str, Any])
     if names & FROM_FLIGHT:
         needed |= {"ball_speed"}
     moment = None
-    if "rolling_moment" in raw or "rolling_moment_slip" in raw:  # a rolling-resistance couple on the ball
+    # a rolling-resistance couple on the ball (a model without a rolling law gives zeros: after_impact ignores them)
+    if any((np.asarray(raw[name]) != 0.0).any() for name in ("rolling_moment_slip", "rolling_moment") if name in raw):
         zero = np.zeros_like(impulse[:, 0])
         moment = np.stack([np.asarray(raw.get("rolling_moment_slip", zero), float),
                            np.asarray(raw.get("rolling_moment", zero), float)], -1)
