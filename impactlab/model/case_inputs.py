@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from impactlab.errors import FieldError, ModelInputError
-from impactlab.physics.contact import CONTACT_STATE_INPUTS, contact_state
+from impactlab.physics.contact import CONTACT_STATE_INPUTS, contact_state, launch_plane
 from impactlab.vocabulary import INPUTS
 from impactlab.scene.core import Scene
 
@@ -62,15 +62,15 @@ class CaseInputs(Mapping):
 
     def __init__(self, values: Any, *, copy: bool = True):
         self._arrays, self.n_cases = _checked_arrays(values, copy)
-        # a one-element cell, shared with the views (``only``) that see the same contact
-        self._state: list[Mapping[str, Any] | None] = [None]
+        # a cell for the contact state and its launch plane, shared with the views (``only``) that see the same contact
+        self._state: list[Mapping[str, Any] | None] = [None, None]
         self._last_slice: tuple[tuple[int, int], CaseInputs] | None = None
 
     @classmethod
     def _view(cls, arrays: dict, n_cases: int, state: list | None) -> CaseInputs:
         """A batch of arrays already checked (no copy, no second check)."""
         view = cls.__new__(cls)
-        view._arrays, view.n_cases, view._state = arrays, n_cases, [None] if state is None else state
+        view._arrays, view.n_cases, view._state = arrays, n_cases, [None, None] if state is None else state
         view._last_slice = None
         return view
 
@@ -100,6 +100,20 @@ class CaseInputs(Mapping):
                 if isinstance(value, np.ndarray):
                     value.setflags(write=False)
             cached = self._state[0] = types.MappingProxyType(state)
+        return cached
+
+    def launch_plane(self) -> Mapping:
+        """:func:`impactlab.physics.contact.launch_plane` of :meth:`contact_state`, computed at most once per batch.
+
+        The derivation of every model run on the batch measures its launch angle in this plane (read-only, as the
+        state it comes from).
+        """
+        cached = self._state[1]
+        if cached is None:
+            plane = launch_plane(self.contact_state())
+            for value in plane.values():
+                value.setflags(write=False)
+            cached = self._state[1] = types.MappingProxyType(plane)
         return cached
 
     def only(self, names: Iterable[str]) -> CaseInputs:

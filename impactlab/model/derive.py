@@ -17,7 +17,8 @@ import numpy as np
 
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.physics import hertz
-from impactlab.physics.contact import GEOMETRY_INPUTS, INERTIA_INPUTS, after_impact, ground_outputs, impulse_vector
+from impactlab.physics.contact import (GEOMETRY_INPUTS, INERTIA_INPUTS, LAUNCH_PLANE_OUTPUTS, after_impact,
+                                       ground_outputs, impulse_vector)
 from impactlab.physics.delivery import DELIVERY_INPUTS
 from impactlab.physics.flight import fly
 from impactlab.physics.mechanics import AFTER_IMPACT_INPUTS
@@ -86,11 +87,13 @@ def derive(names: Iterable[str], raw: dict[str, Any], inputs: Mapping[str, Any])
     if names & FROM_FLIGHT:
         needed |= {"ball_speed"}
     moment = None
-    if "rolling_moment" in raw or "rolling_moment_slip" in raw:  # a rolling-resistance couple on the ball
+    # a rolling-resistance couple on the ball (a model without a rolling law gives zeros: after_impact ignores them)
+    if any((np.asarray(raw[name]) != 0.0).any() for name in ("rolling_moment_slip", "rolling_moment") if name in raw):
         zero = np.zeros_like(impulse[:, 0])
         moment = np.stack([np.asarray(raw.get("rolling_moment_slip", zero), float),
                            np.asarray(raw.get("rolling_moment", zero), float)], -1)
-    basics = after_impact(state, impulse, names=needed, moment=moment, **inputs)
+    plane = inputs.launch_plane() if needed & LAUNCH_PLANE_OUTPUTS else None  # one per batch, for every model
+    basics = after_impact(state, impulse, names=needed, moment=moment, plane=plane, **inputs)
     out.update({name: basics[name] for name in names & FROM_IMPULSES})
     if names & (FROM_DELIVERY | FROM_FLIGHT):
         golf = ground_outputs(state, basics, **{name: inputs[name] for name in DELIVERY_INPUTS})

@@ -8,6 +8,7 @@ models and the number of their cases concerned.
 from __future__ import annotations
 
 import warnings
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -83,16 +84,29 @@ def messages(dataset: xr.Dataset) -> list[str]:
     """
     if "validity" not in dataset:
         return []
-    flags = dataset["validity"]
+    # the variables themselves, no DataArray with its coordinates: this runs after every study
+    flags = dataset.variables["validity"]
     per_model = "model" in flags.dims
     values = flags.values
-    # models first, every case of a model on one row (plain arrays: this runs after every study)
-    values = np.moveaxis(values, flags.get_axis_num("model"), 0) if per_model else values[None]
-    values = np.nan_to_num(values.reshape(values.shape[0], -1)).astype(np.int64)
-    # one model's selection keeps its name as a scalar coordinate
-    names = flags["model"].values if per_model else [flags["model"].item() if "model" in flags.coords else "model"]
+    # models first, every case of a model on one row (plain arrays; numpy's Python-level helpers only where needed:
+    # after a model's kernel their code is cold, ~20-40 us a call)
+    axis = flags.dims.index("model") if per_model else None
+    values = values[None] if axis is None else np.moveaxis(values, axis, 0) if axis else values
+    values = values.reshape(values.shape[0], -1)
+    if values.dtype.kind == "f":  # a result read back from a file: NaN where a model did not compute a case
+        values = np.nan_to_num(values)
+    values = values.astype(np.int64)
+    model = dataset.variables["model"] if "model" in dataset.coords else None
+    names: Any
+    if per_model:  # a model dimension without labels (not one impactlab writes) counts its models from 0
+        names = model.values if model is not None else np.arange(values.shape[0])
+    else:  # one model's selection keeps its name as a scalar coordinate
+        names = [model.values.item() if model is not None and model.ndim == 0 else "model"]
     found = []
+    present = int(np.bitwise_or.reduce(values, axis=None)) if values.size else 0  # the flags any case raised
     for bit, (_, meaning) in FLAGS.items():
+        if not present & bit:  # no case raised it: nothing to count (most flags, most runs)
+            continue
         counts = np.count_nonzero(values & bit, axis=1)
         raised = [(str(model), int(count), values.shape[1]) for model, count in zip(names, counts) if count]
         if len({(count, size) for _, count, size in raised}) == 1:

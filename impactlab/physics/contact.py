@@ -291,7 +291,22 @@ AFTER_IMPACT_OUTPUTS = frozenset({
     "ball_speed", "energy_loss", "smash_factor", "club_speed_after", "club_angular_velocity"})
 _NEEDS_HEAD = frozenset({"club_velocity", "club_spin", "normal_velocity", "tangential_velocity", "rebound_angle",
                          "total_angle", "club_speed_after", "club_angular_velocity"})
-_NEEDS_PLANE = frozenset({"launch_angle", "launch_ratio", "total_angle"})
+#: what needs the plane of the club's path and the contact normal (:func:`launch_plane`)
+LAUNCH_PLANE_OUTPUTS = frozenset({"launch_angle", "launch_ratio", "total_angle"})
+
+
+def launch_plane(state):
+    """The plane of the club's path and the contact normal (``state``: :func:`contact_state`), where the launch and
+    the face are measured: ``across`` (n, 3), its unit vector normal to the path on the side of a normal tilted up
+    the face, and ``angle`` (n,), the normal's angle from the path, positive up the face (the 1-D models' sign)
+    [rad]. A function of the state alone: the models of one batch share it (``CaseInputs.launch_plane``).
+    """
+    direction = state["club_direction"]
+    towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
+    orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
+    across_unit = orientation[:, None] * _unit(towards_normal)
+    angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
+    return {"across": across_unit, "angle": angle}
 
 
 def couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor):
@@ -347,7 +362,7 @@ def couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor):
 
 
 def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor, speed, club_mass=np.inf,
-                 names=None, moment=None, **_):
+                 names=None, moment=None, plane=None, **_):
     """Ball and head after an impact with contact-frame impulse ``impulse`` (n, 3) on the ball (SI).
 
     Returns the ground-frame vectors (right-handed golfer) and the face-frame quantities of the 1-D problem,
@@ -363,15 +378,17 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
     the contact's relative velocity are computed only where an asked-for quantity needs them (the dict may
     hold more than asked, never less). ``moment`` (n, 2), optional: the angular impulse of a couple on the ball
     along (s, l) [N m s] (a rolling-resistance law), the head taking the opposite; see :func:`couple_mobility`.
+    ``plane``, optional: :func:`launch_plane` of ``state`` where the caller has it (the models of one batch share it).
     """
     names = AFTER_IMPACT_OUTPUTS if names is None else frozenset(names)
     n = impulse.shape[0]
     frame = state["frame"]
     impulse_ground = np.einsum("nij,nj->ni", frame, impulse)
-    m = np.broadcast_to(np.asarray(ball_mass, float), (n,))
-    radius = np.broadcast_to(np.asarray(ball_radius, float), (n,))
-    inertia = np.broadcast_to(np.asarray(ball_inertia_factor, float), (n,)) * m * radius**2
-    speed = np.broadcast_to(np.asarray(speed, float), (n,))
+    # a batch's own arrays as they are (np.broadcast_to's Python code is cold after a kernel), else broadcast
+    m, radius, factor, speed = (value if type(value) is np.ndarray and value.shape == (n,) and value.dtype == float
+                                else np.broadcast_to(np.asarray(value, float), (n,))
+                                for value in (ball_mass, ball_radius, ball_inertia_factor, speed))
+    inertia = factor * m * radius**2
 
     ball_velocity = impulse_ground / m[:, None]
     # dw = I^-1 (-R n) x J = (R/I) J x n; in the contact frame J x n = (J_l, -J_s, 0) (exactly 0 for a normal J)
@@ -394,17 +411,18 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         if has_moment:
             coupling, rotation, rolling = couple_mobility(state, ball_mass, ball_radius, ball_inertia_factor)
             relative_after = relative_after + np.einsum("nij,nj->ni", coupling, moment)
-            rolling_after = rolling + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum(
-                "nij,nj->ni", rotation, moment)
         slip = state["slip_speed"]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out["tangential_restitution"] = np.where(
-                slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
-        # kinetic energy lost = -(J . (v0 + v1)/2): the work of the impulse on the mean relative velocity
-        out["energy_loss"] = -np.sum(
-            impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
-        if has_moment:  # and the couple's work on the mean relative rolling rate
-            out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
+        if "tangential_restitution" in names:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out["tangential_restitution"] = np.where(
+                    slip != 0.0, -relative_after[:, 0] / np.where(slip != 0.0, slip, 1.0), np.nan)
+        if "energy_loss" in names:  # the work of the impulse on the mean relative velocity, -(J . (v0 + v1)/2)
+            out["energy_loss"] = -np.sum(
+                impulse * (state["initial_velocity"] + 0.5 * (relative_after - state["initial_velocity"])), -1)
+            if has_moment:  # and the couple's work on the mean relative rolling rate
+                rolling_after = rolling + np.einsum("nji,nj->ni", coupling, impulse) + np.einsum(
+                    "nij,nj->ni", rotation, moment)
+                out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
     if names & _NEEDS_HEAD:
         club = np.broadcast_to(np.asarray(club_mass, float), (n,))
         club_velocity = state["club_velocity"] - np.where(
@@ -429,17 +447,14 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
                 np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
             "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
         })
-    if names & _NEEDS_PLANE:
-        # angles in the plane of the path and the contact normal, counted positive from the path towards a
-        # normal tilted up the face (the 1-D models' sign: a face tilted down has a negative angle)
-        direction = state["club_direction"]
-        towards_normal = state["normal"] - np.sum(state["normal"] * direction, -1, keepdims=True) * direction
-        orientation = np.where(np.sum(towards_normal * state["slip_direction"], -1) < 0.0, -1.0, 1.0)
-        across_unit = orientation[:, None] * _unit(towards_normal)
+    if names & LAUNCH_PLANE_OUTPUTS:  # angles in the plane of the path and the contact normal (launch_plane)
+        plane = launch_plane(state) if plane is None else plane
+        direction, across_unit, angle = state["club_direction"], plane["across"], plane["angle"]
         launch_angle = np.arctan2(np.sum(ball_velocity * across_unit, -1), np.sum(ball_velocity * direction, -1))
-        angle = np.arctan2(np.sum(state["normal"] * across_unit, -1), np.sum(state["normal"] * direction, -1))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0), np.nan)
+        if "launch_ratio" in names:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out["launch_ratio"] = np.where(angle != 0.0, launch_angle / np.where(angle != 0.0, angle, 1.0),
+                                               np.nan)
         out["launch_angle"] = launch_angle
         if "rebound_angle" in out:
             out["total_angle"] = angle + out["rebound_angle"]

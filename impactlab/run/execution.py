@@ -197,17 +197,18 @@ class Progress:
     def __init__(self, total: int, enabled: bool, label: str = "cases"):
         self.total, self.done, self.enabled, self.label = total, 0, enabled, label
         self.start = time.perf_counter()
-        self.tty = sys.stderr.isatty()
+        self.tty = enabled and sys.stderr.isatty()
         self.last_tenth = -1
-        self.bar = tqdm(total=total, unit=f" {label}", file=sys.stderr, disable=not (enabled and self.tty),
-                        dynamic_ncols=True, leave=True)
+        # a bar only where one is drawn: a disabled tqdm still costs ~50 us to make, every run of a small study
+        self.bar = tqdm(total=total, unit=f" {label}", file=sys.stderr, dynamic_ncols=True,
+                        leave=True) if self.tty else None
 
     def advance(self, count: int) -> None:
         """Count ``count`` more cases done; redraw the bar (a line every tenth where stderr is not a terminal)."""
         self.done += count
         if not self.enabled:
             return
-        if self.tty:
+        if self.bar is not None:
             self.bar.update(count)
             if self.done >= self.total:
                 self.close()
@@ -220,7 +221,8 @@ class Progress:
 
     def close(self) -> None:
         """End the bar (its line stays on the terminal); idempotent."""
-        self.bar.close()
+        if self.bar is not None:
+            self.bar.close()
 
 
 class ProgressStore:
@@ -354,9 +356,9 @@ def run_chunks(study, inputs: dict, outputs, *, executor: str = "auto", workers:
         raise StudyError(f"unknown executor {kind!r}; choices: {', '.join(EXECUTORS)}")
     if has_histories:
         chunk_size = n_cases  # histories share one time axis per model: they are computed in one piece
-    elif chunk_size is None:
-        parallel = workers or os.cpu_count() or 1
-        chunk_size = max(256, min(8192, -(-n_cases // (4 * parallel)))) if kind != "serial" else 8192
+    elif chunk_size is None:  # the cores are counted for a pool only (os.cpu_count reads /sys: ~50 us a call)
+        chunk_size = max(256, min(8192, -(-n_cases // (4 * (workers or os.cpu_count() or 1))))) \
+            if kind != "serial" else 8192
     chunks = plan_chunks(len(study.models), n_cases, chunk_size)
     parts: dict[Chunk, dict] = {}
     progress = Progress(n_cases * len(study.models), show_progress)
@@ -407,7 +409,9 @@ def _stream(study, inputs: dict, outputs, todo: list[Chunk], pool, plans, paths:
 def _join(parts: list[dict]) -> dict:
     """One model entry's chunks joined along the cases: arrays in the vocabulary's units, no Dataset yet."""
     first = parts[0]
-    joined = {"data": {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
+    # one chunk (a small study) is its own join: its arrays are the chunk's own, held by nothing else
+    joined = {"data": dict(first["data"]) if len(parts) == 1 else
+              {name: np.concatenate([part["data"][name] for part in parts]) for name in first["data"]},
               "time": first["time"],
               "missing": first["missing"]}
     if all("one_line" in part for part in parts):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -269,8 +270,13 @@ class Scene:
 
         Inputs the scene does not define (a ball without a material, no
         friction given) are left out; which of them a model needs is
-        decided per model.
+        decided per model. Computed once per scene (a run asks three times: its plan, its case arrays, its
+        provenance), a new dict each call.
         """
+        return dict(self._inputs)
+
+    @functools.cached_property
+    def _inputs(self) -> dict[str, float]:
         values = {}
         for name, spec in INPUTS.items():
             value = spec.getter(self)
