@@ -21,7 +21,7 @@ from impactlab.data.validation.benchmark_report import describe as describe_benc
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
+from impactlab.io.safe_output import check_output, write_atomically
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
 from impactlab.vocabulary import OUTPUTS
@@ -48,10 +48,11 @@ def _cmd_validate(args) -> int:
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+    read = [*(args.dataset or ()), *(args.club or ())]  # an output there would replace the user's data
     if args.plot:  # refused before the models run, not after
-        check_output(args.plot, what="--plot file", suffix=".png")
+        check_output(args.plot, what="--plot file", suffix=".png", reads=read, formats=(".png",))
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])])
     over: list[str] = []
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
 
@@ -114,7 +115,7 @@ def _cmd_fit(args) -> int:
     from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after
-        check_output(args.json, what="--json file", suffix=".json")
+        check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())])
 
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
@@ -143,8 +144,7 @@ def _cmd_fit(args) -> int:
 
 def _cmd_shots(args) -> int:
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
-        refuse_overwriting(args.csv, args.file, "--csv file")
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())])
 
     session = read_session(args.file, args.vendor)
     with user_clubs(read_club_spec(path) for path in args.club or ()):

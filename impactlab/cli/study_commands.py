@@ -23,7 +23,7 @@ from impactlab.errors import FieldError, StudyError
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
-from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
+from impactlab.io.safe_output import PICTURE_SUFFIXES, check_outdir, check_output, name_in, refuse_clashes
 from impactlab.model.diagnostics import ValidityWarning, messages
 from impactlab.model.registry import available
 from impactlab.plot.analysis import plot_sensitivity, plot_work_precision
@@ -59,9 +59,9 @@ def _cmd_run(args) -> int:
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
-        check_output(output)
+        check_output(output, reads=args.study)
         if args.plot not in (None, True):
-            check_output(Path(args.plot), what="picture", suffix=".png")
+            _picture(args.plot, reads=[*args.study, output])
     for study, output, plan in zip(studies, outputs, plans):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
@@ -78,6 +78,11 @@ def _cmd_run(args) -> int:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+def _picture(path, reads) -> Path:
+    """A picture's path, checked before any work: writable, a picture's suffix, none of the files read."""
+    return check_output(Path(path), what="picture", suffix=".png", formats=PICTURE_SUFFIXES, reads=reads)
 
 
 @contextlib.contextmanager
@@ -220,10 +225,10 @@ def _cmd_plot(args) -> int:
                              choices=dims + scalars)
     if args.trajectories:
         default = Path(args.file).with_name(f"{Path(args.file).stem}_trajectories.png")
-        output = check_output(args.output or default, what="picture", suffix=".png")
+        output = _picture(args.output or default, reads=[args.file])
         print(f"wrote {plot_trajectories(dataset, output)}", file=sys.stderr)
         return 0
-    output = check_output(args.output or Path(args.file).with_suffix(".png"), what="picture", suffix=".png")
+    output = _picture(args.output or Path(args.file).with_suffix(".png"), reads=[args.file])
     if args.history:
         plot_histories(dataset, output, args.history)
     elif args.variables or args.x or args.output:
@@ -240,9 +245,9 @@ def _cmd_convergence(args) -> int:
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
-    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"))
+    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"), reads=[args.study])
     if args.plot not in (None, True):
-        check_output(args.plot, what="picture", suffix=".png")
+        _picture(args.plot, reads=[args.study, output])
     dataset = work_precision(study, tolerances=args.tolerances or LADDER, repeats=args.repeats, progress=say)
     write_results(dataset, output)
     say(f"wrote {output}")
@@ -279,7 +284,7 @@ def _cmd_paper(args) -> int:
     results = Path(args.results)
     if not results.is_dir():
         raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
-    output = check_output(args.output, what="report", suffix=".md")
+    output = check_output(args.output, what="report", suffix=".md", reads=sorted(results.glob("*.h5")))
     report(results, output, Path(args.figures) if args.figures else output.parent / "figures")
     print(f"wrote {output}", file=sys.stderr)
     return 0
@@ -297,7 +302,7 @@ def _cmd_export(args) -> int:
         say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
             f"(the last: {replies[-1].describe()})")
         return 0
-    check_output(args.output, what="shot file", suffix=".json")
+    check_output(args.output, what="shot file", suffix=".json", reads=[args.file])
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0
