@@ -8,8 +8,11 @@ import errno
 import hashlib
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+import impactlab
+import impactlab.errors
 from impactlab.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -131,3 +134,104 @@ def test_a_picture_is_written_atomically_a_full_disk_keeps_the_old_one(tmp_path,
     monkeypatch.undo()
     code, err = cli(capsys, "plot", result_file, "-v", "ball_speed", "-o", tmp_path / "ratio.svg")
     assert code == 0 and (tmp_path / "ratio.svg").read_text().lstrip().startswith("<?xml")
+
+
+# -- impactlab.fly: a value no golf shot has, and a plain number read as SI ---------------------------------------
+LAUNCH = {"ball_speed": "167 mph", "launch_angle": "10.9 deg", "spin_rate": "2686 rpm"}
+
+
+@pytest.mark.parametrize("changes, path, says", [
+    # 3 rad = 171.9 deg: the README's spin_axis="3 deg" written as a plain 3 flew a ball with topspin to 73 m, silently
+    ({"spin_axis": 3}, "spin_axis", "got 171.887 deg (a number is SI: 3 rad; with a unit, e.g. '3 deg')"),
+    ({"spin_axis": ["3 deg", "95 deg"]}, "spin_axis[1]", "got 95 deg"),
+    ({"spin_axis": "-90.5 deg"}, "spin_axis", "got -90.5 deg"),
+    # a launch 172 deg off the target line was carried 232 m with an offline of 33 m
+    ({"launch_direction": 3.0}, "launch_direction", "got 171.887 deg (a number is SI: 3 rad"),
+    ({"launch_direction": "90 deg"}, "launch_direction", "got 90 deg"),
+    ({"launch_angle": 15}, "launch_angle", "got 859.437 deg (a number is SI: 15 rad; with a unit, e.g. '15 deg')"),
+])
+def test_a_launch_angle_no_golf_shot_has_is_refused_and_a_plain_number_is_said_to_be_si(changes, path, says):
+    with pytest.raises(impactlab.FieldError) as caught:
+        impactlab.fly(**{**LAUNCH, **changes})
+    assert caught.value.path == path and says in str(caught.value)
+
+
+def test_the_limits_of_the_angles_are_flown():
+    """+-90 deg of spin axis is pure side spin, a real (if wild) shot; 89 deg of launch direction is a shank."""
+    shots = impactlab.fly(**{**LAUNCH, "spin_axis": ["90 deg", "-90 deg"], "launch_direction": "89 deg"})
+    assert np.all(np.isfinite(shots.carry_distance.values))
+    # pure side spin lifts nothing: in a vacuum of lift the ball curves as far right as left
+    offline = shots.offline_distance.values
+    assert offline[0] > offline[1]
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"ball_speed": 167}, "ball_speed: 373.568 mph (a number is SI: 167 m/s) is unusual for golf"),
+    ({"spin_rate": 2686}, "spin_rate: 25649.4 rpm (a number is SI: 2686 rad/s) is unusual for golf"),
+    ({"ball_speed": "250 mph"}, "ball_speed: 250 mph is unusual for golf"),
+])
+def test_a_launch_beyond_measured_golf_shots_is_flown_and_said(changes, words):
+    """167 meant as mph, 2686 meant as rpm, given as plain numbers (SI): flown silently before at 373 mph and
+    25 650 rpm. Now a PlausibilityWarning says so: the fastest ball speeds measured are about 225 mph (150 mph of
+    club speed, the fastest measured, at a smash factor of 1.5), spins at most about 12 000 rpm."""
+    with pytest.warns(impactlab.errors.PlausibilityWarning) as caught:
+        shots = impactlab.fly(**{**LAUNCH, **changes})
+    assert any(words in str(warning.message) for warning in caught)
+    assert np.isfinite(float(shots.carry_distance))
+
+
+def test_a_launch_golf_shots_have_is_flown_without_a_word(recwarn):
+    impactlab.fly(ball_speed=["100 mph", "220 mph"], launch_angle="12 deg", spin_rate=["11900 rpm", "2000 rpm"])
+    assert not [w for w in recwarn if issubclass(w.category, impactlab.errors.PlausibilityWarning)]
+
+
+@pytest.mark.parametrize("option, given, says", [
+    ("--spin-axis", "95 deg", "--spin-axis: expected a spin axis between -90 and 90 deg (beyond, the ball has "
+                              "topspin), got 95 deg"),
+    ("--launch-direction", "180 deg", "--launch-direction: expected a launch direction between -90 and 90 deg"),
+])
+def test_fly_refuses_what_no_shot_or_air_has_in_one_line(capsys, option, given, says):
+    code, err = cli(capsys, "fly", "--ball-speed", "167 mph", "--launch-angle", "10.9 deg", "--spin-rate", "2686 rpm",
+                    option, given)
+    assert code == 2 and says in err and len(err.strip().splitlines()) == 1
+    assert "a number is SI" not in err  # the user typed a unit: no word about plain numbers
+
+
+def test_fly_warns_by_the_option_the_user_typed(capsys):
+    code, err = cli(capsys, "fly", "--ball-speed", "250 mph", "--launch-angle", "10.9 deg", "--spin-rate", "2686 rpm")
+    assert code == 0
+    assert "impactlab: warning: --ball-speed: 250 mph is unusual for golf" in err and "a number is SI" not in err
+
+
+def test_a_session_row_with_an_impossible_angle_is_not_flown_and_says_its_line(tmp_path, capsys):
+    """A spin axis of 95 deg (a session whose back spin is not given, so the topspin check could not see it) was
+    flown to -43.5 % of the monitor's carry and counted in the session's mean and RMS; a launch direction of
+    120 deg was flown to a carry. A launch angle in the wrong unit ([rad] for degrees) was refused as
+    '--launch-angle[0]', an option the user never typed, without the file's line."""
+    table = tmp_path / "shots.csv"
+    table.write_text("club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm],Carry [yd],Spin Axis [deg],"
+                     "Launch Direction [deg]\n"
+                     "Driver,167,10.9,2686,250,95,0\n"
+                     "Driver,167,10.9,2686,250,3,120\n"
+                     "Driver,167,10.9,2686,270,3,1\n")
+    out = tmp_path / "flown.csv"
+    code, err = cli(capsys, "fly", table, "--csv", out)
+    assert code == 0
+    rows = out.read_text().splitlines()
+    assert len(rows) == 2 and rows[1].startswith("4,")  # only line 4 flown
+    radians = tmp_path / "rad.csv"
+    radians.write_text("club,Ball Speed [mph],Launch Angle [rad],Spin Rate [rpm],Carry [yd]\n"
+                       "Driver,167,10.9,2686,250\n")
+    code, err = cli(capsys, "fly", radians)
+    assert code == 2 and "--launch-angle" not in err and len(err.strip().splitlines()) == 1
+    assert "line 2: vertical launch angle 624.5 deg, beyond +-90 deg: no golf shot" in err
+
+
+def test_a_session_says_each_unusual_value_at_its_line(tmp_path, capsys):
+    table = tmp_path / "shots.csv"
+    table.write_text("club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm]\nDriver,167,10.9,2686\n"
+                     "Driver,240,10.9,2686\n")
+    code, err = cli(capsys, "fly", table)
+    assert code == 0
+    assert f"impactlab: warning: {table}:3: ball speed 240 mph is unusual for golf" in err
+    assert ":2:" not in err and "ball_speed[" not in err

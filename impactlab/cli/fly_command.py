@@ -15,17 +15,18 @@ from __future__ import annotations
 
 import csv
 import io
+import warnings
 
 import numpy as np
 import xarray as xr
 
 from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
 from impactlab.scene import flight
-from impactlab.units import MPH
+from impactlab.units import DIMENSIONS, MPH, registry
 
 YARD = 0.9144
 #: command-line option -> key of impactlab.fly's ``conditions``
@@ -116,7 +117,18 @@ def _fly_launch(given: dict, conditions: dict, model: str) -> xr.Dataset:
     # each value read once, to SI (its unit required); fly checks them and the broadcast, and flies them
     launch = {name: flight.quantity_array(texts[0] if len(texts) == 1 else texts, LAUNCH_DIMENSIONS[name], name)
               for name, texts in given.items()}
-    result = flight.fly(conditions=conditions, model=model, **launch)
+    # flown as quantities in SI units (not bare numbers, which fly reads as SI and says so in its messages), and
+    # its warnings named by the options the user typed
+    si = {name: registry().Quantity(value, DIMENSIONS[LAUNCH_DIMENSIONS[name]][0]) for name, value in launch.items()}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PlausibilityWarning)
+        result = flight.fly(conditions=conditions, model=model, **si)
+    for warning in caught:
+        text = str(warning.message)
+        stem = text.split("[")[0].split(":")[0]
+        if stem in LAUNCH_OPTIONS:
+            text = "--" + stem.replace("_", "-") + text[len(stem):]
+        warnings.warn(text, warning.category, stacklevel=2)
     shape = result["carry_distance"].shape
     out = {name: ("shot", np.asarray(result[name].values, float).ravel(), dict(result[name].attrs))
            for name in PREDICTED}

@@ -11,7 +11,8 @@ beside each prediction where the export has them. Nothing is guessed for a shot:
   export lacks but the reader derives from measured back and side spin (flagged ``no data`` there) is flown;
 - a shot launched below the horizontal (a topped ball) is not flown: from the ground it meets the ground at once,
   and a carry of 0 beside the monitor's would only say so; nor a shot whose back spin is below 0 (topspin: the
-  spin rate and spin axis the export gives would fly it as backspin);
+  spin rate and spin axis the export gives would fly it as backspin), nor one whose launch angle, launch direction
+  or spin axis is 90 deg or more from the target's (beyond +-90 deg for the axis): no golf shot has them;
 - a shot without a spin axis is flown as pure backspin and without a launch direction as straight, and its offline
   distance is then not given (NaN): the carry barely depends on them (cos of the tilt in the lift), the offline
   entirely.
@@ -23,13 +24,14 @@ state that their rows are normalised to a standard air (docs/vendors.md, docs/fl
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
 
 from impactlab.data.session import Session
-from impactlab.errors import StudyError
+from impactlab.errors import PlausibilityWarning, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
 from impactlab.scene.plausibility import wrong_sign
@@ -81,8 +83,13 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     with np.errstate(invalid="ignore"):
         downward = v["vertical_launch_angle"] < 0.0
         topspin = v["back_spin"] < 0.0
+        # angles no golf shot has (a column in other units or conventions): an axis tilted past the vertical is
+        # topspin, a launch at or beyond 90 deg goes straight up or backwards; flown, each would be a number
+        impossible = {name: np.abs(v[name]) >= limit for name, limit in (
+            ("vertical_launch_angle", np.pi / 2), ("spin_axis", np.nextafter(np.pi / 2, 4.0)),
+            ("horizontal_launch_angle", np.pi / 2))}
     present = (np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0) & ~downward
-               & ~topspin)
+               & ~topspin & ~np.any(list(impossible.values()), axis=0))
     flagged = np.zeros(session.size, dtype=bool)
     why: dict[int, list[str]] = {}
     for (field, kind), rows in session.flags.items():
@@ -105,6 +112,10 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         elif topspin[row]:
             reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
                       "and a tilt of the axis do not carry: flown, it would be backspin")
+        elif any(refused[row] for refused in impossible.values()):
+            name = next(name for name, refused in impossible.items() if refused[row])
+            reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
+                      "(a column in other units or another convention?)")
         else:
             reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
                       "them)")
@@ -118,8 +129,14 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     if problems:
         raise StudyError("; ".join(problems))
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
-                       np.nan_to_num(axis), np.nan_to_num(direction), conditions, model=model)
+    for name, (unit, factor, limit, why) in flight.UNUSUAL_LAUNCH.items():
+        for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
+            warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
+                          f"{unit} is unusual for golf ({why}); flown as given", PlausibilityWarning, stacklevel=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
+                           np.nan_to_num(axis), np.nan_to_num(direction), conditions, model=model)
     data = {
         "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
         "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),

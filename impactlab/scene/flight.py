@@ -14,12 +14,13 @@ against TrackMan's tour averages are in docs/flight.md.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 
 import attrs
 import numpy as np
 
-from impactlab.errors import FieldError
+from impactlab.errors import FieldError, PlausibilityWarning
 from impactlab.physics import aerodynamics, atmosphere
 from impactlab.physics import flight as physics
 from impactlab.units import DIMENSIONS, to_si
@@ -172,6 +173,50 @@ def _words(dimension: str) -> str:
     return f"{DIMENSIONS[dimension][2]}: a number in {si_unit} or a string with a unit (e.g. '{_EXAMPLE[dimension]}')"
 
 
+_LAUNCH_DIMENSIONS = {"ball_speed": "speed", "launch_angle": "angle", "spin_rate": "angular_speed",
+                      "spin_axis": "angle", "launch_direction": "angle"}
+#: display unit, factor from SI, the SI value beyond which a launch is unusual (flown, and warned about), and why
+UNUSUAL_LAUNCH = {
+    # the fastest measured club speeds are about 150 mph (scene.plausibility, long drive) and a smash factor
+    # above 1.5 is beyond the Rules' COR limit: about 225 mph of ball speed
+    "ball_speed": ("mph", 1.0 / 0.44704, 100.0, "the fastest measured ball speeds are about 225 mph: 150 mph "
+                   "of long-drive club speed at a smash factor of 1.5"),
+    "spin_rate": ("rpm", 30.0 / math.pi, 12000.0 * math.pi / 30.0, "golf balls leave a club with at most about "
+                  "12,000 rpm"),
+}
+
+
+def _bare(value) -> bool:
+    """Whether a launch value was given as plain numbers (SI), not text with units or a pint quantity."""
+    if isinstance(value, str) or (hasattr(value, "magnitude") and hasattr(value, "units")):
+        return False
+    return not (isinstance(value, (list, tuple)) and any(isinstance(item, str) for item in value))
+
+
+def _si_note(given, value: float, unit: str) -> str:
+    """For a value given as a plain number: that numbers are SI, and how to write the value meant."""
+    if not _bare(given):
+        return ""
+    return f" (a number is SI: {value:.6g} {unit}; with a unit, e.g. '{value:.6g} {_EXAMPLE[_unit_dimension(unit)]}')"
+
+
+def _unit_dimension(unit: str) -> str:
+    return {"rad": "angle", "m/s": "speed", "rad/s": "angular_speed"}[unit]
+
+
+def _warn_unusual(values: dict, given: dict) -> None:
+    """A launch beyond what golf shots measure is flown, and said once (a PlausibilityWarning): a ball speed of
+    167 or a spin of 2686 given as plain numbers are SI (m/s, rad/s), not mph and rpm."""
+    for name, (unit, factor, limit, why) in UNUSUAL_LAUNCH.items():
+        unusual = values[name] > limit
+        if np.any(unusual):
+            where, value = _first(name, values[name], unusual)
+            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
+            warnings.warn(f"{where}: {value * factor:.6g} {unit}{note} is unusual for golf ({why}); flown as given",
+                          PlausibilityWarning, stacklevel=4)
+
+
 def conditions_from(conditions) -> Conditions:
     """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`."""
     if conditions is None:
@@ -249,7 +294,15 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     Raises
     ------
     FieldError
-        A value of the wrong dimension or out of range (speed <= 0, spin < 0), a string without a unit.
+        A value of the wrong dimension or out of range (speed <= 0, spin < 0, a launch angle or launch direction
+        at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has them), a string without a unit. A
+        value refused that was given as a plain number is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
+
+    Warns
+    -----
+    PlausibilityWarning
+        A ball speed above 100 m/s (about 225 mph) or a spin above 12,000 rpm: beyond measured golf shots, flown
+        as given (often a plain number meant in mph or rpm, read as SI).
 
     Notes
     -----
@@ -274,13 +327,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     """
     import xarray as xr
 
-    values = {
-        "ball_speed": quantity_array(ball_speed, "speed", "ball_speed"),
-        "launch_angle": quantity_array(launch_angle, "angle", "launch_angle"),
-        "spin_rate": quantity_array(spin_rate, "angular_speed", "spin_rate"),
-        "spin_axis": quantity_array(spin_axis, "angle", "spin_axis"),
-        "launch_direction": quantity_array(launch_direction, "angle", "launch_direction"),
-    }
+    given = {"ball_speed": ball_speed, "launch_angle": launch_angle, "spin_rate": spin_rate, "spin_axis": spin_axis,
+             "launch_direction": launch_direction}
+    values = {name: quantity_array(value, _LAUNCH_DIMENSIONS[name], name) for name, value in given.items()}
     mass = quantity_array(ball_mass, "mass", "ball_mass")
     radius = quantity_array(ball_radius, "length", "ball_radius")
     for name, array in values.items():
@@ -299,9 +348,19 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         where, value = _first("spin_rate", values["spin_rate"], values["spin_rate"] < 0.0)
         raise FieldError(where, "a spin rate >= 0 (the direction of the spin is the spin axis)",
                          _in_unit(value * 30.0 / math.pi, "rpm"))
-    if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
-        where, value = _first("launch_angle", values["launch_angle"], np.abs(values["launch_angle"]) >= math.pi / 2)
-        raise FieldError(where, "a launch angle between -90 and 90 deg", _in_unit(np.degrees(value), "deg"))
+    for name, words, refused in (
+            ("launch_angle", "a launch angle between -90 and 90 deg", np.abs(values["launch_angle"]) >= math.pi / 2),
+            # beyond +-90 deg the axis tilts past the vertical: the ball turns over (topspin), which the spin rate
+            # and the lift of a backspinning ball do not describe
+            ("spin_axis", "a spin axis between -90 and 90 deg (beyond, the ball has topspin)",
+             np.abs(values["spin_axis"]) > math.pi / 2),
+            # at +-90 deg the ball leaves square to the target line, beyond it backwards: no golf shot
+            ("launch_direction", "a launch direction between -90 and 90 deg of the target line",
+             np.abs(values["launch_direction"]) >= math.pi / 2)):
+        if np.any(refused):
+            where, value = _first(name, values[name], refused)
+            raise FieldError(where, words, _in_unit(np.degrees(value), "deg") + _si_note(given[name], value, "rad"))
+    _warn_unusual(values, given)
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
@@ -347,4 +406,4 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
-__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS"]
+__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH"]
