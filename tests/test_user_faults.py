@@ -189,12 +189,24 @@ def test_a_launch_golf_shots_have_is_flown_without_a_word(recwarn):
     ("--spin-axis", "95 deg", "--spin-axis: expected a spin axis between -90 and 90 deg (beyond, the ball has "
                               "topspin), got 95 deg"),
     ("--launch-direction", "180 deg", "--launch-direction: expected a launch direction between -90 and 90 deg"),
+    # 1013 Pa for 1013 hPa flew an almost airless ball 231 yd (276 yd in air) without a word
+    ("--pressure", "1013 Pa", "got 1013 Pa (given as '1013 Pa')"),
+    ("--pressure", "1013 mmHg", "got 135056 Pa"),  # 1013 x 133.322 Pa
+    # 77 degF written as degC flew in 77 degC air; 70 degC flew too
+    ("--temperature", "70 degC", "got 343.15 K (given as '70 degC')"),
+    ("--temperature", "-95 degC", "got 178.15 K"),
 ])
 def test_fly_refuses_what_no_shot_or_air_has_in_one_line(capsys, option, given, says):
     code, err = cli(capsys, "fly", "--ball-speed", "167 mph", "--launch-angle", "10.9 deg", "--spin-rate", "2686 rpm",
                     option, given)
     assert code == 2 and says in err and len(err.strip().splitlines()) == 1
     assert "a number is SI" not in err  # the user typed a unit: no word about plain numbers
+
+
+@pytest.mark.parametrize("air", [{"pressure": "226 hPa"}, {"pressure": "1099 hPa"}, {"temperature": "59 degC"},
+                                 {"temperature": "-89 degC"}, {"altitude": "10999 m"}])
+def test_the_air_at_the_edges_of_its_ranges_is_flown(air):
+    assert np.isfinite(float(impactlab.fly(**LAUNCH, conditions=air).carry_distance))
 
 
 def test_fly_warns_by_the_option_the_user_typed(capsys):
@@ -235,3 +247,16 @@ def test_a_session_says_each_unusual_value_at_its_line(tmp_path, capsys):
     assert code == 0
     assert f"impactlab: warning: {table}:3: ball speed 240 mph is unusual for golf" in err
     assert ":2:" not in err and "ball_speed[" not in err
+
+
+def test_a_studys_air_is_held_to_the_same_ranges_at_its_line(tmp_path, capsys):
+    study = tmp_path / "air.yaml"
+    study.write_text("name: air\nball: {preset: urethane_tour}\nclub: {preset: driver}\ncontact: {friction: 0.4}\n"
+                     "delivery: {club_speed: 100 mph, path: 0 deg, face_angle: 0 deg, attack_angle: 0 deg, "
+                     "dynamic_loft: 12 deg}\nconditions: {pressure: 1013 hPa}\n"
+                     "sweep: {conditions.temperature: [0 degC, 30 degC, 80 degC]}\nmodels: [rigid_coulomb]\n"
+                     "outputs: [carry_distance]\n")
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "air.h5")
+    assert code == 2 and f"{study}:7: sweep.conditions.temperature[2]: expected an air temperature between -90 and " \
+                          "60 degC" in err and err.rstrip().endswith("got 80 degC")
+    assert not (tmp_path / "air.h5").exists()

@@ -30,6 +30,15 @@ from impactlab.vocabulary import OUTPUTS
 #: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
 STANDARD_TEMPERATURE = 288.15
 STANDARD_RELATIVE_HUMIDITY = 0.5
+#: the air temperatures [K] a flight takes: -90 to 60 degC, around the extremes measured on Earth (WMO's Weather and
+#: Climate Extremes Archive: -89.2 degC at Vostok, 21 July 1983; 56.7 degC at Death Valley, 10 July 1913, measured). A
+#: value beyond is a unit mistake (77 degF written as degC) more likely than an air any golf shot flies through
+TEMPERATURE_RANGE = (183.15, 333.15)
+#: the station pressures [Pa] a flight takes: from the ISA pressure at 11 000 m, the top of the altitudes taken
+#: (22 632 Pa, ISO 2533), to 110 kPa, above the highest sea-level pressure recorded (1083.8 hPa, Agata, Siberia,
+#: 31 December 1968, WMO archive, measured) and the ISA pressure 500 m below sea level (107.5 kPa). Below, a pressure
+#: in Pa given for hPa (1013 Pa) would fly an almost airless ball without a word
+PRESSURE_RANGE = (2.0e4, 1.1e5)
 #: keys of a conditions mapping (fly's ``conditions=``, a study's ``conditions:`` block), with their dimensions
 CONDITION_KEYS = {"temperature": "temperature", "pressure": "pressure", "relative_humidity": "dimensionless",
                   "altitude": "length", "headwind": "speed", "crosswind": "speed"}
@@ -57,9 +66,11 @@ class Conditions:
     """
 
     temperature: float = attrs.field(default=STANDARD_TEMPERATURE, converter=to_float, validator=in_range(
-        150.0, 350.0, "an air temperature between 150 and 350 K (-123 and 77 degC)"))
+        *TEMPERATURE_RANGE, "an air temperature between -90 and 60 degC (183.15 and 333.15 K, around the coldest "
+        "and hottest air measured on Earth: -89.2 and 56.7 degC; a degF value written as degC lands above)"))
     pressure: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        0.0, 2e5, "an air pressure between 0 and 200 kPa", low_open=True, optional=True))
+        *PRESSURE_RANGE, "a station pressure between 200 and 1100 hPa (the ISA pressure at 11 000 m is 226 hPa, the "
+        "highest sea-level pressure recorded 1084 hPa; hPa written as Pa lands below)", optional=True))
     relative_humidity: float = attrs.field(default=STANDARD_RELATIVE_HUMIDITY, converter=to_float,
                                            validator=in_range(0.0, 1.0, "a relative humidity between 0 and 1 "
                                                               "(a fraction, or e.g. '50 %')"))
