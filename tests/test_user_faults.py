@@ -13,6 +13,7 @@ import pytest
 
 import impactlab
 import impactlab.errors
+import impactlab.units
 from impactlab.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -260,3 +261,23 @@ def test_a_studys_air_is_held_to_the_same_ranges_at_its_line(tmp_path, capsys):
     assert code == 2 and f"{study}:7: sweep.conditions.temperature[2]: expected an air temperature between -90 and " \
                           "60 degC" in err and err.rstrip().endswith("got 80 degC")
     assert not (tmp_path / "air.h5").exists()
+
+
+# -- a unit symbol read one way and meant another -----------------------------------------------------------------
+@pytest.mark.parametrize("text", ["200 gr", "45.93 gr", "4000 gr*cm**2"])
+def test_gr_is_refused_never_read_as_grains(text):
+    """pint reads gr as the grain (64.79891 mg); gr is the gram's abbreviation in French, Spanish, Italian...: a
+    club head of '200 gr' was read as 12.96 g, a ball of '45.93 gr' as 2.98 g, without a word."""
+    with pytest.raises(impactlab.FieldError, match="gr is a grain .* write g .grams. or grain"):
+        impactlab.units.to_si(text, "mass", "club.mass")
+    assert impactlab.units.to_si("200 grain", "mass") == pytest.approx(200 * 64.79891e-6)  # spelt out: read
+    assert impactlab.units.to_si("200 g", "mass") == pytest.approx(0.2)
+
+
+def test_a_study_with_a_mass_in_gr_is_refused_at_its_line(tmp_path, capsys):
+    study = tmp_path / "gr.yaml"
+    study.write_text(STUDY.replace("mass: 45.93 g,", "mass: 45.93 gr,", 1))
+    assert "45.93 gr" in study.read_text()
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "gr.h5")
+    assert code == 2 and "ball.mass: expected a mass" in err and "gr is a grain" in err
+    assert not (tmp_path / "gr.h5").exists()
