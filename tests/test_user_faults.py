@@ -13,6 +13,7 @@ import pytest
 
 import impactlab
 import impactlab.errors
+import impactlab.run.faults
 import impactlab.units
 from impactlab.cli import main
 
@@ -281,3 +282,41 @@ def test_a_study_with_a_mass_in_gr_is_refused_at_its_line(tmp_path, capsys):
     code, err = cli(capsys, "run", study, "-o", tmp_path / "gr.h5")
     assert code == 2 and "ball.mass: expected a mass" in err and "gr is a grain" in err
     assert not (tmp_path / "gr.h5").exists()
+
+
+# -- permissions: reading is not writing ------------------------------------------------------------------------
+def test_a_file_the_user_may_not_read_is_said_so_not_to_choose_a_writable_folder(tmp_path, capsys, monkeypatch):
+    """Before: `impactlab shots session.csv` on a file without read permission said 'permission denied: choose a
+    folder you can write to' (exit 3), the advice for an output. (Root reads any file, so the permission is
+    injected: the reader is refused, and os.access answers as for a file mode 000.)"""
+    session = tmp_path / "session.csv"
+    session.write_bytes((VENDORS / "trackman_tps.csv").read_bytes())
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(errno.EACCES, "Permission denied", str(session))
+
+    real_access = impactlab.run.faults.os.access
+    monkeypatch.setattr("impactlab.run.faults.os.access",
+                        lambda path, mode: False if str(path) == str(session) else real_access(path, mode))
+    monkeypatch.setattr("impactlab.data.session.read_session", refuse)
+    monkeypatch.setattr("impactlab.cli.data_commands.read_session", refuse)
+    code, err = cli(capsys, "shots", session)
+    assert code == 3
+    assert err.strip() == f"impactlab: error: {session}: permission denied: you may not read it; check its " \
+                          "permissions (ls -l) or copy it somewhere you can"
+
+
+def test_a_folder_the_user_may_not_enter_is_named(tmp_path, monkeypatch):
+    from impactlab.run.faults import describe_os_error
+
+    folder = tmp_path / "private"
+    folder.mkdir()
+    real_access = impactlab.run.faults.os.access
+    monkeypatch.setattr("impactlab.run.faults.os.access",
+                        lambda path, mode: False if str(path) == str(folder) else real_access(path, mode))
+    text = describe_os_error(PermissionError(errno.EACCES, "Permission denied", str(folder / "x.h5")))
+    assert text == f"{folder / 'x.h5'}: permission denied: you may not enter the folder {folder}; check its " \
+                   "permissions (ls -ld)"
+    # an output folder the user may enter but not write keeps the advice for outputs
+    text = describe_os_error(PermissionError(errno.EACCES, "Permission denied", str(tmp_path / "new.h5")))
+    assert text.endswith("permission denied: choose a folder you can write to")

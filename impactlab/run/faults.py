@@ -66,7 +66,25 @@ def describe_os_error(exc: OSError) -> str:
     """'PATH: what happened; what to do' for an OSError, without Python's repr."""
     where = exc.filename if exc.filename is not None else ""
     advice = _ADVICE[exc.errno] if exc.errno in _ADVICE else exc.strerror or str(exc)
+    if exc.errno in (errno.EACCES, errno.EPERM) and where:
+        # an input the user may not read: 'choose a folder you can write to' would send them the wrong way
+        advice = _read_denied(where) or advice
     return f"{where}: {advice}" if where else advice
+
+
+def _read_denied(path) -> str | None:
+    """What to do when ``path`` cannot be read: it exists unreadable, or a folder on its way may not be entered."""
+    try:
+        if os.path.exists(path) and not os.access(path, os.R_OK):
+            return "permission denied: you may not read it; check its permissions (ls -l) or copy it somewhere you can"
+        folder = os.path.dirname(os.path.abspath(path))
+        while folder and not os.path.exists(folder):
+            folder = os.path.dirname(folder)
+        if folder and os.path.isdir(folder) and not os.access(folder, os.X_OK):
+            return f"permission denied: you may not enter the folder {folder}; check its permissions (ls -ld)"
+    except (OSError, ValueError, TypeError):
+        pass
+    return None
 
 
 def _caused_by_interrupt(exc: BaseException | None) -> bool:
