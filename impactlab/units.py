@@ -90,7 +90,8 @@ def unit_missing(value: float, dimension: str) -> str:
     """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed)."""
     words = DIMENSIONS[dimension][2]
     note = f"; {UNIT_NOTES[dimension]}" if dimension in UNIT_NOTES else ""
-    return (f"{words} with its unit, e.g. {_example(float(value), dimension)} (a bare number's unit is never "
+    value = float(value) if math.isfinite(float(value)) else 1.0  # 'e.g. nan mph' shows nothing worth writing
+    return (f"{words} with its unit, e.g. {_example(value, dimension)} (a bare number's unit is never "
             f"guessed{note})")
 
 

@@ -102,13 +102,14 @@ def test_a_shot_without_spin_axis_has_no_offline(tmp_path):
 
 
 @pytest.mark.parametrize("args, says", [
-    (["--ball-speed", "167", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"], "--ball-speed: expected a speed"),
+    (["--ball-speed", "167", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"],
+     "--ball-speed: expected a ball speed with its unit, e.g. '167 mph'"),
     (["--ball-speed", "167 mph", "--launch-angle", "10 deg"], "a launch needs --spin-rate"),
     ([str(DATA / "garmin_r10.csv"), "--ball-speed", "167 mph"], "not both"),
     (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--temperature", "25"],
      "--temperature: expected a temperature"),
     (["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--humidity", "0.5"],
-     "write e.g. '50 %'"),
+     "with its unit, e.g. '60 %'"),
     (["--ball-speed", "167 mph", "150 mph", "140 mph", "--launch-angle", "10 deg", "12 deg", "--spin-rate",
       "2500 rpm"], "broadcast together"),
     (["--ball-speed", "-167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"], "-74.6557 m/s"),

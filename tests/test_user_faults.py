@@ -320,3 +320,49 @@ def test_a_folder_the_user_may_not_enter_is_named(tmp_path, monkeypatch):
     # an output folder the user may enter but not write keeps the advice for outputs
     text = describe_os_error(PermissionError(errno.EACCES, "Permission denied", str(tmp_path / "new.h5")))
     assert text.endswith("permission denied: choose a folder you can write to")
+
+
+# -- messages in the user's units and words -----------------------------------------------------------------------
+def test_a_swept_range_value_refused_is_shown_in_the_users_unit(tmp_path, capsys):
+    """A range's values are made in SI: 'got 1.5746419675196301' for the 57th of 1..95 deg read as 1.57 deg."""
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY.replace("{start: 1 deg, stop: 60 deg, num: 3}", "{start: 1 deg, stop: 95 deg, num: 3}"))
+    assert "stop: 95 deg" in study.read_text()
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    # the third value is 95 deg = 1.65806 rad
+    assert code == 2 and err.rstrip().endswith("sweep.impact.angle[2]: expected an angle between -90 and 90 deg "
+                                               "(for impact.angle), got 95 deg (1.65806 rad)")
+
+
+@pytest.mark.parametrize("text, says", [
+    ("", "got an empty document (nothing but comments or blank lines)"),
+    ("# only a comment\n", "got an empty document"),
+    ("- a\n- b\n", "got a list (['a', 'b'])"),
+])
+def test_a_file_that_holds_no_study_says_what_it_holds_in_words(tmp_path, capsys, text, says):
+    """Before: 'got NoneType' for an empty file, 'got list': Python's type names."""
+    study = tmp_path / "s.yaml"
+    study.write_text(text)
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    assert code == 2 and says in err and "NoneType" not in err
+
+
+def test_a_bare_nan_shows_an_example_worth_writing(tmp_path, capsys):
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY.replace("speed: 80 mph", "speed: .nan"))
+    assert "speed: .nan" in study.read_text()
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    assert code == 2 and "e.g. 1 mph or 0.44704 m/s" in err and "e.g. nan" not in err
+
+
+@pytest.mark.parametrize("option, given, example", [
+    ("--humidity", "0.6", "'60 %'"), ("--humidity", "60", "'60 %'"), ("--temperature", "25", "'25 degC'"),
+    ("--pressure", "1013", "'1013 hPa'"), ("--spin-axis", "3", "'3 deg'"),
+])
+def test_fly_refuses_a_number_alone_without_offering_si(capsys, option, given, example):
+    """Before: '--humidity: ... a number as text has no unit (write e.g. '50 %', or a number in SI), got 0.6', and
+    --temperature 'a number in K': on the command line every value is text and a number alone is never read."""
+    code, err = cli(capsys, "fly", "--ball-speed", "167 mph", "--launch-angle", "10.9 deg", "--spin-rate", "2686 rpm",
+                    option, given)
+    assert code == 2 and f"{option}: expected" in err and f"e.g. {example}" in err
+    assert "in SI" not in err and "a number in" not in err and len(err.strip().splitlines()) == 1

@@ -146,7 +146,31 @@ def _as_option(exc: FieldError) -> FieldError:
     if stem not in names:
         return exc
     option = "--" + names[stem].replace("_", "-") + key[len(stem):]
-    return FieldError(option, exc.expected, exc.given, exc.choices, file=exc.file, line=exc.line)
+    expected = exc.expected
+    if isinstance(exc.given, str) and _plain_number(exc.given):
+        # what impactlab.fly says of text without a unit offers 'or a number in SI': a Python number; on the command
+        # line every value is text and a number alone is never read
+        words, unit = _PLAIN[names[stem]]
+        example = "60 %" if unit == "%" else f"{exc.given} {unit}"  # 0.6 and 60 both mean 60 %: not '0.6 %'
+        expected = f"{words} with its unit, e.g. '{example}' (a number alone is not read: its unit is never guessed)"
+    return FieldError(option, expected, exc.given, exc.choices, file=exc.file, line=exc.line)
+
+
+#: option -> (what it is, the unit of the example a number alone is refused with)
+_PLAIN = {"ball_speed": ("a ball speed", "mph"), "launch_angle": ("a launch angle", "deg"),
+          "spin_rate": ("a spin rate", "rpm"), "spin_axis": ("a spin axis", "deg"),
+          "launch_direction": ("a launch direction", "deg"), "temperature": ("a temperature", "degC"),
+          "pressure": ("a pressure", "hPa"), "altitude": ("an altitude", "m"),
+          "humidity": ("a relative humidity", "%"), "headwind": ("a wind speed", "mph"),
+          "crosswind": ("a wind speed", "mph")}
+
+
+def _plain_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def describe(result: xr.Dataset, model: str) -> str:

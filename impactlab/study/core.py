@@ -289,8 +289,11 @@ def _build_outputs(value) -> tuple[str, ...]:
 
 def _build_study(document, text: str, file: str | None) -> Study:
     if not isinstance(document, Mapping):
+        # in the user's words, not Python's (NoneType, list)
+        found = ("an empty document (nothing but comments or blank lines)" if document is None
+                 else f"a {'list' if isinstance(document, list) else 'single value'} ({str(document)[:60]!s})")
         raise FieldError("", "a study mapping with keys name, ball, face, contact, impact, sweep, models, outputs",
-                         type(document).__name__)
+                         found)
     structure(document, StudyBlock, "")
     default_name = Path(file).stem if file and not file.startswith("<") else "study"
     name = document.get("name", default_name)
