@@ -366,3 +366,32 @@ def test_fly_refuses_a_number_alone_without_offering_si(capsys, option, given, e
                     option, given)
     assert code == 2 and f"{option}: expected" in err and f"e.g. {example}" in err
     assert "in SI" not in err and "a number in" not in err and len(err.strip().splitlines()) == 1
+
+
+# -- two options that contradict each other: one was dropped without a word ---------------------------------------
+@pytest.mark.parametrize("command, says", [
+    # the result went to -o, --outdir was created empty and ignored
+    (["run", "{study}", "-o", "{tmp}/x.h5", "--outdir", "{tmp}/out"], "-o names the result file, --outdir the folder"),
+    # the scheduler overrode the explicit serial executor
+    (["run", "{study}", "-o", "{tmp}/x.h5", "--executor", "serial", "--scheduler", "127.0.0.1:1"],
+     "--scheduler runs the cases on a dask cluster, --executor serial here: give one"),
+    (["run", "{study}", "-o", "{tmp}/x.h5", "--executor", "serial", "--workers", "4"],
+     "--workers counts worker processes, and --executor serial runs in this one"),
+    # a plain fit was made, the cross-validation asked for silently not
+    (["fit", "wood2018", "--cross-validate"], "--cross-validate: for shot tables, and wood2018 is a validation "
+                                               "dataset of published values (impactlab validate lists them); leave "
+                                               "it out"),
+    (["fit", "{session}", "--by", "row", "--model", "rigid_coulomb"],
+     "--by row says what the cross-validation leaves out; add --cross-validate"),
+    # exit 0 and no picture: the figure draws shot tables only
+    (["validate", "--dataset", "wood2018", "--plot", "{tmp}/p.png"], "--plot: no shot table was validated"),
+])
+def test_contradicting_options_are_refused_not_one_dropped(tmp_path, capsys, monkeypatch, command, says):
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study",
+                        lambda *a, **k: pytest.fail("computed before refusing"))
+    study = tmp_path / "study.yaml"
+    study.write_text(STUDY)
+    args = [part.format(study=study, tmp=tmp_path, session=VENDORS / "trackman_tps_drivers.csv") for part in command]
+    code, err = cli(capsys, *args)
+    assert code == 2 and says in err and len(err.strip().splitlines()) == 1
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["study.yaml"]

@@ -55,6 +55,7 @@ def _cmd_validate(args) -> int:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])])
     over: list[str] = []
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
+    drawn = False  # a shot table validated, whose figure --plot draws
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
@@ -64,6 +65,7 @@ def _cmd_validate(args) -> int:
             table = shot_table(name, args.include_flagged)
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
+                drawn = True
                 continue
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
@@ -95,6 +97,9 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
+    if args.plot and not drawn:
+        raise StudyError("--plot: no shot table was validated (the figure draws shot tables' rows: give --dataset "
+                         "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
     if args.csv:
         from impactlab.data.shot_report import write_prediction_rows
 
@@ -117,10 +122,19 @@ def _cmd_fit(args) -> int:
     if args.json:  # refused before minutes of fitting, not after
         check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())])
 
+    if args.by and not args.cross_validate:
+        raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
+                         "--by out)")
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
+    ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
+                                            ("--include-flagged", args.include_flagged)) if given]
+    if ignored:
+        them = "it" if len(ignored) == 1 else "them"
+        raise StudyError(f"{', '.join(ignored)}: for shot tables, and {args.dataset} is a validation dataset of "
+                         f"published values (impactlab validate lists them); leave {them} out")
     data = get_dataset(args.dataset)
     known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known

@@ -38,6 +38,14 @@ from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, is_history, is_scala
 
 
 def _cmd_run(args) -> int:
+    # options that contradict each other: one of them would be dropped without a word
+    if args.output and args.outdir:
+        raise StudyError(f"-o {args.output} and --outdir {args.outdir}: -o names the result file, --outdir the folder "
+                         "of STUDY_NAME.h5 files; give one (-o FOLDER/FILE.h5 puts one result in a folder)")
+    if args.scheduler and args.executor not in ("auto", "dask"):
+        raise StudyError(f"--scheduler runs the cases on a dask cluster, --executor {args.executor} here: give one")
+    if args.workers and args.executor == "serial":
+        raise StudyError("--workers counts worker processes, and --executor serial runs in this one: give one")
     if args.scheduler:
         _check_scheduler(args.scheduler)
         args.executor = "dask"
