@@ -395,3 +395,16 @@ def test_contradicting_options_are_refused_not_one_dropped(tmp_path, capsys, mon
     code, err = cli(capsys, *args)
     assert code == 2 and says in err and len(err.strip().splitlines()) == 1
     assert sorted(path.name for path in tmp_path.iterdir()) == ["study.yaml"]
+
+
+def test_a_range_of_one_value_between_two_ends_is_refused(tmp_path, capsys):
+    """{start: 1 deg, stop: 60 deg, num: 1} ran one case at 1 deg: the stop written was dropped without a word."""
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY.replace("{start: 1 deg, stop: 60 deg, num: 3}", "{start: 1 deg, stop: 60 deg, num: 1}"))
+    assert "num: 1}" in study.read_text()
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    assert code == 2 and "sweep.impact.angle.num: expected 2 or more values from start to stop (num: 1 keeps " \
+                          "start and drops stop" in err
+    assert not (tmp_path / "s.h5").exists()
+    study.write_text(STUDY.replace("{start: 1 deg, stop: 60 deg, num: 3}", "{start: 1 deg, stop: 1 deg, num: 1}"))
+    assert cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")[0] == 0  # one value, said once: read

@@ -63,6 +63,9 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
+        if num == 1 and start != stop:  # linspace gives start alone: the stop written would be dropped silently
+            raise FieldError(f"{where}.num", "2 or more values from start to stop (num: 1 keeps start and drops stop; "
+                             "one value is a list of one, [start])", f"num: 1 from {block.start} to {block.stop}")
         return list(np.linspace(start, stop, num))
     if isinstance(spec, (list, tuple)):
         if not spec:
