@@ -408,3 +408,29 @@ def test_a_range_of_one_value_between_two_ends_is_refused(tmp_path, capsys):
     assert not (tmp_path / "s.h5").exists()
     study.write_text(STUDY.replace("{start: 1 deg, stop: 60 deg, num: 3}", "{start: 1 deg, stop: 1 deg, num: 1}"))
     assert cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")[0] == 0  # one value, said once: read
+
+
+# -- an interrupt says what it kept ---------------------------------------------------------------------------
+@pytest.mark.parametrize("finished", [False, True])
+def test_an_interrupt_says_whether_chunks_were_kept(tmp_path, capsys, monkeypatch, finished):
+    """Before: Ctrl-C before the first chunk finished said 'finished chunks are kept in R.h5.progress: run the
+    same command again', of a folder the run had just removed (it keeps only real progress)."""
+    study = tmp_path / "study.yaml"
+    study.write_text(STUDY)
+    output = tmp_path / "r.h5"
+
+    def interrupted(*args, **kwargs):
+        folder = kwargs["progress_folder"]
+        if finished:  # a chunk saved before the interrupt, as the runner saves it
+            folder.mkdir()
+            (folder / "m0-c0-3.npz").write_bytes(b"a chunk")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("impactlab.cli.study_commands.run_study", interrupted)
+    code, err = cli(capsys, "run", study, "-o", output, "-q")
+    assert code == 130 and not output.exists()
+    if finished:
+        assert f"interrupted; finished chunks are kept in {output}.progress: run the same command again" in err
+    else:
+        assert "interrupted; no chunk had finished and no result file was written or changed" in err
+        assert "kept in" not in err

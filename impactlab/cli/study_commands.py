@@ -9,6 +9,7 @@ returns the exit status; bad input raises an :mod:`impactlab.errors` error, whic
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import re
 import sys
@@ -73,8 +74,7 @@ def _cmd_run(args) -> int:
     for study, output, plan in zip(studies, outputs, plans):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
-        set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
-                           "compute only the rest")
+        set_interrupt_hint(functools.partial(_resume_hint, progress_folder))
         with _validity_notes() as notes:
             dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
                                 scheduler=args.scheduler, chunk_size=args.chunk_size,
@@ -86,6 +86,14 @@ def _cmd_run(args) -> int:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+def _resume_hint(progress_folder: Path) -> str:
+    """What an interrupted run kept: its finished chunks, or (none had finished, the folder is gone) nothing."""
+    if progress_folder.is_dir() and any(path.suffix == ".npz" for path in progress_folder.iterdir()):
+        return (f"finished chunks are kept in {progress_folder}: run the same command again to compute only the "
+                "rest")
+    return "no chunk had finished and no result file was written or changed: run the same command again"
 
 
 def _picture(path, reads) -> Path:
