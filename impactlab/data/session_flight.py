@@ -129,10 +129,10 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     if problems:
         raise StudyError("; ".join(problems))
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    for name, (unit, factor, limit, why) in flight.UNUSUAL_LAUNCH.items():
+    for name, (unit, factor, limit, because) in flight.UNUSUAL_LAUNCH.items():
         for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
             warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
-                          f"{unit} is unusual for golf ({why}); flown as given", PlausibilityWarning, stacklevel=2)
+                          f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PlausibilityWarning)
         flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
