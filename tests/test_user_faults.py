@@ -434,3 +434,23 @@ def test_an_interrupt_says_whether_chunks_were_kept(tmp_path, capsys, monkeypatc
     else:
         assert "interrupted; no chunk had finished and no result file was written or changed" in err
         assert "kept in" not in err
+
+
+def test_validate_refuses_a_model_it_would_ignore(capsys):
+    """`validate --dataset wood2018 --model nonsense` printed every model and exited 0: --model chooses the models
+    compared on shot tables, and a dataset's table shows its study's; an unknown name was never checked."""
+    code, err = cli(capsys, "validate", "--dataset", "wood2018", "--model", "nonsense")
+    assert code == 2 and "--model: expected a registered model, got nonsense. Choices: dem_linear" in err
+    code, err = cli(capsys, "validate", "--dataset", "wood2018", "--model", "maw")
+    assert code == 2 and "--model maw: chooses the models compared on shot tables, and none was validated" in err
+
+
+@pytest.mark.parametrize("timeout", ["1e12", "3601"])
+def test_a_timeout_too_long_for_a_socket_is_bad_input_not_an_internal_error(result_file, capsys, timeout):
+    """--timeout 1e12 passed the check (> 0, finite), then the socket's timeout overflowed the platform's time_t:
+    'internal error: OverflowError', exit 1, and a socket left open."""
+    with pytest.raises(SystemExit) as stopped:
+        main(["export", str(result_file), "--gspro", "127.0.0.1:1", "--timeout", timeout])
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and "--timeout: expected a number of seconds > 0 and at most 3600" in err
+    assert "internal error" not in err

@@ -45,14 +45,20 @@ def _size(text: str) -> int:
 
 
 
+#: the longest --timeout: GSPro answers a shot in well under a second; a socket's timeout of 1e12 s does not fit the
+#: platform's time_t (an OverflowError inside the connection, which leaked its socket: exit 1, 'internal error')
+MAX_TIMEOUT = 3600.0
+
+
 def _seconds(text: str) -> float:
-    """argparse type: a positive, finite number of seconds."""
+    """argparse type: a positive, finite number of seconds, at most :data:`MAX_TIMEOUT`."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text}")
+    if not (math.isfinite(value) and 0 < value <= MAX_TIMEOUT):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0 and at most {MAX_TIMEOUT:g} (an hour), "
+                                         f"got {text}")
     return value
 
 

@@ -22,6 +22,7 @@ from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
 from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
 from impactlab.vocabulary import OUTPUTS
@@ -48,6 +49,10 @@ def _cmd_validate(args) -> int:
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+    known = sorted(available())
+    for model in args.model or ():  # said before anything runs (the datasets' tables would ignore it)
+        if model not in known:
+            raise FieldError("--model", "a registered model", model, choices=known)
     read = [*(args.dataset or ()), *(args.club or ())]  # an output there would replace the user's data
     if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png", reads=read, formats=(".png",))
@@ -97,6 +102,9 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
+    if args.model and not drawn:
+        raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
+                         "validated (a dataset's table shows every model of its study); leave --model out")
     if args.plot and not drawn:
         raise StudyError("--plot: no shot table was validated (the figure draws shot tables' rows: give --dataset "
                          "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
