@@ -454,3 +454,24 @@ def test_a_timeout_too_long_for_a_socket_is_bad_input_not_an_internal_error(resu
     err = capsys.readouterr().err
     assert stopped.value.code == 2 and "--timeout: expected a number of seconds > 0 and at most 3600" in err
     assert "internal error" not in err
+
+
+# -- what a study asks for and will not get -------------------------------------------------------------------
+def test_an_output_no_model_can_give_and_air_nothing_reads_are_said_before_the_run(tmp_path, capsys):
+    """A study of a ball fired at a plate that asks for carry_distance ran and exited 0 with the carry NaN for
+    every model (only --plan and the file's attribute said why); a conditions block without a flight output was
+    read and never used. Both still run (the file says the same), and each is said once, before the run."""
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY.replace("outputs: [", "conditions: {temperature: 30 degC}\noutputs: [carry_distance, ", 1))
+    assert "outputs: [carry_distance, " in study.read_text()
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")
+    assert code == 0
+    assert f"impactlab: warning: {study}: carry_distance will be NaN for every model (needs a golf delivery" in err
+    assert "conditions (the air) are read only by the flight outputs" not in err  # carry_distance reads them
+    study.write_text(STUDY.replace("outputs: [", "conditions: {temperature: 30 degC}\noutputs: [", 1))
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")
+    assert code == 0 and f"impactlab: warning: {study}: its conditions (the air) are read only by the flight " \
+                          "outputs" in err
+    study.write_text(STUDY)
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")
+    assert code == 0 and "warning" not in err

@@ -65,6 +65,8 @@ def _cmd_run(args) -> int:
     refuse_clashes([(f"{study.file} (name {study.name!r})", output) for study, output in zip(studies, outputs)])
     # every study planned (limits checked, models planned) before the first runs; the run takes its plan
     plans = [plan_study(study) for study in studies]
+    for study, plan in zip(studies, plans):
+        _say_unused(study, plan)
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
@@ -86,6 +88,21 @@ def _cmd_run(args) -> int:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+def _say_unused(study, plan) -> None:
+    """What a study asks for and will not get, said before it runs (the run would exit 0 with it all NaN or unused):
+    an output every model leaves NaN, and air conditions no flight output reads."""
+    where = study.file or study.name
+    if plan.models:
+        nowhere = set.intersection(*(set(output_plan.missing) for _, output_plan in plan.models))
+        for name in (output for output in study.outputs if output in nowhere):
+            reason = dict(plan.models[0][1].missing)[name]
+            print(f"impactlab: warning: {where}: {name} will be NaN for every model ({reason}); `impactlab run "
+                  f"--plan` says what each model gives", file=sys.stderr)
+    if study.scene.conditions is not None and not any(name in FLIGHT_OUTPUTS for name in study.all_outputs):
+        print(f"impactlab: warning: {where}: its conditions (the air) are read only by the flight outputs "
+              f"({', '.join(FLIGHT_OUTPUTS)}), and it asks for none", file=sys.stderr)
 
 
 def _resume_hint(progress_folder: Path) -> str:
