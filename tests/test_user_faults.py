@@ -168,18 +168,36 @@ def test_the_limits_of_the_angles_are_flown():
 
 
 @pytest.mark.parametrize("changes, words", [
-    ({"ball_speed": 167}, "ball_speed: 373.568 mph (a number is SI: 167 m/s) is unusual for golf"),
-    ({"spin_rate": 2686}, "spin_rate: 25649.4 rpm (a number is SI: 2686 rad/s) is unusual for golf"),
+    ({"ball_speed": 110}, "ball_speed: 246.063 mph (a number is SI: 110 m/s) is unusual for golf"),
+    ({"spin_rate": 1300}, "spin_rate: 12414.1 rpm (a number is SI: 1300 rad/s) is unusual for golf"),
     ({"ball_speed": "250 mph"}, "ball_speed: 250 mph is unusual for golf"),
 ])
 def test_a_launch_beyond_measured_golf_shots_is_flown_and_said(changes, words):
-    """167 meant as mph, 2686 meant as rpm, given as plain numbers (SI): flown silently before at 373 mph and
-    25 650 rpm. Now a PlausibilityWarning says so: the fastest ball speeds measured are about 225 mph (150 mph of
-    club speed, the fastest measured, at a smash factor of 1.5), spins at most about 12 000 rpm."""
+    """Beyond the fastest ball speeds measured, about 225 mph (150 mph of club speed, the fastest measured, at a
+    smash factor of 1.5), or spins above about 12 000 rpm: flown, and a PlausibilityWarning says so."""
     with pytest.warns(impactlab.errors.PlausibilityWarning) as caught:
         shots = impactlab.fly(**{**LAUNCH, **changes})
     assert any(words in str(warning.message) for warning in caught)
     assert np.isfinite(float(shots.carry_distance))
+
+
+@pytest.mark.parametrize("changes, path, says", [
+    # 167 meant as mph and 2686 meant as rpm, given as plain numbers (SI), flew silently at 373 mph and 25 650 rpm
+    ({"ball_speed": 167}, "ball_speed", "expected a ball speed up to 300 mph (200 mph of club speed, which no swing "
+                                        "reaches, at the largest smash factor the Rules' COR limit allows, 1.49), got "
+                                        "373.568 mph (a number is SI: 167 m/s)"),
+    ({"spin_rate": 2686}, "spin_rate", "expected a spin rate up to 20,000 rpm (golf balls leave a club with at most "
+                                       "about 12,000 rpm), got 25649.4 rpm (a number is SI: 2686 rad/s)"),
+    ({"ball_speed": ["150 mph", "1000 mph"]}, "ball_speed[1]", "got 1000 mph"),
+])
+def test_a_launch_speed_or_spin_no_golf_shot_has_is_refused(changes, path, says):
+    """The limits are the project's own: 200 mph of club speed, refused in a golf scene, times the largest smash
+    factor the COR limit 0.83 allows with a 200 g head, (1 + 0.83) / (1 + 45.93 / 200) = 1.488 (298 mph); spin
+    beyond 20,000 rpm, refused as a golf scene's incoming spin."""
+    assert (1 + 0.83) / (1 + 45.93 / 200) * 200 == pytest.approx(297.6, abs=0.1)
+    with pytest.raises(impactlab.FieldError) as caught:
+        impactlab.fly(**{**LAUNCH, **changes})
+    assert caught.value.path == path and says in str(caught.value)
 
 
 def test_a_launch_golf_shots_have_is_flown_without_a_word(recwarn):
@@ -244,11 +262,16 @@ def test_a_session_row_with_an_impossible_angle_is_not_flown_and_says_its_line(t
 def test_a_session_says_each_unusual_value_at_its_line(tmp_path, capsys):
     table = tmp_path / "shots.csv"
     table.write_text("club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm]\nDriver,167,10.9,2686\n"
-                     "Driver,240,10.9,2686\n")
-    code, err = cli(capsys, "fly", table)
-    assert code == 0
+                     "Driver,240,10.9,2686\nDriver,1e308,10.9,2686\nDriver,167,10.9,1e30\n")
+    code = main(["fly", str(table)])
+    printed, err = capsys.readouterr()
+    assert code == 0 and "Traceback" not in err
     assert f"impactlab: warning: {table}:3: ball speed 240 mph is unusual for golf" in err
     assert ":2:" not in err and "ball_speed[" not in err
+    # before: flown (a spin of 1e30 rpm to a carry of 155 yd, counted in the session's mean and RMS)
+    assert "line 4: ball speed 1e+308 mph, beyond 300 mph: no golf shot" in printed
+    assert "line 5: spin rate 1e+30 rpm, beyond 20,000 rpm: no golf shot" in printed
+    assert "model against the monitor" not in printed and "| 5 |" not in printed and "| 4 |" not in printed
 
 
 def test_a_studys_air_is_held_to_the_same_ranges_at_its_line(tmp_path, capsys):

@@ -88,8 +88,9 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         impossible = {name: np.abs(v[name]) >= limit for name, limit in (
             ("vertical_launch_angle", np.pi / 2), ("spin_axis", np.nextafter(np.pi / 2, 4.0)),
             ("horizontal_launch_angle", np.pi / 2))}
+        beyond = {name: v[name] > limit for name, (limit, _) in flight.IMPOSSIBLE_LAUNCH.items()}
     present = (np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0) & ~downward
-               & ~topspin & ~np.any(list(impossible.values()), axis=0))
+               & ~topspin & ~np.any(list(impossible.values()), axis=0) & ~np.any(list(beyond.values()), axis=0))
     flagged = np.zeros(session.size, dtype=bool)
     why: dict[int, list[str]] = {}
     for (field, kind), rows in session.flags.items():
@@ -116,6 +117,12 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
             name = next(name for name, refused in impossible.items() if refused[row])
             reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
                       "(a column in other units or another convention?)")
+        elif any(refused[row] for refused in beyond.values()):
+            name = next(name for name, refused in beyond.items() if refused[row])
+            unit, factor = flight.UNUSUAL_LAUNCH[name][:2]
+            reason = (f"{name.replace('_', ' ')} {v[name][row] * factor:.6g} {unit}, beyond "
+                      f"{flight.IMPOSSIBLE_LAUNCH[name][1].split(' (')[0].split(' up to ')[1]}: no golf shot (a column "
+                      "in other units?)")
         else:
             reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
                       "them)")

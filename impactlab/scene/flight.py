@@ -195,6 +195,16 @@ UNUSUAL_LAUNCH = {
     "spin_rate": ("rpm", 30.0 / math.pi, 12000.0 * math.pi / 30.0, "golf balls leave a club with at most about "
                   "12,000 rpm"),
 }
+#: the SI value beyond which no golf shot has a launch value (refused; a session's row is not flown), and why
+IMPOSSIBLE_LAUNCH = {
+    # the club speed no human swing reaches, 200 mph (scene.plausibility), at the largest smash factor the Rules'
+    # COR limit allows, (1 + 0.83) / (1 + 45.93 g / 200 g) = 1.49 (a 200 g head): 298 mph
+    "ball_speed": (300.0 * 0.44704, "a ball speed up to 300 mph (200 mph of club speed, which no swing reaches, at "
+                   "the largest smash factor the Rules' COR limit allows, 1.49)"),
+    # the incoming spin a golf scene refuses (scene.plausibility: balls leave a club with at most about 12,000 rpm)
+    "spin_rate": (20000.0 * math.pi / 30.0, "a spin rate up to 20,000 rpm (golf balls leave a club with at most "
+                  "about 12,000 rpm)"),
+}
 
 
 def _bare(value) -> bool:
@@ -299,15 +309,16 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
         scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
         aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
-        integration's limit; e.g. 1000 mph at 80 deg). A shot launched below the horizontal is at the ground going
+        integration's limit; e.g. 300 mph at 89 deg). A shot launched below the horizontal is at the ground going
         down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
     FieldError
-        A value of the wrong dimension or out of range (speed <= 0, spin < 0, a launch angle or launch direction
-        at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has them), a string without a unit. A
-        value refused that was given as a plain number is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
+        A value of the wrong dimension or out of range (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
+        a launch angle or launch direction at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has
+        them; :data:`IMPOSSIBLE_LAUNCH`), a string without a unit. A value refused that was given as a plain number
+        is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
 
     Warns
     -----
@@ -371,6 +382,14 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         if np.any(refused):
             where, value = _first(name, values[name], refused)
             raise FieldError(where, words, _in_unit(np.degrees(value), "deg") + _si_note(given[name], value, "rad"))
+    for name, (limit, words) in IMPOSSIBLE_LAUNCH.items():
+        refused = values[name] > limit
+        if np.any(refused):
+            where, value = _first(name, values[name], refused)
+            unit, factor = UNUSUAL_LAUNCH[name][:2]
+            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
+            raise FieldError(where, words, f"{value * factor:.6g} {unit}{note}")
     _warn_unusual(values, given)
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
@@ -417,4 +436,5 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
-__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH"]
+__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
+           "IMPOSSIBLE_LAUNCH"]
