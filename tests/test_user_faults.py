@@ -498,3 +498,12 @@ def test_an_output_no_model_can_give_and_air_nothing_reads_are_said_before_the_r
     study.write_text(STUDY)
     code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5", "-q")
     assert code == 0 and "warning" not in err
+
+
+def test_a_magnitude_below_zero_is_shown_in_the_files_unit(tmp_path, capsys):
+    """Before: 'got -67.056 (SI)' for a row's -150 mph, read as -67 in the file's mph."""
+    table = tmp_path / "shots.csv"
+    table.write_text("club,Ball Speed [mph],Launch Angle [deg],Spin Rate [rpm]\nDriver,-150,12,2500\n")
+    code, err = cli(capsys, "fly", table)
+    assert code == 2 and f"{table}:2: ball_speed: expected a value >= 0" in err
+    assert err.rstrip().endswith("got -150 mph (-67.056 m/s)")  # 150 x 0.44704

@@ -172,6 +172,8 @@ def strike_limits(club) -> list[Limit]:
 #: measured quantities that are magnitudes: a value below zero is a sign or column error, never a shot
 MAGNITUDES = {"ball_speed": "a ball speed is a magnitude (its direction is the launch angles)",
               "spin_rate": "the total spin is a magnitude (its direction is the spin axis)"}
+#: how a refused magnitude is shown: the usual unit, its factor from SI, the SI unit
+_MAGNITUDE_UNITS = {"ball_speed": ("mph", _MPH, "m/s"), "spin_rate": ("rpm", _RPM, "rad/s")}
 
 
 def wrong_sign(measured: dict, index: int, where: str) -> list[str]:
@@ -194,7 +196,9 @@ def wrong_sign(measured: dict, index: int, where: str) -> list[str]:
     for key, why in MAGNITUDES.items():
         value = measured.get(key)
         if value is not None and value[index] < 0:
-            problems.append(f"{where}: {key}: expected a value >= 0 ({why}), got {value[index]:.6g} (SI)")
+            unit, factor, si_unit = _MAGNITUDE_UNITS[key]  # 'got -67.056 (SI)' read as -67 of the file's mph
+            problems.append(f"{where}: {key}: expected a value >= 0 ({why}), got {value[index] * factor:.6g} {unit} "
+                            f"({value[index]:.6g} {si_unit})")
     return problems
 
 
