@@ -507,3 +507,12 @@ def test_a_magnitude_below_zero_is_shown_in_the_files_unit(tmp_path, capsys):
     code, err = cli(capsys, "fly", table)
     assert code == 2 and f"{table}:2: ball_speed: expected a value >= 0" in err
     assert err.rstrip().endswith("got -150 mph (-67.056 m/s)")  # 150 x 0.44704
+
+
+def test_validates_table_header_keeps_its_columns_apart(capsys):
+    """'launch angle [deg]launch direction [deg]': a 22-character name filled its 22-character column."""
+    assert main(["validate", "--dataset", str(VENDORS / "trackman_tps.csv"), "--model", "rigid_coulomb"]) == 0
+    header = next(line for line in capsys.readouterr().out.splitlines() if "RMS error" in line)
+    assert "]l" not in header and "] " in header
+    assert header.split("RMS error")[1].split() == ["ball_speed", "[%]", "launch", "angle", "[deg]", "launch",
+                                                     "direction", "[deg]", "spin", "[%]", "spin", "axis", "[deg]"]
