@@ -516,3 +516,25 @@ def test_validates_table_header_keeps_its_columns_apart(capsys):
     assert "]l" not in header and "] " in header
     assert header.split("RMS error")[1].split() == ["ball_speed", "[%]", "launch", "angle", "[deg]", "launch",
                                                      "direction", "[deg]", "spin", "[%]", "spin", "axis", "[deg]"]
+
+
+# -- a club spec sheet (--club) ---------------------------------------------------------------------------------
+SHEET = ("name: my driver\nnames: [Driver, 1w]\nloft: 10.5 deg\nlie: 58 deg\nmass: 203 g\n"
+         "moi: {up: 5200 g cm^2, toe: 2900 g cm^2, target: 4000 g cm^2}\ncg: {toe: 0 mm, high: 2 mm, depth: 38 mm}\n"
+         "bulge: 305 mm\nroll: 254 mm\nface: titanium\n")
+
+
+@pytest.mark.parametrize("old, new, says", [
+    # before: 'loft: expected a static loft between 0 and 90 deg, got 1.6580627893946132' (radians), no line
+    ("loft: 10.5 deg", "loft: 95 deg", "{sheet}:3: club.loft: expected a static loft between 0 and 90 deg, got 95 deg"),
+    # before: 'mass: ... got -0.203', no line
+    ("mass: 203 g", "mass: -203 g", "{sheet}:5: club.mass: expected a positive, finite head mass in kg, got -203 g"),
+    # before: 'got None'
+    (SHEET, "", "{sheet}: club: expected a mapping of club spec keys"),
+])
+def test_a_club_sheets_refused_value_is_named_at_its_line_as_written(tmp_path, capsys, old, new, says):
+    sheet = tmp_path / "driver.yaml"
+    sheet.write_text(SHEET.replace(old, new))
+    code, err = cli(capsys, "validate", "--dataset", VENDORS / "trackman_tps_drivers.csv", "--club", sheet,
+                    "--model", "rigid_coulomb")
+    assert code == 2 and says.format(sheet=sheet) in err and "None" not in err
