@@ -538,3 +538,19 @@ def test_a_club_sheets_refused_value_is_named_at_its_line_as_written(tmp_path, c
     code, err = cli(capsys, "validate", "--dataset", VENDORS / "trackman_tps_drivers.csv", "--club", sheet,
                     "--model", "rigid_coulomb")
     assert code == 2 and says.format(sheet=sheet) in err and "None" not in err
+
+
+@pytest.mark.parametrize("ball, says", [
+    ("radius: 2 m", "ball.radius: expected a golf ball's radius between 10 and 45 mm"),
+    ("mass: 45.93 kg", "ball.mass: expected a golf ball's mass between 10 and 100 g"),
+])
+def test_a_golf_scene_refuses_a_ball_no_club_strikes(tmp_path, capsys, ball, says):
+    """A 2 m ball struck by a driver ran and exited 0 (a golf scene judged the club and the delivery, not the
+    ball). The Rules' ball is at least 42.67 mm across and at most 45.93 g (R&A/USGA Equipment Rules, Part 3)."""
+    study = tmp_path / "g.yaml"
+    study.write_text(f"name: g\nball: {{preset: urethane_tour, {ball}}}\nclub: {{preset: driver}}\n"
+                     "contact: {friction: 0.4}\ndelivery: {club_speed: 100 mph, path: 0 deg, face_angle: 0 deg, "
+                     "attack_angle: 0 deg, dynamic_loft: 12 deg}\nmodels: [rigid_coulomb]\noutputs: [ball_speed]\n")
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "g.h5")
+    assert code == 2 and f"{study}:2: {says}" in err
+    assert not (tmp_path / "g.h5").exists()
