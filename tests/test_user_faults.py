@@ -554,3 +554,18 @@ def test_a_golf_scene_refuses_a_ball_no_club_strikes(tmp_path, capsys, ball, say
     code, err = cli(capsys, "run", study, "-o", tmp_path / "g.h5")
     assert code == 2 and f"{study}:2: {says}" in err
     assert not (tmp_path / "g.h5").exists()
+
+
+@pytest.mark.parametrize("changes, path, says", [
+    # 21.335 meant as mm is 21.335 m: a 43 m ball, flown to NaN without a word
+    ({"ball_radius": 21.335}, "ball_radius", "got 21335 mm (a number is SI: 21.335 m)"),
+    ({"ball_mass": 45.93}, "ball_mass", "got 45930 g (a number is SI: 45.93 kg)"),
+    ({"ball_radius": "2 m"}, "ball_radius", "got 2000 mm"),
+])
+def test_fly_refuses_a_ball_no_club_strikes(changes, path, says):
+    with pytest.raises(impactlab.FieldError) as caught:
+        impactlab.fly(**LAUNCH, **changes)
+    assert caught.value.path == path and "between 10 and 45 mm" in str(caught.value) or "10 and 100 g" in \
+        str(caught.value)
+    assert says in str(caught.value)
+    assert np.isfinite(float(impactlab.fly(**LAUNCH, ball_radius="21.335 mm", ball_mass="45.93 g").carry_distance))

@@ -23,6 +23,7 @@ import numpy as np
 from impactlab.errors import FieldError, PlausibilityWarning
 from impactlab.physics import aerodynamics, atmosphere
 from impactlab.physics import flight as physics
+from impactlab.scene.plausibility import GOLF_LIMITS
 from impactlab.units import DIMENSIONS, to_si
 from impactlab.validators import in_range, to_float
 from impactlab.vocabulary import OUTPUTS
@@ -394,6 +395,17 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
+    # the golf scene's ball limits (scene.plausibility): ball_radius=21.335 (mm meant, m read) flew a 43 m ball
+    for name, array, given_value, unit, factor, si_unit in (("ball_radius", radius, ball_radius, "mm", 1e3, "m"),
+                                                            ("ball_mass", mass, ball_mass, "g", 1e3, "kg")):
+        limit = GOLF_LIMITS[name.replace("_", ".")]
+        low, high = (bound / factor for bound in limit.impossible)
+        refused = (array < low) | (array > high)
+        if np.any(refused):
+            where, value = _first(name, array, refused)
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given_value) else ""
+            raise FieldError(where, f"{limit.words} between {limit.impossible[0]:g} and {limit.impossible[1]:g} "
+                             f"{unit} ({limit.why})", f"{value * factor:.6g} {unit}{note}")
     if model not in aerodynamics.MODELS:
         raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
