@@ -569,3 +569,23 @@ def test_fly_refuses_a_ball_no_club_strikes(changes, path, says):
     assert "between 10 and 45 mm" in str(caught.value) or "between 10 and 100 g" in str(caught.value)
     assert says in str(caught.value)
     assert np.isfinite(float(impactlab.fly(**LAUNCH, ball_radius="21.335 mm", ball_mass="45.93 g").carry_distance))
+
+
+# -- the command line's own parsing errors -------------------------------------------------------------------------
+@pytest.mark.parametrize("args, says", [
+    (["fly", "--model", "measured_fitt"], "impactlab: error: fly: argument --model: invalid choice: 'measured_fitt' "
+                                          "(choose from"),
+    (["run", "--executor", "seriall", "x.yaml"], "(did you mean 'serial'?); see `impactlab run --help`"),
+    (["frobnicate"], "impactlab: error: argument command: invalid choice: 'frobnicate'"),
+    (["run"], "impactlab: error: run: the following arguments are required: study; see `impactlab run --help`"),
+])
+def test_a_command_line_argparse_refuses_is_one_line_like_every_other_error(capsys, args, says):
+    """Before: argparse's usage block (14 lines for fly, its model choices twice) then 'impactlab fly: error: ...',
+    where every other failure is one 'impactlab: error: ...' line; and no closest choice for a typo."""
+    with pytest.raises(SystemExit) as stopped:
+        main(args)
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and says in err and len(err.strip().splitlines()) == 1
+    assert err.startswith("impactlab: error: ") and "usage:" not in err
+    if args[:2] == ["fly", "--model"]:
+        assert "(did you mean 'measured_fit'?)" in err

@@ -12,8 +12,11 @@ choices) and exit status 2, never a traceback.
 from __future__ import annotations
 
 import argparse
+import difflib
 import math
+import re
 from collections.abc import Sequence
+from typing import NoReturn
 
 from impactlab._version import __version__
 from impactlab.cli.data_commands import _cmd_fit, _cmd_shots, _cmd_validate
@@ -63,12 +66,28 @@ def _seconds(text: str) -> float:
 
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, its errors on one line like every other failure: ``impactlab: error: run: argument
+    --executor: invalid choice: 'foo' (choose from ...; did you mean 'auto'?); see impactlab run --help``, status 2
+    (argparse prints its usage block and ``impactlab run: error: ...``, and offers no closest choice)."""
+
+    def error(self, message: str) -> NoReturn:
+        found = re.search(r"invalid choice: '?([^'\s]+)'? \(choose from (.*)\)", message)
+        if found:
+            choices = [choice.strip(" '\"") for choice in found.group(2).split(",")]
+            close = difflib.get_close_matches(found.group(1), choices, n=1)
+            if close:
+                message += f" (did you mean {close[0]!r}?)"
+        command = self.prog.split(" ", 1)[1] + ": " if " " in self.prog else ""
+        self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
+
+
 CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
-    parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
+    parser = _Parser(prog="impactlab", description="Compare models of a ball leaving a face.")
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     commands = parser.add_subparsers(dest="command", required=True)
