@@ -589,3 +589,19 @@ def test_a_command_line_argparse_refuses_is_one_line_like_every_other_error(caps
     assert err.startswith("impactlab: error: ") and "usage:" not in err
     if args[:2] == ["fly", "--model"]:
         assert "(did you mean 'measured_fit'?)" in err
+
+
+def test_a_foreign_hdf5_file_is_refused_by_its_attributes_before_its_data_are_read(tmp_path, capsys, monkeypatch):
+    """Before: every dataset of another program's HDF5 file was loaded into memory, then refused (a big file
+    first filled the memory), with h5netcdf's 'phony_dims' warning printed on the way."""
+    import h5py
+    import xarray as xr
+
+    foreign = tmp_path / "other.h5"
+    with h5py.File(foreign, "w") as handle:
+        handle["samples"] = np.arange(16.0)
+    monkeypatch.setattr(xr.Dataset, "load", lambda self, **kw: pytest.fail("data read before the refusal"))
+    code, err = cli(capsys, "export", foreign, "-o", tmp_path / "shots.json")
+    assert code == 2 and err.strip() == (f"impactlab: error: {foreign}: not an impactlab result (an HDF5/netCDF file "
+                                         "without the impactlab_version attribute every impactlab result carries); "
+                                         "give a file written by impactlab run")
