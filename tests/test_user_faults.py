@@ -605,3 +605,23 @@ def test_a_foreign_hdf5_file_is_refused_by_its_attributes_before_its_data_are_re
     assert code == 2 and err.strip() == (f"impactlab: error: {foreign}: not an impactlab result (an HDF5/netCDF file "
                                          "without the impactlab_version attribute every impactlab result carries); "
                                          "give a file written by impactlab run")
+
+
+@pytest.mark.parametrize("tolerances, says", [
+    # before: 'tolerance: expected a tolerance between 1e-9 and 0.1, got 0.16666666666666666' (5 / 30, never typed)
+    (["5"], "argument --tolerances: expected a tolerance between 1.2e-07 and 0.1"),
+    (["1e-8"], "the reference runs at a 120th of the finest), got 1e-8"),  # its reference 8.3e-11 < 1e-9
+    # before: run, with two ladder points at one coordinate
+    (["1e-3", "1e-3"], "--tolerances: each value once (a ladder point per tolerance), got 0.001 twice"),
+])
+def test_convergence_refuses_a_ladder_it_cannot_run_by_the_values_typed(tmp_path, capsys, tolerances, says):
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY)
+    try:
+        code = main(["convergence", str(study), "-o", str(tmp_path / "w.h5"), "--repeats", "1", "--tolerances",
+                     *tolerances])
+    except SystemExit as stopped:
+        code = stopped.code
+    err = capsys.readouterr().err
+    assert code == 2 and says in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "w.h5").exists()

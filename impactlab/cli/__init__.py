@@ -66,6 +66,20 @@ def _seconds(text: str) -> float:
 
 
 
+def _tolerance(text: str) -> float:
+    """argparse type: a tolerance of the work-precision ladder. The reference runs at a 120th of the finest (the
+    finest / 30, extrapolated with the finest / 120) and a model takes 1e-9 to 0.1: 5 was refused as 'tolerance:
+    ... got 0.1667', a value never typed, after the models were built."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a tolerance (a number), got {text!r}") from None
+    if not (math.isfinite(value) and 120 * 1e-9 <= value <= 0.1):
+        raise argparse.ArgumentTypeError(f"expected a tolerance between 1.2e-07 and 0.1 (a model takes 1e-9 to 0.1, "
+                                         f"and the reference runs at a 120th of the finest), got {text}")
+    return value
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse's parser, its errors on one line like every other failure: ``impactlab: error: run: argument
     --executor: invalid choice: 'foo' (choose from ...; did you mean 'auto'?); see impactlab run --help``, status 2
@@ -139,7 +153,7 @@ def build_parser() -> argparse.ArgumentParser:
     convergence.add_argument("--plot", metavar="PNG", nargs="?", const=True,
                              help="draw the work-precision diagram (default: next to the result file)")
     convergence.add_argument("--repeats", type=_count, default=3, help="timed repeats per point (median)")
-    convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
+    convergence.add_argument("--tolerances", type=_tolerance, nargs="+", help="ladder of tolerances")
     convergence.add_argument("-q", "--quiet", action="store_true")
     convergence.set_defaults(handler=_cmd_convergence)
 

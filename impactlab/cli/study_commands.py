@@ -275,6 +275,9 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_convergence(args) -> int:
+    repeated = sorted({value for value in args.tolerances or () if args.tolerances.count(value) > 1})
+    if repeated:  # two points of the ladder at one coordinate
+        raise StudyError(f"--tolerances: each value once (a ladder point per tolerance), got {repeated[0]:g} twice")
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
