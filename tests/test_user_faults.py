@@ -625,3 +625,12 @@ def test_convergence_refuses_a_ladder_it_cannot_run_by_the_values_typed(tmp_path
     err = capsys.readouterr().err
     assert code == 2 and says in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "w.h5").exists()
+
+
+def test_a_declared_plot_of_one_output_the_study_lacks_names_that_output(tmp_path, capsys):
+    """Before: 'plots[0].y[0]: expected an output the study computes, got c' for y: contact_time (the first
+    letter: the value at y[0], read back from the file, of a string)."""
+    study = tmp_path / "s.yaml"
+    study.write_text(STUDY + "plots:\n  - {name: f, y: contact_time, x: angle}\n")
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    assert code == 2 and "plots[0].y: expected an output the study computes, got contact_time. Choices:" in err

@@ -397,12 +397,14 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
         if not isinstance(name, str) or not name.replace("-", "_").isidentifier():
             raise FieldError(f"{where}.name", "a short file-name-safe name", name)
         wanted = block.y
-        wanted = [wanted] if isinstance(wanted, str) else wanted
+        one = isinstance(wanted, str)
+        wanted = [wanted] if one else wanted
         if not isinstance(wanted, list) or not wanted:
             raise FieldError(f"{where}.y", "an output name or a list of them", wanted, choices=outputs)
         for position, output in enumerate(wanted):
-            if output not in outputs:
-                raise FieldError(f"{where}.y[{position}]", "an output the study computes", output, choices=outputs)
+            if output not in outputs:  # y: NAME is named y, not y[0] (its first letter, read back from the file)
+                raise FieldError(f"{where}.y" if one else f"{where}.y[{position}]", "an output the study computes",
+                                 output, choices=outputs)
         kind = block.kind or "lines"
         if kind not in PLOT_KINDS:
             raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)
