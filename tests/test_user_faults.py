@@ -634,3 +634,33 @@ def test_a_declared_plot_of_one_output_the_study_lacks_names_that_output(tmp_pat
     study.write_text(STUDY + "plots:\n  - {name: f, y: contact_time, x: angle}\n")
     code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
     assert code == 2 and "plots[0].y: expected an output the study computes, got contact_time. Choices:" in err
+
+
+# -- encodings --------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("encoding", ["utf-16-le", "utf-16-be"])
+def test_utf16_without_its_mark_is_named_not_called_binary(tmp_path, capsys, encoding):
+    """Windows tools save UTF-16 without a byte-order mark: a study so saved was 'a binary file (it holds NUL
+    bytes)', and `validate --dataset` on a measured-data YAML so saved printed PyYAML's two-line 'unacceptable
+    character #x0000'. Each is now 'is UTF-16 text without a byte-order mark; save ... as UTF-8'."""
+    study = tmp_path / "s.yaml"
+    study.write_bytes(STUDY.encode(encoding))
+    code, err = cli(capsys, "run", study, "-o", tmp_path / "s.h5")
+    assert code == 2 and err.strip() == f"impactlab: error: {study}: is UTF-16 text without a byte-order mark; " \
+                                        "save the study file as UTF-8"
+    measured = tmp_path / "measured.yaml"
+    measured.write_bytes("name: mine\nquantity: launch_ratio\n".encode(encoding))
+    code, err = cli(capsys, "validate", "--dataset", measured)
+    assert code == 2 and "is UTF-16 text without a byte-order mark" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_binary_file_with_many_zeros_is_still_binary(tmp_path, capsys, result_file):
+    """An HDF5 result given as a study has zeros in every other byte of its header: it is not UTF-16 text."""
+    code, err = cli(capsys, "run", result_file, "--plan")
+    assert code == 2 and "is a binary file (it holds NUL bytes), not a YAML study file" in err
+
+
+def test_a_control_character_in_yaml_is_one_line(tmp_path, capsys):
+    study = tmp_path / "s.yaml"
+    study.write_text('name: x\nkey: "a\x01b"\n')
+    code, err = cli(capsys, "run", study)
+    assert code == 2 and "not valid YAML: unacceptable character #x0001" in err and len(err.strip().splitlines()) == 1
