@@ -664,3 +664,27 @@ def test_a_control_character_in_yaml_is_one_line(tmp_path, capsys):
     study.write_text('name: x\nkey: "a\x01b"\n')
     code, err = cli(capsys, "run", study)
     assert code == 2 and "not valid YAML: unacceptable character #x0001" in err and len(err.strip().splitlines()) == 1
+
+
+# -- an output's suffix says what is written -----------------------------------------------------------------------
+@pytest.mark.parametrize("command, says", [
+    # an HDF5 result into the user's session export (not an input of this command): replaced, exit 0
+    (["run", "{study}", "-o", "{session}"], "(result file): expected a file name ending in .h5 or .hdf5"),
+    (["export", "{result}", "-o", "{session}"], "(shot file): expected a file name ending in .json"),
+    (["fly", "--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--csv", "{result}"],
+     "(--csv file): expected a file name ending in .csv or .txt"),
+    (["fit", "wood2018", "--json", "{session}"], "(--json file): expected a file name ending in .json"),
+    (["paper", "{tmp}", "-o", "{session}"], "(report): expected a file name ending in .md"),
+])
+def test_an_output_whose_suffix_names_another_kind_of_file_is_refused(tmp_path, capsys, result_file, command, says):
+    study = tmp_path / "study.yaml"
+    study.write_text(STUDY)
+    session = tmp_path / "session.csv"
+    session.write_bytes((VENDORS / "trackman_tps.csv").read_bytes())
+    result = tmp_path / "result.h5"
+    result.write_bytes(result_file.read_bytes())
+    kept = {path: digest(path) for path in (study, session, result)}
+    args = [part.format(study=study, session=session, result=result, tmp=tmp_path) for part in command]
+    code, err = cli(capsys, *args)
+    assert code == 2 and says in err and len(err.strip().splitlines()) == 1
+    assert {path: digest(path) for path in kept} == kept

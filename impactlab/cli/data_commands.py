@@ -21,7 +21,7 @@ from impactlab.data.validation.benchmark_report import describe as describe_benc
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, write_atomically
+from impactlab.io.safe_output import JSON_SUFFIXES, TABLE_SUFFIXES, check_output, write_atomically
 from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
@@ -57,7 +57,8 @@ def _cmd_validate(args) -> int:
     if args.plot:  # refused before the models run, not after
         check_output(args.plot, what="--plot file", suffix=".png", reads=read, formats=(".png",))
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])])
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
+                     formats=TABLE_SUFFIXES)
     over: list[str] = []
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
     drawn = False  # a shot table validated, whose figure --plot draws
@@ -128,7 +129,8 @@ def _cmd_fit(args) -> int:
     from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after
-        check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())])
+        check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())],
+                     formats=JSON_SUFFIXES)
 
     if args.by and not args.cross_validate:
         raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
@@ -166,7 +168,8 @@ def _cmd_fit(args) -> int:
 
 def _cmd_shots(args) -> int:
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())])
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
+                     formats=TABLE_SUFFIXES)
 
     session = read_session(args.file, args.vendor)
     with user_clubs(read_club_spec(path) for path in args.club or ()):

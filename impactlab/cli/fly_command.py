@@ -23,7 +23,7 @@ import xarray as xr
 from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
-from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
+from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
 from impactlab.scene import flight
 from impactlab.units import DIMENSIONS, MPH, registry
@@ -82,7 +82,7 @@ _AIR_WORDS = {"temperature": "temperature (e.g. '25 degC'; default 15 degC)",
 
 def _cmd_fly(args) -> int:
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
+        check_output(args.csv, what="--csv file", suffix=".csv", formats=TABLE_SUFFIXES)
         if args.file:
             refuse_overwriting(args.csv, args.file, "--csv file")
     given = {option: getattr(args, option) for option in LAUNCH_OPTIONS if getattr(args, option) is not None}

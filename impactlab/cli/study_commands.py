@@ -24,7 +24,8 @@ from impactlab.errors import FieldError, StudyError
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
-from impactlab.io.safe_output import PICTURE_SUFFIXES, check_outdir, check_output, name_in, refuse_clashes
+from impactlab.io.safe_output import (JSON_SUFFIXES, PICTURE_SUFFIXES, REPORT_SUFFIXES, RESULT_SUFFIXES,
+                                      check_outdir, check_output, name_in, refuse_clashes)
 from impactlab.model.diagnostics import ValidityWarning, messages
 from impactlab.model.registry import available
 from impactlab.plot.analysis import plot_sensitivity, plot_work_precision
@@ -70,7 +71,7 @@ def _cmd_run(args) -> int:
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
-        check_output(output, reads=args.study)
+        check_output(output, reads=args.study, formats=RESULT_SUFFIXES)
         if args.plot not in (None, True):
             _picture(args.plot, reads=[*args.study, output])
     for study, output, plan in zip(studies, outputs, plans):
@@ -281,7 +282,8 @@ def _cmd_convergence(args) -> int:
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
-    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"), reads=[args.study])
+    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"), reads=[args.study],
+                          formats=RESULT_SUFFIXES)
     if args.plot not in (None, True):
         _picture(args.plot, reads=[args.study, output])
     dataset = work_precision(study, tolerances=args.tolerances or LADDER, repeats=args.repeats, progress=say)
@@ -320,7 +322,8 @@ def _cmd_paper(args) -> int:
     results = Path(args.results)
     if not results.is_dir():
         raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
-    output = check_output(args.output, what="report", suffix=".md", reads=sorted(results.glob("*.h5")))
+    output = check_output(args.output, what="report", suffix=".md", reads=sorted(results.glob("*.h5")),
+                          formats=REPORT_SUFFIXES)
     report(results, output, Path(args.figures) if args.figures else output.parent / "figures")
     print(f"wrote {output}", file=sys.stderr)
     return 0
@@ -338,7 +341,7 @@ def _cmd_export(args) -> int:
         say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
             f"(the last: {replies[-1].describe()})")
         return 0
-    check_output(args.output, what="shot file", suffix=".json", reads=[args.file])
+    check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0

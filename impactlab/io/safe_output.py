@@ -41,6 +41,11 @@ def _umask() -> int:
     return mask
 
 
+#: the suffixes of each kind of output (check_output's ``formats``)
+RESULT_SUFFIXES = (".h5", ".hdf5", ".hdf", ".nc", ".nc4")
+TABLE_SUFFIXES = (".csv", ".txt")
+JSON_SUFFIXES = (".json",)
+REPORT_SUFFIXES = (".md", ".markdown", ".txt")
 #: the picture files a figure is written as, by their suffix (matplotlib's writers without a TeX or plugin need)
 PICTURE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
 
@@ -55,9 +60,6 @@ def check_output(path: str | os.PathLike, what: str = "result file", suffix: str
     """
     path = Path(path)
     flag = f" ({what})" if what else ""
-    if formats is not None and path.suffix.lower() not in tuple(formats):
-        raise StudyError(f"{path}{flag}: expected a file name ending in {' or '.join(formats)} (the suffix says "
-                         f"what is written), e.g. {path.with_suffix(suffix).name}")
     for source in reads:  # the user's study, session or result replaced by the output: the only copy lost
         if Path(source).is_file():
             refuse_overwriting(path, source, what)
@@ -78,6 +80,11 @@ def check_output(path: str | os.PathLike, what: str = "result file", suffix: str
     if not os.access(folder, os.W_OK | os.X_OK):
         raise EnvironmentFault(f"{path}{flag}: cannot write: folder {folder} is not writable (permissions or a "
                                "read-only file system); choose another folder")
+    if formats is not None and path.suffix.lower() not in tuple(formats):
+        # the suffix says what is written: an HDF5 result sent to 'session.csv' by a slip of tab completion
+        # replaced the user's export with no word
+        raise StudyError(f"{path}{flag}: expected a file name ending in {' or '.join(formats)} (the suffix says "
+                         f"what is written), e.g. {path.with_suffix(suffix).name}")
     return path
 
 
