@@ -90,11 +90,11 @@ def test_a_picture_naming_the_result_or_the_study_is_refused_before_the_run(tmp_
                         lambda *a, **k: pytest.fail("computed before refusing"))
     study = tmp_path / "study.yaml"
     study.write_text(STUDY)
-    old = tmp_path / "old.png"
-    old.write_bytes(b"an old result named .png")
+    old = tmp_path / "old.h5"
+    old.write_bytes(b"an old result")
     code, err = cli(capsys, "run", study, "-o", old, "--plot", old)
     assert code == 2 and "is the file read" in err
-    assert old.read_bytes() == b"an old result named .png"
+    assert old.read_bytes() == b"an old result"
 
 
 # -- a picture is a picture ----------------------------------------------------------------------------------
