@@ -688,3 +688,15 @@ def test_an_output_whose_suffix_names_another_kind_of_file_is_refused(tmp_path, 
     code, err = cli(capsys, *args)
     assert code == 2 and says in err and len(err.strip().splitlines()) == 1
     assert {path: digest(path) for path in kept} == kept
+
+
+def test_a_negative_value_written_without_a_space_is_explained(capsys):
+    """'--spin-axis -3deg' reads as an option named -3deg: argparse said only 'expected at least one argument'."""
+    with pytest.raises(SystemExit) as stopped:
+        main(["fly", "--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm", "--spin-axis",
+              "-3deg"])
+    err = capsys.readouterr().err
+    assert stopped.value.code == 2 and "a value starting with '-' reads as an option: join it with '=', " \
+                                      "--spin-axis=-VALUE, or write a space before its unit" in err
+    assert main(["fly", "--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm",
+                 "--spin-axis=-3deg"]) == 0

@@ -92,6 +92,10 @@ class _Parser(argparse.ArgumentParser):
             close = difflib.get_close_matches(found.group(1), choices, n=1)
             if close:
                 message += f" (did you mean {close[0]!r}?)"
+        option = re.match(r"argument (--[\w-]+): expected (one|at least one) argument", message)
+        if option:  # '--spin-axis -3deg': argparse takes '-3deg' for an option, and says the value is missing
+            message += (f" (a value starting with '-' reads as an option: join it with '=', {option.group(1)}=-VALUE, "
+                        "or write a space before its unit, '-5 deg')")
         command = self.prog.split(" ", 1)[1] + ": " if " " in self.prog else ""
         self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
 
