@@ -6,6 +6,7 @@ oracle for a refused value is written out here (its range and why), not taken fr
 
 import errno
 import hashlib
+import json
 from pathlib import Path
 
 import numpy as np
@@ -700,3 +701,30 @@ def test_a_negative_value_written_without_a_space_is_explained(capsys):
                                       "--spin-axis=-VALUE, or write a space before its unit" in err
     assert main(["fly", "--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm",
                  "--spin-axis=-3deg"]) == 0
+
+
+def test_export_reads_each_ball_output_in_its_own_units(result_file, tmp_path, capsys):
+    """A result edited with xarray (ball speed converted to mph, spin to deg/s, their units attributes with them)
+    was read as m/s and rpm: 100 mph went to GSPro as 224 mph, without a word. Carry and the club data already
+    read their units; the ball now does too, and a ball output without units is refused, as carry is."""
+    from impactlab.io.results import write_results
+
+    original = impactlab.open_results(result_file)
+    edited = original.copy()
+    edited["ball_speed"] = original.ball_speed / 0.44704
+    edited["ball_speed"].attrs = dict(original.ball_speed.attrs, units="mph")
+    edited["spin_rate"] = original.spin_rate * 6.0  # 1 rpm = 6 deg/s
+    edited["spin_rate"].attrs = dict(original.spin_rate.attrs, units="deg/s")
+    write_results(edited, tmp_path / "edited.h5")
+    shots = {}
+    for name, path in (("original", result_file), ("edited", tmp_path / "edited.h5")):
+        assert main(["export", str(path), "-o", str(tmp_path / f"{name}.json")]) == 0
+        shots[name] = json.loads((tmp_path / f"{name}.json").read_text())
+    assert [shot["BallData"] for shot in shots["edited"]] == [shot["BallData"] for shot in shots["original"]]
+    speed = float(original.ball_speed.values.ravel()[0]) / 0.44704
+    assert shots["edited"][0]["BallData"]["Speed"] == pytest.approx(speed, abs=0.01)
+    del edited["vertical_launch_angle"].attrs["units"]
+    write_results(edited, tmp_path / "unitless.h5")
+    code, err = cli(capsys, "export", tmp_path / "unitless.h5", "-o", tmp_path / "u.json")
+    assert code == 2 and "vertical_launch_angle has no units attribute" in err
+    assert not (tmp_path / "u.json").exists()
