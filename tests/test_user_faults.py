@@ -706,7 +706,7 @@ def test_a_negative_value_written_without_a_space_is_explained(capsys):
 def test_export_reads_each_ball_output_in_its_own_units(result_file, tmp_path, capsys):
     """A result edited with xarray (ball speed converted to mph, spin to deg/s, their units attributes with them)
     was read as m/s and rpm: 100 mph went to GSPro as 224 mph, without a word. Carry and the club data already
-    read their units; the ball now does too, and a ball output without units is refused, as carry is."""
+    read their units; the ball now does too (a unit of the wrong kind is refused)."""
     from impactlab.io.results import write_results
 
     original = impactlab.open_results(result_file)
@@ -723,8 +723,8 @@ def test_export_reads_each_ball_output_in_its_own_units(result_file, tmp_path, c
     assert [shot["BallData"] for shot in shots["edited"]] == [shot["BallData"] for shot in shots["original"]]
     speed = float(original.ball_speed.values.ravel()[0]) / 0.44704
     assert shots["edited"][0]["BallData"]["Speed"] == pytest.approx(speed, abs=0.01)
-    del edited["vertical_launch_angle"].attrs["units"]
-    write_results(edited, tmp_path / "unitless.h5")
-    code, err = cli(capsys, "export", tmp_path / "unitless.h5", "-o", tmp_path / "u.json")
-    assert code == 2 and "vertical_launch_angle has no units attribute" in err
+    edited["vertical_launch_angle"].attrs["units"] = "mph"
+    write_results(edited, tmp_path / "wrong.h5")
+    code, err = cli(capsys, "export", tmp_path / "wrong.h5", "-o", tmp_path / "u.json")
+    assert code == 2 and "vertical_launch_angle.units: expected an angle" in err and "mph is not an angle unit" in err
     assert not (tmp_path / "u.json").exists()

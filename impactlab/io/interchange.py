@@ -179,14 +179,13 @@ _BALL_DIMENSIONS = {"ball_speed": "speed", "vertical_launch_angle": "angle", "ho
 
 
 def _to_vocabulary_units(values: xr.DataArray) -> float:
-    """The factor from a ball output's ``units`` to the vocabulary's: 1 for impactlab's own file. A result edited
-    with xarray (ball_speed converted to mph, its units attribute with it) was read as m/s, and 100 mph was sent as
-    224 mph without a word; a variable without units is refused, as carry_distance is."""
+    """The factor from a ball output's ``units`` to the vocabulary's: 1 for impactlab's own file (and for a dataset
+    made in Python without units attributes, which :func:`gspro_shots` reads in the vocabulary's units). A result
+    edited with xarray (ball_speed converted to mph, its units attribute with it) was read as m/s, and 100 mph was
+    sent as 224 mph without a word."""
     name = str(values.name)
     units, expected = values.attrs.get("units"), OUTPUTS[name].units
-    if not units:
-        raise StudyError(f"{name} has no units attribute: its values cannot be sent in GSPro's units")
-    if units == expected:
+    if not units or units == expected:
         return 1.0
     dimension = _BALL_DIMENSIONS[name]
     return to_si(f"1 {units}", dimension, path=f"{name}.units") / to_si(f"1 {expected}", dimension)
