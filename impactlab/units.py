@@ -17,6 +17,7 @@ converters. Inside impactlab everything is SI with angles in radians and spin in
 from __future__ import annotations
 
 import enum
+import re
 import functools
 import math
 from numbers import Real
@@ -108,7 +109,8 @@ def unit_missing(value: float, dimension: str) -> str:
     """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed)."""
     words = DIMENSIONS[dimension][2]
     note = f"; {UNIT_NOTES[dimension]}" if dimension in UNIT_NOTES else ""
-    return (f"{words} with its unit, e.g. {_example(float(value), dimension)} (a bare number's unit is never "
+    value = float(value) if math.isfinite(float(value)) else 1.0  # 'e.g. nan mph' shows nothing worth writing
+    return (f"{words} with its unit, e.g. {_example(value, dimension)} (a bare number's unit is never "
             f"guessed{note})")
 
 
@@ -265,6 +267,9 @@ def _string_to_si(text: str, dimension: str) -> float | str | _Bare:
     """
     si_unit = DIMENSIONS[dimension][0]
     ureg = registry()
+    for symbol, reason in AMBIGUOUS_SYMBOLS.items():
+        if re.search(rf"(?<![A-Za-z_]){symbol}(?![A-Za-z_])", text):
+            return f"; {reason}"
     try:
         quantity: Any = ureg.Quantity(text)
     except Exception:  # noqa: BLE001 - pint raises many kinds for text it cannot read; the message says what to write
@@ -290,6 +295,14 @@ def _string_to_si(text: str, dimension: str) -> float | str | _Bare:
         return float(quantity.to(si_unit).magnitude)
     except Exception:  # noqa: BLE001 - pint's DimensionalityError and friends
         return f"; units of {quantity.units:~} do not convert to {si_unit}"
+
+
+#: unit symbols pint reads one way and people write meaning another: refused, never read as either
+AMBIGUOUS_SYMBOLS = {
+    # pint's gr is the grain (64.79891 mg, exact: the international yard and pound agreement, 1959); gr is the
+    # gram's abbreviation in French, Spanish, Italian, Greek...: a 200 gr head would be 13 g
+    "gr": "gr is a grain (64.8 mg) to the unit parser and a gram to many people: write g (grams) or grain",
+}
 
 
 def _has_angle(quantity) -> bool:

@@ -29,6 +29,7 @@ def drawn_figures(monkeypatch):
     Tests then assert on what a figure shows (the values on its lines, its axis labels) instead of the size
     of the PNG, which a blank figure with a long legend also reaches.
     """
+    import io
     from pathlib import Path
 
     from matplotlib.figure import Figure
@@ -47,10 +48,12 @@ def drawn_figures(monkeypatch):
                    "marks": len(axis.patches) + len(axis.images) + len(axis.collections)}
                   for axis in self.axes if axis.get_visible()]
         title = self._suptitle.get_text() if self._suptitle is not None else ""
-        entry = {"path": Path(fname), "problems": audit(self), "panels": panels,
+        # impactlab draws into memory and writes the file atomically (io.safe_output.write_figure): the buffer
+        # is named after the file it goes to
+        entry = {"path": Path(getattr(fname, "name", fname)), "problems": audit(self), "panels": panels,
                  "title": title or " ".join(axis.get_title() for axis in self.axes)}
         result = original(self, fname, *args, **kwargs)
-        pixels = imread(str(fname))[..., :3]
+        pixels = imread(io.BytesIO(fname.getvalue()) if hasattr(fname, "getvalue") else str(fname))[..., :3]
         entry["ink"] = float(np.mean(np.any(pixels < 0.9, axis=-1)))  # share of pixels that are not near-white
         record.append(entry)
         return result

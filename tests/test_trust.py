@@ -182,7 +182,7 @@ def _altered(result_file, tmp_path, **attributes):
 
 def _refused_by_every_reader(path, capsys, words):
     for command in (["show", str(path)], ["plot", str(path), "-o", str(path.with_suffix(".png"))],
-                    ["export", str(path), "-o", str(path.with_suffix(".csv"))]):
+                    ["export", str(path), "-o", str(path.with_suffix(".json"))]):
         assert main(command) == 2, command
         err = capsys.readouterr().err
         assert words in err and "Traceback" not in err and "please report" not in err, (command, err)

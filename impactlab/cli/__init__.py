@@ -12,8 +12,11 @@ choices) and exit status 2, never a traceback.
 from __future__ import annotations
 
 import argparse
+import difflib
 import math
+import re
 from collections.abc import Sequence
+from typing import NoReturn
 
 from impactlab._version import __version__
 from impactlab.cli.data_commands import _cmd_fit, _cmd_shots, _cmd_validate
@@ -45,16 +48,56 @@ def _size(text: str) -> int:
 
 
 
+#: the longest --timeout: GSPro answers a shot in well under a second; a socket's timeout of 1e12 s does not fit the
+#: platform's time_t (an OverflowError inside the connection, which leaked its socket: exit 1, 'internal error')
+MAX_TIMEOUT = 3600.0
+
+
 def _seconds(text: str) -> float:
-    """argparse type: a positive, finite number of seconds."""
+    """argparse type: a positive, finite number of seconds, at most :data:`MAX_TIMEOUT`."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text}")
+    if not (math.isfinite(value) and 0 < value <= MAX_TIMEOUT):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0 and at most {MAX_TIMEOUT:g} (an hour), "
+                                         f"got {text}")
     return value
 
+
+
+def _tolerance(text: str) -> float:
+    """argparse type: a tolerance of the work-precision ladder. The reference runs at a 120th of the finest (the
+    finest / 30, extrapolated with the finest / 120) and a model takes 1e-9 to 0.1: 5 was refused as 'tolerance:
+    ... got 0.1667', a value never typed, after the models were built."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a tolerance (a number), got {text!r}") from None
+    if not (math.isfinite(value) and 120 * 1e-9 <= value <= 0.1):
+        raise argparse.ArgumentTypeError(f"expected a tolerance between 1.2e-07 and 0.1 (a model takes 1e-9 to 0.1, "
+                                         f"and the reference runs at a 120th of the finest), got {text}")
+    return value
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, its errors on one line like every other failure: ``impactlab: error: run: argument
+    --executor: invalid choice: 'foo' (choose from ...; did you mean 'auto'?); see impactlab run --help``, status 2
+    (argparse prints its usage block and ``impactlab run: error: ...``, and offers no closest choice)."""
+
+    def error(self, message: str) -> NoReturn:
+        found = re.search(r"invalid choice: '?([^'\s]+)'? \(choose from (.*)\)", message)
+        if found:
+            choices = [choice.strip(" '\"") for choice in found.group(2).split(",")]
+            close = difflib.get_close_matches(found.group(1), choices, n=1)
+            if close:
+                message += f" (did you mean {close[0]!r}?)"
+        option = re.match(r"argument (--[\w-]+): expected (one|at least one) argument", message)
+        if option:  # '--spin-axis -3deg': argparse takes '-3deg' for an option, and says the value is missing
+            message += (f" (a value starting with '-' reads as an option: join it with '=', {option.group(1)}=-VALUE, "
+                        "or write a space before its unit, '-5 deg')")
+        command = self.prog.split(" ", 1)[1] + ": " if " " in self.prog else ""
+        self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
 
 
 CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
@@ -62,7 +105,7 @@ CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the 
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactlab`` command, one sub-command per job (run, plot, fit, validate...)."""
-    parser = argparse.ArgumentParser(prog="impactlab", description="Compare models of a ball leaving a face.")
+    parser = _Parser(prog="impactlab", description="Compare models of a ball leaving a face.")
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     commands = parser.add_subparsers(dest="command", required=True)
@@ -114,7 +157,7 @@ def build_parser() -> argparse.ArgumentParser:
     convergence.add_argument("--plot", metavar="PNG", nargs="?", const=True,
                              help="draw the work-precision diagram (default: next to the result file)")
     convergence.add_argument("--repeats", type=_count, default=3, help="timed repeats per point (median)")
-    convergence.add_argument("--tolerances", type=float, nargs="+", help="ladder of tolerances")
+    convergence.add_argument("--tolerances", type=_tolerance, nargs="+", help="ladder of tolerances")
     convergence.add_argument("-q", "--quiet", action="store_true")
     convergence.set_defaults(handler=_cmd_convergence)
 

@@ -21,7 +21,8 @@ from impactlab.data.validation.benchmark_report import describe as describe_benc
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
+from impactlab.io.safe_output import JSON_SUFFIXES, TABLE_SUFFIXES, check_output, write_atomically
+from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
 from impactlab.vocabulary import OUTPUTS
@@ -48,12 +49,19 @@ def _cmd_validate(args) -> int:
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+    known = sorted(available())
+    for model in args.model or ():  # said before anything runs (the datasets' tables would ignore it)
+        if model not in known:
+            raise FieldError("--model", "a registered model", model, choices=known)
+    read = [*(args.dataset or ()), *(args.club or ())]  # an output there would replace the user's data
     if args.plot:  # refused before the models run, not after
-        check_output(args.plot, what="--plot file", suffix=".png")
+        check_output(args.plot, what="--plot file", suffix=".png", reads=read, formats=(".png",))
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
+                     formats=TABLE_SUFFIXES)
     over: list[str] = []
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
+    drawn = False  # a shot table validated, whose figure --plot draws
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
@@ -63,6 +71,7 @@ def _cmd_validate(args) -> int:
             table = shot_table(name, args.include_flagged)
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
+                drawn = True
                 continue
         data = get_dataset(name)
         units = OUTPUTS[data.quantity].units
@@ -94,6 +103,12 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
+    if args.model and not drawn:
+        raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
+                         "validated (a dataset's table shows every model of its study); leave --model out")
+    if args.plot and not drawn:
+        raise StudyError("--plot: no shot table was validated (the figure draws shot tables' rows: give --dataset "
+                         "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
     if args.csv:
         from impactlab.data.shot_report import write_prediction_rows
 
@@ -114,12 +129,22 @@ def _cmd_fit(args) -> int:
     from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after
-        check_output(args.json, what="--json file", suffix=".json")
+        check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())],
+                     formats=JSON_SUFFIXES)
 
+    if args.by and not args.cross_validate:
+        raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
+                         "--by out)")
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
+    ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
+                                            ("--include-flagged", args.include_flagged)) if given]
+    if ignored:
+        them = "it" if len(ignored) == 1 else "them"
+        raise StudyError(f"{', '.join(ignored)}: for shot tables, and {args.dataset} is a validation dataset of "
+                         f"published values (impactlab validate lists them); leave {them} out")
     data = get_dataset(args.dataset)
     known = [entry.id for entry in load_dataset_study(data).models]
     models = args.model or known
@@ -143,8 +168,8 @@ def _cmd_fit(args) -> int:
 
 def _cmd_shots(args) -> int:
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
-        refuse_overwriting(args.csv, args.file, "--csv file")
+        check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
+                     formats=TABLE_SUFFIXES)
 
     session = read_session(args.file, args.vendor)
     with user_clubs(read_club_spec(path) for path in args.club or ()):

@@ -15,17 +15,18 @@ from __future__ import annotations
 
 import csv
 import io
+import warnings
 
 import numpy as np
 import xarray as xr
 
 from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
-from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import check_output, refuse_overwriting, write_atomically
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
+from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
 from impactlab.scene import flight
-from impactlab.units import MPH
+from impactlab.units import DIMENSIONS, MPH, registry
 
 YARD = 0.9144
 #: command-line option -> key of impactlab.fly's ``conditions``
@@ -84,7 +85,7 @@ _AIR_WORDS = {"temperature": "temperature (e.g. '25 degC'; default 15 degC)",
 
 def _cmd_fly(args) -> int:
     if args.csv:
-        check_output(args.csv, what="--csv file", suffix=".csv")
+        check_output(args.csv, what="--csv file", suffix=".csv", formats=TABLE_SUFFIXES)
         if args.file:
             refuse_overwriting(args.csv, args.file, "--csv file")
     given = {option: getattr(args, option) for option in LAUNCH_OPTIONS if getattr(args, option) is not None}
@@ -126,7 +127,18 @@ def _fly_launch(given: dict, conditions: dict, model: str) -> xr.Dataset:
     # each value read once, to SI (its unit required); fly checks them and the broadcast, and flies them
     launch = {name: flight.quantity_array(texts[0] if len(texts) == 1 else texts, LAUNCH_DIMENSIONS[name], name)
               for name, texts in given.items()}
-    result = flight.fly(conditions=conditions, model=model, **launch)
+    # flown as quantities in SI units (not bare numbers, which fly reads as SI and says so in its messages), and
+    # its warnings named by the options the user typed
+    si = {name: registry().Quantity(value, DIMENSIONS[LAUNCH_DIMENSIONS[name]][0]) for name, value in launch.items()}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PlausibilityWarning)
+        result = flight.fly(conditions=conditions, model=model, **si)
+    for warning in caught:
+        text = str(warning.message)
+        stem = text.split("[")[0].split(":")[0]
+        if stem in LAUNCH_OPTIONS:
+            text = "--" + stem.replace("_", "-") + text[len(stem):]
+        warnings.warn(text, warning.category, stacklevel=2)
     shape = result["carry_distance"].shape
     out = {name: ("shot", np.asarray(result[name].values, float).ravel(), dict(result[name].attrs))
            for name in PREDICTED}
@@ -144,7 +156,31 @@ def _as_option(exc: FieldError) -> FieldError:
     if stem not in names:
         return exc
     option = "--" + names[stem].replace("_", "-") + key[len(stem):]
-    return FieldError(option, exc.expected, exc.given, exc.choices, file=exc.file, line=exc.line)
+    expected = exc.expected
+    if isinstance(exc.given, str) and _plain_number(exc.given):
+        # what impactlab.fly says of text without a unit offers 'or a number in SI': a Python number; on the command
+        # line every value is text and a number alone is never read
+        words, unit = _PLAIN[names[stem]]
+        example = "60 %" if unit == "%" else f"{exc.given} {unit}"  # 0.6 and 60 both mean 60 %: not '0.6 %'
+        expected = f"{words} with its unit, e.g. '{example}' (a number alone is not read: its unit is never guessed)"
+    return FieldError(option, expected, exc.given, exc.choices, file=exc.file, line=exc.line)
+
+
+#: option -> (what it is, the unit of the example a number alone is refused with)
+_PLAIN = {"ball_speed": ("a ball speed", "mph"), "launch_angle": ("a launch angle", "deg"),
+          "spin_rate": ("a spin rate", "rpm"), "spin_axis": ("a spin axis", "deg"),
+          "launch_direction": ("a launch direction", "deg"), "temperature": ("a temperature", "degC"),
+          "pressure": ("a pressure", "hPa"), "altitude": ("an altitude", "m"),
+          "humidity": ("a relative humidity", "%"), "headwind": ("a wind speed", "mph"),
+          "crosswind": ("a wind speed", "mph")}
+
+
+def _plain_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def describe(result: xr.Dataset, model: str) -> str:

@@ -9,6 +9,7 @@ returns the exit status; bad input raises an :mod:`impactlab.errors` error, whic
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import re
 import sys
@@ -23,7 +24,8 @@ from impactlab.errors import FieldError, StudyError
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
-from impactlab.io.safe_output import check_outdir, check_output, name_in, refuse_clashes
+from impactlab.io.safe_output import (JSON_SUFFIXES, PICTURE_SUFFIXES, REPORT_SUFFIXES, RESULT_SUFFIXES,
+                                      check_outdir, check_output, name_in, refuse_clashes)
 from impactlab.model.diagnostics import ValidityWarning, messages
 from impactlab.model.registry import available
 from impactlab.plot.analysis import plot_sensitivity, plot_work_precision
@@ -38,6 +40,14 @@ from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, is_history, is_scala
 
 
 def _cmd_run(args) -> int:
+    # options that contradict each other: one of them would be dropped without a word
+    if args.output and args.outdir:
+        raise StudyError(f"-o {args.output} and --outdir {args.outdir}: -o names the result file, --outdir the folder "
+                         "of STUDY_NAME.h5 files; give one (-o FOLDER/FILE.h5 puts one result in a folder)")
+    if args.scheduler and args.executor not in ("auto", "dask"):
+        raise StudyError(f"--scheduler runs the cases on a dask cluster, --executor {args.executor} here: give one")
+    if args.workers and args.executor == "serial":
+        raise StudyError("--workers counts worker processes, and --executor serial runs in this one: give one")
     if args.scheduler:
         _check_scheduler(args.scheduler)
         args.executor = "dask"
@@ -56,17 +66,18 @@ def _cmd_run(args) -> int:
     refuse_clashes([(f"{study.file} (name {study.name!r})", output) for study, output in zip(studies, outputs)])
     # every study planned (limits checked, models planned) before the first runs; the run takes its plan
     plans = [plan_study(study) for study in studies]
+    for study, plan in zip(studies, plans):
+        _say_unused(study, plan)
     if outdir:
         outdir.mkdir(parents=True, exist_ok=True)
     for output in outputs:
-        check_output(output)
+        check_output(output, reads=args.study, formats=RESULT_SUFFIXES)
         if args.plot not in (None, True):
-            check_output(Path(args.plot), what="picture", suffix=".png")
+            _picture(args.plot, reads=[*args.study, output])
     for study, output, plan in zip(studies, outputs, plans):
         # finished chunks wait here until the result file is complete; a killed run resumes from them
         progress_folder = output.with_name(f"{output.name}.progress")
-        set_interrupt_hint(f"finished chunks are kept in {progress_folder}: run the same command again to "
-                           "compute only the rest")
+        set_interrupt_hint(functools.partial(_resume_hint, progress_folder))
         with _validity_notes() as notes:
             dataset = run_study(study, progress=say, executor=args.executor, workers=args.workers,
                                 scheduler=args.scheduler, chunk_size=args.chunk_size,
@@ -78,6 +89,34 @@ def _cmd_run(args) -> int:
             for picture in _draw(dataset, output, None if args.plot is True else Path(args.plot)):
                 say(f"wrote {picture}")
     return 0
+
+
+def _say_unused(study, plan) -> None:
+    """What a study asks for and will not get, said before it runs (the run would exit 0 with it all NaN or unused):
+    an output every model leaves NaN, and air conditions no flight output reads."""
+    where = study.file or study.name
+    if plan.models:
+        nowhere = set.intersection(*(set(output_plan.missing) for _, output_plan in plan.models))
+        for name in (output for output in study.outputs if output in nowhere):
+            reason = dict(plan.models[0][1].missing)[name]
+            print(f"impactlab: warning: {where}: {name} will be NaN for every model ({reason}); `impactlab run "
+                  f"--plan` says what each model gives", file=sys.stderr)
+    if study.scene.conditions is not None and not any(name in FLIGHT_OUTPUTS for name in study.all_outputs):
+        print(f"impactlab: warning: {where}: its conditions (the air) are read only by the flight outputs "
+              f"({', '.join(FLIGHT_OUTPUTS)}), and it asks for none", file=sys.stderr)
+
+
+def _resume_hint(progress_folder: Path) -> str:
+    """What an interrupted run kept: its finished chunks, or (none had finished, the folder is gone) nothing."""
+    if progress_folder.is_dir() and any(path.suffix == ".npz" for path in progress_folder.iterdir()):
+        return (f"finished chunks are kept in {progress_folder}: run the same command again to compute only the "
+                "rest")
+    return "no chunk had finished and no result file was written or changed: run the same command again"
+
+
+def _picture(path, reads) -> Path:
+    """A picture's path, checked before any work: writable, a picture's suffix, none of the files read."""
+    return check_output(Path(path), what="picture", suffix=".png", formats=PICTURE_SUFFIXES, reads=reads)
 
 
 @contextlib.contextmanager
@@ -220,10 +259,10 @@ def _cmd_plot(args) -> int:
                              choices=dims + scalars)
     if args.trajectories:
         default = Path(args.file).with_name(f"{Path(args.file).stem}_trajectories.png")
-        output = check_output(args.output or default, what="picture", suffix=".png")
+        output = _picture(args.output or default, reads=[args.file])
         print(f"wrote {plot_trajectories(dataset, output)}", file=sys.stderr)
         return 0
-    output = check_output(args.output or Path(args.file).with_suffix(".png"), what="picture", suffix=".png")
+    output = _picture(args.output or Path(args.file).with_suffix(".png"), reads=[args.file])
     if args.history:
         plot_histories(dataset, output, args.history)
     elif args.variables or args.x or args.output:
@@ -237,12 +276,16 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_convergence(args) -> int:
+    repeated = sorted({value for value in args.tolerances or () if args.tolerances.count(value) > 1})
+    if repeated:  # two points of the ladder at one coordinate
+        raise StudyError(f"--tolerances: each value once (a ladder point per tolerance), got {repeated[0]:g} twice")
     study = load_study(Path(args.study))
     check_limits(study)  # the study runs once per tolerance: refuse one too big for a single run
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
-    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"))
+    output = check_output(args.output or name_in(Path("."), study.name, "-work-precision.h5"), reads=[args.study],
+                          formats=RESULT_SUFFIXES)
     if args.plot not in (None, True):
-        check_output(args.plot, what="picture", suffix=".png")
+        _picture(args.plot, reads=[args.study, output])
     dataset = work_precision(study, tolerances=args.tolerances or LADDER, repeats=args.repeats, progress=say)
     write_results(dataset, output)
     say(f"wrote {output}")
@@ -279,7 +322,8 @@ def _cmd_paper(args) -> int:
     results = Path(args.results)
     if not results.is_dir():
         raise StudyError(f"{results}: no such folder of results (run studies/paper/*.yaml into it first)")
-    output = check_output(args.output, what="report", suffix=".md")
+    output = check_output(args.output, what="report", suffix=".md", reads=sorted(results.glob("*.h5")),
+                          formats=REPORT_SUFFIXES)
     report(results, output, Path(args.figures) if args.figures else output.parent / "figures")
     print(f"wrote {output}", file=sys.stderr)
     return 0
@@ -297,7 +341,7 @@ def _cmd_export(args) -> int:
         say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
             f"(the last: {replies[-1].describe()})")
         return 0
-    check_output(args.output, what="shot file", suffix=".json")
+    check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
     count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0

@@ -11,7 +11,8 @@ beside each prediction where the export has them. Nothing is guessed for a shot:
   export lacks but the reader derives from measured back and side spin (flagged ``no data`` there) is flown;
 - a shot launched below the horizontal (a topped ball) is not flown: from the ground it meets the ground at once,
   and a carry of 0 beside the monitor's would only say so; nor a shot whose back spin is below 0 (topspin: the
-  spin rate and spin axis the export gives would fly it as backspin);
+  spin rate and spin axis the export gives would fly it as backspin), nor one whose launch angle, launch direction
+  or spin axis is 90 deg or more from the target's (beyond +-90 deg for the axis): no golf shot has them;
 - a shot without a spin axis is flown as pure backspin and without a launch direction as straight, and its offline
   distance is then not given (NaN): the carry barely depends on them (cos of the tilt in the lift), the offline
   entirely.
@@ -28,13 +29,14 @@ state that their rows are normalised to a standard air (docs/vendors.md, docs/fl
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
 
 from impactlab.data.session import Session
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
 from impactlab.scene.plausibility import wrong_sign
@@ -95,8 +97,14 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     with np.errstate(invalid="ignore"):
         downward = v["vertical_launch_angle"] < 0.0
         topspin = v["back_spin"] < 0.0
+        # angles no golf shot has (a column in other units or conventions): an axis tilted past the vertical is
+        # topspin, a launch at or beyond 90 deg goes straight up or backwards; flown, each would be a number
+        impossible = {name: np.abs(v[name]) >= limit for name, limit in (
+            ("vertical_launch_angle", np.pi / 2), ("spin_axis", np.nextafter(np.pi / 2, 4.0)),
+            ("horizontal_launch_angle", np.pi / 2))}
+        beyond = {name: v[name] > limit for name, (limit, _) in flight.IMPOSSIBLE_LAUNCH.items()}
     present = (np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0) & ~downward
-               & ~topspin)
+               & ~topspin & ~np.any(list(impossible.values()), axis=0) & ~np.any(list(beyond.values()), axis=0))
     flagged = np.zeros(session.size, dtype=bool)
     why: dict[int, list[str]] = {}
     for (field, kind), rows in session.flags.items():
@@ -119,6 +127,16 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         elif topspin[row]:
             reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
                       "and a tilt of the axis do not carry: flown, it would be backspin")
+        elif any(refused[row] for refused in impossible.values()):
+            name = next(name for name, refused in impossible.items() if refused[row])
+            reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
+                      "(a column in other units or another convention?)")
+        elif any(refused[row] for refused in beyond.values()):
+            name = next(name for name, refused in beyond.items() if refused[row])
+            unit, factor = flight.UNUSUAL_LAUNCH[name][:2]
+            reason = (f"{name.replace('_', ' ')} {v[name][row] * factor:.6g} {unit}, beyond "
+                      f"{flight.IMPOSSIBLE_LAUNCH[name][1].split(' (')[0].split(' up to ')[1]}: no golf shot (a column "
+                      "in other units?)")
         else:
             reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
                       "them)")
@@ -132,8 +150,14 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     if problems:
         raise StudyError("; ".join(problems))
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
+    for name, (unit, factor, limit, because) in flight.UNUSUAL_LAUNCH.items():
+        for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
+            warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
+                          f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
     airs, air_source = _airs(session, rows, conditions, session_air)
-    flown, air_density = _fly_in(airs, v, rows, model, session)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        flown, air_density = _fly_in(airs, v, rows, model, session)
     data = {
         "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
         "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),
@@ -194,8 +218,14 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
                  and not (field == "altitude" and with_pressure[row])}
         try:
             airs.append(flight.Conditions(**given))
-        except FieldError as exc:
-            raise exc.at(prefix="air", file=str(session.file), line=session.lines[row]) from None
+        except FieldError as exc:  # the row's value in the words people use for it, not its SI float
+            key = exc.path.split(".")[-1]
+            shown = {"temperature": lambda x: f"{x - 273.15:.1f} degC ({x:.2f} K)",
+                     "pressure": lambda x: f"{x / 100:.1f} hPa", "altitude": lambda x: f"{x:.0f} m",
+                     "relative_humidity": lambda x: f"{100 * x:.0f} %"}
+            value = given.get(key)
+            raise FieldError(f"air.{exc.path}", exc.expected, shown[key](value) if key in shown and value is not None
+                             else exc.given, file=str(session.file), line=session.lines[row]) from None
     standard = rows.size - stated
     stated_fields = [words for field, words in (("air_pressure", "pressure"), ("altitude", "altitude"),
                                                 ("relative_humidity", "humidity"))

@@ -173,9 +173,10 @@ def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None 
     for line in skipped_text(table):
         print(line)
     keys = [key for key, value in data_uncertainty(table).items() if math.isfinite(value)]
-    print(f"  {'RMS error':<16}" + "".join(f"{key:>22}" for key in keys))
+    # a space before every column: 'launch direction [deg]' fills 22 and ran into the column before it
+    print(f"  {'RMS error':<16}" + "".join(f" {key:>22}" for key in keys))
     sigma = data_uncertainty(table)
-    print(f"  {'data 1-sigma':<16}" + "".join(f"{sigma[key]:22.2f}" for key in keys))
+    print(f"  {'data 1-sigma':<16}" + "".join(f" {sigma[key]:22.2f}" for key in keys))
     inputs = table_inputs(table)
     over, predictions = [], {}
     for name in models:
@@ -187,7 +188,7 @@ def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None 
             mark = "" if rms[key] <= sigma[key] else ("" if rms[key] <= budget.get(key, math.inf) else " OVER")
             if key in budget and rms[key] > budget[key]:
                 over.append(f"{table.name}/{name}")
-            cells.append(f"{rms[key]:.2f}{'*' if rms[key] <= sigma[key] else ''}{mark}".rjust(22))
+            cells.append(" " + f"{rms[key]:.2f}{'*' if rms[key] <= sigma[key] else ''}{mark}".rjust(22))
         print(f"  {name:<16}" + "".join(cells))
         unused = _unpredicted(predictions[name], table)
         if unused:

@@ -69,11 +69,13 @@ def open_results(path: str | os.PathLike) -> xr.Dataset:
         raise StudyError(f"{path}: no such result file" if not path.exists() else
                          f"{path}: is not a regular file, not a result file")
     try:
-        with xr.open_dataset(path, engine=ENGINE) as dataset:
-            loaded = dataset.load()
+        # phony_dims: an HDF5 file of another program (datasets without netCDF dimensions) is refused below by its
+        # attributes, without h5netcdf's warning about the dimension names it would invent
+        with xr.open_dataset(path, engine=ENGINE, phony_dims="access") as dataset:
+            check_result(dataset, path)  # on the attributes, before the data are read (a 10 GB file of another
+            loaded = dataset.load()      # program was loaded whole to be refused)
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise StudyError(f"{path}: not an impactlab result file ({type(exc).__name__}: {exc})") from None
-    check_result(loaded, path)
     if FILE_TIME_DIM in loaded.dims and TIME_DIM not in loaded.variables:
         loaded = loaded.rename({FILE_TIME_DIM: TIME_DIM})
     return loaded

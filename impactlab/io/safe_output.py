@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 from impactlab.errors import EnvironmentFault, StudyError
@@ -40,14 +41,28 @@ def _umask() -> int:
     return mask
 
 
-def check_output(path: str | os.PathLike, what: str = "result file", suffix: str = ".h5") -> Path:
+#: the suffixes of each kind of output (check_output's ``formats``)
+RESULT_SUFFIXES = (".h5", ".hdf5", ".hdf", ".nc", ".nc4")
+TABLE_SUFFIXES = (".csv", ".txt")
+JSON_SUFFIXES = (".json",)
+REPORT_SUFFIXES = (".md", ".markdown", ".txt")
+#: the picture files a figure is written as, by their suffix (matplotlib's writers without a TeX or plugin need)
+PICTURE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
+
+
+def check_output(path: str | os.PathLike, what: str = "result file", suffix: str = ".h5",
+                 reads: Iterable[str | os.PathLike] = (), formats: Iterable[str] | None = None) -> Path:
     """Refuse, before any work, an output path impactlab could not or must not write.
 
-    Bad paths (a folder, a device, a missing folder) are input errors (exit
-    2); a folder that refuses writes is an environment fault (exit 3).
+    Bad paths (a folder, a device, a missing folder, a file the command reads: ``reads``, a name whose suffix
+    is not one of ``formats``) are input errors (exit 2); a folder that refuses writes is an environment fault
+    (exit 3).
     """
     path = Path(path)
     flag = f" ({what})" if what else ""
+    for source in reads:  # the user's study, session or result replaced by the output: the only copy lost
+        if Path(source).is_file():
+            refuse_overwriting(path, source, what)
     try:
         info = path.stat()
     except FileNotFoundError:
@@ -65,6 +80,11 @@ def check_output(path: str | os.PathLike, what: str = "result file", suffix: str
     if not os.access(folder, os.W_OK | os.X_OK):
         raise EnvironmentFault(f"{path}{flag}: cannot write: folder {folder} is not writable (permissions or a "
                                "read-only file system); choose another folder")
+    if formats is not None and path.suffix.lower() not in tuple(formats):
+        # the suffix says what is written: an HDF5 result sent to 'session.csv' by a slip of tab completion
+        # replaced the user's export with no word
+        raise StudyError(f"{path}{flag}: expected a file name ending in {' or '.join(formats)} (the suffix says "
+                         f"what is written), e.g. {path.with_suffix(suffix).name}")
     return path
 
 
@@ -131,3 +151,18 @@ def write_atomically(path: str | os.PathLike, payload: bytes | memoryview) -> Pa
     finally:
         _temporaries.discard(temporary)
     return path
+
+
+def write_figure(figure, path: str | os.PathLike, **options) -> Path:
+    """Save a matplotlib figure to ``path`` atomically, in the format its suffix names (PNG without one).
+
+    ``figure.savefig(path)`` writes straight into the target: a full disk or an interrupt there leaves a truncated
+    picture in place of the old one. The figure is drawn in memory and written by :func:`write_atomically`.
+    """
+    import io
+
+    path = Path(path)
+    buffer = io.BytesIO()
+    buffer.name = str(path)  # where it goes, for whoever watches savefig (the tests' figure audit)
+    figure.savefig(buffer, format=path.suffix[1:].lower() or "png", **options)
+    return write_atomically(path, buffer.getbuffer())

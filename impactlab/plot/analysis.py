@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from impactlab.io.safe_output import write_figure
 from impactlab.plot.style import _axis_label, _save
 from impactlab.vocabulary import OUTPUTS
 
@@ -88,7 +89,7 @@ def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[
     figure.suptitle(f"{dataset.attrs.get('study_name', '')}: numerical error, parameter uncertainty and model form "
                     "(log scale)", fontsize=10)
     figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
-    figure.savefig(path, dpi=110)
+    write_figure(figure, path, dpi=110)
     pictures = [path]
 
     total = "ST" if "ST" in dataset else "mu_star"
@@ -122,7 +123,7 @@ def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[
                        else "Morris mu* (output units; shading relative per output)")
                     + "; n/a: the output does not move over the sample", fontsize=10)
     second = path.with_name(f"{path.stem}_indices.png")
-    figure.savefig(second, dpi=110, bbox_inches="tight")
+    write_figure(figure, second, dpi=110, bbox_inches="tight")
     pictures.append(second)
     return pictures
 

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from impactlab.io.safe_output import write_figure
 from impactlab.units import MPH
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
@@ -68,9 +69,7 @@ def _save(figure, path) -> Path:
     problems = audit(figure)
     if problems:
         warnings.warn(f"{path}: " + "; ".join(problems), FigureWarning, stacklevel=3)
-    path = Path(path)
-    figure.savefig(path, dpi=110)
-    return path
+    return write_figure(figure, path, dpi=110)
 
 
 def conditions(dataset: xr.Dataset, skip: Iterable[str] = ()) -> str:

@@ -39,12 +39,23 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 #: what to tell the user after an interrupt; a command that keeps partial work says how to resume it
-_interrupt_hint = ["no result file was written or changed"]
+_interrupt_hint: list = ["no result file was written or changed"]
 
 
-def set_interrupt_hint(text: str) -> None:
-    """What the message after Ctrl-C says about the result files (set by each command before it runs)."""
+def set_interrupt_hint(text: str | Callable[[], str]) -> None:
+    """What the message after Ctrl-C says about the result files (set by each command before it runs); a callable
+    is asked when the interrupt is reported (whether any chunk had finished is known only then)."""
     _interrupt_hint[0] = text
+
+
+def _hint() -> str:
+    hint = _interrupt_hint[0]
+    if callable(hint):
+        try:
+            return hint()
+        except Exception:  # noqa: BLE001 - the interrupt must be reported whatever the hint finds
+            return "no result file was written or changed"
+    return hint
 
 
 #: errno -> what to do about it
@@ -66,7 +77,25 @@ def describe_os_error(exc: OSError) -> str:
     """'PATH: what happened; what to do' for an OSError, without Python's repr."""
     where = exc.filename if exc.filename is not None else ""
     advice = _ADVICE[exc.errno] if exc.errno in _ADVICE else exc.strerror or str(exc)
+    if exc.errno in (errno.EACCES, errno.EPERM) and where:
+        # an input the user may not read: 'choose a folder you can write to' would send them the wrong way
+        advice = _read_denied(where) or advice
     return f"{where}: {advice}" if where else advice
+
+
+def _read_denied(path) -> str | None:
+    """What to do when ``path`` cannot be read: it exists unreadable, or a folder on its way may not be entered."""
+    try:
+        if os.path.exists(path) and not os.access(path, os.R_OK):
+            return "permission denied: you may not read it; check its permissions (ls -l) or copy it somewhere you can"
+        folder = os.path.dirname(os.path.abspath(path))
+        while folder and not os.path.exists(folder):
+            folder = os.path.dirname(folder)
+        if folder and os.path.isdir(folder) and not os.access(folder, os.X_OK):
+            return f"permission denied: you may not enter the folder {folder}; check its permissions (ls -ld)"
+    except (OSError, ValueError, TypeError):
+        pass
+    return None
 
 
 def _caused_by_interrupt(exc: BaseException | None) -> bool:
@@ -118,7 +147,7 @@ def _request_stop(signum, frame):
 def _hard_exit() -> None:
     remove_temporaries()  # a result being written when the process ends leaves no temporary file
     try:
-        sys.stderr.write(f"\nimpactlab: interrupted; {_interrupt_hint[0]}\n")
+        sys.stderr.write(f"\nimpactlab: interrupted; {_hint()}\n")
         sys.stderr.flush()
     finally:
         os._exit(EXIT_INTERRUPTED)
@@ -212,7 +241,7 @@ def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
         except ImpactLabError as exc:
             return fail(f"error: {exc}", exc.exit_code)
         except KeyboardInterrupt:
-            return fail(f"interrupted; {_interrupt_hint[0]}", EXIT_INTERRUPTED)
+            return fail(f"interrupted; {_hint()}", EXIT_INTERRUPTED)
         except BrokenPipeError as exc:
             if not _stdout_closed():  # another pipe broke (a peer process, a socket): an error like any other
                 return fail(f"error: {describe_os_error(exc)}", EXIT_ENVIRONMENT)
@@ -228,6 +257,6 @@ def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
                         EXIT_ENVIRONMENT)
         except Exception as exc:  # noqa: BLE001 - the last line of defence: a bug, said as one
             if _caused_by_interrupt(exc):
-                return fail(f"interrupted; {_interrupt_hint[0]}", EXIT_INTERRUPTED)
+                return fail(f"interrupted; {_hint()}", EXIT_INTERRUPTED)
             return fail(f"internal error: {type(exc).__name__}: {exc} (run again with --debug for the traceback, "
                         "and please report it)", EXIT_INTERNAL)

@@ -364,7 +364,8 @@ def club_from_spec(document: dict, where: str = "club spec") -> tuple[ClubHead, 
     """
 
     if not isinstance(document, dict):
-        raise FieldError(where, "a mapping of club spec keys (" + ", ".join(SPEC_KEYS) + ")", document)
+        raise FieldError(where, "a mapping of club spec keys (" + ", ".join(SPEC_KEYS) + ")",
+                         "an empty file" if document is None else document)
     for key in document:
         if key not in SPEC_KEYS:
             raise FieldError(f"{where}.{key}", "a key of a club spec", key, choices=SPEC_KEYS)

@@ -14,14 +14,16 @@ against TrackMan's tour averages are in docs/flight.md.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 
 import attrs
 import numpy as np
 
-from impactlab.errors import FieldError
+from impactlab.errors import FieldError, PlausibilityWarning
 from impactlab.physics import aerodynamics, atmosphere
 from impactlab.physics import flight as physics
+from impactlab.scene.plausibility import GOLF_LIMITS
 from impactlab.units import DIMENSIONS, to_si
 from impactlab.validators import in_range, to_float
 from impactlab.vocabulary import OUTPUTS
@@ -29,6 +31,15 @@ from impactlab.vocabulary import OUTPUTS
 #: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
 STANDARD_TEMPERATURE = 288.15
 STANDARD_RELATIVE_HUMIDITY = 0.5
+#: the air temperatures [K] a flight takes: -90 to 60 degC, around the extremes measured on Earth (WMO's Weather and
+#: Climate Extremes Archive: -89.2 degC at Vostok, 21 July 1983; 56.7 degC at Death Valley, 10 July 1913, measured). A
+#: value beyond is a unit mistake (77 degF written as degC) more likely than an air any golf shot flies through
+TEMPERATURE_RANGE = (183.15, 333.15)
+#: the station pressures [Pa] a flight takes: from the ISA pressure at 11 000 m, the top of the altitudes taken
+#: (22 632 Pa, ISO 2533), to 110 kPa, above the highest sea-level pressure recorded (1083.8 hPa, Agata, Siberia,
+#: 31 December 1968, WMO archive, measured) and the ISA pressure 500 m below sea level (107.5 kPa). Below, a pressure
+#: in Pa given for hPa (1013 Pa) would fly an almost airless ball without a word
+PRESSURE_RANGE = (2.0e4, 1.1e5)
 #: keys of a conditions mapping (fly's ``conditions=``, a study's ``conditions:`` block), with their dimensions
 CONDITION_KEYS = {"temperature": "temperature", "pressure": "pressure", "relative_humidity": "dimensionless",
                   "altitude": "length", "headwind": "speed", "crosswind": "speed"}
@@ -56,9 +67,11 @@ class Conditions:
     """
 
     temperature: float = attrs.field(default=STANDARD_TEMPERATURE, converter=to_float, validator=in_range(
-        150.0, 350.0, "an air temperature between 150 and 350 K (-123 and 77 degC)"))
+        *TEMPERATURE_RANGE, "an air temperature between -90 and 60 degC (183.15 and 333.15 K, around the coldest "
+        "and hottest air measured on Earth: -89.2 and 56.7 degC; a degF value written as degC lands above)"))
     pressure: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        0.0, 2e5, "an air pressure between 0 and 200 kPa", low_open=True, optional=True))
+        *PRESSURE_RANGE, "a station pressure between 200 and 1100 hPa (the ISA pressure at 11 000 m is 226 hPa, the "
+        "highest sea-level pressure recorded 1084 hPa; hPa written as Pa lands below)", optional=True))
     relative_humidity: float = attrs.field(default=STANDARD_RELATIVE_HUMIDITY, converter=to_float,
                                            validator=in_range(0.0, 1.0, "a relative humidity between 0 and 1 "
                                                               "(a fraction, or e.g. '50 %')"))
@@ -172,6 +185,60 @@ def _words(dimension: str) -> str:
     return f"{DIMENSIONS[dimension][2]}: a number in {si_unit} or a string with a unit (e.g. '{_EXAMPLE[dimension]}')"
 
 
+_LAUNCH_DIMENSIONS = {"ball_speed": "speed", "launch_angle": "angle", "spin_rate": "angular_speed",
+                      "spin_axis": "angle", "launch_direction": "angle"}
+#: display unit, factor from SI, the SI value beyond which a launch is unusual (flown, and warned about), and why
+UNUSUAL_LAUNCH = {
+    # the fastest measured club speeds are about 150 mph (scene.plausibility, long drive) and a smash factor
+    # above 1.5 is beyond the Rules' COR limit: about 225 mph of ball speed
+    "ball_speed": ("mph", 1.0 / 0.44704, 100.0, "the fastest measured ball speeds are about 225 mph: 150 mph "
+                   "of long-drive club speed at a smash factor of 1.5"),
+    "spin_rate": ("rpm", 30.0 / math.pi, 12000.0 * math.pi / 30.0, "golf balls leave a club with at most about "
+                  "12,000 rpm"),
+}
+#: the SI value beyond which no golf shot has a launch value (refused; a session's row is not flown), and why
+IMPOSSIBLE_LAUNCH = {
+    # the club speed no human swing reaches, 200 mph (scene.plausibility), at the largest smash factor the Rules'
+    # COR limit allows, (1 + 0.83) / (1 + 45.93 g / 200 g) = 1.49 (a 200 g head): 298 mph
+    "ball_speed": (300.0 * 0.44704, "a ball speed up to 300 mph (200 mph of club speed, which no swing reaches, at "
+                   "the largest smash factor the Rules' COR limit allows, 1.49)"),
+    # the incoming spin a golf scene refuses (scene.plausibility: balls leave a club with at most about 12,000 rpm)
+    "spin_rate": (20000.0 * math.pi / 30.0, "a spin rate up to 20,000 rpm (golf balls leave a club with at most "
+                  "about 12,000 rpm)"),
+}
+
+
+def _bare(value) -> bool:
+    """Whether a launch value was given as plain numbers (SI), not text with units or a pint quantity."""
+    if isinstance(value, str) or (hasattr(value, "magnitude") and hasattr(value, "units")):
+        return False
+    return not (isinstance(value, (list, tuple)) and any(isinstance(item, str) for item in value))
+
+
+def _si_note(given, value: float, unit: str) -> str:
+    """For a value given as a plain number: that numbers are SI, and how to write the value meant."""
+    if not _bare(given):
+        return ""
+    return f" (a number is SI: {value:.6g} {unit}; with a unit, e.g. '{value:.6g} {_EXAMPLE[_unit_dimension(unit)]}')"
+
+
+def _unit_dimension(unit: str) -> str:
+    return {"rad": "angle", "m/s": "speed", "rad/s": "angular_speed"}[unit]
+
+
+def _warn_unusual(values: dict, given: dict) -> None:
+    """A launch beyond what golf shots measure is flown, and said once (a PlausibilityWarning): a ball speed of
+    167 or a spin of 2686 given as plain numbers are SI (m/s, rad/s), not mph and rpm."""
+    for name, (unit, factor, limit, why) in UNUSUAL_LAUNCH.items():
+        unusual = values[name] > limit
+        if np.any(unusual):
+            where, value = _first(name, values[name], unusual)
+            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
+            warnings.warn(f"{where}: {value * factor:.6g} {unit}{note} is unusual for golf ({why}); flown as given",
+                          PlausibilityWarning, stacklevel=4)
+
+
 def conditions_from(conditions) -> Conditions:
     """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`."""
     if conditions is None:
@@ -243,13 +310,22 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
         scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
         aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
-        integration's limit; e.g. 1000 mph at 80 deg). A shot launched below the horizontal is at the ground going
+        integration's limit; e.g. 300 mph at 89 deg). A shot launched below the horizontal is at the ground going
         down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
     FieldError
-        A value of the wrong dimension or out of range (speed <= 0, spin < 0), a string without a unit.
+        A value of the wrong dimension or out of range (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
+        a launch angle or launch direction at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has
+        them; :data:`IMPOSSIBLE_LAUNCH`), a string without a unit. A value refused that was given as a plain number
+        is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
+
+    Warns
+    -----
+    PlausibilityWarning
+        A ball speed above 100 m/s (about 225 mph) or a spin above 12,000 rpm: beyond measured golf shots, flown
+        as given (often a plain number meant in mph or rpm, read as SI).
 
     Notes
     -----
@@ -274,13 +350,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     """
     import xarray as xr
 
-    values = {
-        "ball_speed": quantity_array(ball_speed, "speed", "ball_speed"),
-        "launch_angle": quantity_array(launch_angle, "angle", "launch_angle"),
-        "spin_rate": quantity_array(spin_rate, "angular_speed", "spin_rate"),
-        "spin_axis": quantity_array(spin_axis, "angle", "spin_axis"),
-        "launch_direction": quantity_array(launch_direction, "angle", "launch_direction"),
-    }
+    given = {"ball_speed": ball_speed, "launch_angle": launch_angle, "spin_rate": spin_rate, "spin_axis": spin_axis,
+             "launch_direction": launch_direction}
+    values = {name: quantity_array(value, _LAUNCH_DIMENSIONS[name], name) for name, value in given.items()}
     mass = quantity_array(ball_mass, "mass", "ball_mass")
     radius = quantity_array(ball_radius, "length", "ball_radius")
     for name, array in values.items():
@@ -299,12 +371,41 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         where, value = _first("spin_rate", values["spin_rate"], values["spin_rate"] < 0.0)
         raise FieldError(where, "a spin rate >= 0 (the direction of the spin is the spin axis)",
                          _in_unit(value * 30.0 / math.pi, "rpm"))
-    if np.any(np.abs(values["launch_angle"]) >= math.pi / 2):
-        where, value = _first("launch_angle", values["launch_angle"], np.abs(values["launch_angle"]) >= math.pi / 2)
-        raise FieldError(where, "a launch angle between -90 and 90 deg", _in_unit(np.degrees(value), "deg"))
+    for name, words, refused in (
+            ("launch_angle", "a launch angle between -90 and 90 deg", np.abs(values["launch_angle"]) >= math.pi / 2),
+            # beyond +-90 deg the axis tilts past the vertical: the ball turns over (topspin), which the spin rate
+            # and the lift of a backspinning ball do not describe
+            ("spin_axis", "a spin axis between -90 and 90 deg (beyond, the ball has topspin)",
+             np.abs(values["spin_axis"]) > math.pi / 2),
+            # at +-90 deg the ball leaves square to the target line, beyond it backwards: no golf shot
+            ("launch_direction", "a launch direction between -90 and 90 deg of the target line",
+             np.abs(values["launch_direction"]) >= math.pi / 2)):
+        if np.any(refused):
+            where, value = _first(name, values[name], refused)
+            raise FieldError(where, words, _in_unit(np.degrees(value), "deg") + _si_note(given[name], value, "rad"))
+    for name, (limit, words) in IMPOSSIBLE_LAUNCH.items():
+        refused = values[name] > limit
+        if np.any(refused):
+            where, value = _first(name, values[name], refused)
+            unit, factor = UNUSUAL_LAUNCH[name][:2]
+            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
+            raise FieldError(where, words, f"{value * factor:.6g} {unit}{note}")
+    _warn_unusual(values, given)
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
+    # the golf scene's ball limits (scene.plausibility): ball_radius=21.335 (mm meant, m read) flew a 43 m ball
+    for name, array, given_value, unit, factor, si_unit in (("ball_radius", radius, ball_radius, "mm", 1e3, "m"),
+                                                            ("ball_mass", mass, ball_mass, "g", 1e3, "kg")):
+        limit = GOLF_LIMITS[name.replace("_", ".")]
+        low, high = (bound / factor for bound in limit.impossible)
+        refused = (array < low) | (array > high)
+        if np.any(refused):
+            where, value = _first(name, array, refused)
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given_value) else ""
+            raise FieldError(where, f"{limit.words} between {limit.impossible[0]:g} and {limit.impossible[1]:g} "
+                             f"{unit} ({limit.why})", f"{value * factor:.6g} {unit}{note}")
     if model not in aerodynamics.MODELS:
         raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
@@ -347,4 +448,5 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
-__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS"]
+__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
+           "IMPOSSIBLE_LAUNCH"]

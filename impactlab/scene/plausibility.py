@@ -88,6 +88,15 @@ GOLF_LIMITS: dict[str, Limit] = {limit.path: limit for limit in (
     Limit("delivery.dynamic_loft", "a dynamic loft", "deg", _DEG, (-10.0, 75.0), (0.0, 65.0),
           "lofts are 2-4 deg (putters) to 64 deg (lob wedges); a delivery adds or takes off some 10 deg "
           "(shaft lean), so no shot has a dynamic loft below -10 or above 75 deg"),
+    # the Rules' ball (R&A/USGA Equipment Rules, Part 3: a diameter of at least 1.680 in, a weight of at most
+    # 1.620 oz; rules text, exact): a golf scene's ball that is no golf ball at all (a 2 m ball struck by a driver
+    # ran without a word) is refused; no measured spread of balls is at hand to warn by, so none is warned about
+    Limit("ball.radius", "a golf ball's radius", "mm", 1e3, (10.0, 45.0), (10.0, 45.0),
+          "the Rules' ball is at least 42.67 mm across (radius 21.335 mm; R&A/USGA Equipment Rules, Part 3); no ball "
+          "a golf club strikes is under 20 or over 90 mm across"),
+    Limit("ball.mass", "a golf ball's mass", "g", 1e3, (10.0, 100.0), (10.0, 100.0),
+          "the Rules' ball weighs at most 45.93 g (R&A/USGA Equipment Rules, Part 3); no ball a golf club strikes "
+          "weighs under 10 or over 100 g"),
     Limit("impact.spin", "an incoming ball spin", "rpm", _RPM, (-20000.0, 20000.0), (-12000.0, 12000.0),
           "golf balls leave a club with at most about 12,000 rpm (wedges, measured); a ball arriving at the "
           "face spins far less (0 for a teed ball). 20,000 rpm is beyond any shot"),
@@ -172,6 +181,8 @@ def strike_limits(club) -> list[Limit]:
 #: measured quantities that are magnitudes: a value below zero is a sign or column error, never a shot
 MAGNITUDES = {"ball_speed": "a ball speed is a magnitude (its direction is the launch angles)",
               "spin_rate": "the total spin is a magnitude (its direction is the spin axis)"}
+#: how a refused magnitude is shown: the usual unit, its factor from SI, the SI unit
+_MAGNITUDE_UNITS = {"ball_speed": ("mph", _MPH, "m/s"), "spin_rate": ("rpm", _RPM, "rad/s")}
 
 
 def wrong_sign(measured: dict, index: int, where: str) -> list[str]:
@@ -194,7 +205,9 @@ def wrong_sign(measured: dict, index: int, where: str) -> list[str]:
     for key, why in MAGNITUDES.items():
         value = measured.get(key)
         if value is not None and value[index] < 0:
-            problems.append(f"{where}: {key}: expected a value >= 0 ({why}), got {value[index]:.6g} (SI)")
+            unit, factor, si_unit = _MAGNITUDE_UNITS[key]  # 'got -67.056 (SI)' read as -67 of the file's mph
+            problems.append(f"{where}: {key}: expected a value >= 0 ({why}), got {value[index] * factor:.6g} {unit} "
+                            f"({value[index]:.6g} {si_unit})")
     return problems
 
 
@@ -217,6 +230,8 @@ def check_scene(scene) -> None:
         for name in ("club_speed", "attack_angle", "path", "face_angle", "dynamic_loft"):
             _judge(GOLF_LIMITS[f"delivery.{name}"], getattr(delivery, name))
     _judge(GOLF_LIMITS["impact.spin"], scene.impact.spin)
+    _judge(GOLF_LIMITS["ball.radius"], scene.ball.radius)
+    _judge(GOLF_LIMITS["ball.mass"], scene.ball.mass)
     club = scene.club
     if club is not None and not club.is_sphere:
         for limit, value in club_limits(club):

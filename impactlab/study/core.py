@@ -292,8 +292,11 @@ def _build_outputs(value) -> tuple[str, ...]:
 
 def _build_study(document, text: str, file: str | None) -> Study:
     if not isinstance(document, Mapping):
+        # in the user's words, not Python's (NoneType, list)
+        found = ("an empty document (nothing but comments or blank lines)" if document is None
+                 else f"a {'list' if isinstance(document, list) else 'single value'} ({str(document)[:60]!s})")
         raise FieldError("", "a study mapping with keys name, ball, face, contact, impact, sweep, models, outputs",
-                         type(document).__name__)
+                         found)
     structure(document, StudyBlock, "")
     default_name = Path(file).stem if file and not file.startswith("<") else "study"
     name = document.get("name", default_name)
@@ -398,12 +401,14 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
         if not isinstance(name, str) or not name.replace("-", "_").isidentifier():
             raise FieldError(f"{where}.name", "a short file-name-safe name", name)
         wanted = block.y
-        wanted = [wanted] if isinstance(wanted, str) else wanted
+        one = isinstance(wanted, str)
+        wanted = [wanted] if one else wanted
         if not isinstance(wanted, list) or not wanted:
             raise FieldError(f"{where}.y", "an output name or a list of them", wanted, choices=outputs)
         for position, output in enumerate(wanted):
-            if output not in outputs:
-                raise FieldError(f"{where}.y[{position}]", "an output the study computes", output, choices=outputs)
+            if output not in outputs:  # y: NAME is named y, not y[0] (its first letter, read back from the file)
+                raise FieldError(f"{where}.y" if one else f"{where}.y[{position}]", "an output the study computes",
+                                 output, choices=outputs)
         kind = block.kind or "lines"
         if kind not in PLOT_KINDS:
             raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)

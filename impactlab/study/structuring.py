@@ -151,6 +151,8 @@ def lookup(document: Any, path: tuple) -> Any:
     """The node at ``path`` in a document, or None where there is none."""
     node = document
     for part in path:
+        if isinstance(node, (str, bytes)):  # text has no nodes: its [0] is a letter, not what the user wrote there
+            return None
         try:
             node = node[part]
         except (KeyError, IndexError, TypeError):

@@ -17,7 +17,7 @@ from impactlab.study.limits import check_cases
 from impactlab.study.scene_blocks import build_scene
 from impactlab.study.schema import SI, RangeBlock, keys_of
 from impactlab.study.structuring import structure
-from impactlab.units import to_si
+from impactlab.units import DIMENSIONS, EXAMPLE_UNITS, to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM
 
 SWEEP_RANGE_KEYS = keys_of(RangeBlock)
@@ -63,6 +63,9 @@ def _sweep_values(path: str, spec, dimension: str) -> list[float]:
         if num > 1 and start == stop:
             raise FieldError(f"{where}", "a range whose start and stop differ (num values would all be equal)",
                              f"start = stop with num: {num}")
+        if num == 1 and start != stop:  # linspace gives start alone: the stop written would be dropped silently
+            raise FieldError(f"{where}.num", "2 or more values from start to stop (num: 1 keeps start and drops stop; "
+                             "one value is a list of one, [start])", f"num: 1 from {block.start} to {block.stop}")
         return list(np.linspace(start, stop, num))
     if isinstance(spec, (list, tuple)):
         if not spec:
@@ -106,9 +109,23 @@ def _check_sweep_values(document: Mapping, where: str, fields: list[tuple[str, l
             try:
                 _build_swept_scene(document, fields, index)
             except FieldError as exc:
-                raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})", exc.given,
-                                 exc.choices) from None
+                raise FieldError(f"{where}[{index}]", f"{exc.expected} (for {exc.path})",
+                                 _with_unit(exc.path, exc.given), exc.choices) from None
         raise  # pragma: no cover - a value that failed above fails again here
+
+
+def _with_unit(path: str | None, given):
+    """A swept value refused, as the user reads it: a range's values are made in SI (1.5746 for 90.2 deg), and an
+    SI number shown bare reads as the user's number in the user's unit."""
+    name = INPUT_BY_PATH.get(path or "")
+    dimension = INPUTS[name].dimension if name else None
+    if isinstance(given, bool) or not isinstance(given, (float, int)) or dimension in (None, "dimensionless"):
+        return given
+    si_unit = DIMENSIONS[dimension][0]
+    if dimension == "temperature":
+        return f"{given - 273.15:.6g} degC ({given:.6g} K)"
+    unit, size = EXAMPLE_UNITS[dimension]
+    return f"{given / size:.6g} {unit}" + ("" if unit == si_unit else f" ({given:.6g} {si_unit})")
 
 
 def _build_swept_scene(document: Mapping, fields: list[tuple[str, list[float]]], index: int) -> None:

@@ -46,8 +46,24 @@ def read_text_file(path: FilePath, what: str = "study file") -> str:
         if data.startswith(bom):
             raise StudyError(f"{path}: is {encoding} text; save the {what} as UTF-8")
     if b"\0" in data:
-        raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a YAML {what}")
+        raise StudyError(f"{path}: " + (f"is UTF-16 text without a byte-order mark; save the {what} as UTF-8"
+                                        if _utf16_without_mark(data) else
+                                        f"is a binary file (it holds NUL bytes), not a YAML {what}"))
     return utf8_text(data, path, what)
+
+
+def _utf16_without_mark(data: bytes) -> bool:
+    """Text saved as UTF-16 without its mark (Windows tools do): every other byte NUL, the rest decode to text."""
+    sample = data[:4096]
+    for zeros, encoding in ((sample[1::2], "utf-16-le"), (sample[0::2], "utf-16-be")):
+        if len(sample) >= 4 and zeros.count(0) >= 0.9 * len(zeros):
+            try:
+                text = sample[:len(sample) // 2 * 2].decode(encoding)
+            except UnicodeDecodeError:
+                return False
+            # text, not a binary file whose header is mostly zeros (HDF5): printable characters and line breaks
+            return sum(char.isprintable() or char in "\r\n\t" for char in text) >= 0.98 * len(text)
+    return False
 
 
 def utf8_text(data: bytes, path: FilePath, what: str) -> str:
@@ -222,7 +238,7 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"{file or '<study>'}:{mark.line + 1}" if mark else (file or "<study>")
-        problem = getattr(exc, "problem", None) or str(exc)
+        problem = getattr(exc, "problem", None) or " ".join(str(exc).split())  # one line (a ReaderError has two)
         context, context_mark = getattr(exc, "context", None), getattr(exc, "context_mark", None)
         if context and context_mark:
             problem += f" ({context} on line {context_mark.line + 1})"

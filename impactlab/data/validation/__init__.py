@@ -31,7 +31,7 @@ from impactlab.study.arrays import case_inputs
 from impactlab.study.core import Study, load_study
 from impactlab.study.datasets import DATASETS, TABLE1, MeasuredData
 from impactlab.vocabulary import SCALAR_OUTPUTS
-from impactlab.study.yaml_lines import line_of, load_yaml, parse_path
+from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
 
 def load_dataset_study(data: MeasuredData) -> Study:
@@ -84,7 +84,7 @@ def load_measured(path: str | os.PathLike[str]) -> MeasuredData:
     if not path.is_file():
         raise FieldError("dataset", "a measured-data file that exists", str(path))
     file = str(path)
-    document, lines = load_yaml(path.read_text(), file)
+    document, lines = load_yaml(read_text_file(path, "measured-data file"), file)  # UTF-8, said otherwise
 
     def fail(where: str, expected: str, given: Any, choices: Any = None) -> NoReturn:
         raise FieldError(where, expected, given, choices=choices, file=file, line=line_of(lines, parse_path(where)))

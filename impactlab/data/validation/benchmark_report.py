@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from impactlab.io.safe_output import write_figure
 from impactlab.data.validation.benchmarks import (
     BENCHMARKS, MODELS, kharaz_quantities, make_model, read_reference, chung_ooi_5_quantities, chung_ooi_6_incidence,
     chung_ooi_6_quantities,
@@ -110,7 +111,7 @@ def _curve_panels(axes, x, compute, panels, models) -> None:
 
 
 def _save(figure, path: Path, written: list) -> None:
-    figure.savefig(path, dpi=110)
+    write_figure(figure, path, dpi=110)
     written.append(path)
 
 
