@@ -1,0 +1,63 @@
+"""Review of the session readers merged in session 7: cases their own tests let through (each test here fails on
+the defect or mutation it names)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from impactlab.data.session import read_session_text
+from impactlab.data.session_flight import fly_session
+
+MPH = 0.44704
+DEG = np.pi / 180.0
+
+
+def test_identical_rounded_rows_of_a_table_without_time_or_label_are_two_shots():
+    # a robot or a test plan at one setting, written to whole mph, degrees and rpm: two shots of the same numbers
+    # are two shots; nothing in impactlab's own layout tells a copied row from a repeat (no time, no shot number).
+    # Skipping the second (the duplicate rule of e246a7e) dropped a real shot from every fit and mean, said only
+    # in `impactlab shots`' list of skipped rows
+    text = ("club,ball_speed [mph],launch_angle [deg],spin_rate [rpm],carry [yd]\n"
+            "7 Iron,120,18,7000,165\n7 Iron,120,18,7000,165\n7 Iron,121,18,7000,166\n")
+    session = read_session_text(text, "robot.csv")
+    assert session.size == 3 and session.lines.tolist() == [2, 3, 4]
+    assert session.values["ball_speed"].tolist() == pytest.approx([120 * MPH, 120 * MPH, 121 * MPH])
+    assert session.skipped == []
+    assert any(note.startswith("line 3 repeats line 2 cell for cell: kept") for note in session.notes)
+
+
+def test_a_repeated_row_with_its_label_repeated_is_still_one_shot_twice():
+    # a label (a time, a shot id) that repeats with every value: the same shot written twice
+    text = ("label,ball_speed [mph],launch_angle [deg],spin_rate [rpm]\n"
+            "09:00:01,120,18,7000\n09:00:01,120,18,7000\n09:00:40,120,18,7000\n")
+    session = read_session_text(text, "timed.csv")
+    assert session.size == 2 and session.lines.tolist() == [2, 4]
+    assert dict(session.skipped)[3].startswith("repeats line 2 cell for cell")
+
+
+def test_a_stated_pressure_sets_the_air_over_a_stated_altitude():
+    # a row stating both: the station pressure is the air's (measured there); an altitude gives only the ISA
+    # pressure of a standard day. Oracle: dry air at 900 hPa and 15 degC, p / (R_d T) = 90000 / (287.05 x 288.15)
+    # = 1.088 kg/m^3 (50 % humidity, not stated, lowers it by ~0.5 %); at 0 m (ISA 1013.25 hPa) it would be ~1.22
+    text = ("ball_speed [mph],launch_angle [deg],spin_rate [rpm],air_temperature [degC],air_pressure [hPa],"
+            "altitude [m]\n150,12,2600,15,900,0\n150,12,2600,15,900,\n")
+    flown = fly_session(read_session_text(text, "air.csv"))
+    density = flown["air_density"].values
+    assert density[0] == density[1]
+    assert density[0] == pytest.approx(90000 / (287.05 * 288.15), rel=0.01)
+
+
+GARMIN = ("Date,Club Type,Club Speed,Club Path,Club Face,Ball Speed,Launch Angle,Backspin,Sidespin,Spin Rate,"
+          "Spin Rate Type,Spin Axis,Carry Deviation Distance\n"
+          ",,[mph],[deg],[deg],[mph],[deg],[rpm],[rpm],[rpm],,[deg],[yds]\n")
+
+
+def test_a_garmin_club_face_other_than_zero_without_a_club_path_is_read():
+    # only an exact 0.0 beside no club path is Garmin's placeholder (only_zero: true); a face of 2.5 deg is a value
+    text = GARMIN + ("6/6/26 08:40:02,Driver,,,2.5,150,12,2600,-300,2617,Measured,6.6,5\n"
+                     "6/6/26 08:41:02,Driver,,,0.0,150,12,2600,-300,2617,Measured,6.6,5\n")
+    session = read_session_text(text, "garmin.csv")
+    face = session.values["face_angle"]
+    assert face[0] == pytest.approx(2.5 * DEG) and np.isnan(face[1])
+    assert session.flags[("face_angle", "no data")].tolist() == [False, True]
