@@ -61,3 +61,20 @@ def test_a_garmin_club_face_other_than_zero_without_a_club_path_is_read():
     face = session.values["face_angle"]
     assert face[0] == pytest.approx(2.5 * DEG) and np.isnan(face[1])
     assert session.flags[("face_angle", "no data")].tolist() == [False, True]
+
+
+CLOUD = ("sessionId,Session,Time,Club,Shot,Ball (m/s),Club (m/s),Smash,Carry (m),Total (m),Spin (rpm),Sidespin (rpm),"
+         "Spin estimated,Height (m),Time (s),AOA (*),Spin Loft (*),Spin Axis (*),Lateral (m),Curve (m),Shape,"
+         "Launch H(*),Launch V (*),Mode,Descent V (*),FTT (*)\n"
+         "5534658,2022-10-25 18:45:08,2022-10-25T18:48:08Z,7 Iron,1,52.298,39.118,1.3369,150.883,152.181,5451,-192,1,"
+         "29.078,6.1968,-8.659,39.7718,-2.0184,-0.3521,-1.3597,straight,0.364,18.744,ShortIndoor,45.0,1.0\n")
+
+
+def test_a_flightscope_cloud_export_with_descent_and_ftt_columns_is_read_as_the_cloud_layout():
+    # the cloud's export holds the columns its user picks; with Descent V and FTT it also held every column the
+    # simulator layout recognised (Club, Launch V, Launch H, Descent V, FTT: five against the cloud's four), was read
+    # as a simulator file and refused ("columns 'Club' and 'Club (m/s)' both give the club name; keep one")
+    session = read_session_text(CLOUD, "cloud.csv")
+    assert session.vendor.id == "flightscope_cloud"
+    assert session.values["ball_speed"][0] == pytest.approx(52.298)
+    assert session.flags[("spin_rate", "estimated")].tolist() == [True]
