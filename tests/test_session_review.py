@@ -78,3 +78,58 @@ def test_a_flightscope_cloud_export_with_descent_and_ftt_columns_is_read_as_the_
     assert session.vendor.id == "flightscope_cloud"
     assert session.values["ball_speed"][0] == pytest.approx(52.298)
     assert session.flags[("spin_rate", "estimated")].tolist() == [True]
+
+
+def _german(rows: list[dict]) -> str:
+    """The German Garmin fixture's header and units row, and its one real row changed cell by cell per dict."""
+    import csv
+    import io
+    from pathlib import Path
+
+    header, units, real = list(csv.reader(io.StringIO(
+        (Path(__file__).parent / "data" / "vendors" / "garmin_golf_de.csv").read_text(encoding="utf-8"))))[:3]
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerows([header, units])
+    for number, changes in enumerate(rows):
+        row = dict(zip(header, real), Datum=f"14.02.24 13:{number:02d}:18")
+        row.update(changes)
+        writer.writerow([row[name] for name in header])
+    return out.getvalue()
+
+
+def test_a_translated_garmin_layout_keeps_the_base_layouts_stops_placeholders_and_floor():
+    # the German export is the English one in other words (base: garmin_golf): its 30 deg spin-axis stop, its
+    # Club Face 0.0 written without a club path, its float32 launch floor just below 0.5 deg are the same monitor's;
+    # dropping them from the translated layout passed every test of session 7
+    text = _german([{}, {"Drehachse": "30.0", "Sidespin": "-2000.0"},
+                    {"Schwungbahn": "", "Schlagflächenstellung": "", "Schlagfläche": "0.0"},
+                    {"Abflugwinkel": "0.4999999701976776"}])
+    session = read_session_text(text, "de.csv")
+    assert session.vendor.id == "garmin_golf_de" and session.size == 4
+    assert session.flags[("spin_axis", "clamped")].tolist() == [False, True, False, False]
+    assert session.flags[("face_angle", "no data")].tolist() == [False, False, True, False]
+    assert np.isnan(session.values["face_angle"][2]) and session.values["face_angle"][0] == pytest.approx(
+        -1.0483050346374512 * DEG)
+    assert session.flags[("vertical_launch_angle", "clamped")].tolist() == [False, False, False, True]
+
+
+def test_a_translated_garmin_layout_turns_a_spin_axis_written_against_its_side_spin():
+    # the real German row: Sidespin -644.06 rpm (Garmin: positive curving left, so +644 to the right) with Drehachse
+    # +7.544 deg; an app version writing the axis the other way (-7.544 in every row) is turned, as in English
+    text = _german([{"Drehachse": "-7.544279098510742"},
+                    {"Drehachse": "-5.0", "Sidespin": "-430.0"}])
+    session = read_session_text(text, "de.csv")
+    assert session.values["side_spin"][0] == pytest.approx(644.055908203125 * np.pi / 30)
+    assert session.values["spin_axis"].tolist() == pytest.approx([7.544279098510742 * DEG, 5.0 * DEG])
+
+
+def test_a_translated_column_keeps_the_sign_of_the_column_it_translates():
+    # Spanish 'Efecto lateral' is Garmin's Sidespin, positive curving LEFT: read with its sign turned (as in English)
+    text = ("Fecha,Tipo de palo,Velocidad de la pelota,Ángulo de lanzamiento,Retroceso,Efecto lateral,"
+            "Tipo de velocidad de rotación,Distancia de desviación de vuelo\n"
+            ",,[mph],[deg],[rpm],[rpm],,[yds]\n"
+            "6/6/26 08:40:02,Driver,150,12,2600,-300,Medido,5\n")
+    session = read_session_text(text, "es.csv")
+    assert session.vendor.id == "garmin_golf_es"
+    assert session.values["side_spin"][0] == pytest.approx(300 * np.pi / 30)
