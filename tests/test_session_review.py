@@ -133,3 +133,16 @@ def test_a_translated_column_keeps_the_sign_of_the_column_it_translates():
     session = read_session_text(text, "es.csv")
     assert session.vendor.id == "garmin_golf_es"
     assert session.values["side_spin"][0] == pytest.approx(300 * np.pi / 30)
+
+
+def test_a_skytrak_shot_row_with_only_its_number_does_not_rename_the_club_of_the_shots_below():
+    # a row holding only its first cell heads a club's block ('PW', '7I', '9 IRON'); a shot numbered 2 with nothing
+    # measured ('2,,,,') named the PW shot below it club '2'
+    from pathlib import Path
+
+    text = (Path(__file__).parent / "data" / "vendors" / "skytrak.csv").read_text(encoding="utf-8").replace(
+        "2,R,80,98.0,", "2" + "," * 18 + "\n3,R,80,98.0,")
+    session = read_session_text(text, "skytrak.csv")
+    clubs = dict(zip(session.lines.tolist(), session.text["club"]))
+    assert clubs[8] == "PW" and clubs[9] == "PW" and clubs[13] == "7I"
+    assert np.isnan(session.values["ball_speed"][session.lines.tolist().index(8)])

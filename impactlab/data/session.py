@@ -378,7 +378,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             trailer = trailer or line  # notes after the shots: this row and every row below it
             skipped.append((line, f"{(layout.trailer or {}).get('why', 'not a shot')} (from line {trailer})"))
             continue
-        if layout.club_rows and cells and cells[0].strip() and not any(c.strip() for c in cells[1:]):
+        if layout.club_rows and cells and cells[0].strip() and not cells[0].strip().isdigit() and not any(
+                c.strip() for c in cells[1:]):  # a shot number alone is a shot with nothing measured
             block_club = cells[0].strip()  # SkyTrak: a row holding only a club's name heads that club's shots
             skipped.append((line, f"names the club of the shots below it ({block_club!r})"))
             continue
