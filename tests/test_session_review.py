@@ -8,6 +8,7 @@ import pytest
 
 from impactlab.data.session import read_session_text
 from impactlab.data.session_flight import fly_session
+from impactlab.errors import StudyError
 
 MPH = 0.44704
 DEG = np.pi / 180.0
@@ -146,3 +147,37 @@ def test_a_skytrak_shot_row_with_only_its_number_does_not_rename_the_club_of_the
     clubs = dict(zip(session.lines.tolist(), session.text["club"]))
     assert clubs[8] == "PW" and clubs[9] == "PW" and clubs[13] == "7I"
     assert np.isnan(session.values["ball_speed"][session.lines.tolist().index(8)])
+
+
+def test_session_carry_ignores_a_placeholder_carry_on_a_row_without_a_launch(tmp_path):
+    # a row the monitor did not read (no ball speed, launch or spin) with Carry Distance 0.0: no shot to compare,
+    # as fly SESSION leaves it out; session_carry (4c548ac) refused the whole export at that row's carry
+    import csv
+    import io
+    from pathlib import Path
+
+    from impactlab.data.carry import session_carry
+
+    rows = list(csv.reader(io.StringIO((Path(__file__).parent / "data" / "vendors" / "garmin_r10.csv").read_text(
+        encoding="utf-8"))))
+    header = rows[0]
+    unread = dict(zip(header, rows[2]), Date="6/6/26 23:59:59")
+    for name in ("Ball Speed", "Launch Angle", "Spin Rate", "Backspin", "Sidespin", "Spin Axis", "Club Speed",
+                 "Smash Factor"):
+        unread[name] = ""
+    unread["Carry Distance"] = "0.0"
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerows([*rows, [unread[name] for name in header]])
+    path = tmp_path / "r10.csv"
+    path.write_text(out.getvalue(), encoding="utf-8")
+    with_row = session_carry(path)
+    without = session_carry(Path(__file__).parent / "data" / "vendors" / "garmin_r10.csv")
+    assert with_row["carry"].tolist() == without["carry"].tolist()
+    # a carry of 0 beside a launch that is flown is still refused, at its line
+    flown_zero = dict(zip(header, rows[2]), Date="6/6/26 23:59:58")
+    flown_zero["Carry Distance"] = "0.0"
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerows([*rows, [flown_zero[name] for name in header]])
+    path.write_text(out.getvalue(), encoding="utf-8")
+    with pytest.raises(StudyError, match=rf"r10.csv:{len(rows) + 1}: carry_distance: expected a carry > 0, got 0 m"):
+        session_carry(path)
