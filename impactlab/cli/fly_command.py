@@ -7,8 +7,10 @@ Two forms:
 - ``impactlab fly SESSION`` flies each shot of an export with its measured launch
   (:func:`impactlab.data.session_flight.fly_session`) and prints the monitor's own carry beside the prediction.
 
-Every value carries its unit (a bare number is refused: no unit is guessed); the air is the standard air unless
-``--temperature``, ``--pressure`` or ``--altitude``, ``--humidity``, ``--headwind``, ``--crosswind`` say otherwise.
+Every value carries its unit (a bare number is refused: no unit is guessed). The air is the standard air unless
+``--temperature``, ``--pressure`` or ``--altitude``, ``--humidity``, ``--headwind``, ``--crosswind`` say otherwise;
+a session's shots fly in the air their export states (Garmin's weather columns, TrackMan's Condition) unless an air
+option (any one, a wind too: it then sets the whole air of every shot) or ``--standard-air`` is given.
 """
 
 from __future__ import annotations

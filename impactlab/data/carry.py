@@ -185,9 +185,12 @@ def session_carry(path, model: str = DEFAULT_MODEL, conditions=None, include_fla
     """
     session = read_session(path)
     v = session.values
-    # a carry that is not positive is a placeholder or a column error: refused at its line rather than divided by
+    # a carry that is not positive beside a launch is a placeholder or a column error: refused at its line rather
+    # than divided by (a row without a launch, one the monitor did not read, is no shot to compare: not flown)
+    launched = np.all([np.isfinite(v[name]) for name in ("ball_speed", "vertical_launch_angle", "spin_rate")], axis=0)
     problems = [f"{session.file}:{line}: carry_distance: expected a carry > 0, got {carry:.6g} m"
-                for line, carry in zip(session.lines, v["carry_distance"]) if np.isfinite(carry) and not carry > 0.0]
+                for line, carry, launch in zip(session.lines, v["carry_distance"], launched)
+                if launch and np.isfinite(carry) and not carry > 0.0]
     try:
         flown = fly_session(session, model=model, conditions=conditions, include_flagged=include_flagged,
                             session_air=session_air)

@@ -348,6 +348,7 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         _norm(layout.trailer["column"]) in names else None
     block_club, shot_clubs = "", []
     seen: dict[tuple, int] = {}
+    repeats: list[str] = []
     for cells, line in zip(body, body_lines):
         while len(cells) > width and not cells[-1].strip():
             cells = cells[:-1]
@@ -377,7 +378,8 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
             trailer = trailer or line  # notes after the shots: this row and every row below it
             skipped.append((line, f"{(layout.trailer or {}).get('why', 'not a shot')} (from line {trailer})"))
             continue
-        if layout.club_rows and cells and cells[0].strip() and not any(c.strip() for c in cells[1:]):
+        if layout.club_rows and cells and cells[0].strip() and not cells[0].strip().isdigit() and not any(
+                c.strip() for c in cells[1:]):  # a shot number alone is a shot with nothing measured
             block_club = cells[0].strip()  # SkyTrak: a row holding only a club's name heads that club's shots
             skipped.append((line, f"names the club of the shots below it ({block_club!r})"))
             continue
@@ -395,14 +397,23 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
         if len(cells) != width:
             problems.append(f"{file}:{line}: expected {width} columns, got {len(cells)}")
             continue
-        if (key := tuple(cell.strip() for cell in cells)) in seen:  # float32 values to 16 digits: one shot, twice
+        # a vendor's row (a time, a shot number, values to 16 digits) or a labelled one, repeated: one shot twice;
+        # impactlab's own table has no time: identical rounded rows there may be two shots, kept and said
+        if (key := tuple(cell.strip() for cell in cells)) in seen and (layout is not GENERIC or (
+                "label" in by_field and cells[by_field["label"]].strip())):
             skipped.append((line, f"repeats line {seen[key]} cell for cell (the same shot twice: a session exported "
                                   f"or appended twice, a message sent again)"))
             continue
-        seen[key] = line
+        if key in seen:
+            repeats.append(f"line {line} repeats line {seen[key]}")
+        seen.setdefault(key, line)
         shots.append(cells)
         shot_lines.append(line)
         shot_clubs.append(block_club)
+    if repeats:
+        notes.append(f"{', '.join(repeats[:10])}{' ...' if len(repeats) > 10 else ''} cell for cell: kept as shots "
+                     f"(this table has no time or label to tell a copied row from a shot of the same numbers; delete "
+                     f"copies)")
     if refused and required_column is not None:
         shown = ", ".join(f"{file}:{line} ({value!r})" for line, value in refused[:10])
         raise StudyError(f"{file}: {header[required_column]}: expected "
