@@ -497,3 +497,24 @@ def test_trackman_condition_text_is_read_with_its_units_or_refused(tmp_path, cap
     captured = capsys.readouterr()
     assert expected in (captured.out if code == 0 else captured.err)
     assert code == (2 if "condition.csv:4" in expected else 0) and "Traceback" not in captured.err
+
+
+def test_a_wind_option_blows_through_each_shots_own_air(tmp_path, capsys):
+    """--headwind alone adds wind to the air each Garmin row states (review9: it used to replace that air with the
+    standard air): the row's carry is the launch typed in with the row's own temperature, pressure and humidity
+    and the same headwind; an option of the air itself (--temperature) still replaces the export's air."""
+    rows = _csv_rows(DATA / "garmin_r10.csv")
+    out = tmp_path / "wind.csv"
+    assert main(["fly", str(DATA / "garmin_r10.csv"), "--headwind", "5 mph", "--csv", str(out)]) == 0
+    assert "the options' wind in every shot's air" in capsys.readouterr().out
+    flown = _csv(out)[0]
+    raw = rows[int(flown["line"]) - 3]
+    typed = tmp_path / "typed.csv"
+    assert main(["fly", "--ball-speed", f"{raw['Ball Speed']} mph", "--launch-angle", f"{raw['Launch Angle']} deg",
+                 "--spin-rate", f"{flown['spin_rate [rpm]']} rpm", "--spin-axis", f"{flown['spin_axis [degree]']} deg",
+                 "--launch-direction", f"{raw['Launch Direction']} deg", "--temperature", f"{raw['Temperature']} degF",
+                 "--pressure", f"{raw['Air Pressure']} kPa", "--humidity", f"{raw['Relative Humidity']} %",
+                 "--headwind", "5 mph", "--csv", str(typed)]) == 0
+    assert float(flown["carry_distance [m]"]) == pytest.approx(float(_csv(typed)[0]["carry_distance [m]"]), rel=1e-9)
+    assert main(["fly", str(DATA / "garmin_r10.csv"), "--headwind", "5 mph", "--temperature", "20 degC"]) == 0
+    assert "the options (the export's own air, stated for 1 shot(s) flown, not used)" in capsys.readouterr().out

@@ -9,8 +9,10 @@ Two forms:
 
 Every value carries its unit (a bare number is refused: no unit is guessed). The air is the standard air unless
 ``--temperature``, ``--pressure`` or ``--altitude``, ``--humidity``, ``--headwind``, ``--crosswind`` say otherwise;
-a session's shots fly in the air their export states (Garmin's weather columns, TrackMan's Condition) unless an air
-option (any one, a wind too: it then sets the whole air of every shot) or ``--standard-air`` is given.
+a session's shots fly in the air their export states (Garmin's weather columns, TrackMan's Condition) unless an
+option of the air itself (``--temperature``, ``--pressure``, ``--altitude``, ``--humidity``: they then set the whole
+air of every shot) or ``--standard-air`` is given; ``--headwind`` and ``--crosswind`` alone blow through each shot's
+own air.
 """
 
 from __future__ import annotations
@@ -197,7 +199,9 @@ def describe(result: xr.Dataset, model: str) -> str:
                    "mph")
     else:
         density = result.air_density.values
-        out.append(f"air: density {density.min():.4f}-{density.max():.4f} kg/m^3 over the shots, still")
+        headwind, crosswind = a.get("headwind_m_s", 0.0) / MPH, a.get("crosswind_m_s", 0.0) / MPH
+        out.append(f"air: density {density.min():.4f}-{density.max():.4f} kg/m^3 over the shots, headwind "
+                   f"{headwind:+.1f} mph, crosswind {crosswind:+.1f} mph")
     if a.get("air_source"):
         out[-1] += f"; {a['air_source']}"
     session = "line" in result.coords

@@ -18,9 +18,11 @@ beside each prediction where the export has them. Nothing is guessed for a shot:
   entirely.
 
 The air: a shot whose export states its air (Garmin's Temperature, Air Pressure and Relative Humidity, checked
-against its Air Density by the reader) is flown in that air, unless ``conditions`` are given (they then set the air
-of every shot, and the result says the session's own was not used) or ``session_air`` is False; a shot without it
-(or with air the reader flags inconsistent) flies in the standard air, and the result counts them.
+against its Air Density by the reader; TrackMan's Condition in words) is flown in that air, unless ``conditions``
+give the air itself (a temperature, pressure, altitude or humidity: they then set the air of every shot, and the
+result says the session's own was not used) or ``session_air`` is False; a wind alone (``headwind``,
+``crosswind``) blows through each shot's own air. A shot without its air (or with air the reader flags
+inconsistent) flies in the standard air, and the result counts them.
 
 The monitor's carry is what the export says. Whether it is measured depends on the unit: radar units outdoors
 track much of the flight; camera units and indoor sessions fly the launch with their own model, and some exports
@@ -66,8 +68,9 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     conditions : mapping, optional
         The air, as :func:`impactlab.fly` takes it (``temperature``, ``pressure`` or ``altitude``,
         ``relative_humidity``, ``headwind``, ``crosswind``, each with its unit), for every shot; None (or empty):
-        each shot in the air its export states, else 15 degC, 101 325 Pa, 50 %, still. A comparison with a
-        monitor that normalises its rows should give that monitor's standard air.
+        each shot in the air its export states, else 15 degC, 101 325 Pa, 50 %, still; a wind alone is added to
+        each shot's own air. A comparison with a monitor that normalises its rows should give that monitor's
+        standard air.
     include_flagged : bool
         Also fly shots whose launch values the monitor marks estimated, clamped or inconsistent.
     session_air : bool
@@ -199,7 +202,10 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
     stated, rejected = int(usable[rows].sum()), int(doubtful[rows].sum())
     caveat = (f"; the air of {rejected} shot(s) is flagged inconsistent by the reader (`impactlab shots` says why) "
               "and not used" if rejected else "")
-    if conditions or not session_air or not stated:
+    # wind options blow through each shot's own air; any other air option replaces the export's air
+    wind = {key: value for key, value in (conditions or {}).items() if key in ("headwind", "crosswind")}
+    replaces = len(wind) < len(conditions or {})
+    if replaces or not session_air or not stated:
         if conditions:
             words = "the options" + (f" (the export's own air, stated for {stated} shot(s) flown, not used)"
                                      if stated else "")
@@ -208,14 +214,17 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
         else:
             words = "the standard air" + ("" if rejected else " (the export states no air)")
         return [conditions if conditions else None] * rows.size, words + caveat
-    airs: list[flight.Conditions | None] = []
+    blowing = flight.conditions_from(wind) if wind else None
+    airs: list[flight.Conditions | Mapping | None] = []
     for row in rows.tolist():
         if not usable[row]:
-            airs.append(None)
+            airs.append(wind or None)
             continue
         # a pressure, when stated, sets the air; an altitude only where no pressure is (Conditions takes one)
         given = {key: float(v[field][row]) for field, key in SESSION_AIR.items() if np.isfinite(v[field][row])
                  and not (field == "altitude" and with_pressure[row])}
+        if blowing is not None:
+            given.update(headwind=blowing.headwind, crosswind=blowing.crosswind)
         try:
             airs.append(flight.Conditions(**given))
         except FieldError as exc:  # the row's value in the words people use for it, not its SI float
@@ -233,7 +242,8 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
     no_humidity = int((usable[rows] & ~np.isfinite(v["relative_humidity"][rows])).sum())
     return airs, (f"the export's own, per shot (each row's temperature, {' and '.join(stated_fields)})"
                   + (f"; humidity not stated for {no_humidity} shot(s): 50 % taken" if no_humidity else "")
-                  + (f"; {standard} shot(s) in the standard air" if standard else "") + caveat)
+                  + (f"; {standard} shot(s) in the standard air" if standard else "")
+                  + ("; the options' wind in every shot's air" if wind else "") + caveat)
 
 
 def _fly_in(airs: list, v: dict, rows: np.ndarray, model: str, session: Session):
