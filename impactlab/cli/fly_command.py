@@ -161,7 +161,7 @@ def _as_option(exc: FieldError) -> FieldError:
         return exc
     option = "--" + names[stem].replace("_", "-") + key[len(stem):]
     expected = exc.expected
-    if isinstance(exc.given, str) and _plain_number(exc.given):
+    if isinstance(exc.given, str) and flight.is_number_text(exc.given):
         # what impactlab.fly says of text without a unit offers 'or a number in SI': a Python number; on the command
         # line every value is text and a number alone is never read
         words, unit = _PLAIN[names[stem]]
@@ -177,14 +177,6 @@ _PLAIN = {"ball_speed": ("a ball speed", "mph"), "launch_angle": ("a launch angl
           "pressure": ("a pressure", "hPa"), "altitude": ("an altitude", "m"),
           "humidity": ("a relative humidity", "%"), "headwind": ("a wind speed", "mph"),
           "crosswind": ("a wind speed", "mph")}
-
-
-def _plain_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def describe(result: xr.Dataset, model: str) -> str:

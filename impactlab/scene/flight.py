@@ -106,7 +106,8 @@ def air_arrays(inputs: Mapping) -> dict:
             "relative_humidity": inputs.get("relative_humidity", STANDARD_RELATIVE_HUMIDITY), "wind": wind}
 
 
-def _bare_text(text: str) -> bool:
+def is_number_text(text: str) -> bool:
+    """True when ``text`` is a number alone (``"167"``, ``"1e3"``): a value whose unit would have to be guessed."""
     try:
         float(text)
     except ValueError:
@@ -145,7 +146,7 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
         factor = to_si(f"1 {unit}", dimension, path) if unit != "dimensionless" else to_si(1.0, dimension, path)
         return magnitude * factor
     if isinstance(value, str):
-        if _bare_text(value):
+        if is_number_text(value):
             example = "50 %" if dimension == "dimensionless" else f"{value} {_EXAMPLE[dimension]}"
             raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
                                    f"'{example}', or a number in SI)", value)
@@ -448,5 +449,6 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
-__all__ = ["Conditions", "fly", "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
+__all__ = ["Conditions", "fly", "is_number_text",
+           "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
            "IMPOSSIBLE_LAUNCH"]
