@@ -40,11 +40,11 @@ from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_
                                             _generic_field, _header_index, _norm, _recognise, _unit_factor,
                                             split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_values import (_UNITS_CELL, _air_from_text, _check_air, _check_spin_signs, _club_names,
-                                           _decimal_mark, _derive, _flag_all_zero, _flag_estimated, _flag_excluded,
-                                           _flag_no_data, _flag_without, _legacy_text, _merge_repeated, _progress,
-                                           _read_bytes, _read_flags, _row_key, _rows_of, _to_numbers,
-                                           _units_difference)
+from impactlab.data.session_air import _air_from_text, _check_air
+from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
+                                           _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
+                                           _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
+                                           _read_flags, _row_key, _rows_of, _to_numbers, _units_difference)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
 from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
 
