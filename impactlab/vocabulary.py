@@ -18,7 +18,7 @@ from typing import Any
 
 import attrs
 
-from impactlab.units import RAD_TO_DEG, RADS_TO_RPM
+from impactlab.units import DIMENSIONS, RAD_TO_DEG, RADS_TO_RPM, registry, to_si
 from impactlab.validators import inside
 from impactlab.errors import FieldError
 
@@ -401,6 +401,27 @@ def is_history(name: str) -> bool:
     :data:`SCALAR_OUTPUTS`, :data:`HISTORY_OUTPUTS`) instead of comparing ``OUTPUTS[name].kind``.
     """
     return name in _HISTORIES
+
+
+def output_unit_factor(name: str, units: str | None) -> float:
+    """The factor that turns values of output ``name`` written in ``units`` into the vocabulary's unit
+    (``OUTPUTS[name].units``): 1 where ``units`` is missing or already that unit.
+
+    A result edited with xarray (``ball_speed`` converted to mph, its ``units`` attribute with it) is read in the
+    units it states; every reader of a result's values (the GSPro export, the trajectory figure) goes through this.
+
+    Raises
+    ------
+    FieldError
+        At ``<name>.units`` when ``units`` is not a unit of the output's quantity.
+    """
+    expected = OUTPUTS[name].units
+    if not units or units == expected:
+        return 1.0
+    dimensionality = registry().Unit(expected).dimensionality
+    dimension = next(name for name, (si_unit, _, _) in DIMENSIONS.items()  # angle (rad) before dimensionless
+                     if registry().Unit(si_unit).dimensionality == dimensionality)
+    return to_si(f"1 {units}", dimension, path=f"{name}.units") / to_si(f"1 {expected}", dimension)
 
 
 def check_output_names(names: Iterable[str], path: str = "outputs") -> tuple[str, ...]:

@@ -814,3 +814,31 @@ def test_a_flight_shorter_than_one_step_lands_where_the_projectile_does():
     np.testing.assert_allclose(shots.carry_distance.values, v * v / g, rtol=1e-9)
     np.testing.assert_allclose(shots.flight_time.values, 2 * v * np.sin(np.radians(45.0)) / g, rtol=1e-9)
     np.testing.assert_allclose(shots.landing_angle.values, 45.0, atol=1e-6)
+
+
+def test_trajectories_read_a_launch_edited_into_other_units(tmp_path, monkeypatch):
+    """A result whose ball speed was converted to mph and spins to rad/s with xarray (units attributes with them)
+    flies the same launch as the file as written: the figure reads each value in the unit it states (trust7 left
+    this: 100 mph was flown as 100 m/s); a units attribute of the wrong kind is refused."""
+    import impactlab
+    from impactlab.errors import FieldError
+    from impactlab.plot import trajectories
+
+    result = impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]))
+    flown = []
+    original = trajectories.fly
+    monkeypatch.setattr(trajectories, "fly", lambda *a, **k: flown.append(np.concatenate([a[0], a[2]]))  # speed, spin
+                        or original(*a, **k))
+    trajectories.plot_trajectories(result, tmp_path / "a.png")
+    edited = result.copy()
+    edited["ball_speed"] = result.ball_speed / 0.44704
+    edited["ball_speed"].attrs = dict(result.ball_speed.attrs, units="mph")
+    for name in ("back_spin", "side_spin"):
+        edited[name] = result[name] * np.pi / 30.0
+        edited[name].attrs = dict(result[name].attrs, units="rad/s")
+    trajectories.plot_trajectories(edited, tmp_path / "b.png")
+    assert len(flown) >= 2 and all(np.allclose(a, b, rtol=1e-12) for a, b in zip(flown[:len(flown) // 2],
+                                                                                  flown[len(flown) // 2:]))
+    edited["ball_speed"].attrs["units"] = "deg"
+    with pytest.raises(FieldError, match=r"ball_speed\.units"):
+        trajectories.plot_trajectories(edited, tmp_path / "c.png")

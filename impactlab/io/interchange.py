@@ -57,7 +57,7 @@ import xarray as xr
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import write_atomically
 from impactlab.units import MPH, to_si
-from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM
+from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, TIME_DIM, output_unit_factor
 
 #: outputs a GSPro shot needs
 GSPRO_OUTPUTS = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "spin_rate", "spin_axis")
@@ -173,22 +173,12 @@ def wire_message(message: dict) -> bytes:
     return json.dumps(sent, separators=(",", ":"), allow_nan=False).encode("utf-8")
 
 
-#: the dimension of each ball output a shot carries (their units are the vocabulary's in an impactlab result)
-_BALL_DIMENSIONS = {"ball_speed": "speed", "vertical_launch_angle": "angle", "horizontal_launch_angle": "angle",
-                    "spin_rate": "angular_speed", "spin_axis": "angle"}
-
-
 def _to_vocabulary_units(values: xr.DataArray) -> float:
     """The factor from a ball output's ``units`` to the vocabulary's: 1 for impactlab's own file (and for a dataset
     made in Python without units attributes, which :func:`gspro_shots` reads in the vocabulary's units). A result
     edited with xarray (ball_speed converted to mph, its units attribute with it) was read as m/s, and 100 mph was
     sent as 224 mph without a word."""
-    name = str(values.name)
-    units, expected = values.attrs.get("units"), OUTPUTS[name].units
-    if not units or units == expected:
-        return 1.0
-    dimension = _BALL_DIMENSIONS[name]
-    return to_si(f"1 {units}", dimension, path=f"{name}.units") / to_si(f"1 {expected}", dimension)
+    return output_unit_factor(str(values.name), values.attrs.get("units"))
 
 
 def _flat(values: xr.DataArray, reference: xr.DataArray) -> np.ndarray:

@@ -10,7 +10,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.errors import FieldError
-from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM
+from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, output_unit_factor
 from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS, DEFAULT_MODEL
 from impactlab.physics.flight import fly
 from impactlab.scene.flight import air_arrays
@@ -83,8 +83,11 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     mass = float(scene.get("ball_mass", BALL_MASS))
     radius = float(scene.get("ball_radius", BALL_RADIUS))
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
-    stacked = dataset[list(TRAJECTORY_LAUNCH)].stack(case=case_dims) if case_dims else \
-        dataset[list(TRAJECTORY_LAUNCH)].expand_dims(case=[0])
+    # each launch value in the units its attribute states (a result edited with xarray), turned to the vocabulary's
+    launch = dataset[list(TRAJECTORY_LAUNCH)]
+    launch = launch.assign({name: launch[name] * output_unit_factor(name, launch[name].attrs.get("units"))
+                            for name in TRAJECTORY_LAUNCH})
+    stacked = launch.stack(case=case_dims) if case_dims else launch.expand_dims(case=[0])
     n_cases = stacked.sizes["case"]
     shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
     figure = Figure(figsize=(10.5, 7.5))
