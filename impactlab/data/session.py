@@ -33,12 +33,11 @@ import attrs
 import numpy as np
 
 from impactlab.scene.plausibility import wrong_sign
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import StudyError
 from impactlab.scene.catalogue import club_key
 from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
-from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, ColumnRule, VendorMap,
-                                            _generic_field, _header_index, _norm, _recognise, _unit_factor,
-                                            split_header)
+from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, VendorMap,
+                                            _column_plan, _header_index, _norm, _recognise, split_header)
 from impactlab.data.session_json import json_rows, looks_like_json
 from impactlab.data.session_air import _air_from_text, _check_air
 from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
@@ -264,57 +263,9 @@ def read_session_text(text: str, file: str = "<csv>", vendor: str | None = None)
     body_lines = [body_lines[i] for i in keep]
 
     # columns: which field, which unit, which sign
-    problems = []
-    plan, unused, repeated = [], [], []
-    by_field: dict[str, int] = {}
-    for column, cell in enumerate(header):
-        if not cell:
-            continue
-        if layout is GENERIC:
-            field, unit = _generic_field(cell)
-            rule = None if field is None else ColumnRule(field)
-        else:
-            rule = layout.rule(cell, units_row[column] if units_row and column < len(units_row) else None)
-            unit = split_header(cell)[1]
-        if rule is None:
-            unused.append(cell)
-            continue
-        field = rule.field
-        if field in by_field and layout.merge_repeated_columns and _norm(cell) == _norm(header[by_field[field]]):
-            repeated.append((by_field[field], column))  # FlightScope writes some columns twice: merged, said
-            continue
-        if field in by_field:
-            problems.append(f"{file}:{header_line}: columns {header[by_field[field]]!r} and {cell!r} both give "
-                            f"the {DESCRIPTIONS[field]} ({field}); keep one")
-            continue
-        by_field[field] = column
-        if field in FIELDS:
-            if units_row is not None and column < len(units_row) and units_row[column]:
-                if unit is not None and _norm(unit) != _norm(units_row[column]):
-                    problems.append(f"{file}:{header_line}: column {cell!r} states two units ({unit!r} in its "
-                                    f"name, {units_row[column]!r} in the units row)")
-                unit = units_row[column]
-            if unit is None and layout.units == "implied":
-                unit = layout.implied_units.get(_norm(split_header(cell)[0]))
-            where = f"{file}:{header_line}:{column + 1} ({cell})"
-            if unit is None and FIELDS[field] != "dimensionless":
-                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]}: in brackets, in the "
-                                f"header ('{split_header(cell)[0]} [mph]'-style: '{split_header(cell)[0]} [unit]') or "
-                                f"in a units row right under it ('[mph]', '[deg]', '[rpm]': every unit in brackets, "
-                                f"else the row is read as a shot); a number without its unit is not read (115 could "
-                                f"be mph or m/s)")
-                continue
-            unit = layout.unit_spellings.get(_norm(unit), unit) if unit else unit  # the layout's own spellings
-            try:
-                factor = _unit_factor(unit or "", FIELDS[field], where)
-            except FieldError as exc:
-                problems.append(str(exc))
-                continue
-        else:
-            factor = None
-        plan.append((column, cell, field, unit, rule.sign, factor))
-    if problems:
-        raise StudyError(f"{file}: " + "; ".join(problems))
+    plan, unused, repeated = _column_plan(header, layout, units_row, file, header_line)
+    problems: list[str] = []
+    by_field = {field: column for column, _, field, *_ in plan}
     in_row = set() if units_row is None else {column for column, cell in enumerate(units_row) if cell}
     implied = [f"{cell} [{unit}]" for column, cell, field, unit, _, factor in plan
                if layout.units == "implied" and factor is not None and unit and split_header(cell)[1] is None
