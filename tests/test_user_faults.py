@@ -51,6 +51,17 @@ def result_file(tmp_path_factory):
 
 
 # -- an output never replaces a file the command reads ---------------------------------------------------------
+def _users_files(folder, result_file, export: str):
+    """A user's study, session export (a copy of the fixture ``export``) and result file in ``folder``."""
+    study = folder / "study.yaml"
+    study.write_text(STUDY)
+    session = folder / "session.csv"
+    session.write_bytes((VENDORS / export).read_bytes())
+    result = folder / "result.h5"
+    result.write_bytes(result_file.read_bytes())
+    return study, session, result
+
+
 @pytest.mark.parametrize("command", [
     ["run", "{study}", "-o", "{study}"],
     ["run", "{study}", "-o", "./{study_name}"],
@@ -66,12 +77,7 @@ def test_an_output_naming_a_file_the_command_reads_is_refused_and_the_file_kept(
     """Before: each of these replaced the user's study, session or result by the output, exit 0 (the only copy
     of a session or of an hour's result lost to a typo); `fly` and `shots` were the only commands that checked."""
     monkeypatch.chdir(tmp_path)
-    study = tmp_path / "study.yaml"
-    study.write_text(STUDY)
-    session = tmp_path / "session.csv"
-    session.write_bytes((VENDORS / "trackman_tps_drivers.csv").read_bytes())
-    result = tmp_path / "result.h5"
-    result.write_bytes(result_file.read_bytes())
+    study, session, result = _users_files(tmp_path, result_file, "trackman_tps_drivers.csv")
     club = tmp_path / "driver.yaml"
     club.write_text("name: my driver\nnames: [Driver]\nbase: driver\n")
     kept = {path: digest(path) for path in (study, session, result, club)}
@@ -678,12 +684,7 @@ def test_a_control_character_in_yaml_is_one_line(tmp_path, capsys):
     (["paper", "{tmp}", "-o", "{session}"], "(report): expected a file name ending in .md"),
 ])
 def test_an_output_whose_suffix_names_another_kind_of_file_is_refused(tmp_path, capsys, result_file, command, says):
-    study = tmp_path / "study.yaml"
-    study.write_text(STUDY)
-    session = tmp_path / "session.csv"
-    session.write_bytes((VENDORS / "trackman_tps.csv").read_bytes())
-    result = tmp_path / "result.h5"
-    result.write_bytes(result_file.read_bytes())
+    study, session, result = _users_files(tmp_path, result_file, "trackman_tps.csv")
     kept = {path: digest(path) for path in (study, session, result)}
     args = [part.format(study=study, session=session, result=result, tmp=tmp_path) for part in command]
     code, err = cli(capsys, *args)
