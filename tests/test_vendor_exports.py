@@ -329,3 +329,20 @@ def test_translated_garmin_exports_state_their_air_as_the_english_one(name):
     assert v["relative_humidity"][0] == pytest.approx(float(first[column["[%]"]]) / 100)
     assert v["air_density"][0] == pytest.approx(float(first[column["[g/L]"]]))
     assert any(note.startswith("air density: as its temperature") for note in session.notes), header
+
+
+@pytest.mark.parametrize("content, says", [
+    (b"PK\x03\x04\x14\x00\x06\x00" + b"\x00" * 22 + b"[Content_Types].xml" + b"\x00" * 40 + b"xl/workbook.xml",
+     "is an Excel workbook (.xlsx), not a text export; save the sheet as CSV"),
+    (bytes.fromhex("d0cf11e0a1b11ae1") + b"\x00" * 504, "is an Excel 97-2003 workbook (.xls)"),
+    (b"PK\x03\x04" + b"\x00" * 26 + b"mimetypeapplication/vnd.oasis.opendocument.spreadsheet",
+     "is an OpenDocument spreadsheet (.ods)"),
+])
+def test_a_workbook_given_as_a_session_is_named_and_the_way_out_said(tmp_path, capsys, content, says):
+    """A TrackMan or FlightScope session saved as a workbook (the file's magic bytes, written here) was called 'a
+    binary file'; it is named, and the user is told to save or export CSV. One line, exit 2."""
+    path = tmp_path / "session.xlsx"
+    path.write_bytes(content)
+    assert main(["shots", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert says in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err

@@ -34,9 +34,28 @@ def _read_bytes(path: Path) -> str:
             return data.decode("utf-16")
         except UnicodeDecodeError:
             raise StudyError(f"{path}: is not UTF-16 text after its UTF-16 byte-order mark") from None
+    workbook = _workbook_kind(data)
+    if workbook:
+        raise StudyError(f"{path}: is {workbook}, not a text export; save the sheet as CSV (UTF-8) from the "
+                         f"spreadsheet program, or export CSV from the launch monitor's software, and read that file")
     if b"\0" in data:
         raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a shot table")
     return utf8_text(data, path, "shot table")
+
+
+def _workbook_kind(data: bytes) -> str:
+    """What spreadsheet ``data`` is ('' for none): an .xlsx or .ods is a ZIP archive holding xl/ or an
+    OpenDocument mimetype; an .xls (Excel 97-2003) a Compound File (magic D0 CF 11 E0 A1 B1 1A E1)."""
+    if data.startswith(b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"):
+        return "an Excel 97-2003 workbook (.xls)"
+    if data.startswith(b"PK\x03\x04"):
+        head = data[:4096]
+        if b"xl/" in data or b"[Content_Types].xml" in head:
+            return "an Excel workbook (.xlsx)"
+        if b"opendocument.spreadsheet" in head:
+            return "an OpenDocument spreadsheet (.ods)"
+        return "a ZIP archive"
+    return ""
 
 
 def _row_key(cells) -> tuple:
