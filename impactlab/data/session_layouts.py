@@ -15,7 +15,7 @@ from importlib import resources
 import attrs
 
 from impactlab.errors import FieldError, StudyError
-from impactlab.units import ZERO_DEPENDS_ON_UNIT, to_si
+from impactlab.units import DIMENSIONS, ZERO_DEPENDS_ON_UNIT, to_si, unit_affine
 from impactlab.data.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
@@ -338,10 +338,10 @@ def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
         if spelled == "%":  # a relative humidity's [%]: the vocabulary's fractions
             return 0.01, 0.0
         raise FieldError(where, "a number without unit (or a percentage, [%])", unit)
+    scale = to_si(f"1 {spelled}", dimension, where)  # refuses a unit that is not one of this dimension
     if dimension in ZERO_DEPENDS_ON_UNIT:
-        offset = to_si(f"0 {spelled}", dimension, where)
-        return to_si(f"1 {spelled}", dimension, where) - offset, offset
-    return to_si(f"1 {spelled}", dimension, where), 0.0
+        return unit_affine(spelled, DIMENSIONS[dimension][0])
+    return scale, 0.0
 
 
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
