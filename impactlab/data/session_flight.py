@@ -184,8 +184,7 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
               "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
     attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
                   "skipped": "; ".join(skipped), "air_source": air_source}
-    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes
-                       and (len({repr(air) for air in airs}) == 1 or not key.startswith("air_"))})
+    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
@@ -247,24 +246,28 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
 
 
 def _fly_in(airs: list, v: dict, rows: np.ndarray, model: str, session: Session):
-    """Fly ``rows`` of ``v``, each in its air (shots sharing an air in one call); (the flights, with the dataset of
-    the first air's attributes, and each shot's air density [kg/m^3])."""
+    """Fly ``rows`` of ``v``, each in its air (shots sharing an air in one call); (the flights, with the attributes
+    of the flight, its air's only where every shot shared one, and each shot's air density [kg/m^3])."""
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    keys = [repr(air) for air in airs]
+    groups: dict[str, list[int]] = {}  # the shots of each air, in one pass (a session may state many airs)
+    for index, air in enumerate(airs):
+        groups.setdefault(repr(air), []).append(index)
     results: dict[str, np.ndarray] = {name: np.full(rows.size, np.nan) for name in PREDICTED}
     density = np.full(rows.size, np.nan)
     first = None
-    for key in dict.fromkeys(keys):
-        same = np.array([k == key for k in keys])
+    for members in groups.values():
+        same = np.array(members)
         picked = rows[same]
         flown = flight.fly(v["ball_speed"][picked], v["vertical_launch_angle"][picked], v["spin_rate"][picked],
-                           np.nan_to_num(axis[same]), np.nan_to_num(direction[same]), airs[keys.index(key)],
+                           np.nan_to_num(axis[same]), np.nan_to_num(direction[same]), airs[members[0]],
                            model=model)
         for name in PREDICTED:
             results[name][same] = flown[name].values
         density[same] = flown.attrs["air_density_kg_m3"]
         first = first if first is not None else flown
     assert first is not None, "at least one shot is flown"
+    # the air_* attributes describe one air: kept where every shot flew in it (each shot's density is returned)
+    attributes = {key: value for key, value in first.attrs.items() if len(groups) == 1 or not key.startswith("air_")}
     dataset = xr.Dataset({name: ("shot", results[name], dict(first[name].attrs)) for name in PREDICTED},
-                         attrs=dict(first.attrs))
+                         attrs=attributes)
     return dataset, density
