@@ -18,6 +18,10 @@ from impactlab.physics.atmosphere import air_density
 #: own agrees with impactlab.physics.atmosphere.air_density to 0.01 % on the real exports; a temperature read in the
 #: wrong unit moves it by 5 % or more: 1 degF against 1 degC at 15 degC is 1.9 %, 60 degF read as degC 15 %)
 AIR_DENSITY_TOLERANCE = 0.01
+#: each air field's SI value in the words people read it in (reports and messages)
+AIR_IN_WORDS = {"air_temperature": lambda x: f"{x - 273.15:.1f} degC ({x:.2f} K)",
+                "air_pressure": lambda x: f"{x / 100:.1f} hPa", "altitude": lambda x: f"{x:.0f} m",
+                "relative_humidity": lambda x: f"{100 * x:.0f} %"}
 
 
 def _check_air(values: dict, notes: list, flags: dict) -> None:
@@ -41,10 +45,9 @@ def _check_air(values: dict, notes: list, flags: dict) -> None:
     first = int(np.flatnonzero(off)[0])
     notes.append(f"air density differs from the density of its temperature, pressure and humidity by more than "
                  f"{100 * AIR_DENSITY_TOLERANCE:g} % in {int(off.sum())} of {int(complete.sum())} row(s) (first: "
-                 f"{stated[first]:.4f} kg/m^3 stated, {computed[first]:.4f} computed from "
-                 f"{values['air_temperature'][first] - 273.15:.1f} degC, {values['air_pressure'][first] / 1e3:.2f} "
-                 f"kPa, {100 * values['relative_humidity'][first]:.0f} %): a unit or a column is wrong; that air is "
-                 f"flagged inconsistent and not flown")
+                 f"{stated[first]:.4f} kg/m^3 stated, {computed[first]:.4f} computed from " + ", ".join(
+                     AIR_IN_WORDS[field](values[field][first]) for field in fields[:3])
+                 + "): a unit or a column is wrong; that air is flagged inconsistent and not flown")
 
 
 def _air_from_text(layout, header, columns, values, used, unused, notes, file: str, lines) -> None:
@@ -98,7 +101,5 @@ _NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s
 def _air_words(field: str, array: np.ndarray) -> str:
     finite = array[np.isfinite(array)]
     low, high = finite.min(), finite.max()
-    shown = {"air_temperature": (lambda x: f"{x - 273.15:.1f} degC"), "altitude": (lambda x: f"{x:.0f} m"),
-             "air_pressure": (lambda x: f"{x / 1e3:.2f} kPa"), "relative_humidity": (lambda x: f"{100 * x:.0f} %")}
-    form = shown[field]
+    form = AIR_IN_WORDS[field]
     return f"{field.replace('_', ' ')} {form(low)}" + ("" if low == high else f" to {form(high)}")

@@ -38,6 +38,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.data.session import Session
+from impactlab.data.session_air import AIR_IN_WORDS
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
@@ -228,11 +229,9 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
             airs.append(flight.Conditions(**given))
         except FieldError as exc:  # the row's value in the words people use for it, not its SI float
             key = exc.path.split(".")[-1]
-            shown = {"temperature": lambda x: f"{x - 273.15:.1f} degC ({x:.2f} K)",
-                     "pressure": lambda x: f"{x / 100:.1f} hPa", "altitude": lambda x: f"{x:.0f} m",
-                     "relative_humidity": lambda x: f"{100 * x:.0f} %"}
+            field = next((field for field, name in SESSION_AIR.items() if name == key), None)
             value = given.get(key)
-            raise FieldError(f"air.{exc.path}", exc.expected, shown[key](value) if key in shown and value is not None
+            raise FieldError(f"air.{exc.path}", exc.expected, AIR_IN_WORDS[field](value) if field and value is not None
                              else exc.given, file=str(session.file), line=session.lines[row]) from None
     standard = rows.size - stated
     stated_fields = [words for field, words in (("air_pressure", "pressure"), ("altitude", "altitude"),
