@@ -7,7 +7,8 @@ Draws docs/figures/flight_candidates.png (docs/flight.md, "Which change removes 
   open markers) and with ``measured_fit_late_crisis`` (filled);
 - middle: carry RMS against the drag-crisis midpoint Re_d, c0 fitted on the radar seasons at each (seasons: black;
   the three tables: colours); grey beyond the measured positions' upper edge;
-- right: CD against Re of measured_fit and of the late crisis at 2250 rpm and without spin, beside the measured rows:
+- right: CD against Re of measured_fit, of the late crisis and of the crisis advanced by spin (refitted on the same
+  rows, :func:`impactlab.data.aero_fit.fit_spin_advance`) at 2250 rpm and without spin, beside the measured rows:
   three modern balls at 2250 rpm (Lyu, Kensrud & Smith 2020, Fig. 3) and the 13-ball non-spinning mean (Lyu et al.
   2018, Fig. 3a).
 
@@ -35,7 +36,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def main() -> Path:
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5.2))
+    fig, axes = plt.subplots(1, 3, figsize=(17, 6.0))
     ax = axes[0]
     for name in TABLES:
         colour, marker, label = STYLE[name]
@@ -83,6 +84,13 @@ def main() -> Path:
                 label=f"{model}, 2250 rpm")
         ax.plot(re, aero_coefficients(0.0 * re, re, model)[0], color="0.3", linestyle=style,
                 label=f"{model}, no spin")
+    # the crisis refitted on the same rows with its midpoint moving with spin (aero_fit.fit_spin_advance)
+    advance = flight_candidates.CANDIDATES["crisis advanced by spin (measured)"][1]["crisis_spin_advance"]
+    advanced = flight_candidates.coefficients(crisis_spin_advance=advance)
+    for s, style, label in ((spin, "-", "2250 rpm"), (0.0 * re, "--", "no spin"),
+                            (0.35 + 0.0 * re, ":", "S 0.35 (a long iron's descent)")):
+        ax.plot(re, advanced(s, re)[0], color="tab:blue", linestyle=style, linewidth=1.2,
+                label=f"crisis advanced by spin (fitted on these rows), {label}")
     m = aero_fit.measurements()
     spinning = np.isin(m["block"], ["lyu_2020_fig3_prov1", "lyu_2020_fig3_chromesoft", "lyu_2020_fig3_b330rx"])
     ax.plot(m["re"][spinning], m["cd"][spinning], "o", color="tab:red", markerfacecolor="none",
@@ -95,8 +103,9 @@ def main() -> Path:
     ax.set_ylim(0.15, 0.55)
     ax.set_xlabel("Reynolds number")
     ax.set_ylabel("C_D")
-    ax.set_title("The late crisis against the measured drag\n(spin ratio of 2250 rpm at each Re in air at 20 degC)")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title("The crisis models against the measured drag:\nspin moves the crisis to lower Re\n"
+                 "(2250 rpm: its spin ratio at each Re in air at 20 degC)", fontsize=10)
+    ax.legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=1)
     fig.tight_layout()
     out = ROOT / "docs" / "figures" / "flight_candidates.png"
     fig.savefig(out, dpi=110)

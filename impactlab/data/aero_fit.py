@@ -60,37 +60,56 @@ def lift_supercritical(s, a, b):
     return a * s / (1.0 + b * s)
 
 
-def crisis_terms(s, re, re_l, sigma, beta, s_l, re_d, w_d, d):
-    """(added drag, lift factor) of the drag crisis at ``re`` and ``s``."""
-    drag = d * 0.5 * (1.0 - np.tanh(0.5 * (re - re_d) / w_d))  # d / (1 + exp((Re - Re_d) / w_d)), no overflow
+def crisis_terms(s, re, re_l, sigma, beta, s_l, re_d, w_d, d, spin_advance=0.0):
+    """(added drag, lift factor) of the drag crisis at ``re`` and ``s``.
+
+    ``spin_advance`` (m) moves the drag step's midpoint with the spin ratio, ``Re_d exp(-m S)``: m > 0 is a crisis
+    reached at a lower Re the more the ball spins. ``measured_fit`` has m = 0 (:func:`fit`); :func:`fit_spin_advance`
+    measures m.
+    """
+    midpoint = re_d * np.exp(-spin_advance * s)
+    drag = d * 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / w_d))  # d / (1 + exp((Re - Re_d) / w_d)), no overflow
     lift = 1.0 - beta * np.exp(-0.5 * (np.log(re / re_l) / sigma) ** 2) * np.exp(-s / s_l)
     return drag, lift
 
 
-def fit() -> dict:
-    """Fit the three stages (module docstring) to :func:`measurements`.
+#: stage 3's start, scale and bounds per parameter (Re_l, sigma, beta, s_l, Re_d, w_d, d), then the spin advance m
+_CRISIS_START = [6.3e4, 0.1, 1.5, 0.2, 5.8e4, 5e3, 0.3]
+_CRISIS_SCALE = [1e4, 0.05, 0.5, 0.1, 1e4, 1e3, 0.1]
+_CRISIS_BOUNDS = ([4e4, 0.02, 0, 0.02, 3e4, 500, 0], [1e5, 0.5, 5, 2, 1e5, 3e4, 1])
+#: the spin advance's start, scale and bounds (either sign allowed: the data decide the direction)
+_ADVANCE = (0.5, 0.5, (-5.0, 5.0))
 
-    Returns
-    -------
-    dict
-        ``lift`` (a, b), ``drag`` (offsets per group in :data:`GROUPS` order, c_re, k), ``crisis`` (Re_l, sigma,
-        beta, s_l, Re_d, w_d, d), and ``rms`` residuals per stage and quantity.
-    """
+
+def _rms(x) -> float:
+    return float(np.sqrt(np.mean(np.square(x))))
+
+
+def _supercritical_stages(m: dict):
+    """Stages 1 and 2: the lift (a, b), the drag (offsets per group, c_re, k) and their row masks."""
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
-    m = measurements()
     re, s, cd, cl, group, sc = m["re"], m["s"], m["cd"], m["cl"], m["group"], m["supercritical"]
     lift_rows = sc & np.isfinite(cl)
     lift = least_squares(lambda p: lift_supercritical(s[lift_rows], *p) - cl[lift_rows], [2.0, 4.0]).x
-
     drag_rows = sc & np.isfinite(cd)
 
     def drag_model(p, rows):
         return p[group[rows]] + p[3] * re[rows] / 1e5 + p[4] * lift_supercritical(s[rows], *lift) ** 2
 
     drag = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.2, 0.2, 0.25, 0.0, 1.0]).x
-    offset = drag[GROUPS.index(MODEL_GROUP)]
+    rms = {"lift supercritical": _rms(lift_supercritical(s[lift_rows], *lift) - cl[lift_rows]),
+           "drag supercritical": _rms(drag_model(drag, drag_rows) - cd[drag_rows])}
+    return lift, drag, lift_rows, rms
 
+
+def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
+    """Stage 3 on the modern balls' rows: the crisis constants (plus the spin advance m when asked), their standard
+    errors from the Jacobian, and the residual RMS per row set."""
+    from scipy.optimize import least_squares  # scipy-heavy: only when fitting
+
+    re, s, cd, cl, group, sc = m["re"], m["s"], m["cd"], m["cl"], m["group"], m["supercritical"]
+    offset = drag[GROUPS.index(MODEL_GROUP)]
     modern = group == GROUPS.index(MODEL_GROUP)
     low_cd = modern & ~sc & np.isfinite(cd)
     low_cl = modern & ~sc & np.isfinite(cl)
@@ -108,23 +127,71 @@ def fit() -> dict:
                                coefficients(p, high_cd)[0] - cd[high_cd],
                                coefficients(p, lift_rows)[1] - cl[lift_rows]])
 
-    crisis = least_squares(residuals, [6.3e4, 0.1, 1.5, 0.2, 5.8e4, 5e3, 0.3],
-                           x_scale=[1e4, 0.05, 0.5, 0.1, 1e4, 1e3, 0.1],
-                           bounds=([4e4, 0.02, 0, 0.02, 3e4, 500, 0], [1e5, 0.5, 5, 2, 1e5, 3e4, 1])).x
+    start, scale, (low, high) = list(_CRISIS_START), list(_CRISIS_SCALE), _CRISIS_BOUNDS
+    if spin_advance:
+        start, scale = start + [_ADVANCE[0]], scale + [_ADVANCE[1]]
+        low, high = [*low, _ADVANCE[2][0]], [*high, _ADVANCE[2][1]]
+    solution = least_squares(residuals, start, x_scale=scale, bounds=(low, high))
+    # standard errors: (J^T J)^-1 times the residual variance (least_squares' Jacobian at the solution)
+    variance = float(solution.fun @ solution.fun) / (solution.fun.size - solution.x.size)
+    errors = np.sqrt(np.diag(np.linalg.pinv(solution.jac.T @ solution.jac)) * variance)
+    p = solution.x
+    rms = {"drag crisis (modern, Re < 7.4e4)": _rms(coefficients(p, low_cd)[0] - cd[low_cd]),
+           "lift crisis (modern, Re < 7.4e4)": _rms(coefficients(p, low_cl)[1] - cl[low_cl]),
+           "drag supercritical (modern)": _rms(coefficients(p, high_cd)[0] - cd[high_cd]),
+           "lift crisis without the crisis terms": _rms(lift_supercritical(s[low_cl], *lift) - cl[low_cl])}
+    rows = {"drag crisis": int(low_cd.sum()), "lift crisis": int(low_cl.sum())}
+    return p, errors, rms, rows
 
-    def rms(x):
-        return float(np.sqrt(np.mean(np.square(x))))
 
+def fit() -> dict:
+    """Fit the three stages (module docstring) to :func:`measurements`.
+
+    Returns
+    -------
+    dict
+        ``lift`` (a, b), ``drag`` (offsets per group in :data:`GROUPS` order, c_re, k), ``crisis`` (Re_l, sigma,
+        beta, s_l, Re_d, w_d, d), and ``rms`` residuals per stage and quantity.
+    """
+    m = measurements()
+    lift, drag, lift_rows, rms = _supercritical_stages(m)
+    crisis, _, crisis_rms, crisis_rows = _crisis_stage(m, lift, drag, lift_rows, spin_advance=False)
+    rms.update({key: value for key, value in crisis_rms.items() if key != "drag supercritical (modern)"})
     return {"lift": tuple(float(v) for v in lift), "drag": tuple(float(v) for v in drag),
-            "crisis": tuple(float(v) for v in crisis),
-            "rms": {"lift supercritical": rms(lift_supercritical(s[lift_rows], *lift) - cl[lift_rows]),
-                    "drag supercritical": rms(drag_model(drag, drag_rows) - cd[drag_rows]),
-                    "drag crisis (modern, Re < 7.4e4)": rms(coefficients(crisis, low_cd)[0] - cd[low_cd]),
-                    "lift crisis (modern, Re < 7.4e4)": rms(coefficients(crisis, low_cl)[1] - cl[low_cl]),
-                    "lift crisis without the crisis terms": rms(
-                        lift_supercritical(s[low_cl], *lift) - cl[low_cl])},
-            "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(drag_rows.sum()),
-                     "drag crisis": int(low_cd.sum()), "lift crisis": int(low_cl.sum())}}
+            "crisis": tuple(float(v) for v in crisis), "rms": rms,
+            "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(np.sum(
+                m["supercritical"] & np.isfinite(m["cd"]))), **crisis_rows}}
+
+
+def fit_spin_advance() -> dict:
+    """Stage 3 refitted with the drag crisis' midpoint moving with the spin ratio, ``Re_d exp(-m S)``
+    (:func:`crisis_terms`), on the same measured rows as ``measured_fit``; stages 1 and 2 unchanged.
+
+    The modern balls' rows measure the crisis at two spin ratios: the 13-ball non-spinning mean (Lyu et al. 2018
+    Fig. 3a: CD 0.302 at Re 7.5e4, S 0) and three balls at 2250 rpm (Lyu, Kensrud & Smith 2020 Fig. 3: CD 0.25-0.27
+    at Re 7.5e4, S 0.18; 0.32-0.375 at 6.2e4, S 0.22). ``measured_fit`` (m = 0) fits the spinning rows and leaves the
+    non-spinning 0.302 0.10 below. A measured m > 0 is a crisis that spin advances to a lower Re, i.e. less drag, not
+    more, on the slow, high-S descent of irons and woods (docs/flight.md, "Which change removes the spin-ratio
+    residual").
+
+    Returns
+    -------
+    dict
+        ``crisis`` (Re_l, sigma, beta, s_l, Re_d at S = 0, w_d, d, m), ``errors`` (their standard errors from the
+        Jacobian), ``rms`` (per row set, beside ``measured_fit``'s under ``rms_without``).
+    """
+    m = measurements()
+    lift, drag, lift_rows, _ = _supercritical_stages(m)
+    crisis, errors, rms, _ = _crisis_stage(m, lift, drag, lift_rows, spin_advance=True)
+    _, _, rms_without, _ = _crisis_stage(m, lift, drag, lift_rows, spin_advance=False)
+    return {"crisis": tuple(float(v) for v in crisis), "errors": tuple(float(v) for v in errors), "rms": rms,
+            "rms_without": rms_without}
+
+
+@functools.cache
+def fit_spin_advance_cached() -> tuple:
+    """:func:`fit_spin_advance`'s crisis constants, computed once per process."""
+    return fit_spin_advance()["crisis"]
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the constants of docs/flight.md
@@ -136,3 +203,9 @@ if __name__ == "__main__":  # pragma: no cover - prints the constants of docs/fl
     for key, value in result["rms"].items():
         print(f"rms {key}: {value:.4f}")
     print(result["rows"])
+    advance = fit_spin_advance()
+    names = ("Re_l", "sigma", "beta", "s_l", "Re_d(S=0)", "w_d", "d", "m")
+    pairs = zip(names, advance["crisis"], advance["errors"])
+    print("crisis with its midpoint Re_d exp(-m S):", ", ".join(f"{n} {v:.4g} +- {e:.2g}" for n, v, e in pairs))
+    for key, value in advance["rms"].items():
+        print(f"rms {key}: {value:.4f} (m = 0: {advance['rms_without'][key]:.4f})")

@@ -37,7 +37,7 @@ import functools
 
 import numpy as np
 
-from impactlab.data import flight_fit
+from impactlab.data import aero_fit, flight_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics.aerodynamics import MEASURED_FIT
 
@@ -68,6 +68,10 @@ PARAMETERS = {
                      "logistic width of the drag step: up to the 13-ball mean's span (CD 0.477, 0.302, 0.215 at "
                      "Re 5e4, 7.5e4, 1e5, Lyu 2018 Fig. 3a)"),
     "lift_loss_shift": ((0.9, 1.2), 1.0, "centre Re_l of the lift lost in the crisis times this (as crisis_shift)"),
+    "crisis_spin_advance": ((0.61, 1.60), 0.0,
+                            "m of a drag-crisis midpoint Re_d exp(-m S), with Re_d, w_d and d of the same refit "
+                            "(impactlab.data.aero_fit.fit_spin_advance): measured 1.10 +- 0.25 on the modern balls' "
+                            "rows (+- 2 sigma); 0 is measured_fit's crisis"),
 }
 #: parameters that are scales or positions: a value <= 0 describes no ball (an inverted or infinitely sharp step)
 POSITIVE = ("crisis_shift", "crisis_width", "lift_loss_shift", "lift_saturation")
@@ -87,6 +91,8 @@ CANDIDATES = {
     "crisis position (drag and lift loss)": (("c0", "lift_loss_shift"), {"crisis_shift": None},
                                              "candidate 3: the whole crisis moved"),
     "crisis position (drag)": (("c0", "crisis_shift"), {}, "candidate 3: the drag step moved"),
+    "crisis advanced by spin (measured)": (("c0",), {"crisis_spin_advance": 1.103},
+                                           "candidate 4: the crisis position's measured dependence on spin"),
 }
 
 
@@ -117,12 +123,19 @@ def coefficients(**params):
                          f"positions, widths and the lift saturation are > 0, the spin decay >= 0)")
     p = {**defaults(), **params}
     m = MEASURED_FIT
+    # the drag step: measured_fit's, or with a spin advance the refit that measured it (its Re_d at S = 0, w_d, d)
+    re_d, width, height = m["re_d"], p["crisis_width"], m["d"]
+    if p["crisis_spin_advance"]:
+        _, _, _, _, re_d, refit_width, height, _ = aero_fit.fit_spin_advance_cached()
+        # the refit's width unless a crisis width other than measured_fit's is asked for
+        width = refit_width if width == PARAMETERS["crisis_width"][1] else width
 
     def cd_cl(s, re):
         lift_sc = m["a"] * s / (1.0 + p["lift_saturation"] * s)
-        step = 0.5 * (1.0 - np.tanh(0.5 * (re - m["re_d"] * p["crisis_shift"]) / p["crisis_width"]))
+        midpoint = re_d * p["crisis_shift"] * np.exp(-p["crisis_spin_advance"] * s)
+        step = 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / width))
         cd = (p["c0"] + p["drag_re_slope"] * re / 1.0e5 + m["k"] * lift_sc**2 + p["drag_spin_slope"] * s
-              + m["d"] * step)
+              + height * step)
         ratio = np.log(np.maximum(re, 1.0) / (m["re_l"] * p["lift_loss_shift"])) / m["sigma"]
         loss = m["beta"] * np.exp(-0.5 * ratio**2 - s / m["s_l"])
         return cd, lift_sc * (1.0 - loss)
