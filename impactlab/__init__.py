@@ -80,7 +80,7 @@ def fly(ball_speed: Any, launch_angle: Any, spin_rate: Any, spin_axis: Any = 0.0
     >>> import impactlab
     >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
     >>> round(float(shot.carry_distance), 1), shot.carry_distance.attrs["units"]
-    (252.5, 'm')
+    (251.1, 'm')
     """
     return _fly(ball_speed, launch_angle, spin_rate, spin_axis, launch_direction, conditions, **options)
 

@@ -157,16 +157,16 @@ def _response(model, freeze_re=False):
     return fa.density_response(model, freeze_re=freeze_re)
 
 
-def test_measured_fit_gains_half_the_measured_lower_bracket_and_its_re_dependence_takes_a_third():
+def test_measured_fit_gains_less_than_the_measured_bracket_and_its_re_dependence_takes_a_quarter():
     low, high = fa.bracket()["relative"]
     r = _response("measured_fit")
-    assert r["relative"] == pytest.approx(0.229, abs=0.003) and r["relative"] < 0.65 * low
-    # Castle Pines: +3.3 % against +7.4 % (adjusted) to +9.5 % (raw) measured
+    assert r["relative"] == pytest.approx(0.265, abs=0.003) and r["relative"] < 0.75 * low
+    # Castle Pines: +4.0 % against +7.4 % (adjusted) to +9.5 % (raw) measured
     castle = [e["event"] for e in fa.evidence()["events"]].index("BMW Championship 2024")
-    assert r["gains"][castle] == pytest.approx(0.033, abs=0.002)
-    # with its coefficients held at the seasons' Re the same model gains 0.337: closer to the bracket, still below
+    assert r["gains"][castle] == pytest.approx(0.040, abs=0.002)
+    # with its coefficients held at the seasons' Re the same model gains 0.352: closer to the bracket, still below
     frozen = _response("measured_fit", True)
-    assert frozen["relative"] == pytest.approx(0.337, abs=0.003) and frozen["relative"] < low
+    assert frozen["relative"] == pytest.approx(0.352, abs=0.003) and frozen["relative"] < low
     # Smits & Smith (1994), 9 % short on the tour driver (docs/flight.md), gains as much as the raw line (0.56)
     assert _response("smits_smith_1994")["relative"] == pytest.approx(high, rel=0.1)
 
@@ -192,7 +192,7 @@ def test_fitted_with_the_density_slope_regression_guard_hang_time_contradiction_
     seasons = scores["pgatour_radar_driver"]
     assert seasons["hang"] > 0.3  # the seasons flown 0.36 s longer than their measured hang times
     assert [round(100 * scores[t]["rms"], 1) for t in ("trackman_carry", "trackman_carry_pga_2023",
-                                                       "trackman_carry_lpga_2023")] == [2.9, 3.2, 3.5]
+                                                       "trackman_carry_lpga_2023")] == [2.5, 2.9, 2.0]
     model = fa.coefficients(params["c0"], params["lift_scale"])
     assert fa.density_response(model, ratios=())["relative"] < fa.bracket()["relative"][0]
 

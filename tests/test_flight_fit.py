@@ -92,7 +92,7 @@ def test_radar_seasons_fly_in_the_air_of_the_season_mean_density():
 def test_c0_bounds_are_the_measured_balls_drag_offsets():
     assert flight_fit.C0_BOUNDS == (aerodynamics.MEASURED_FIT_OFFSETS["modern"],
                                     aerodynamics.MEASURED_FIT_OFFSETS["bh_1976"])
-    assert flight_fit.C0_BOUNDS == pytest.approx((0.2072, 0.2736), abs=1e-4)
+    assert flight_fit.C0_BOUNDS == pytest.approx((0.1913, 0.2346), abs=1e-4)
 
 
 def test_coefficients_with_the_fitted_models_own_c0_fly_measured_fit_exactly():
@@ -118,16 +118,16 @@ def test_fit_reproduces_its_constants_from_the_yaml():
     result = _fit()
     assert result["c0"] == pytest.approx(flight_fit.FITTED["c0"], rel=1e-4)
     assert not result["at_bound"] and result["lift_scale"] == 1.0 and result["rows"] == 5
-    # measured: RMS 0.74 % over the five seasons (carry to ground impact, 25 degC)
+    # measured: RMS 0.69 % over the five seasons (carry to ground impact, 25 degC)
     assert result["rms_carry_error"] < 0.01
 
 
 def test_fit_recovers_a_drag_level_it_was_given():
-    # flights made with c0 = 0.235 and taken as measured: the least squares must return 0.235
+    # flights made with c0 = 0.225 and taken as measured: the least squares must return 0.225
     table = carry_table("pgatour_radar_driver")
-    made = validate_carry(flight_fit.coefficients(0.235), table)["carry"]
+    made = validate_carry(flight_fit.coefficients(0.225), table)["carry"]
     result = flight_fit.fit(tables={"pgatour_radar_driver": attrs.evolve(table, carry=made)})
-    assert result["c0"] == pytest.approx(0.235, abs=2e-5) and result["rms_carry_error"] < 1e-4
+    assert result["c0"] == pytest.approx(0.225, abs=2e-5) and result["rms_carry_error"] < 1e-4
 
 
 def test_fit_stays_inside_the_measured_balls_range():
@@ -149,7 +149,7 @@ def test_fit_refuses_what_it_cannot_fit():
 
 
 def test_leave_one_season_out_regression_guard():
-    # measured: c0 0.2112-0.2130 without each season; the season held out within -1.5..+1.1 %
+    # measured: c0 0.1945-0.1962 without each season; the season held out within -1.5..+1.0 %
     folds = _folds()
     assert [fold["group"] for fold in folds] == list(flight_fit.labels("pgatour_radar_driver"))
     for fold in folds:
@@ -160,50 +160,42 @@ def test_leave_one_season_out_regression_guard():
 
 def test_lift_scale_bounds_are_the_spread_of_the_measured_lift_rows():
     low, high = flight_fit.lift_scale_bounds()
-    assert 0.6 < low < 1.0 < high < 1.4  # measured: 0.73-1.21 (10th-90th percentile at S <= 0.2)
+    assert 0.6 < low < 1.0 < high < 1.4  # measured: 0.76-1.19 (10th-90th percentile at S <= 0.2)
 
 
 def test_tour_tables_held_out_regression_guard_and_what_stays_wrong():
-    # measured (docs/flight.md): classic 4.0 %, PGA 2023 4.4 %, LPGA 2023 4.4 % RMS with c0 fitted on the radar
-    # seasons; every table's 5-wood and hybrid 3-9 % long and 5-8 deg shallow; no row beyond 8.5 %
+    # measured (docs/flight.md): classic 2.23 %, PGA 2023 2.67 %, LPGA 2023 2.13 % RMS with c0 fitted on the radar
+    # seasons; no row beyond 5.9 % (the PGA 2023 PW short); what stays wrong: the woods, hybrids and 3-5 irons land
+    # 3.7-9.4 deg shallower than the tables say, with heights within 6.2 yd
     checks = flight_fit.held_out(flight_fit.FITTED["c0"])
-    for name, rms in (("trackman_carry", 0.041), ("trackman_carry_pga_2023", 0.045),
-                      ("trackman_carry_lpga_2023", 0.045)):
+    for name, rms in (("trackman_carry", 0.0235), ("trackman_carry_pga_2023", 0.028),
+                      ("trackman_carry_lpga_2023", 0.0225)):
         check = checks[name]
         assert check["rms_carry_error"] <= rms, name
-        assert check["rms_without_driver"] > 0.03, name  # the target is not met on the held-out rows either
-        assert np.all(np.abs(check["carry_error"]) <= 0.09), name
-        assert np.all(np.abs(check["height_error"]) <= 7 * YARD), name
-        assert np.all(np.abs(np.degrees(check["land_error"])) <= 10.5), name
-        long_shots = [i for i, club in enumerate(check["table"].clubs) if club in ("5-wood", "Hybrid")]
-        assert np.all(check["carry_error"][long_shots] > 0.02), name
-        assert np.all(np.degrees(check["land_error"][long_shots]) < -5.0), name
+        assert check["rms_without_driver"] <= 0.03, name  # the held-out rows without the drivers meet it too
+        assert np.all(np.abs(check["carry_error"]) <= 0.06), name
+        assert np.all(np.abs(check["height_error"]) <= 6.5 * YARD), name
+        assert np.all(np.abs(np.degrees(check["land_error"])) <= 10.0), name
+        long_shots = [i for i, club in enumerate(check["table"].clubs) if club in ("5-wood", "Hybrid", "5-iron")]
+        assert np.all(np.degrees(check["land_error"][long_shots]) < -3.5), name
 
 
 def test_a_lift_scale_fitted_with_the_apex_is_contradicted_by_the_hang_times():
-    # c0 and a lift scale fitted to the seasons' carries and apex heights (measured: 0.2246, 1.129) fly the seasons
-    # 0.4-0.53 s longer than their measured hang times, where c0 alone is within 0.17 s: not shipped
+    # c0 and a lift scale fitted to the seasons' carries and apex heights (measured: 0.2064, 1.118) fly the seasons
+    # 0.42-0.54 s longer than their measured hang times, where c0 alone is within 0.21 s: not shipped
     both = flight_fit.fit(parameters=("c0", "lift_scale"), observables=("carry", "max_height"))
-    assert both["c0"] == pytest.approx(0.2246, abs=0.001) and both["lift_scale"] == pytest.approx(1.129, abs=0.005)
+    assert both["c0"] == pytest.approx(0.2064, abs=0.001) and both["lift_scale"] == pytest.approx(1.118, abs=0.005)
     table = carry_table("pgatour_radar_driver")
     timed = np.isfinite(table.flight_time)
     scaled = flight_fit.coefficients(both["c0"], both["lift_scale"])
     late = validate_carry(scaled, table)["flight_time"] - table.flight_time
     alone = validate_carry(flight_fit.coefficients(flight_fit.FITTED["c0"]), table)["flight_time"] - table.flight_time
-    assert np.all(late[timed] > 0.35) and np.all(np.abs(alone[timed]) < 0.2)
+    assert np.all(late[timed] > 0.35) and np.all(np.abs(alone[timed]) < 0.25)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "Not met held out: the drag level fitted only to measured flights that are not the tour tables (PGA TOUR radar "
-    "seasons, c0 0.2120) gives 4.0 / 4.4 / 4.4 % RMS on the classic, PGA 2023 and LPGA 2023 tables (4.2 / 4.5 / "
-    "4.6 % without their driver rows); the PGA woods, hybrids and 3-5 irons stay 3-7 % long, the LPGA 5-wood and "
-    "hybrid 7-9 %, landing 5-10 deg shallow. A lift scale fitted with the apex heights (3.1-3.8 %) is contradicted "
-    "by the seasons' hang times, and stays so with the carry's measured density slope added (impactlab.data."
-    "flight_altitude: 2.95 / 3.22 / 3.48 %, hang times 0.36 s long, the slope 0.26 against 0.38-0.53 %/%); "
-    "of the physical changes tried on top (impactlab.data.flight_candidates) only a later "
-    "drag crisis meets 3 % (measured_fit_late_crisis, 2.58 / 2.96 / 2.35 %), with its position on the measured edge "
-    "that the seasons cannot place and the spinning balls' drag contradicts: not the default (docs/flight.md)."))
 def test_held_out_drag_level_meets_3_percent_on_every_tour_table():
+    """The issue's target with the drag level fitted only to measured flights that are not the tour tables (the PGA
+    TOUR radar seasons): 2.23 / 2.67 / 2.13 % on the classic, PGA 2023 and LPGA 2023 tables."""
     checks = flight_fit.held_out(flight_fit.FITTED["c0"])
     assert all(check["rms_carry_error"] <= 0.03 for check in checks.values())
 
@@ -320,5 +312,5 @@ def test_held_out_height_and_land_errors_are_model_minus_table():
 
 
 def test_lift_scale_bounds_are_the_documented_spread():
-    """docs/flight.md: 0.73-1.21, the 10th-90th percentile of measured over fitted CL at S <= 0.2."""
-    assert flight_fit.lift_scale_bounds() == pytest.approx((0.73, 1.21), abs=0.006)
+    """docs/flight.md: 0.76-1.19, the 10th-90th percentile of measured over fitted CL at S <= 0.2."""
+    assert flight_fit.lift_scale_bounds() == pytest.approx((0.76, 1.19), abs=0.006)

@@ -7,13 +7,14 @@ tables are never used here: they are what the model is validated on (:mod:`impac
 The fit has three least-squares stages, each on the rows its physics concerns:
 
 1. supercritical lift of every ball (Re above its drag crisis): ``CL = a S / (1 + b S)``, zero at S = 0 and
-   saturating at ``a / b`` (Bearman & Harvey's rows carry the saturation, S up to 0.64 at Re >= 5.5e4);
-2. supercritical drag: ``CD = c_ball + c_re Re/1e5 + k CL_sc(S)^2``, one offset ``c_ball`` per ball group (the 1976,
-   1998 and modern balls differ by 0.03-0.07 in drag at equal S), the Re slope and the spin (induced) drag ``k`` shared;
-   the model takes the modern balls' offset;
+   saturating at ``a / b`` (Naruo et al. 2004's and Bearman & Harvey's rows carry the saturation, S up to 1.13);
+2. supercritical drag: ``CD = c_ball + c_re Re/1e5 + k CL_sc(S)^2``, one offset ``c_ball`` per ball group (measured
+   balls differ by up to 0.04 in drag at equal S), the Re slope and the spin (induced) drag ``k`` shared; the model
+   takes the modern balls' offset;
 3. the drag crisis and the lift lost in it (reverse Magnus), on the modern balls' rows below Re 7.4e4 together with
-   their supercritical rows: ``CD += d / (1 + exp((Re - Re_d) / w_d))`` and
-   ``CL *= 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S / s_l)``.
+   their supercritical rows: ``CD += d / (1 + exp((Re - Re_d exp(-m S)) / w_d))`` (a crisis reached at a lower Re the
+   more the ball spins: the non-spinning 13-ball mean is still subcritical at Re 7.5e4 where three balls at 2250 rpm
+   are not) and ``CL *= 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S / s_l)``.
 
 ``python -m impactlab.data.aero_fit`` prints the fitted constants and the residuals of each stage; the constants
 written in :mod:`impactlab.physics.aerodynamics` are these (tests/test_flight.py refits and compares).
@@ -29,7 +30,8 @@ import yaml
 
 #: the model's drag level is the offset of this ball group
 MODEL_GROUP = "modern"
-GROUPS = ("modern", "usga_1998", "bh_1976")
+#: the ball groups of the measurements file, each with its own supercritical drag offset
+GROUPS = ("modern", "usga_1998", "bh_1976", "naruo_2004", "acushnet_invention", "acushnet_prior_art")
 
 
 @functools.cache
@@ -64,8 +66,8 @@ def crisis_terms(s, re, re_l, sigma, beta, s_l, re_d, w_d, d, spin_advance=0.0):
     """(added drag, lift factor) of the drag crisis at ``re`` and ``s``.
 
     ``spin_advance`` (m) moves the drag step's midpoint with the spin ratio, ``Re_d exp(-m S)``: m > 0 is a crisis
-    reached at a lower Re the more the ball spins. ``measured_fit`` has m = 0 (:func:`fit`); :func:`fit_spin_advance`
-    measures m.
+    reached at a lower Re the more the ball spins (``measured_fit``'s m, :func:`fit`); m = 0 a crisis where it is
+    without spin.
     """
     midpoint = re_d * np.exp(-spin_advance * s)
     drag = d * 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / w_d))  # d / (1 + exp((Re - Re_d) / w_d)), no overflow
@@ -93,11 +95,12 @@ def _supercritical_stages(m: dict):
     lift_rows = sc & np.isfinite(cl)
     lift = least_squares(lambda p: lift_supercritical(s[lift_rows], *p) - cl[lift_rows], [2.0, 4.0]).x
     drag_rows = sc & np.isfinite(cd)
+    n = len(GROUPS)
 
     def drag_model(p, rows):
-        return p[group[rows]] + p[3] * re[rows] / 1e5 + p[4] * lift_supercritical(s[rows], *lift) ** 2
+        return p[group[rows]] + p[n] * re[rows] / 1e5 + p[n + 1] * lift_supercritical(s[rows], *lift) ** 2
 
-    drag = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.2, 0.2, 0.25, 0.0, 1.0]).x
+    drag = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.22] * n + [0.0, 1.0]).x
     rms = {"lift supercritical": _rms(lift_supercritical(s[lift_rows], *lift) - cl[lift_rows]),
            "drag supercritical": _rms(drag_model(drag, drag_rows) - cd[drag_rows])}
     return lift, drag, lift_rows, rms
@@ -119,7 +122,7 @@ def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
         # rows without Re are supercritical (above 9e4): the crisis terms vanish there, take 1e6
         r = np.where(np.isnan(re[rows]), 1e6, re[rows])
         extra, factor = crisis_terms(s[rows], r, *p)
-        return (offset + drag[3] * r / 1e5 + drag[4] * lift_supercritical(s[rows], *lift) ** 2 + extra,
+        return (offset + drag[-2] * r / 1e5 + drag[-1] * lift_supercritical(s[rows], *lift) ** 2 + extra,
                 lift_supercritical(s[rows], *lift) * factor)
 
     def residuals(p):
@@ -144,68 +147,50 @@ def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
     return p, errors, rms, rows
 
 
-def fit() -> dict:
+def fit(spin_advance: bool = True) -> dict:
     """Fit the three stages (module docstring) to :func:`measurements`.
+
+    Parameters
+    ----------
+    spin_advance : bool
+        Fit the crisis midpoint's spin advance m (``measured_fit``); False holds m = 0, the crisis of a ball without
+        spin at every S (the model before 2026-11-24, kept to show what m changes).
 
     Returns
     -------
     dict
-        ``lift`` (a, b), ``drag`` (offsets per group in :data:`GROUPS` order, c_re, k), ``crisis`` (Re_l, sigma,
-        beta, s_l, Re_d, w_d, d), and ``rms`` residuals per stage and quantity.
+        ``lift`` (a, b); ``offsets`` (the supercritical drag offset of each group of :data:`GROUPS`), ``c_re`` and
+        ``k``; ``crisis`` (Re_l, sigma, beta, s_l, Re_d, w_d, d and, with ``spin_advance``, m) and its standard errors
+        ``errors`` (from the Jacobian); ``rms`` residuals per stage and quantity; ``rows`` counted per stage.
     """
     m = measurements()
     lift, drag, lift_rows, rms = _supercritical_stages(m)
-    crisis, _, crisis_rms, crisis_rows = _crisis_stage(m, lift, drag, lift_rows, spin_advance=False)
-    rms.update({key: value for key, value in crisis_rms.items() if key != "drag supercritical (modern)"})
-    return {"lift": tuple(float(v) for v in lift), "drag": tuple(float(v) for v in drag),
-            "crisis": tuple(float(v) for v in crisis), "rms": rms,
+    crisis, errors, crisis_rms, crisis_rows = _crisis_stage(m, lift, drag, lift_rows, spin_advance=spin_advance)
+    rms.update(crisis_rms)
+    return {"lift": tuple(float(v) for v in lift),
+            "offsets": {name: float(drag[index]) for index, name in enumerate(GROUPS)},
+            "c_re": float(drag[-2]), "k": float(drag[-1]),
+            "crisis": tuple(float(v) for v in crisis), "errors": tuple(float(v) for v in errors), "rms": rms,
             "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(np.sum(
                 m["supercritical"] & np.isfinite(m["cd"]))), **crisis_rows}}
 
 
-def fit_spin_advance() -> dict:
-    """Stage 3 refitted with the drag crisis' midpoint moving with the spin ratio, ``Re_d exp(-m S)``
-    (:func:`crisis_terms`), on the same measured rows as ``measured_fit``; stages 1 and 2 unchanged.
-
-    The modern balls' rows measure the crisis at two spin ratios: the 13-ball non-spinning mean (Lyu et al. 2018
-    Fig. 3a: CD 0.302 at Re 7.5e4, S 0) and three balls at 2250 rpm (Lyu, Kensrud & Smith 2020 Fig. 3: CD 0.25-0.27
-    at Re 7.5e4, S 0.18; 0.32-0.375 at 6.2e4, S 0.22). ``measured_fit`` (m = 0) fits the spinning rows and leaves the
-    non-spinning 0.302 0.10 below. A measured m > 0 is a crisis that spin advances to a lower Re, i.e. less drag, not
-    more, on the slow, high-S descent of irons and woods (docs/flight.md, "Which change removes the spin-ratio
-    residual").
-
-    Returns
-    -------
-    dict
-        ``crisis`` (Re_l, sigma, beta, s_l, Re_d at S = 0, w_d, d, m), ``errors`` (their standard errors from the
-        Jacobian), ``rms`` (per row set, beside ``measured_fit``'s under ``rms_without``).
-    """
-    m = measurements()
-    lift, drag, lift_rows, _ = _supercritical_stages(m)
-    crisis, errors, rms, _ = _crisis_stage(m, lift, drag, lift_rows, spin_advance=True)
-    _, _, rms_without, _ = _crisis_stage(m, lift, drag, lift_rows, spin_advance=False)
-    return {"crisis": tuple(float(v) for v in crisis), "errors": tuple(float(v) for v in errors), "rms": rms,
-            "rms_without": rms_without}
-
-
 @functools.cache
-def fit_spin_advance_cached() -> tuple:
-    """:func:`fit_spin_advance`'s crisis constants, computed once per process."""
-    return fit_spin_advance()["crisis"]
+def fit_without_spin_advance() -> dict:
+    """:func:`fit` with m = 0, computed once per process (what the spin advance changes)."""
+    return fit(spin_advance=False)
 
 
 if __name__ == "__main__":  # pragma: no cover - prints the constants of docs/flight.md
-    result = fit()
-    print("lift a, b:", ", ".join(f"{v:.4g}" for v in result["lift"]))
-    print("drag offsets", dict(zip(GROUPS, (round(v, 4) for v in result["drag"][:3]))),
-          f"c_re {result['drag'][3]:.4g}, k {result['drag'][4]:.4g}")
-    print("crisis Re_l, sigma, beta, s_l, Re_d, w_d, d:", ", ".join(f"{v:.4g}" for v in result["crisis"]))
-    for key, value in result["rms"].items():
-        print(f"rms {key}: {value:.4f}")
-    print(result["rows"])
-    advance = fit_spin_advance()
-    names = ("Re_l", "sigma", "beta", "s_l", "Re_d(S=0)", "w_d", "d", "m")
-    pairs = zip(names, advance["crisis"], advance["errors"])
-    print("crisis with its midpoint Re_d exp(-m S):", ", ".join(f"{n} {v:.4g} +- {e:.2g}" for n, v, e in pairs))
-    for key, value in advance["rms"].items():
-        print(f"rms {key}: {value:.4f} (m = 0: {advance['rms_without'][key]:.4f})")
+    names = ("Re_l", "sigma", "beta", "s_l", "Re_d", "w_d", "d", "m")
+    for advance in (True, False):
+        result = fit(spin_advance=advance)
+        print("with the spin advance m (measured_fit):" if advance else "\nwith m = 0 (the crisis without spin):")
+        print("lift a, b:", ", ".join(f"{v:.4g}" for v in result["lift"]))
+        print("drag offsets", {name: round(value, 4) for name, value in result["offsets"].items()},
+              f"c_re {result['c_re']:.4g}, k {result['k']:.4g}")
+        pairs = zip(names, result["crisis"], result["errors"])
+        print("crisis:", ", ".join(f"{n} {v:.4g} +- {e:.2g}" for n, v, e in pairs))
+        for key, value in result["rms"].items():
+            print(f"rms {key}: {value:.4f}")
+        print(result["rows"])

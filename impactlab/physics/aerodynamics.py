@@ -23,6 +23,10 @@ References
    balls", Sports Engineering 23:3 (2020), doi:10.1007/s12283-020-0318-1
    (CC BY): lift and drag of a Pro V1, a Chrome Soft and a B330-RX across
    their drag crisis (free flight, light gates).
+.. [Na04] T. Naruo, T. Mizota, H. Shimozono, "Aerodynamic force measurement of
+   highly spinning golf ball in uniform flow and trajectory experiment", Trans.
+   JSME B 70(697):2371-2377 (2004), doi:10.1299/kikaib.70.2371: CD and CL of a
+   commercial ball (Bridgestone Skyway SD432) at S 0.03-1.13, wind tunnel.
 .. [BH76] P. W. Bearman and J. K. Harvey, "Golf ball aerodynamics",
    Aeronautical Quarterly 27:112-122 (1976): wind tunnel, spinning model,
    S up to 1.0.
@@ -43,7 +47,7 @@ __all__ = [
     "MEASUREMENT_FITS",
     "MEASURED_FIT",
     "MEASURED_FIT_OFFSETS",
-    "LATE_CRISIS",
+    "RETIRED_MODELS",
     "MODEL_REFERENCES",
     "PUBLISHED_MODELS",
     "aero_coefficients",
@@ -178,53 +182,38 @@ def _cd_cl_lyu_induced(s, re):
 #: ``measured_fit`` constants: least squares on the measurements of impactlab/data/validation/aero_coefficients.yaml
 #: only (:func:`impactlab.data.aero_fit.fit`; tests/test_flight.py refits and compares). Supercritical lift
 #: a S / (1 + b S); supercritical drag c0 + c_re Re/1e5 + k CL_sc^2 (c0 of the modern balls); drag crisis
-#: d / (1 + exp((Re - Re_d) / w_d)); lift in the crisis times 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l).
-MEASURED_FIT = {"a": 2.09576, "b": 3.94900, "c0": 0.207212, "c_re": -0.00879406, "k": 1.02322,
-                "re_l": 57884.1, "sigma": 0.149139, "beta": 2.06177, "s_l": 0.265221,
-                "re_d": 61807.6, "w_d": 1275.04, "d": 0.213415}
+#: d / (1 + exp((Re - Re_d exp(-m S)) / w_d)), reached at a lower Re the more the ball spins; lift in the crisis times
+#: 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l).
+MEASURED_FIT = {"a": 2.05615, "b": 3.56629, "c0": 0.191258, "c_re": -0.00257435, "k": 1.35502,
+                "re_l": 57644.7, "sigma": 0.14871, "beta": 2.09728, "s_l": 0.263919,
+                "re_d": 73423.2, "w_d": 3718.75, "d": 0.282182, "m": 1.27341}
 #: the supercritical drag offset c0 the same fit gives each measured ball group (the model takes ``modern``)
-MEASURED_FIT_OFFSETS = {"modern": 0.207212, "usga_1998": 0.229943, "bh_1976": 0.273578}
+MEASURED_FIT_OFFSETS = {"modern": 0.191258, "usga_1998": 0.21136, "bh_1976": 0.234607, "naruo_2004": 0.222771,
+                        "acushnet_invention": 0.191965, "acushnet_prior_art": 0.199902}
+
+
+def _crisis_step(s, re, shift=1.0):
+    # the drag crisis' logistic step 1 / (1 + exp((Re - shift Re_d exp(-m S)) / w_d)) of measured_fit, no overflow
+    midpoint = shift * MEASURED_FIT["re_d"] * np.exp(-MEASURED_FIT["m"] * s)
+    return 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / MEASURED_FIT["w_d"]))
 
 
 def _cd_cl_measured_fit(s, re, c0=None):
     # Fitted by impactlab (impactlab.data.aero_fit) to measured CD and CL of golf balls: Lyu, Kensrud & Smith 2020
-    # and Lyu et al. 2018 (modern balls, free flight), the USGA ITR example table (US 6,186,002), Bridgestone's
-    # patent tables, Bearman & Harvey 1976 (wind tunnel, the only S > 0.36). Never fitted to TrackMan's tables.
+    # and Lyu et al. 2018 (modern balls, free flight), Naruo, Mizota & Shimozono 2004 (wind tunnel, S to 1.13),
+    # Acushnet's US 6,729,976 and the USGA's US 6,186,002 (indoor test ranges), Bridgestone's patent tables, Bearman &
+    # Harvey 1976 (wind tunnel). Never fitted to TrackMan's tables.
     c = dict(MEASURED_FIT) if c0 is None else {**MEASURED_FIT, "c0": c0}
     lift_sc = c["a"] * s / (1.0 + c["b"] * s)
-    crisis = 0.5 * (1.0 - np.tanh(0.5 * (re - c["re_d"]) / c["w_d"]))  # 1 / (1 + exp((Re - Re_d) / w_d))
-    cd = c["c0"] + c["c_re"] * re / 1.0e5 + c["k"] * lift_sc**2 + c["d"] * crisis
+    cd = c["c0"] + c["c_re"] * re / 1.0e5 + c["k"] * lift_sc**2 + c["d"] * _crisis_step(s, re)
     loss = c["beta"] * np.exp(-0.5 * (np.log(np.maximum(re, 1.0) / c["re_l"]) / c["sigma"]) ** 2 - s / c["s_l"])
     return cd, lift_sc * (1.0 - loss)
 
 
 def _cd_cl_measured_fit_usga_ball(s, re):
     # NOT a validated choice: measured_fit with the drag level the fit gives the 1998 USGA ITR ball instead of the
-    # modern balls'. Shipped because it is the sensitivity that decides the carry (docs/flight.md); the ball was
-    # chosen after seeing the TrackMan tables.
+    # modern balls'. Shipped as the sensitivity of the carry to the ball's drag level (docs/flight.md).
     return _cd_cl_measured_fit(s, re, c0=MEASURED_FIT_OFFSETS["usga_1998"])
-
-
-#: ``measured_fit_late_crisis``: measured_fit with its drag step (the drag crisis) moved from Re_d 61 800 to Re_d times
-#: ``crisis_shift`` = 74 200, the upper edge of the measured crisis positions (the non-spinning balls' crisis ends
-#: near Re 7.5e4: Lyu et al. 2018 Fig. 3a, Lyu et al. 2020 Fig. 1), and the drag level c0 fitted with it on the PGA
-#: TOUR radar seasons (impactlab.data.flight_candidates; tests refit c0). The tour tables chose the edge: left out one
-#: at a time, each fit of the others lands on it (docs/flight.md, "Which change removes the spin-ratio residual")
-LATE_CRISIS = {"c0": 0.211902, "crisis_shift": 1.2}
-
-
-def _crisis_step(re, re_d):
-    # the drag crisis' logistic step 1 / (1 + exp((Re - Re_d) / w_d)) of measured_fit, without overflow
-    return 0.5 * (1.0 - np.tanh(0.5 * (re - re_d) / MEASURED_FIT["w_d"]))
-
-
-def _cd_cl_measured_fit_late_crisis(s, re):
-    # NOT the default: measured_fit with a later drag crisis. It contradicts the drag measured on three spinning
-    # modern balls at Re 6.2e4-7.5e4 (Lyu 2020 Fig. 3: supercritical at 7.5e4 and S 0.18), agrees with the
-    # non-spinning 13-ball mean (Lyu 2018 Fig. 3a: 0.302 at 7.5e4); the lift is measured_fit's (docs/flight.md)
-    cd, cl = _cd_cl_measured_fit(s, re, c0=LATE_CRISIS["c0"])
-    late = _crisis_step(re, MEASURED_FIT["re_d"] * LATE_CRISIS["crisis_shift"])
-    return cd + MEASURED_FIT["d"] * (late - _crisis_step(re, MEASURED_FIT["re_d"])), cl
 
 
 def _cd_cl_vacuum(s, re):
@@ -241,18 +230,22 @@ MODELS = {
     "lyu_2018_induced_drag": (_cd_cl_lyu_induced, 2.0e-5),
     "measured_fit": (_cd_cl_measured_fit, 2.0e-5),
     "measured_fit_usga_ball": (_cd_cl_measured_fit_usga_ball, 2.0e-5),
-    "measured_fit_late_crisis": (_cd_cl_measured_fit_late_crisis, 2.0e-5),
     "vacuum": (_cd_cl_vacuum, 0.0),
 }
 #: the models whose coefficients are published as they are (the others combine published pieces; docs/flight.md)
 PUBLISHED_MODELS = ("smits_smith_1994", "lyu_2018", "usga_patent_2001")
 #: the models impactlab fitted itself to published measurements of CD and CL (never to the carry tables)
 MEASUREMENT_FITS = ("measured_fit",)
-#: the default: the one model fitted to every measured CD and CL row shipped, with the drag crisis and the lift's
-#: saturation those rows show; on TrackMan's three tables it gets the drivers within 3 % and the heights within 2 yd
-#: on average, where Smits & Smith (1994), extrapolated beyond its stated range, is 9 % short on the PGA driver and
-#: 3-4 yd high (docs/flight.md). Neither meets 3 % RMS on every club.
+#: the default: the one model fitted to every measured CD and CL row shipped, with the drag crisis, its advance with
+#: spin and the lift's saturation those rows show; on TrackMan's three tour tables (never fitted) it carries within
+#: 2.4-2.9 % RMS, where Smits & Smith (1994), extrapolated beyond its stated range, gives 4.9-8.4 % (docs/flight.md)
 DEFAULT_MODEL = "measured_fit"
+#: models no longer shipped -> why, and what to use (said when one is asked for)
+RETIRED_MODELS = {
+    "measured_fit_late_crisis": "retired on 2026-11-24: it moved measured_fit's drag crisis to the non-spinning "
+                                "balls' position; measured_fit now has that position without spin and the measured "
+                                "advance of the crisis with spin (docs/flight.md); use 'measured_fit'",
+}
 #: citation of each model's coefficients, and whether they are fits to measurements
 MODEL_REFERENCES = {
     "smits_smith_1994": "A. J. Smits and D. R. Smith, 'A new aerodynamic model of a golf ball in flight', Science and "
@@ -266,15 +259,11 @@ MODEL_REFERENCES = {
     "lyu_2018_induced_drag": "composite, not a published model: Lyu et al. (2018) fits plus induced drag 1.44 CL^2 "
                              "fitted on the USGA ITR example data of US 6,186,002 B1",
     "measured_fit": "fitted by impactlab to measured golf-ball CD and CL (Lyu, Kensrud & Smith 2020; Lyu et al. 2018; "
-                    "USGA ITR example table of US 6,186,002; Bridgestone US 7,238,121; Bearman & Harvey 1976), "
+                    "Naruo, Mizota & Shimozono 2004; USGA ITR example table of US 6,186,002; Acushnet US 6,729,976; "
+                    "Bridgestone US 7,238,121; Bearman & Harvey 1976), "
                     "impactlab/data/validation/aero_coefficients.yaml; spin decay lambda = 2e-5 (Smits & Smith 1994)",
-    "measured_fit_usga_ball": "measured_fit with the drag level of the 1998 USGA ITR ball (c0 0.2299 for 0.2072); "
-                              "the ball was chosen after seeing the TrackMan tables: a sensitivity, not a validated "
-                              "model",
-    "measured_fit_late_crisis": "measured_fit with the drag crisis at Re 74 200 (the measured crisis positions' upper "
-                                "edge, Lyu et al. 2018, 2020) and c0 0.2119 fitted with it on the PGA TOUR radar "
-                                "seasons; the edge was chosen by the tour tables (left out one at a time); contradicts "
-                                "the drag of three spinning balls measured at Re 7.5e4: a sensitivity, not the default",
+    "measured_fit_usga_ball": "measured_fit with the drag level of the 1998 USGA ITR ball (c0 0.2114 for 0.1913): "
+                              "a sensitivity to the ball's drag level, not a validated model",
     "vacuum": "no air (a test limit)",
 }
 
@@ -323,26 +312,21 @@ def aero_coefficients(s, re, model=DEFAULT_MODEL):
 
         ``"measured_fit"`` (default) -- fitted by impactlab to measured CD and CL only
         (impactlab/data/validation/aero_coefficients.yaml: [Ly20]_, [Ly18]_,
-        [US01]_'s ITR table, Bridgestone's patent tables, [BH76]_), never to
-        a carry table; constants :data:`MEASURED_FIT`::
+        [Na04]_, [US01]_'s ITR table, Acushnet's and Bridgestone's patent
+        tables, [BH76]_), never to a carry table; constants :data:`MEASURED_FIT`::
 
-            CL_sc = a S / (1 + b S)                        (saturates at a/b = 0.53)
-            CD    = c0 + c_re Re/1e5 + k CL_sc^2 + d / (1 + exp((Re - Re_d)/w_d))
+            CL_sc = a S / (1 + b S)                        (saturates at a/b = 0.58)
+            CD    = c0 + c_re Re/1e5 + k CL_sc^2 + d / (1 + exp((Re - Re_d exp(-m S))/w_d))
             CL    = CL_sc (1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l))
 
-        The last factor is the lift lost in the drag crisis (reverse Magnus
-        below Re ~6.5e4 at S < 0.2, [Ly20]_); c0 is the modern balls' drag.
+        The drag crisis is reached at a lower Re the more the ball spins
+        (m = 1.27: midpoint Re 73 400 without spin, 57 000 at S 0.2); the last
+        factor is the lift lost in the crisis (reverse Magnus below Re ~6.5e4
+        at S < 0.2, [Ly20]_); c0 is the modern balls' drag.
 
         ``"measured_fit_usga_ball"`` -- the same with the drag level the fit
-        gives the 1998 USGA ITR ball (c0 = 0.2299); a sensitivity, chosen after
-        seeing the TrackMan tables, not a validated model.
-
-        ``"measured_fit_late_crisis"`` -- ``measured_fit`` with its drag step
-        moved to Re_d = 74 200 (:data:`LATE_CRISIS`), the upper edge of the
-        measured crisis positions, and the drag level refitted on measured
-        radar flights; it removes most of the tour tables' spin-ratio misfit
-        but contradicts the drag measured on spinning modern balls at
-        Re 7.5e4 ([Ly20]_): a sensitivity, not a validated model.
+        gives the 1998 USGA ITR ball (c0 = 0.2114); a sensitivity to the
+        ball's drag level, not a validated model.
 
         ``"vacuum"`` -- zero drag and lift (for tests).
 

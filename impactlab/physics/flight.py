@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from impactlab.physics.aerodynamics import _RHO_REF, BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS
+from impactlab.physics.aerodynamics import _RHO_REF, BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, RETIRED_MODELS
 from impactlab.physics.atmosphere import G0, air_density, air_viscosity, pressure_at_altitude
 
 __all__ = ["fly"]
@@ -289,7 +289,9 @@ def fly(
     elif isinstance(model, str) and model in MODELS:
         coef_fn, lam_default = MODELS[model]
     else:
-        raise ValueError(f"unknown model {model!r}; choose from {sorted(MODELS)}")
+        retired = (f" ({model!r} was {RETIRED_MODELS[model]})" if isinstance(model, str) and model in RETIRED_MODELS
+                   else "")
+        raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
     lam = lam_default if spin_decay is None else float(spin_decay)
 
     wind = np.asarray(wind, dtype=float)

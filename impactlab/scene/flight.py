@@ -331,10 +331,10 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     Notes
     -----
     Point-mass flight with drag, Magnus lift and spin decay (:func:`impactlab.physics.flight.fly`); the default
-    coefficients (``measured_fit``) are impactlab's fit to 232 measured lift and drag rows (wind tunnel, indoor
+    coefficients (``measured_fit``) are impactlab's fit to 277 measured lift and drag rows (wind tunnel, indoor
     range, free flight; impactlab/data/validation/aero_coefficients.yaml), not tuned to any launch-monitor table.
-    Against TrackMan's tour averages they carry 5.1-5.4 % RMS off, drivers within 3 %, other clubs long
-    (docs/flight.md); ``model="smits_smith_1994"`` gives the published wind-tunnel model (5.0-8.4 %).
+    Against TrackMan's three tour tables, never fitted, they carry within 2.4-2.9 % RMS, every club within 5.4 %
+    (docs/flight.md); ``model="smits_smith_1994"`` gives the published wind-tunnel model (4.9-8.4 %).
 
     References
     ----------
@@ -347,7 +347,7 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     >>> import impactlab
     >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
     >>> round(float(shot.carry_distance) / 0.9144)  # yards
-    276
+    275
     """
     import xarray as xr
 
@@ -407,6 +407,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
             note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given_value) else ""
             raise FieldError(where, f"{limit.words} between {limit.impossible[0]:g} and {limit.impossible[1]:g} "
                              f"{unit} ({limit.why})", f"{value * factor:.6g} {unit}{note}")
+    if model in aerodynamics.RETIRED_MODELS:
+        raise FieldError("model", f"an aerodynamic model ({model!r} was {aerodynamics.RETIRED_MODELS[model]})",
+                         str(model), choices=aerodynamics.MODELS)
     if model not in aerodynamics.MODELS:
         raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
