@@ -17,94 +17,16 @@ import math
 import warnings
 from collections.abc import Mapping
 
-import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, PlausibilityWarning
-from impactlab.physics import aerodynamics, atmosphere
+from impactlab.physics import aerodynamics
 from impactlab.physics import flight as physics
+from impactlab.scene.air import (CONDITION_KEYS, PRESSURE_RANGE, STANDARD_RELATIVE_HUMIDITY, STANDARD_TEMPERATURE,
+                                 TEMPERATURE_RANGE, Conditions, air_arrays, air_description, flight_air)
 from impactlab.scene.plausibility import GOLF_LIMITS
 from impactlab.units import DIMENSIONS, to_si
-from impactlab.validators import in_range, to_float
 from impactlab.vocabulary import OUTPUTS
-
-#: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
-STANDARD_TEMPERATURE = 288.15
-STANDARD_RELATIVE_HUMIDITY = 0.5
-#: the air temperatures [K] a flight takes: -90 to 60 degC, around the extremes measured on Earth (WMO's Weather and
-#: Climate Extremes Archive: -89.2 degC at Vostok, 21 July 1983; 56.7 degC at Death Valley, 10 July 1913, measured). A
-#: value beyond is a unit mistake (77 degF written as degC) more likely than an air any golf shot flies through
-TEMPERATURE_RANGE = (183.15, 333.15)
-#: the station pressures [Pa] a flight takes: from the ISA pressure at 11 000 m, the top of the altitudes taken
-#: (22 632 Pa, ISO 2533), to 110 kPa, above the highest sea-level pressure recorded (1083.8 hPa, Agata, Siberia,
-#: 31 December 1968, WMO archive, measured) and the ISA pressure 500 m below sea level (107.5 kPa). Below, a pressure
-#: in Pa given for hPa (1013 Pa) would fly an almost airless ball without a word
-PRESSURE_RANGE = (2.0e4, 1.1e5)
-#: keys of a conditions mapping (fly's ``conditions=``, a study's ``conditions:`` block), with their dimensions
-CONDITION_KEYS = {"temperature": "temperature", "pressure": "pressure", "relative_humidity": "dimensionless",
-                  "altitude": "length", "headwind": "speed", "crosswind": "speed"}
-
-
-@attrs.frozen
-class Conditions:
-    """The air a golf shot flies through (a study's ``conditions`` block), SI values.
-
-    Parameters
-    ----------
-    temperature : float
-        Air temperature [K]; default 288.15 K (15 degC). Not lapsed with altitude.
-    pressure : float or None
-        Station pressure [Pa]; None: the ISA pressure at ``altitude`` (sea level without one). Give either
-        ``pressure`` or ``altitude``, not both.
-    relative_humidity : float
-        Fraction 0-1; default 0.5.
-    altitude : float or None
-        Height of the tee above sea level [m], used for the ISA pressure.
-    headwind : float
-        Wind against the shot along the target line [m/s] (negative: a tailwind); uniform with height.
-    crosswind : float
-        Wind across the target line [m/s], positive blowing towards the right (a left-to-right wind).
-    """
-
-    temperature: float = attrs.field(default=STANDARD_TEMPERATURE, converter=to_float, validator=in_range(
-        *TEMPERATURE_RANGE, "an air temperature between -90 and 60 degC (183.15 and 333.15 K, around the coldest "
-        "and hottest air measured on Earth: -89.2 and 56.7 degC; a degF value written as degC lands above)"))
-    pressure: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        *PRESSURE_RANGE, "a station pressure between 200 and 1100 hPa (the ISA pressure at 11 000 m is 226 hPa, the "
-        "highest sea-level pressure recorded 1084 hPa; hPa written as Pa lands below)", optional=True))
-    relative_humidity: float = attrs.field(default=STANDARD_RELATIVE_HUMIDITY, converter=to_float,
-                                           validator=in_range(0.0, 1.0, "a relative humidity between 0 and 1 "
-                                                              "(a fraction, or e.g. '50 %')"))
-    altitude: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        -500.0, 11000.0, "an altitude between -500 and 11 000 m (the ISA troposphere)", optional=True))
-    headwind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
-        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
-    crosswind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
-        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
-
-    def __attrs_post_init__(self):
-        if self.pressure is not None and self.altitude is not None:
-            raise FieldError("altitude", "either a pressure or an altitude (which sets the ISA pressure), not both",
-                             f"pressure {self.pressure:g} Pa and altitude {self.altitude:g} m")
-
-
-def air_arrays(inputs: Mapping) -> dict:
-    """The keyword arguments of :func:`impactlab.physics.flight.fly` for the air in ``inputs`` (SI arrays).
-
-    ``inputs`` maps the input names of :data:`impactlab.vocabulary.INPUTS` (``air_temperature``, ``air_pressure``,
-    ``relative_humidity``, ``altitude``, ``headwind``, ``crosswind``) to values; absent ones take the standard air.
-    """
-    temperature = inputs.get("air_temperature", STANDARD_TEMPERATURE)
-    pressure = inputs.get("air_pressure")
-    if pressure is None:
-        pressure = atmosphere.pressure_at_altitude(inputs.get("altitude", 0.0))
-    headwind = np.asarray(inputs.get("headwind", 0.0), dtype=float)
-    crosswind = np.asarray(inputs.get("crosswind", 0.0), dtype=float)
-    headwind, crosswind = np.broadcast_arrays(headwind, crosswind)
-    wind = np.stack([-headwind, crosswind, np.zeros_like(headwind)], axis=-1)
-    return {"temperature": temperature, "pressure": pressure,
-            "relative_humidity": inputs.get("relative_humidity", STANDARD_RELATIVE_HUMIDITY), "wind": wind}
-
 
 def is_number_text(text: str) -> bool:
     """True when ``text`` is a number alone (``"167"``, ``"1e3"``): a value whose unit would have to be guessed."""
@@ -241,34 +163,41 @@ def _warn_unusual(values: dict, given: dict) -> None:
 
 
 def conditions_from(conditions) -> Conditions:
-    """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`."""
+    """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`.
+
+    Each value of the mapping is read as :func:`quantity_array` reads it (SI numbers, strings with units, pint
+    quantities), one value or an array of them (one per shot); a value refused is shown in SI with its unit, and
+    as given where it was text (``conditions.temperature[2]: ... got 473.15 K (given as '200 degC')``).
+    """
     if conditions is None:
         return Conditions()
     if isinstance(conditions, Conditions):
         return conditions
     if not isinstance(conditions, Mapping):
         raise FieldError("conditions", "a mapping with keys from: " + ", ".join(CONDITION_KEYS), conditions)
-    values = {}
+    values: dict = {}
     for key, value in conditions.items():
         if key not in CONDITION_KEYS:
             raise FieldError(f"conditions.{key}", "a key of the air conditions", str(key), choices=CONDITION_KEYS)
         if value is None:
             continue
         array = quantity_array(value, CONDITION_KEYS[key], f"conditions.{key}")
-        if array.ndim:
-            raise FieldError(f"conditions.{key}", "one value (the air is the same for every shot of a call)", value)
-        values[key] = float(array)
+        values[key] = array if array.ndim else float(array)
     try:
         return Conditions(**values)
     except FieldError as exc:
-        key = exc.path or ""
+        key, _, index = (exc.path or "").partition("[")
         if key in values and not isinstance(exc.given, str):
             # the value refused is in SI: shown with its unit and as given (a bare 473.15 for '200 degC' reads as
             # the user's number)
             dimension = CONDITION_KEYS[key]
-            shown = f"{values[key]:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
-            if isinstance(conditions[key], str):
-                shown += f" (given as {conditions[key]!r})"
+            refused = float(exc.given) if index else values[key]
+            shown = f"{refused:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
+            given = conditions[key]
+            if index and isinstance(given, (list, tuple)) and "," not in index:
+                given = given[int(index.rstrip("]"))]
+            if isinstance(given, str):
+                shown += f" (given as {given!r})"
             exc = FieldError(exc.path, exc.expected, shown, exc.choices, file=exc.file, line=exc.line)
         raise exc.at(prefix="conditions") from None
 
@@ -410,14 +339,17 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     if model not in aerodynamics.MODELS:
         raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
-    air_inputs = {"air_temperature": air.temperature, "relative_humidity": air.relative_humidity,
-                  "headwind": air.headwind, "crosswind": air.crosswind}
-    if air.pressure is not None:
-        air_inputs["air_pressure"] = air.pressure
-    if air.altitude is not None:
-        air_inputs["altitude"] = air.altitude
-    arguments = air_arrays(air_inputs)
-    arguments["wind"] = arguments["wind"].reshape(3)
+    launch_shape = np.broadcast_shapes(*(array.shape for array in values.values()))
+    try:
+        np.broadcast_shapes(launch_shape, air.shape)
+    except ValueError:
+        shapes = [f"{name} {array.shape}" for name, array in values.items() if array.ndim] + [
+            f"conditions.{key} {np.shape(value)}" for key, value in zip(CONDITION_KEYS, (
+                air.temperature, air.pressure, air.relative_humidity, air.altitude, air.headwind, air.crosswind))
+            if np.ndim(value)]
+        raise FieldError("conditions", "air values that broadcast with the launch: one value for every shot, or one "
+                         "per shot (an array of the launch's shape)", ", ".join(shapes)) from None
+    arguments = flight_air(air)
     result = physics.fly(values["ball_speed"], values["launch_angle"], values["spin_rate"], values["spin_axis"],
                          values["launch_direction"], ball_mass=mass, ball_radius=radius, model=model,
                          return_trajectories=trajectories, **arguments)
@@ -433,16 +365,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         for axis, words in (("x", "along the target line"), ("y", "right of the target line"), ("z", "height")):
             data[f"trajectory_{axis}"] = (("shot", "t"), result[axis],
                                           {"units": "m", "long_name": f"ball position, {words}"})
-    pressure = float(arguments["pressure"])
+    air_attributes, air_coords = air_description(air, arguments, shape, dims)
+    coords.update(air_coords)
     attributes = {
         "aerodynamic_model": model,
         "aerodynamic_references": aerodynamics.MODEL_REFERENCES[model],
-        "air_temperature_K": air.temperature,
-        "air_pressure_Pa": pressure,
-        "air_relative_humidity": air.relative_humidity,
-        "air_density_kg_m3": float(atmosphere.air_density(air.temperature, pressure, air.relative_humidity)),
-        "headwind_m_s": air.headwind,
-        "crosswind_m_s": air.crosswind,
+        **air_attributes,
         "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),
         "ball_radius_m": float(radius) if radius.ndim == 0 else str(radius.tolist()),
     }
