@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -221,20 +222,21 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
     own = usable[rows]
     pressure = np.where(own & with_pressure[rows], v["air_pressure"][rows], np.nan)
     altitude = np.where(own & ~with_pressure[rows], v["altitude"][rows], np.nan)
-    given = {"temperature": np.where(own, v["air_temperature"][rows], flight.STANDARD_TEMPERATURE),
-             "pressure": pressure if np.isfinite(pressure).any() else None,
-             "altitude": altitude if np.isfinite(altitude).any() else None,
-             "relative_humidity": np.where(own & np.isfinite(v["relative_humidity"][rows]),
-                                           v["relative_humidity"][rows], flight.STANDARD_RELATIVE_HUMIDITY),
-             "headwind": blowing.headwind, "crosswind": blowing.crosswind}
+    given: dict[str, Any] = {
+        "temperature": np.where(own, v["air_temperature"][rows], flight.STANDARD_TEMPERATURE),
+        "pressure": pressure if np.isfinite(pressure).any() else None,
+        "altitude": altitude if np.isfinite(altitude).any() else None,
+        "relative_humidity": np.where(own & np.isfinite(v["relative_humidity"][rows]), v["relative_humidity"][rows],
+                                      flight.STANDARD_RELATIVE_HUMIDITY),
+        "headwind": blowing.headwind, "crosswind": blowing.crosswind}
     try:
         air = flight.Conditions(**given)
     except FieldError as exc:  # the row's value in the words people use for it, not its SI float
         key, _, index = exc.path.partition("[")
         field = next((field for field, name in SESSION_AIR.items() if name == key), None)
         row = rows[int(index.rstrip("]"))] if index else rows[0]
-        raise FieldError(f"air.{key}", exc.expected, AIR_IN_WORDS[field](float(exc.given))
-                         if field and not isinstance(exc.given, str) else exc.given, file=str(session.file),
+        raise FieldError(f"air.{key}", exc.expected, AIR_IN_WORDS[field](exc.given)
+                         if field and isinstance(exc.given, float) else exc.given, file=str(session.file),
                          line=session.lines[row]) from None
     standard = rows.size - stated
     stated_fields = [words for field, words in (("air_pressure", "pressure"), ("altitude", "altitude"),

@@ -4,7 +4,8 @@
 and spin axis) in SI numbers, strings with units or pint quantities, scalars or arrays, flies it with
 :func:`impactlab.physics.flight.fly` and returns an :class:`xarray.Dataset` of the carry, apex, landing angle,
 offline distance and flight time in the units of :data:`impactlab.vocabulary.OUTPUTS`. A study asks for the same
-outputs after any impact model (:mod:`impactlab.model.derive`); its ``conditions`` block is a :class:`Conditions`.
+outputs after any impact model (:mod:`impactlab.model.derive`); its ``conditions`` block is a :class:`Conditions`
+(:mod:`impactlab.scene.air`), which here may also give each shot its own air (arrays broadcasting with the launch).
 
 Signs (docs/conventions.md): ``spin_axis``, ``launch_direction`` and ``offline_distance`` are positive to the right
 of the target line; a positive spin axis curves the ball right. The model, its coefficients and its validation
@@ -191,7 +192,7 @@ def conditions_from(conditions) -> Conditions:
             # the value refused is in SI: shown with its unit and as given (a bare 473.15 for '200 degC' reads as
             # the user's number)
             dimension = CONDITION_KEYS[key]
-            refused = float(exc.given) if index else values[key]
+            refused = exc.given if index and isinstance(exc.given, float) else values[key]
             shown = f"{refused:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
             given = conditions[key]
             if index and isinstance(given, (list, tuple)) and "," not in index:
@@ -223,7 +224,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         The air: ``temperature`` (K, or ``"25 degC"``), ``pressure`` (Pa or ``"1013 hPa"``; absent: the ISA
         pressure at ``altitude``), ``relative_humidity`` (fraction, or ``"50 %"``), ``altitude`` (m, or
         ``"5280 ft"``), ``headwind`` and ``crosswind`` (m/s or ``"10 mph"``; headwind against the shot,
-        crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air.
+        crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air. Each value is one air for
+        every shot, or an array of values (a list of strings with units, a pint array, SI numbers) giving each
+        shot its own: the air arrays broadcast with the launch's (an array of the launch's shape pairs shot ``i``
+        with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot without one: its pressure
+        is the ISA pressure at its altitude (at sea level without one); a shot may have a pressure or an
+        altitude, not both.
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
@@ -238,15 +244,24 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     xarray.Dataset
         ``carry_distance``, ``offline_distance``, ``apex_height`` [m], ``landing_angle`` [degree] and
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
-        scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
-        aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
+        scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the aerodynamic
+        model and its references in ``attrs``. The air: one air for every shot is said by the attributes
+        ``air_temperature_K``, ``air_pressure_Pa``, ``air_relative_humidity`` and ``air_density_kg_m3``; an air
+        that varies from shot to shot (any of temperature, pressure or humidity) by the coordinates
+        ``air_temperature`` [K], ``air_pressure`` [Pa] (the station pressure flown, from the altitude where that
+        was given), ``relative_humidity`` [1] and ``air_density`` [kg/m^3] on the shot dims, and then no
+        ``air_*`` attribute. The wind likewise: attributes ``headwind_m_s`` and ``crosswind_m_s``, or coordinates
+        ``headwind`` and ``crosswind`` [m/s]. NaN for a shot still in the air after 15 s (the
         integration's limit; e.g. 300 mph at 89 deg). A shot launched below the horizontal is at the ground going
         down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
     FieldError
-        A value of the wrong dimension or out of range (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
+        Air values (or an element of them) out of the ranges of :class:`Conditions`, named by their index
+        (``conditions.temperature[3]``) and shown in SI with their unit; air arrays that do not broadcast with each
+        other or with the launch (the message lists the shapes). A value of the wrong dimension or out of range
+        (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
         a launch angle or launch direction at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has
         them; :data:`IMPOSSIBLE_LAUNCH`), a string without a unit. A value refused that was given as a plain number
         is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
@@ -277,6 +292,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
     >>> round(float(shot.carry_distance) / 0.9144)  # yards
     276
+    >>> airs = impactlab.fly("167 mph", "10.9 deg", "2686 rpm", conditions={"temperature": ["5 degC", "35 degC"]})
+    >>> [round(float(carry) / 0.9144) for carry in airs.carry_distance]  # warm air is thinner: longer
+    [274, 279]
     """
     import xarray as xr
 
@@ -379,4 +397,6 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
 
 __all__ = ["Conditions", "fly", "is_number_text",
            "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
-           "IMPOSSIBLE_LAUNCH"]
+           "IMPOSSIBLE_LAUNCH",
+           # the air's constants, defined in impactlab.scene.air, kept importable from here
+           "PRESSURE_RANGE", "STANDARD_RELATIVE_HUMIDITY", "STANDARD_TEMPERATURE", "TEMPERATURE_RANGE"]
