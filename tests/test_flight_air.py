@@ -203,3 +203,22 @@ def test_a_session_in_many_airs_flies_in_one_call_each_shot_in_its_own_air(tmp_p
     assert np.all(np.diff(result.air_density.values) < 0)  # warmer rows: thinner air
     one_air = fly_session(read_session(_garmin_session(tmp_path, [71.6, 71.6])[0]))
     assert one_air.attrs["air_temperature_K"] == pytest.approx((71.6 - 32) / 1.8 + 273.15, rel=1e-12)
+
+
+def test_a_scene_takes_one_air_and_a_study_block_stays_one_air():
+    """A study's scene has one air (the sweep varies it): a Conditions of arrays is refused there, not flown with
+    the cases paired to its elements by accident; the YAML block reads numbers with units as before."""
+    import attrs
+
+    from impactlab.study.scene_blocks import build_conditions
+
+    scene = impactlab.load_study(
+        {"name": "air", "ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+         "contact": {"friction": 0.4, "restitution": 0.8}, "conditions": {"temperature": "25 degC"},
+         "delivery": {"club_speed": "110 mph", "path": "2 deg", "face_angle": "-1 deg", "attack_angle": "-1 deg",
+                      "dynamic_loft": "13 deg"}, "models": ["rigid_coulomb"], "outputs": ["carry_distance"]}).scene
+    assert scene.conditions == Conditions(temperature=298.15) and isinstance(scene.conditions.temperature, float)
+    with pytest.raises(FieldError) as caught:
+        attrs.evolve(scene, conditions=Conditions(temperature=[280.0, 300.0]))
+    assert str(caught.value).startswith("conditions: expected one air for the scene")
+    assert build_conditions({"temperature": "25 degC"}) == Conditions(temperature=298.15)
