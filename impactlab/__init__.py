@@ -72,8 +72,9 @@ def fly(ball_speed: Any, launch_angle: Any, spin_rate: Any, spin_axis: Any = 0.0
     Numbers are SI (m/s, rad, rad/s), strings carry units (``"167 mph"``, ``"10.9 deg"``, ``"2686 rpm"``), pint
     quantities are converted; scalars or arrays (broadcast). ``conditions``: None (15 degC, 101 325 Pa, 50 %
     humidity, still air) or a mapping of ``temperature``, ``pressure``, ``relative_humidity``, ``altitude``,
-    ``headwind``, ``crosswind``. See :func:`impactlab.scene.flight.fly` for every option and docs/flight.md for
-    the model and its validation.
+    ``headwind``, ``crosswind``, each one value for every shot or an array of one per shot (broadcast with the
+    launch). See :func:`impactlab.scene.flight.fly` for every option and docs/flight.md for the model and its
+    validation.
 
     Examples
     --------

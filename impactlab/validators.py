@@ -22,6 +22,8 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+import numpy as np
+
 from impactlab.errors import FieldError
 
 
@@ -93,3 +95,47 @@ def to_float(value: Any) -> Any:
     if isinstance(value, int) and not isinstance(value, bool):
         return float(value)
     return value
+
+
+def number_or_array(value: Any) -> Any:
+    """attrs converter for a field that takes one number or one per element: a list, tuple or array of numbers
+    becomes a read-only float array (a 0-d array a float), an int a float; other values pass through (validators
+    judge them)."""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        try:
+            array = np.array(value, dtype=float)
+        except (TypeError, ValueError):
+            return value
+        if np.asarray(value).dtype.kind not in "iuf":  # bools, strings, objects: not numbers
+            return value
+        if not array.ndim:
+            return float(array)
+        array.setflags(write=False)
+        return array
+    return to_float(value)
+
+
+def in_range_each(low: float, high: float, expected: str, low_open: bool = False, high_open: bool = False,
+                  optional: bool = False) -> Validator:
+    """An attrs validator as :func:`in_range` for a number, and for an array of numbers every element.
+
+    A refused element is named by its index and value (``FieldError("temperature[3]", expected, 400.0)``); an
+    empty array is refused. With ``optional``, None and NaN elements (a value not given for that element) pass.
+    """
+    scalar = in_range(low, high, expected, low_open, high_open, optional)
+
+    def validator(instance: Any, attribute: Any, value: Any) -> None:
+        if not isinstance(value, np.ndarray):
+            scalar(instance, attribute, value)
+            return
+        if not value.size:
+            raise FieldError(attribute.name, f"{expected}: one value, or one per element", "an empty array")
+        refused = ~inside(value, low, high, low_open, high_open)
+        if optional:
+            refused &= ~np.isnan(value)
+        if np.any(refused):
+            index = np.unravel_index(int(np.flatnonzero(refused)[0]), value.shape)
+            raise FieldError(f"{attribute.name}[{', '.join(str(int(i)) for i in index)}]", expected,
+                             float(value[index]))
+
+    return validator

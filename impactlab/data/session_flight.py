@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -158,10 +159,10 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
             warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
                           f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
-    airs, air_source = _airs(session, rows, conditions, session_air)
+    air, air_source = _airs(session, rows, conditions, session_air)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PlausibilityWarning)
-        flown, air_density = _fly_in(airs, v, rows, model, session)
+        flown, air_density = _fly_in(air, v, rows, model)
     data = {
         "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
         "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),
@@ -190,7 +191,8 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
 
 
 def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, session_air: bool):
-    """(the air of each row flown: a Conditions, or the ``conditions`` mapping for all; whose air, in words)."""
+    """(the air of the rows flown: a Conditions of one value per shot, the ``conditions`` mapping for all, or None
+    for the standard air; whose air, in words)."""
     v = session.values
     with_pressure = np.isfinite(v["air_pressure"])
     states = np.isfinite(v["air_temperature"]) & (with_pressure | np.isfinite(v["altitude"]))
@@ -213,60 +215,49 @@ def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, sessio
             words = f"the standard air (the export's own air, stated for {stated} shot(s) flown, not used)"
         else:
             words = "the standard air" + ("" if rejected else " (the export states no air)")
-        return [conditions if conditions else None] * rows.size, words + caveat
-    blowing = flight.conditions_from(wind) if wind else None
-    airs: list[flight.Conditions | Mapping | None] = []
-    for row in rows.tolist():
-        if not usable[row]:
-            airs.append(wind or None)
-            continue
-        # a pressure, when stated, sets the air; an altitude only where no pressure is (Conditions takes one)
-        given = {key: float(v[field][row]) for field, key in SESSION_AIR.items() if np.isfinite(v[field][row])
-                 and not (field == "altitude" and with_pressure[row])}
-        if blowing is not None:
-            given.update(headwind=blowing.headwind, crosswind=blowing.crosswind)
-        try:
-            airs.append(flight.Conditions(**given))
-        except FieldError as exc:  # the row's value in the words people use for it, not its SI float
-            key = exc.path.split(".")[-1]
-            field = next((field for field, name in SESSION_AIR.items() if name == key), None)
-            value = given.get(key)
-            raise FieldError(f"air.{exc.path}", exc.expected, AIR_IN_WORDS[field](value) if field and value is not None
-                             else exc.given, file=str(session.file), line=session.lines[row]) from None
+        return conditions if conditions else None, words + caveat
+    blowing = flight.conditions_from(wind) if wind else flight.Conditions()
+    # one air per shot flown, as arrays: a row without its air (or with air flagged) takes the standard air; a
+    # pressure, when stated, sets the air, an altitude only where no pressure is (NaN: not given for that shot)
+    own = usable[rows]
+    pressure = np.where(own & with_pressure[rows], v["air_pressure"][rows], np.nan)
+    altitude = np.where(own & ~with_pressure[rows], v["altitude"][rows], np.nan)
+    given: dict[str, Any] = {
+        "temperature": np.where(own, v["air_temperature"][rows], flight.STANDARD_TEMPERATURE),
+        "pressure": pressure if np.isfinite(pressure).any() else None,
+        "altitude": altitude if np.isfinite(altitude).any() else None,
+        "relative_humidity": np.where(own & np.isfinite(v["relative_humidity"][rows]), v["relative_humidity"][rows],
+                                      flight.STANDARD_RELATIVE_HUMIDITY),
+        "headwind": blowing.headwind, "crosswind": blowing.crosswind}
+    try:
+        air = flight.Conditions(**given)
+    except FieldError as exc:  # the row's value in the words people use for it, not its SI float
+        key, _, index = exc.path.partition("[")
+        field = next((field for field, name in SESSION_AIR.items() if name == key), None)
+        row = rows[int(index.rstrip("]"))] if index else rows[0]
+        raise FieldError(f"air.{key}", exc.expected, AIR_IN_WORDS[field](exc.given)
+                         if field and isinstance(exc.given, float) else exc.given, file=str(session.file),
+                         line=session.lines[row]) from None
     standard = rows.size - stated
     stated_fields = [words for field, words in (("air_pressure", "pressure"), ("altitude", "altitude"),
                                                 ("relative_humidity", "humidity"))
                      if np.isfinite(v[field][rows][usable[rows]]).any()]
     no_humidity = int((usable[rows] & ~np.isfinite(v["relative_humidity"][rows])).sum())
-    return airs, (f"the export's own, per shot (each row's temperature, {' and '.join(stated_fields)})"
+    return air, (f"the export's own, per shot (each row's temperature, {' and '.join(stated_fields)})"
                   + (f"; humidity not stated for {no_humidity} shot(s): 50 % taken" if no_humidity else "")
                   + (f"; {standard} shot(s) in the standard air" if standard else "")
                   + ("; the options' wind in every shot's air" if wind else "") + caveat)
 
 
-def _fly_in(airs: list, v: dict, rows: np.ndarray, model: str, session: Session):
-    """Fly ``rows`` of ``v``, each in its air (shots sharing an air in one call); (the flights, with the attributes
-    of the flight, its air's only where every shot shared one, and each shot's air density [kg/m^3])."""
+def _fly_in(air, v: dict, rows: np.ndarray, model: str):
+    """Fly ``rows`` of ``v`` in one call, each shot in its air (``air``: None, a mapping or a Conditions, one value
+    for every shot or one per shot); (the flight, with its air_* attributes only where every shot flew in one air,
+    and each shot's air density [kg/m^3])."""
     axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    groups: dict[str, list[int]] = {}  # the shots of each air, in one pass (a session may state many airs)
-    for index, air in enumerate(airs):
-        groups.setdefault(repr(air), []).append(index)
-    results: dict[str, np.ndarray] = {name: np.full(rows.size, np.nan) for name in PREDICTED}
-    density = np.full(rows.size, np.nan)
-    first = None
-    for members in groups.values():
-        same = np.array(members)
-        picked = rows[same]
-        flown = flight.fly(v["ball_speed"][picked], v["vertical_launch_angle"][picked], v["spin_rate"][picked],
-                           np.nan_to_num(axis[same]), np.nan_to_num(direction[same]), airs[members[0]],
-                           model=model)
-        for name in PREDICTED:
-            results[name][same] = flown[name].values
-        density[same] = flown.attrs["air_density_kg_m3"]
-        first = first if first is not None else flown
-    assert first is not None, "at least one shot is flown"
-    # the air_* attributes describe one air: kept where every shot flew in it (each shot's density is returned)
-    attributes = {key: value for key, value in first.attrs.items() if len(groups) == 1 or not key.startswith("air_")}
-    dataset = xr.Dataset({name: ("shot", results[name], dict(first[name].attrs)) for name in PREDICTED},
-                         attrs=attributes)
-    return dataset, density
+    flown = flight.fly(v["ball_speed"][rows], v["vertical_launch_angle"][rows], v["spin_rate"][rows],
+                       np.nan_to_num(axis), np.nan_to_num(direction), air, model=model)
+    if "air_density" in flown.coords:  # the air varies from shot to shot
+        density = np.asarray(flown["air_density"].values, dtype=float)
+    else:
+        density = np.full(rows.size, flown.attrs["air_density_kg_m3"])
+    return flown, density

@@ -247,6 +247,10 @@ class Scene:
             raise FieldError("strike", "a club head to strike off centre (a club block)", "no club")
         if self.club is None and self.delivery is not None and any(self.delivery.head_rotation):
             raise FieldError("delivery.head_rotation", "a club head to turn (a club block)", "no club")
+        if getattr(self.conditions, "shape", ()):  # a Conditions of one air per shot: impactlab.fly's, not a scene's
+            raise FieldError("conditions", "one air for the scene (numbers; a study varies the air with its sweep: "
+                             "block, e.g. conditions.temperature: [10 degC, 30 degC])",
+                             f"arrays of shape {self.conditions.shape}")
         check_scene(self)  # values no golf shot can have (a golf scene's limits by role)
         if self.delivery is not None and (abs(self.impact.angle - self.delivery.spin_loft) > 1e-9
                                           or self.impact.speed != self.delivery.club_speed):

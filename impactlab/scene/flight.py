@@ -4,7 +4,8 @@
 and spin axis) in SI numbers, strings with units or pint quantities, scalars or arrays, flies it with
 :func:`impactlab.physics.flight.fly` and returns an :class:`xarray.Dataset` of the carry, apex, landing angle,
 offline distance and flight time in the units of :data:`impactlab.vocabulary.OUTPUTS`. A study asks for the same
-outputs after any impact model (:mod:`impactlab.model.derive`); its ``conditions`` block is a :class:`Conditions`.
+outputs after any impact model (:mod:`impactlab.model.derive`); its ``conditions`` block is a :class:`Conditions`
+(:mod:`impactlab.scene.air`), which here may also give each shot its own air (arrays broadcasting with the launch).
 
 Signs (docs/conventions.md): ``spin_axis``, ``launch_direction`` and ``offline_distance`` are positive to the right
 of the target line; a positive spin axis curves the ball right. The model, its coefficients and its validation
@@ -17,94 +18,16 @@ import math
 import warnings
 from collections.abc import Mapping
 
-import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, PlausibilityWarning
-from impactlab.physics import aerodynamics, atmosphere
+from impactlab.physics import aerodynamics
 from impactlab.physics import flight as physics
+from impactlab.scene.air import (CONDITION_KEYS, PRESSURE_RANGE, STANDARD_RELATIVE_HUMIDITY, STANDARD_TEMPERATURE,
+                                 TEMPERATURE_RANGE, Conditions, air_arrays, air_description, flight_air)
 from impactlab.scene.plausibility import GOLF_LIMITS
 from impactlab.units import DIMENSIONS, to_si
-from impactlab.validators import in_range, to_float
 from impactlab.vocabulary import OUTPUTS
-
-#: the air when a study or a call gives none: 15 degC, ISA sea-level pressure, 50 % relative humidity, still
-STANDARD_TEMPERATURE = 288.15
-STANDARD_RELATIVE_HUMIDITY = 0.5
-#: the air temperatures [K] a flight takes: -90 to 60 degC, around the extremes measured on Earth (WMO's Weather and
-#: Climate Extremes Archive: -89.2 degC at Vostok, 21 July 1983; 56.7 degC at Death Valley, 10 July 1913, measured). A
-#: value beyond is a unit mistake (77 degF written as degC) more likely than an air any golf shot flies through
-TEMPERATURE_RANGE = (183.15, 333.15)
-#: the station pressures [Pa] a flight takes: from the ISA pressure at 11 000 m, the top of the altitudes taken
-#: (22 632 Pa, ISO 2533), to 110 kPa, above the highest sea-level pressure recorded (1083.8 hPa, Agata, Siberia,
-#: 31 December 1968, WMO archive, measured) and the ISA pressure 500 m below sea level (107.5 kPa). Below, a pressure
-#: in Pa given for hPa (1013 Pa) would fly an almost airless ball without a word
-PRESSURE_RANGE = (2.0e4, 1.1e5)
-#: keys of a conditions mapping (fly's ``conditions=``, a study's ``conditions:`` block), with their dimensions
-CONDITION_KEYS = {"temperature": "temperature", "pressure": "pressure", "relative_humidity": "dimensionless",
-                  "altitude": "length", "headwind": "speed", "crosswind": "speed"}
-
-
-@attrs.frozen
-class Conditions:
-    """The air a golf shot flies through (a study's ``conditions`` block), SI values.
-
-    Parameters
-    ----------
-    temperature : float
-        Air temperature [K]; default 288.15 K (15 degC). Not lapsed with altitude.
-    pressure : float or None
-        Station pressure [Pa]; None: the ISA pressure at ``altitude`` (sea level without one). Give either
-        ``pressure`` or ``altitude``, not both.
-    relative_humidity : float
-        Fraction 0-1; default 0.5.
-    altitude : float or None
-        Height of the tee above sea level [m], used for the ISA pressure.
-    headwind : float
-        Wind against the shot along the target line [m/s] (negative: a tailwind); uniform with height.
-    crosswind : float
-        Wind across the target line [m/s], positive blowing towards the right (a left-to-right wind).
-    """
-
-    temperature: float = attrs.field(default=STANDARD_TEMPERATURE, converter=to_float, validator=in_range(
-        *TEMPERATURE_RANGE, "an air temperature between -90 and 60 degC (183.15 and 333.15 K, around the coldest "
-        "and hottest air measured on Earth: -89.2 and 56.7 degC; a degF value written as degC lands above)"))
-    pressure: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        *PRESSURE_RANGE, "a station pressure between 200 and 1100 hPa (the ISA pressure at 11 000 m is 226 hPa, the "
-        "highest sea-level pressure recorded 1084 hPa; hPa written as Pa lands below)", optional=True))
-    relative_humidity: float = attrs.field(default=STANDARD_RELATIVE_HUMIDITY, converter=to_float,
-                                           validator=in_range(0.0, 1.0, "a relative humidity between 0 and 1 "
-                                                              "(a fraction, or e.g. '50 %')"))
-    altitude: float | None = attrs.field(default=None, converter=to_float, validator=in_range(
-        -500.0, 11000.0, "an altitude between -500 and 11 000 m (the ISA troposphere)", optional=True))
-    headwind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
-        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
-    crosswind: float = attrs.field(default=0.0, converter=to_float, validator=in_range(
-        -50.0, 50.0, "a wind speed between -50 and 50 m/s"))
-
-    def __attrs_post_init__(self):
-        if self.pressure is not None and self.altitude is not None:
-            raise FieldError("altitude", "either a pressure or an altitude (which sets the ISA pressure), not both",
-                             f"pressure {self.pressure:g} Pa and altitude {self.altitude:g} m")
-
-
-def air_arrays(inputs: Mapping) -> dict:
-    """The keyword arguments of :func:`impactlab.physics.flight.fly` for the air in ``inputs`` (SI arrays).
-
-    ``inputs`` maps the input names of :data:`impactlab.vocabulary.INPUTS` (``air_temperature``, ``air_pressure``,
-    ``relative_humidity``, ``altitude``, ``headwind``, ``crosswind``) to values; absent ones take the standard air.
-    """
-    temperature = inputs.get("air_temperature", STANDARD_TEMPERATURE)
-    pressure = inputs.get("air_pressure")
-    if pressure is None:
-        pressure = atmosphere.pressure_at_altitude(inputs.get("altitude", 0.0))
-    headwind = np.asarray(inputs.get("headwind", 0.0), dtype=float)
-    crosswind = np.asarray(inputs.get("crosswind", 0.0), dtype=float)
-    headwind, crosswind = np.broadcast_arrays(headwind, crosswind)
-    wind = np.stack([-headwind, crosswind, np.zeros_like(headwind)], axis=-1)
-    return {"temperature": temperature, "pressure": pressure,
-            "relative_humidity": inputs.get("relative_humidity", STANDARD_RELATIVE_HUMIDITY), "wind": wind}
-
 
 def is_number_text(text: str) -> bool:
     """True when ``text`` is a number alone (``"167"``, ``"1e3"``): a value whose unit would have to be guessed."""
@@ -241,34 +164,41 @@ def _warn_unusual(values: dict, given: dict) -> None:
 
 
 def conditions_from(conditions) -> Conditions:
-    """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`."""
+    """A :class:`Conditions` from None (the standard air), a Conditions, or a mapping of :data:`CONDITION_KEYS`.
+
+    Each value of the mapping is read as :func:`quantity_array` reads it (SI numbers, strings with units, pint
+    quantities), one value or an array of them (one per shot); a value refused is shown in SI with its unit, and
+    as given where it was text (``conditions.temperature[2]: ... got 473.15 K (given as '200 degC')``).
+    """
     if conditions is None:
         return Conditions()
     if isinstance(conditions, Conditions):
         return conditions
     if not isinstance(conditions, Mapping):
         raise FieldError("conditions", "a mapping with keys from: " + ", ".join(CONDITION_KEYS), conditions)
-    values = {}
+    values: dict = {}
     for key, value in conditions.items():
         if key not in CONDITION_KEYS:
             raise FieldError(f"conditions.{key}", "a key of the air conditions", str(key), choices=CONDITION_KEYS)
         if value is None:
             continue
         array = quantity_array(value, CONDITION_KEYS[key], f"conditions.{key}")
-        if array.ndim:
-            raise FieldError(f"conditions.{key}", "one value (the air is the same for every shot of a call)", value)
-        values[key] = float(array)
+        values[key] = array if array.ndim else float(array)
     try:
         return Conditions(**values)
     except FieldError as exc:
-        key = exc.path or ""
+        key, _, index = (exc.path or "").partition("[")
         if key in values and not isinstance(exc.given, str):
             # the value refused is in SI: shown with its unit and as given (a bare 473.15 for '200 degC' reads as
             # the user's number)
             dimension = CONDITION_KEYS[key]
-            shown = f"{values[key]:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
-            if isinstance(conditions[key], str):
-                shown += f" (given as {conditions[key]!r})"
+            refused = exc.given if index and isinstance(exc.given, float) else values[key]
+            shown = f"{refused:.6g}" + ("" if dimension == "dimensionless" else f" {DIMENSIONS[dimension][0]}")
+            given = conditions[key]
+            if index and isinstance(given, (list, tuple)) and "," not in index:
+                given = given[int(index.rstrip("]"))]
+            if isinstance(given, str):
+                shown += f" (given as {given!r})"
             exc = FieldError(exc.path, exc.expected, shown, exc.choices, file=exc.file, line=exc.line)
         raise exc.at(prefix="conditions") from None
 
@@ -294,7 +224,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         The air: ``temperature`` (K, or ``"25 degC"``), ``pressure`` (Pa or ``"1013 hPa"``; absent: the ISA
         pressure at ``altitude``), ``relative_humidity`` (fraction, or ``"50 %"``), ``altitude`` (m, or
         ``"5280 ft"``), ``headwind`` and ``crosswind`` (m/s or ``"10 mph"``; headwind against the shot,
-        crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air.
+        crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air. Each value is one air for
+        every shot, or an array of values (a list of strings with units, a pint array, SI numbers) giving each
+        shot its own: the air arrays broadcast with the launch's (an array of the launch's shape pairs shot ``i``
+        with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot without one: its pressure
+        is the ISA pressure at its altitude (at sea level without one); a shot may have a pressure or an
+        altitude, not both.
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
@@ -309,15 +244,24 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     xarray.Dataset
         ``carry_distance``, ``offline_distance``, ``apex_height`` [m], ``landing_angle`` [degree] and
         ``flight_time`` [s], shaped like the broadcast inputs (dims ``shot_0``, ``shot_1``...; no dims for
-        scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the air, the
-        aerodynamic model and its references in ``attrs``. NaN for a shot still in the air after 15 s (the
+        scalars), with ``units`` and ``long_name`` from :data:`impactlab.vocabulary.OUTPUTS`; the aerodynamic
+        model and its references in ``attrs``. The air: one air for every shot is said by the attributes
+        ``air_temperature_K``, ``air_pressure_Pa``, ``air_relative_humidity`` and ``air_density_kg_m3``; an air
+        that varies from shot to shot (any of temperature, pressure or humidity) by the coordinates
+        ``air_temperature`` [K], ``air_pressure`` [Pa] (the station pressure flown, from the altitude where that
+        was given), ``relative_humidity`` [1] and ``air_density`` [kg/m^3] on the shot dims, and then no
+        ``air_*`` attribute. The wind likewise: attributes ``headwind_m_s`` and ``crosswind_m_s``, or coordinates
+        ``headwind`` and ``crosswind`` [m/s]. NaN for a shot still in the air after 15 s (the
         integration's limit; e.g. 300 mph at 89 deg). A shot launched below the horizontal is at the ground going
         down: carry, apex and flight time 0, its landing angle the launch's.
 
     Raises
     ------
     FieldError
-        A value of the wrong dimension or out of range (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
+        Air values (or an element of them) out of the ranges of :class:`Conditions`, named by their index
+        (``conditions.temperature[3]``) and shown in SI with their unit; air arrays that do not broadcast with each
+        other or with the launch (the message lists the shapes). A value of the wrong dimension or out of range
+        (speed <= 0 or above 300 mph, spin < 0 or above 20,000 rpm,
         a launch angle or launch direction at or beyond +-90 deg, a spin axis beyond +-90 deg: no golf shot has
         them; :data:`IMPOSSIBLE_LAUNCH`), a string without a unit. A value refused that was given as a plain number
         is said to be SI (``spin_axis=3`` is 3 rad = 172 deg).
@@ -348,6 +292,9 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     >>> shot = impactlab.fly(ball_speed="167 mph", launch_angle="10.9 deg", spin_rate="2686 rpm")
     >>> round(float(shot.carry_distance) / 0.9144)  # yards
     275
+    >>> airs = impactlab.fly("167 mph", "10.9 deg", "2686 rpm", conditions={"temperature": ["5 degC", "35 degC"]})
+    >>> [round(float(carry) / 0.9144) for carry in airs.carry_distance]  # warm air is thinner: longer
+    [272, 279]
     """
     import xarray as xr
 
@@ -413,14 +360,17 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     if model not in aerodynamics.MODELS:
         raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
-    air_inputs = {"air_temperature": air.temperature, "relative_humidity": air.relative_humidity,
-                  "headwind": air.headwind, "crosswind": air.crosswind}
-    if air.pressure is not None:
-        air_inputs["air_pressure"] = air.pressure
-    if air.altitude is not None:
-        air_inputs["altitude"] = air.altitude
-    arguments = air_arrays(air_inputs)
-    arguments["wind"] = arguments["wind"].reshape(3)
+    launch_shape = np.broadcast_shapes(*(array.shape for array in values.values()))
+    try:
+        np.broadcast_shapes(launch_shape, air.shape)
+    except ValueError:
+        shapes = [f"{name} {array.shape}" for name, array in values.items() if array.ndim] + [
+            f"conditions.{key} {np.shape(value)}" for key, value in zip(CONDITION_KEYS, (
+                air.temperature, air.pressure, air.relative_humidity, air.altitude, air.headwind, air.crosswind))
+            if np.ndim(value)]
+        raise FieldError("conditions", "air values that broadcast with the launch: one value for every shot, or one "
+                         "per shot (an array of the launch's shape)", ", ".join(shapes)) from None
+    arguments = flight_air(air)
     result = physics.fly(values["ball_speed"], values["launch_angle"], values["spin_rate"], values["spin_axis"],
                          values["launch_direction"], ball_mass=mass, ball_radius=radius, model=model,
                          return_trajectories=trajectories, **arguments)
@@ -436,16 +386,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         for axis, words in (("x", "along the target line"), ("y", "right of the target line"), ("z", "height")):
             data[f"trajectory_{axis}"] = (("shot", "t"), result[axis],
                                           {"units": "m", "long_name": f"ball position, {words}"})
-    pressure = float(arguments["pressure"])
+    air_attributes, air_coords = air_description(air, arguments, shape, dims)
+    coords.update(air_coords)
     attributes = {
         "aerodynamic_model": model,
         "aerodynamic_references": aerodynamics.MODEL_REFERENCES[model],
-        "air_temperature_K": air.temperature,
-        "air_pressure_Pa": pressure,
-        "air_relative_humidity": air.relative_humidity,
-        "air_density_kg_m3": float(atmosphere.air_density(air.temperature, pressure, air.relative_humidity)),
-        "headwind_m_s": air.headwind,
-        "crosswind_m_s": air.crosswind,
+        **air_attributes,
         "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),
         "ball_radius_m": float(radius) if radius.ndim == 0 else str(radius.tolist()),
     }
@@ -454,4 +400,6 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
 
 __all__ = ["Conditions", "fly", "is_number_text",
            "air_arrays", "quantity_array", "conditions_from", "CONDITION_KEYS", "UNUSUAL_LAUNCH",
-           "IMPOSSIBLE_LAUNCH"]
+           "IMPOSSIBLE_LAUNCH",
+           # the air's constants, defined in impactlab.scene.air, kept importable from here
+           "PRESSURE_RANGE", "STANDARD_RELATIVE_HUMIDITY", "STANDARD_TEMPERATURE", "TEMPERATURE_RANGE"]
