@@ -32,7 +32,7 @@ STYLE = {"trackman_carry": ("tab:blue", "s", "classic PGA table"),
 
 
 def main() -> Path:
-    grid = np.linspace(0.204, 0.240, 19)
+    grid = np.linspace(flight_fit.C0_BOUNDS[0] - 0.003, flight_fit.C0_BOUNDS[1] + 0.003, 46)
     source = carry_table(flight_fit.SOURCES[0])
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
     ax = axes[0]
@@ -46,14 +46,14 @@ def main() -> Path:
         other = np.array([club != "Driver" for club in table.clubs])
         rms = [np.sqrt(np.mean(validate_carry(flight_fit.coefficients(c0), table)["carry_error"][other] ** 2))
                for c0 in grid]
-        ax.plot(grid, 100 * np.array(rms), color=colour, marker=marker, markevery=3, linestyle="--",
+        ax.plot(grid, 100 * np.array(rms), color=colour, marker=marker, markevery=6, linestyle="--",
                 label=f"{label} without driver (held out)")
-    for c0, text, style, side in ((MEASURED_FIT_OFFSETS["modern"], "modern balls 0.2072", ":", "right"),
-                                  (flight_fit.FITTED["c0"], f"fitted {flight_fit.FITTED['c0']:.4f}", "-", "right"),
-                                  (MEASURED_FIT_OFFSETS["usga_1998"], "USGA 1998 ball 0.2299", "-.", "left")):
+    modern, usga = MEASURED_FIT_OFFSETS["modern"], MEASURED_FIT_OFFSETS["usga_1998"]
+    for c0, text, style, side in ((modern, f"modern balls {modern:.4f}", ":", "right"),
+                                  (flight_fit.FITTED["c0"], f"fitted {flight_fit.FITTED['c0']:.4f}", "-", "left"),
+                                  (usga, f"USGA 1998 ball {usga:.4f}", "-.", "left")):
         ax.axvline(c0, color="0.3", linestyle=style, linewidth=1.0)
-        ax.text(c0, 4.2 if side == "left" else 0.2, text, rotation=90, va="bottom", ha=side, fontsize=8,
-                color="0.25")
+        ax.text(c0, 5.6, text, rotation=90, va="bottom", ha=side, fontsize=8, color="0.25")
     ax.axhline(3.0, color="tab:red", linewidth=1.0)
     ax.text(grid[-1], 3.1, "3 % target", color="tab:red", ha="right", va="bottom", fontsize=8)
     ax.set_xlim(grid[0], grid[-1])
@@ -61,7 +61,7 @@ def main() -> Path:
     ax.set_xlabel("supercritical drag level c0")
     ax.set_ylabel("carry RMS error, %")
     ax.set_title("carry RMS against the ball's drag level")
-    ax.legend(fontsize=8, loc="upper center")
+    ax.legend(fontsize=8, loc="lower right")
     ax = axes[1]
     for name, check in flight_fit.held_out(flight_fit.FITTED["c0"]).items():
         colour, marker, label = STYLE[name]
