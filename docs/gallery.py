@@ -31,10 +31,10 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                              "measured dose-response (raw and launch-adjusted) and altitude venues beside the models, "
                              "as flown and with Re frozen; the density slope over c0 and lift scale within their "
                              "bounds", "python docs/flight_altitude.py"),
-         "flight_candidates": ("The drag crisis' position: held-out tour-table carry errors against launch spin "
-                               "ratio with the drag level only and with measured_fit_late_crisis, carry RMS against "
-                               "the crisis midpoint (radar seasons and tables), and the late crisis against the "
-                               "measured drag of spinning and non-spinning balls", "python docs/flight_candidates.py"),
+         "flight_candidates": ("The drag crisis' advance with spin: held-out tour-table carry errors against launch "
+                               "spin ratio with measured_fit and with the crisis at one Re, carry RMS against the "
+                               "spin advance (radar seasons and tables), and both crisis models against the measured "
+                               "drag of spinning and non-spinning balls", "python docs/flight_candidates.py"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
                                      "the wedge cover difference, and a wet face's spin loss",
