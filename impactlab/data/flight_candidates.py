@@ -17,7 +17,7 @@ PGA TOUR radar seasons alone (the honest number: no tour table in the fit), and 
 the other two tables (optimistic: the tables share an instrument and partly players). Carry RMS per held-out table,
 land angles and heights against the tables, hang times and apexes against the seasons show whether a candidate fixes
 the carry by breaking the flight's shape. :func:`crisis_scan` shows what the seasons and the tables say about the crisis
-position. ``python -m impactlab.data.flight_candidates`` prints the tables of docs/flight.md ("Which change removes
+position. ``python -m impactlab.data.flight_candidates`` prints the tables of docs/flight.md ("Which change moves
 the spin-ratio residual"), about five minutes.
 
 References
