@@ -247,11 +247,13 @@ def fit(parameters=("c0", "lift_scale"), observables=OBSERVABLES, **held) -> dic
     return {**params, "at_bound": at_bound, "cost": float(solution.cost)}
 
 
-def fit_grid(name: str = "crisis_shift", shifts=(0.9, 1.0, 1.1, 1.2), **options) -> dict:
+def fit_grid(name: str = "crisis_shift", shifts=None, **options) -> dict:
     """:func:`fit` at each value of ``shifts`` of the :data:`GRID` parameter ``name`` (a step in carry: a grid, not
-    least squares); the one of least cost (costs within :data:`TIE` relative: the one nearest measured_fit's 1, since
+    least squares; default: its bounds' two ends and 1); the one of least cost (costs within :data:`TIE` relative: the one nearest measured_fit's 1, since
     the flights fitted cannot tell them apart), with ``name`` in ``at_bound`` when it is an end of :data:`BOUNDS` and
     ``scan``, each value tried with its cost."""
+    if shifts is None:
+        shifts = (BOUNDS[name][0], 1.0, BOUNDS[name][1])
     tried = [fit(**{name: shift}, **options) for shift in shifts]
     least = min(r["cost"] for r in tried)
     best = dict(min((r for r in tried if r["cost"] <= least * (1 + TIE)), key=lambda r: abs(r[name] - 1.0)))
