@@ -18,10 +18,13 @@ default model, standard air; the classic PGA table's launches (impactlab/data/va
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from impactlab import fly
 from impactlab.data.carry import carry_table
+from impactlab.errors import PlausibilityWarning
 
 SPREADS = [(4.0, 1.5, 0.12), (6.0, 2.5, 0.20)]  # (mph, deg, fraction) one sigma
 WINDS = [2.0, 3.0, 4.0]  # m/s
@@ -39,9 +42,12 @@ def main() -> None:
         cells = []
         for speed_sd, angle_sd, spin_sd in SPREADS:
             n = 4000
-            spread = fly(v + speed_sd * MPH * rng.standard_normal(n),
-                         angle + np.radians(angle_sd) * rng.standard_normal(n),
-                         spin * (1 + spin_sd * rng.standard_normal(n)))
+            with warnings.catch_warnings():
+                # a 20 % spin spread about a 9,300 rpm wedge samples a few shots above 12,000 rpm: flown on purpose
+                warnings.simplefilter("ignore", PlausibilityWarning)
+                spread = fly(v + speed_sd * MPH * rng.standard_normal(n),
+                             angle + np.radians(angle_sd) * rng.standard_normal(n),
+                             spin * (1 + spin_sd * rng.standard_normal(n)))
             cells.append(f"{100 * (float(spread.carry_distance.mean()) / base - 1):+.2f} %")
         directions = np.linspace(0.0, 2 * np.pi, 12, endpoint=False)
         for wind in WINDS:
