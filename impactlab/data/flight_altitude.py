@@ -249,9 +249,9 @@ def fit(parameters=("c0", "lift_scale"), observables=OBSERVABLES, **held) -> dic
 
 def fit_grid(name: str = "crisis_shift", shifts=None, **options) -> dict:
     """:func:`fit` at each value of ``shifts`` of the :data:`GRID` parameter ``name`` (a step in carry: a grid, not
-    least squares; default: its bounds' two ends and 1); the one of least cost (costs within :data:`TIE` relative: the one nearest measured_fit's 1, since
-    the flights fitted cannot tell them apart), with ``name`` in ``at_bound`` when it is an end of :data:`BOUNDS` and
-    ``scan``, each value tried with its cost."""
+    least squares; default: its bounds' two ends and 1); the one of least cost (costs within :data:`TIE` relative:
+    the one nearest measured_fit's 1, since the flights fitted cannot tell them apart), with ``name`` in
+    ``at_bound`` when it is an end of :data:`BOUNDS` and ``scan``, each value tried with its cost."""
     if shifts is None:
         shifts = (BOUNDS[name][0], 1.0, BOUNDS[name][1])
     tried = [fit(**{name: shift}, **options) for shift in shifts]
