@@ -168,3 +168,20 @@ def test_the_report_of_one_source(capsys):
     assert aero_sources.main(["--source", "bridgestone_patents"]) == 0
     out = capsys.readouterr().out
     assert out.count("| bridgestone_patents | 8 / 8 |") == 1 and "variant" not in out
+
+
+def test_the_non_spinning_row_the_advance_rests_on_moved_or_counted_in_the_crisis(full):
+    m, moved = aero_fit.measurements(), aero_sources.still_at_75k(0.05)
+    changed = np.flatnonzero(~np.isclose(moved["cd"], m["cd"], equal_nan=True))
+    assert changed.size == 1 and m["block"][changed[0]] == "lyu_2018_fig3a" and m["re"][changed[0]] == 75000.0
+    assert moved["cd"][changed[0]] == pytest.approx(0.302 + 0.05)
+    rows = aero_fit.fit(data=aero_sources.still_at_75k(in_crisis=True))["rows"]
+    assert rows["drag supercritical"] == full["rows"]["drag supercritical"] - 1
+    assert rows["drag crisis"] == full["rows"]["drag crisis"] + 1
+
+
+def test_a_crisis_constant_left_on_its_search_bound_is_named(full):
+    assert aero_fit.crisis_at_bounds(full["crisis"]) == []
+    crisis = list(full["crisis"])
+    crisis[4], crisis[7] = 3e4, 5.0  # Re_d on its lower bound, m on its upper
+    assert aero_fit.crisis_at_bounds(crisis) == ["Re_d", "m"]

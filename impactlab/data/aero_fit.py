@@ -87,6 +87,15 @@ _CRISIS_BOUNDS = ([4e4, 0.02, 0, 0.02, 3e4, 500, 0], [1e5, 0.5, 5, 2, 1e5, 3e4, 
 _ADVANCE = (0.5, 0.5, (-5.0, 5.0))
 
 
+def crisis_at_bounds(crisis) -> list:
+    """The names of stage 3's constants (Re_l, sigma, beta, s_l, Re_d, w_d, d, m) that a fit left on a bound of
+    its search: not determined by the rows (a refit without the rows that place the crisis)."""
+    names = ("Re_l", "sigma", "beta", "s_l", "Re_d", "w_d", "d", "m")
+    low, high = [*_CRISIS_BOUNDS[0], _ADVANCE[2][0]], [*_CRISIS_BOUNDS[1], _ADVANCE[2][1]]
+    return [name for name, value, lo, hi in zip(names, crisis, low, high) if np.isclose(value, lo, rtol=1e-6, atol=0)
+            or np.isclose(value, hi, rtol=1e-6, atol=0)]
+
+
 def _rms(x) -> float:
     return float(np.sqrt(np.mean(np.square(x))))
 
