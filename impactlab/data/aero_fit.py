@@ -16,6 +16,9 @@ The fit has three least-squares stages, each on the rows its physics concerns:
    more the ball spins: the non-spinning 13-ball mean is still subcritical at Re 7.5e4 where three balls at 2250 rpm
    are not) and ``CL *= 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S / s_l)``.
 
+:func:`fit` can leave blocks out (``exclude``), fit another table of rows (``data``) or give a ball group its own
+induced-drag factor (``own_k``): the cross-validation by source of :mod:`impactlab.data.aero_sources`.
+
 ``python -m impactlab.data.aero_fit`` prints the fitted constants and the residuals of each stage; the constants
 written in :mod:`impactlab.physics.aerodynamics` are these (tests/test_flight.py refits and compares).
 """
@@ -38,7 +41,7 @@ GROUPS = ("modern", "usga_1998", "bh_1976", "naruo_2004", "acushnet_invention", 
 def measurements() -> dict:
     """The measured rows: ``re``, ``s``, ``cd``, ``cl`` (NaN where not measured), ``group`` (index into
     :data:`GROUPS`), ``block`` (the source block's key) and ``supercritical`` (Re at or above the group's crisis end),
-    plus the document's ``blocks`` (citations)."""
+    plus the document's ``blocks`` (citations) and ``supercritical_re`` (each group's crisis end)."""
     document = yaml.safe_load(resources.files("impactlab.data.validation").joinpath(
         "aero_coefficients.yaml").read_text())
     assert document["kind"] == "measurement", document["kind"]
@@ -54,7 +57,8 @@ def measurements() -> dict:
     # a row without Re (Lyu 2018 Fig. 4a) was measured at 32-91 m/s, Re above 9e4: supercritical
     supercritical = np.where(np.isnan(data[:, 0]), True, data[:, 0] >= limit)
     return {"re": data[:, 0], "s": data[:, 1], "cd": data[:, 2], "cl": data[:, 3], "group": group,
-            "block": np.array(blocks), "supercritical": supercritical, "blocks": document["blocks"]}
+            "block": np.array(blocks), "supercritical": supercritical, "blocks": document["blocks"],
+            "supercritical_re": dict(document["supercritical_re"])}
 
 
 def lift_supercritical(s, a, b):
@@ -83,26 +87,46 @@ _CRISIS_BOUNDS = ([4e4, 0.02, 0, 0.02, 3e4, 500, 0], [1e5, 0.5, 5, 2, 1e5, 3e4, 
 _ADVANCE = (0.5, 0.5, (-5.0, 5.0))
 
 
+def crisis_at_bounds(crisis) -> list:
+    """The names of stage 3's constants (Re_l, sigma, beta, s_l, Re_d, w_d, d, m) that a fit left on a bound of
+    its search: not determined by the rows (a refit without the rows that place the crisis)."""
+    names = ("Re_l", "sigma", "beta", "s_l", "Re_d", "w_d", "d", "m")
+    low, high = [*_CRISIS_BOUNDS[0], _ADVANCE[2][0]], [*_CRISIS_BOUNDS[1], _ADVANCE[2][1]]
+    return [name for name, value, lo, hi in zip(names, crisis, low, high) if np.isclose(value, lo, rtol=1e-6, atol=0)
+            or np.isclose(value, hi, rtol=1e-6, atol=0)]
+
+
 def _rms(x) -> float:
     return float(np.sqrt(np.mean(np.square(x))))
 
 
-def _supercritical_stages(m: dict):
-    """Stages 1 and 2: the lift (a, b), the drag (offsets per group, c_re, k) and their row masks."""
+def _supercritical_stages(m: dict, own_k=()):
+    """Stages 1 and 2: the lift (a, b), the drag (offsets per group, c_re, k and one k per group of ``own_k``) and
+    their row masks. A group without drag rows gets no offset (NaN)."""
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
     re, s, cd, cl, group, sc = m["re"], m["s"], m["cd"], m["cl"], m["group"], m["supercritical"]
     lift_rows = sc & np.isfinite(cl)
     lift = least_squares(lambda p: lift_supercritical(s[lift_rows], *p) - cl[lift_rows], [2.0, 4.0]).x
     drag_rows = sc & np.isfinite(cd)
-    n = len(GROUPS)
+    present = [g for g in range(len(GROUPS)) if np.any(drag_rows & (group == g))]
+    n = len(present)
+    slot = np.full(len(GROUPS), -1)
+    slot[present] = np.arange(n)
+    # the induced-drag factor of each group: the shared one (n + 1) or its own (n + 2, ...)
+    k_slot = np.full(len(GROUPS), n + 1)
+    k_slot[[GROUPS.index(name) for name in own_k]] = n + 2 + np.arange(len(own_k))
 
     def drag_model(p, rows):
-        return p[group[rows]] + p[n] * re[rows] / 1e5 + p[n + 1] * lift_supercritical(s[rows], *lift) ** 2
+        k = p[n + 1] if not own_k else p[k_slot[group[rows]]]
+        return p[slot[group[rows]]] + p[n] * re[rows] / 1e5 + k * lift_supercritical(s[rows], *lift) ** 2
 
-    drag = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.22] * n + [0.0, 1.0]).x
+    fitted = least_squares(lambda p: drag_model(p, drag_rows) - cd[drag_rows], [0.22] * n + [0.0, 1.0]
+                           + [1.0] * len(own_k)).x
     rms = {"lift supercritical": _rms(lift_supercritical(s[lift_rows], *lift) - cl[lift_rows]),
-           "drag supercritical": _rms(drag_model(drag, drag_rows) - cd[drag_rows])}
+           "drag supercritical": _rms(drag_model(fitted, drag_rows) - cd[drag_rows])}
+    offsets = np.array([fitted[slot[g]] if slot[g] >= 0 else np.nan for g in range(len(GROUPS))])
+    drag = {"offsets": offsets, "c_re": fitted[n], "k": fitted[k_slot]}  # k per group
     return lift, drag, lift_rows, rms
 
 
@@ -112,7 +136,8 @@ def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
     re, s, cd, cl, group, sc = m["re"], m["s"], m["cd"], m["cl"], m["group"], m["supercritical"]
-    offset = drag[GROUPS.index(MODEL_GROUP)]
+    model = GROUPS.index(MODEL_GROUP)
+    offset, c_re, k = drag["offsets"][model], drag["c_re"], drag["k"][model]
     modern = group == GROUPS.index(MODEL_GROUP)
     low_cd = modern & ~sc & np.isfinite(cd)
     low_cl = modern & ~sc & np.isfinite(cl)
@@ -122,7 +147,7 @@ def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
         # rows without Re are supercritical (above 9e4): the crisis terms vanish there, take 1e6
         r = np.where(np.isnan(re[rows]), 1e6, re[rows])
         extra, factor = crisis_terms(s[rows], r, *p)
-        return (offset + drag[-2] * r / 1e5 + drag[-1] * lift_supercritical(s[rows], *lift) ** 2 + extra,
+        return (offset + c_re * r / 1e5 + k * lift_supercritical(s[rows], *lift) ** 2 + extra,
                 lift_supercritical(s[rows], *lift) * factor)
 
     def residuals(p):
@@ -147,7 +172,39 @@ def _crisis_stage(m: dict, lift, drag, lift_rows, spin_advance: bool):
     return p, errors, rms, rows
 
 
-def fit(spin_advance: bool = True) -> dict:
+def select(m: dict, exclude=(), own_k=()) -> dict:
+    """:func:`measurements` (or another table ``m`` of the same keys) without the rows of the blocks ``exclude``.
+
+    Raises
+    ------
+    ValueError
+        A block or group name the table does not have, or rows left that leave a stage of :func:`fit` without what it
+        fits: the supercritical lift or drag, a drag offset for ``own_k``, or the modern balls' crisis (drag and lift
+        below their crisis end) and drag level.
+    """
+    blocks = sorted(str(name) for name in set(m["block"]))
+    unknown = sorted(set(exclude) - set(blocks))
+    if unknown:
+        raise ValueError(f"unknown block {unknown}; the measurement blocks are {blocks}")
+    if not set(own_k) <= set(GROUPS):
+        raise ValueError(f"unknown ball group {sorted(set(own_k) - set(GROUPS))}; the groups are {list(GROUPS)}")
+    keep = ~np.isin(m["block"], list(exclude))
+    kept = {key: (value[keep] if isinstance(value, np.ndarray) else value) for key, value in m.items()}
+    sc, modern = kept["supercritical"], kept["group"] == GROUPS.index(MODEL_GROUP)
+    needs = {"stage 1 (supercritical lift)": sc & np.isfinite(kept["cl"]),
+             "stage 2 (supercritical drag)": sc & np.isfinite(kept["cd"]),
+             "stage 2 (the modern balls' drag level)": modern & sc & np.isfinite(kept["cd"]),
+             "stage 3 (the modern balls' drag crisis)": modern & ~sc & np.isfinite(kept["cd"]),
+             "stage 3 (the modern balls' lift crisis)": modern & ~sc & np.isfinite(kept["cl"])}
+    needs.update({f"stage 2 (the own k of {name})": sc & np.isfinite(kept["cd"]) & (
+        kept["group"] == GROUPS.index(name)) for name in own_k})
+    empty = [stage for stage, rows in needs.items() if not rows.any()]
+    if empty:
+        raise ValueError(f"leaving out {sorted(exclude)} leaves {', '.join(empty)} without rows: nothing to fit there")
+    return kept
+
+
+def fit(spin_advance: bool = True, exclude=(), data: dict | None = None, own_k=()) -> dict:
     """Fit the three stages (module docstring) to :func:`measurements`.
 
     Parameters
@@ -155,24 +212,42 @@ def fit(spin_advance: bool = True) -> dict:
     spin_advance : bool
         Fit the crisis midpoint's spin advance m (``measured_fit``); False holds m = 0, the crisis of a ball without
         spin at every S (the model before 2026-11-24, kept to show what m changes).
+    exclude : collection of str
+        Blocks of the measurements file left out (cross-validation by source, :mod:`impactlab.data.aero_sources`).
+    data : dict, optional
+        A table of :func:`measurements`' keys fitted instead of the file's (a sensitivity, e.g. rows at another Re).
+    own_k : collection of str
+        Ball groups given their own induced-drag factor k (a structural sensitivity); the others share one.
 
     Returns
     -------
     dict
-        ``lift`` (a, b); ``offsets`` (the supercritical drag offset of each group of :data:`GROUPS`), ``c_re`` and
-        ``k``; ``crisis`` (Re_l, sigma, beta, s_l, Re_d, w_d, d and, with ``spin_advance``, m) and its standard errors
-        ``errors`` (from the Jacobian); ``rms`` residuals per stage and quantity; ``rows`` counted per stage.
+        ``lift`` (a, b); ``offsets`` (the supercritical drag offset of each group of :data:`GROUPS`, NaN for a group
+        without rows), ``c_re`` and ``k`` (the modern balls'); ``crisis`` (Re_l, sigma, beta, s_l, Re_d, w_d, d and,
+        with ``spin_advance``, m) and its standard errors ``errors`` (from the Jacobian); ``rms`` residuals per stage
+        and quantity; ``rows`` counted per stage; with ``own_k`` also ``k_groups`` (k of each group).
+
+    Raises
+    ------
+    ValueError
+        From :func:`select`: an unknown block or group, or a stage left without rows.
     """
-    m = measurements()
-    lift, drag, lift_rows, rms = _supercritical_stages(m)
+    m = measurements() if data is None else data
+    if exclude or own_k:
+        m = select(m, exclude, own_k)
+    lift, drag, lift_rows, rms = _supercritical_stages(m, tuple(own_k))
     crisis, errors, crisis_rms, crisis_rows = _crisis_stage(m, lift, drag, lift_rows, spin_advance=spin_advance)
     rms.update(crisis_rms)
-    return {"lift": tuple(float(v) for v in lift),
-            "offsets": {name: float(drag[index]) for index, name in enumerate(GROUPS)},
-            "c_re": float(drag[-2]), "k": float(drag[-1]),
-            "crisis": tuple(float(v) for v in crisis), "errors": tuple(float(v) for v in errors), "rms": rms,
-            "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(np.sum(
-                m["supercritical"] & np.isfinite(m["cd"]))), **crisis_rows}}
+    model = GROUPS.index(MODEL_GROUP)
+    out = {"lift": tuple(float(v) for v in lift),
+           "offsets": {name: float(drag["offsets"][index]) for index, name in enumerate(GROUPS)},
+           "c_re": float(drag["c_re"]), "k": float(drag["k"][model]),
+           "crisis": tuple(float(v) for v in crisis), "errors": tuple(float(v) for v in errors), "rms": rms,
+           "rows": {"lift supercritical": int(lift_rows.sum()), "drag supercritical": int(np.sum(
+               m["supercritical"] & np.isfinite(m["cd"]))), **crisis_rows}}
+    if own_k:
+        out["k_groups"] = {name: float(drag["k"][index]) for index, name in enumerate(GROUPS)}
+    return out
 
 
 @functools.cache
