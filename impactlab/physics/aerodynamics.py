@@ -336,12 +336,22 @@ def aero_coefficients(s, re, model=DEFAULT_MODEL):
         Drag and lift coefficients referred to ``q = rho v^2 / 2`` and the
         frontal area ``pi R^2``.
 
+    Raises
+    ------
+    ValueError
+        A model not in :data:`MODELS`; a retired one (:data:`RETIRED_MODELS`)
+        is named with why and what to use.
+
     Notes
     -----
     All three published models are curve fits to measurements; outside their
     fitted ranges (irons and wedges reach S = 0.3-1.2 late in flight) they are
     extrapolations.  See docs/flight.md for the validation of each.
     """
+    if not isinstance(model, str) or model not in MODELS:
+        retired = (f" ({model!r} was {RETIRED_MODELS[model]})" if isinstance(model, str) and model in RETIRED_MODELS
+                   else "")
+        raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
     fn, _ = MODELS[model]
     s = np.asarray(s, dtype=float)
     re = np.asarray(re, dtype=float)
