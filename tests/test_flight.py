@@ -876,3 +876,12 @@ def test_the_coefficients_of_a_retired_or_unknown_model_are_refused_with_why():
         aerodynamics.aero_coefficients(0.2, 1.0e5, model="measured_fit_late_crisis")
     with pytest.raises(ValueError, match="unknown model 'no_such_model'.*measured_fit"):
         aerodynamics.aero_coefficients(0.2, 1.0e5, model="no_such_model")
+
+
+def test_the_carry_command_says_why_a_retired_model_is_refused(capsys):
+    from impactlab.data import carry
+
+    with pytest.raises(SystemExit) as exit_:
+        carry.main(["measured_fit_late_crisis"])
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and "retired on 2026-11-24" in err and "use 'measured_fit'" in err

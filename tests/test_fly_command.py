@@ -129,6 +129,16 @@ def test_every_user_error_is_one_message_and_exit_2(args, says, tmp_path, capsys
     assert not out.exists()
 
 
+@pytest.mark.parametrize("args", [["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"],
+                                  [str(DATA / "trackman_tps.csv")]])
+def test_a_retired_model_is_refused_with_why_not_as_an_invalid_choice(args, capsys):
+    with pytest.raises(SystemExit) as exit_:  # argparse's refusal: one line, status 2
+        main(["fly", *args, "--model", "measured_fit_late_crisis"])
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert "'measured_fit_late_crisis' was retired on 2026-11-24" in err and "use 'measured_fit'" in err
+
+
 def test_the_python_api_refuses_launches_that_do_not_broadcast():
     import impactlab
     from impactlab.errors import FieldError
