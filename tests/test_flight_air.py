@@ -222,3 +222,15 @@ def test_a_scene_takes_one_air_and_a_study_block_stays_one_air():
         attrs.evolve(scene, conditions=Conditions(temperature=[280.0, 300.0]))
     assert str(caught.value).startswith("conditions: expected one air for the scene")
     assert build_conditions({"temperature": "25 degC"}) == Conditions(temperature=298.15)
+
+
+@pytest.mark.parametrize("arguments, where", [
+    ({"conditions": {"relative_humidity": [True, False]}}, "conditions.relative_humidity"),  # flown as 100 %, 0 %
+    ({"conditions": {"headwind": [0.0, True]}}, "conditions.headwind"),  # 1 m/s of wind nobody asked for
+    ({"spin_axis": [True, False]}, "spin_axis"),  # 1 rad = 57 deg of tilt, 44 m offline
+    ({"spin_axis": np.array([True, False])}, "spin_axis"),
+])
+def test_true_and_false_in_an_array_are_refused_as_a_lone_true_is(arguments, where):
+    # a lone True is refused (quantity_array); in a list numpy reads it as 1.0, a number nobody typed
+    with pytest.raises(FieldError, match=rf"^{where}: expected .*\(not True/False\), got "):
+        impactlab.fly([70.0, 71.0], 0.3, 500.0, **arguments)

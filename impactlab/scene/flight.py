@@ -81,6 +81,12 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise FieldError(path, _words(dimension), value) from None
+    if isinstance(value, (list, tuple, np.ndarray)) and array.size:
+        # True read as 1.0 (spin_axis=[True, False] is 1 rad, 57 deg): refused as a lone True is
+        flags = np.asarray(value).dtype.kind == "b" or (not isinstance(value, np.ndarray) and any(
+            isinstance(item, (bool, np.bool_)) for item in np.asarray(value, dtype=object).ravel()))
+        if flags:
+            raise FieldError(path, f"{_words(dimension)} (not True/False)", value)
     return array
 
 
