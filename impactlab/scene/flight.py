@@ -43,7 +43,7 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
 
     Parameters
     ----------
-    value : float, array_like, str, sequence of str or pint.Quantity
+    value : float, array_like, str, sequence of str or of pint.Quantity, or pint.Quantity
         Numbers are SI (angles in rad, spin in rad/s); a string must carry its unit (``"167 mph"``): a number
         written as text is refused, its unit is not guessed.
     dimension : str
@@ -74,7 +74,8 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
             raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
                                    f"'{example}', or a number in SI)", value)
         return np.asarray(to_si(value, dimension, path), dtype=float)
-    if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) for item in value):
+    if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) or hasattr(item, "magnitude")
+                                                          for item in value):  # strings or pint quantities, each
         return np.array([float(quantity_array(item, dimension, f"{path}[{index}]"))
                          for index, item in enumerate(value)])
     try:
