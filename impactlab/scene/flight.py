@@ -232,11 +232,11 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         pressure at ``altitude``), ``relative_humidity`` (fraction, or ``"50 %"``), ``altitude`` (m, or
         ``"5280 ft"``), ``headwind`` and ``crosswind`` (m/s or ``"10 mph"``; headwind against the shot,
         crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air. Each value is one air for
-        every shot, or an array of values (a list of strings with units, a pint array, SI numbers) giving each
-        shot its own: the air arrays broadcast with the launch's (an array of the launch's shape pairs shot ``i``
-        with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot without one: its pressure
-        is the ISA pressure at its altitude (at sea level without one); a shot may have a pressure or an
-        altitude, not both.
+        every shot, or an array of values (a list of strings with units or of pint quantities, a pint array, SI
+        numbers) giving each shot its own: the air arrays broadcast with the launch's (an array of the launch's
+        shape pairs shot ``i`` with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot
+        without one: its pressure is the ISA pressure at its altitude (at sea level without one); a shot may have
+        a pressure or an altitude, not both.
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
