@@ -867,3 +867,21 @@ def test_a_retired_model_is_refused_with_why_and_what_to_use():
     with pytest.raises(ValueError, match="retired on 2026-11-24"):
         flight.fly(70.0, 0.2, 300.0, model="measured_fit_late_crisis")
     assert not set(aerodynamics.RETIRED_MODELS) & set(aerodynamics.MODELS)
+
+
+def test_the_coefficients_of_a_retired_or_unknown_model_are_refused_with_why():
+    # aero_coefficients is public: a model name that is not shipped is a ValueError naming it (a retired one with
+    # why and what to use), never a bare KeyError
+    with pytest.raises(ValueError, match="retired on 2026-11-24.*use 'measured_fit'"):
+        aerodynamics.aero_coefficients(0.2, 1.0e5, model="measured_fit_late_crisis")
+    with pytest.raises(ValueError, match="unknown model 'no_such_model'.*measured_fit"):
+        aerodynamics.aero_coefficients(0.2, 1.0e5, model="no_such_model")
+
+
+def test_the_carry_command_says_why_a_retired_model_is_refused(capsys):
+    from impactlab.data import carry
+
+    with pytest.raises(SystemExit) as exit_:
+        carry.main(["measured_fit_late_crisis"])
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and "retired on 2026-11-24" in err and "use 'measured_fit'" in err

@@ -222,3 +222,28 @@ def test_a_scene_takes_one_air_and_a_study_block_stays_one_air():
         attrs.evolve(scene, conditions=Conditions(temperature=[280.0, 300.0]))
     assert str(caught.value).startswith("conditions: expected one air for the scene")
     assert build_conditions({"temperature": "25 degC"}) == Conditions(temperature=298.15)
+
+
+@pytest.mark.parametrize("arguments, where", [
+    ({"conditions": {"relative_humidity": [True, False]}}, "conditions.relative_humidity"),  # flown as 100 %, 0 %
+    ({"conditions": {"headwind": [0.0, True]}}, "conditions.headwind"),  # 1 m/s of wind nobody asked for
+    ({"spin_axis": [True, False]}, "spin_axis"),  # 1 rad = 57 deg of tilt, 44 m offline
+    ({"spin_axis": np.array([True, False])}, "spin_axis"),
+])
+def test_true_and_false_in_an_array_are_refused_as_a_lone_true_is(arguments, where):
+    # a lone True is refused (quantity_array); in a list numpy reads it as 1.0, a number nobody typed
+    with pytest.raises(FieldError, match=rf"^{where}: expected .*\(not True/False\), got "):
+        impactlab.fly([70.0, 71.0], 0.3, 500.0, **arguments)
+
+
+def test_a_list_of_pint_quantities_is_read_as_the_same_list_of_strings():
+    # a list of quantities (each with its unit, here an offset unit) was refused as 'not a temperature'
+    from impactlab.units import registry
+
+    unit = registry()
+    as_text = impactlab.fly(["150 mph", "60 m/s"], "12 deg", "2800 rpm",
+                            conditions={"temperature": ["5 degC", "95 degF"]})
+    as_pint = impactlab.fly([unit.Quantity(150, "mph"), unit.Quantity(60, "m/s")], "12 deg", "2800 rpm",
+                            conditions={"temperature": [unit.Quantity(5, "degC"), unit.Quantity(95, "degF")]})
+    np.testing.assert_allclose(as_pint.air_temperature.values, [278.15, 308.15], rtol=1e-12)  # (95 - 32) 5/9 + 273.15
+    np.testing.assert_array_equal(as_pint.carry_distance.values, as_text.carry_distance.values)

@@ -240,3 +240,10 @@ def test_freezing_the_re_of_the_drag_or_the_lift_alone():
     assert got[True]["gains"][0] > got[False]["gains"][0]
     with pytest.raises(ValueError, match="freeze_re"):
         fa.density_response(drag_on_re, freeze_re="both")
+
+
+def test_a_retired_model_is_refused_with_why_also_with_the_reynolds_number_frozen():
+    # freeze_re looked the model up itself: a bare KeyError for 'measured_fit_late_crisis'
+    for freeze in (False, True, "lift"):
+        with pytest.raises(ValueError, match="retired on 2026-11-24.*use 'measured_fit'"):
+            fa.density_response("measured_fit_late_crisis", freeze_re=freeze)

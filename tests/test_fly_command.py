@@ -129,6 +129,16 @@ def test_every_user_error_is_one_message_and_exit_2(args, says, tmp_path, capsys
     assert not out.exists()
 
 
+@pytest.mark.parametrize("args", [["--ball-speed", "167 mph", "--launch-angle", "10 deg", "--spin-rate", "2500 rpm"],
+                                  [str(DATA / "trackman_tps.csv")]])
+def test_a_retired_model_is_refused_with_why_not_as_an_invalid_choice(args, capsys):
+    with pytest.raises(SystemExit) as exit_:  # argparse's refusal: one line, status 2
+        main(["fly", *args, "--model", "measured_fit_late_crisis"])
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert "'measured_fit_late_crisis' was retired on 2026-11-24" in err and "use 'measured_fit'" in err
+
+
 def test_the_python_api_refuses_launches_that_do_not_broadcast():
     import impactlab
     from impactlab.errors import FieldError
@@ -518,3 +528,24 @@ def test_a_wind_option_blows_through_each_shots_own_air(tmp_path, capsys):
     assert float(flown["carry_distance [m]"]) == pytest.approx(float(_csv(typed)[0]["carry_distance [m]"]), rel=1e-9)
     assert main(["fly", str(DATA / "garmin_r10.csv"), "--headwind", "5 mph", "--temperature", "20 degC"]) == 0
     assert "the options (the export's own air, stated for 1 shot(s) flown, not used)" in capsys.readouterr().out
+
+
+def test_a_row_whose_air_is_flagged_flies_in_the_standard_air_beside_rows_flown_in_their_own(tmp_path, capsys):
+    """Line 4 of the Garmin fixture (73 degF, 99.25728 kPa, 83 %; 1.158 kg/m^3) with its stated density changed to
+    1.30 kg/m^3 disagrees with its own temperature, pressure and humidity by 12 %: the reader flags that row's air.
+    In the one per-shot flight, that row must take the whole standard air (15 degC, 101 325 Pa, 50 %: 1.2211 kg/m^3,
+    the ideal-gas value of tests/test_flight_air.py), not its stated pressure with the standard temperature, while
+    line 3 keeps its own (60 degF, 100.40956 kPa, 39 %: Garmin states 1.208465 kg/m^3)."""
+    text = (DATA / "garmin_r10.csv").read_text().splitlines()
+    header = text[0].split(",")
+    cells = text[3].split(",")  # file line 4
+    cells[header.index("Air Density")] = "1.30"
+    text[3] = ",".join(cells)
+    export = tmp_path / "one_flagged.csv"
+    export.write_text("\n".join(text) + "\n")
+    out = tmp_path / "out.csv"
+    assert main(["fly", str(export), "--include-flagged", "--csv", str(out)]) == 0
+    assert "the air of 1 shot(s) is flagged inconsistent by the reader" in capsys.readouterr().out
+    density = {row["line"]: float(row["air_density [kg/m^3]"]) for row in _csv(out)}
+    assert density["4"] == pytest.approx(1.2211, abs=1e-4)
+    assert density["3"] == pytest.approx(1.208465, rel=2e-3)

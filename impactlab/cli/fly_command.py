@@ -17,6 +17,7 @@ own air.
 
 from __future__ import annotations
 
+import argparse
 import csv
 import io
 import warnings
@@ -28,7 +29,7 @@ from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
-from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, RETIRED_MODELS
 from impactlab.scene import flight
 from impactlab.units import DIMENSIONS, MPH, registry
 
@@ -53,6 +54,13 @@ COLUMNS = [("carry yd", "carry_distance", 1 / YARD, "{:.1f}"), ("offline yd", "o
            ("time s", "flight_time", 1.0, "{:.2f}")]
 
 
+def _model_name(name: str) -> str:
+    """``--model``'s value: a retired model is refused with why and what to use (argparse's choices say neither)."""
+    if name in RETIRED_MODELS:
+        raise argparse.ArgumentTypeError(f"{name!r} was {RETIRED_MODELS[name]}")
+    return name
+
+
 def add_parser(commands) -> None:
     """The ``fly`` subcommand's arguments."""
     fly = commands.add_parser("fly", help="carry, offline, apex, landing angle and flight time of a launch, or of "
@@ -65,7 +73,7 @@ def add_parser(commands) -> None:
     for option, key in AIR_OPTIONS.items():
         # argparse %-formats help texts: a literal % (humidity's '50 %') is written %%
         fly.add_argument(f"--{option}", metavar="VALUE", help=f"the air: {_AIR_WORDS[key]}".replace("%", "%%"))
-    fly.add_argument("--model", default=DEFAULT_MODEL, choices=sorted(MODELS),
+    fly.add_argument("--model", default=DEFAULT_MODEL, choices=sorted(MODELS), type=_model_name,
                      help=f"aerodynamic model (default {DEFAULT_MODEL}; docs/flight.md)")
     fly.add_argument("--vendor", help="a session: read with this vendor layout (default: recognised)")
     fly.add_argument("--include-flagged", action="store_true",

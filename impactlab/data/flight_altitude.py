@@ -35,7 +35,7 @@ import yaml
 from impactlab.data import flight_candidates, flight_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics import flight
-from impactlab.physics.aerodynamics import MEASURED_FIT, MODELS
+from impactlab.physics.aerodynamics import MEASURED_FIT, MODELS, model_function
 from impactlab.physics.atmosphere import air_density, air_viscosity
 #: the reference of the source's density ratios: dry air at 25 degC and 101 325 Pa [kg/m^3]
 RHO_25 = float(air_density(298.15, 101325.0, 0.0))
@@ -108,7 +108,7 @@ def temperature_for(ratio: float) -> float:
 
 
 def _reynolds_frozen(model, factor, which):
-    base = MODELS[model][0] if isinstance(model, str) else model
+    base = model_function(model) if isinstance(model, str) else model
 
     def cd_cl(s, re):
         frozen, flown = base(s, re / factor), base(s, re)

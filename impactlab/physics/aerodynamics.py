@@ -51,6 +51,7 @@ __all__ = [
     "MODEL_REFERENCES",
     "PUBLISHED_MODELS",
     "aero_coefficients",
+    "model_function",
     "reynolds_number",
     "spin_decay_rate",
     "spin_ratio",
@@ -268,6 +269,21 @@ MODEL_REFERENCES = {
 }
 
 
+def model_function(model):
+    """The function ``(S, Re) -> (CD, CL)`` of the model named ``model`` (a key of :data:`MODELS`).
+
+    Raises
+    ------
+    ValueError
+        A name not in :data:`MODELS`; a retired one (:data:`RETIRED_MODELS`) is named with why and what to use.
+    """
+    if not isinstance(model, str) or model not in MODELS:
+        retired = (f" ({model!r} was {RETIRED_MODELS[model]})" if isinstance(model, str) and model in RETIRED_MODELS
+                   else "")
+        raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
+    return MODELS[model][0]
+
+
 def aero_coefficients(s, re, model=DEFAULT_MODEL):
     """Drag and lift coefficients of a spinning golf ball.
 
@@ -336,13 +352,19 @@ def aero_coefficients(s, re, model=DEFAULT_MODEL):
         Drag and lift coefficients referred to ``q = rho v^2 / 2`` and the
         frontal area ``pi R^2``.
 
+    Raises
+    ------
+    ValueError
+        A model not in :data:`MODELS`; a retired one (:data:`RETIRED_MODELS`)
+        is named with why and what to use.
+
     Notes
     -----
     All three published models are curve fits to measurements; outside their
     fitted ranges (irons and wedges reach S = 0.3-1.2 late in flight) they are
     extrapolations.  See docs/flight.md for the validation of each.
     """
-    fn, _ = MODELS[model]
+    fn = model_function(model)
     s = np.asarray(s, dtype=float)
     re = np.asarray(re, dtype=float)
     return fn(s, re)

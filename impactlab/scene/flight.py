@@ -43,7 +43,7 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
 
     Parameters
     ----------
-    value : float, array_like, str, sequence of str or pint.Quantity
+    value : float, array_like, str, sequence of str or of pint.Quantity, or pint.Quantity
         Numbers are SI (angles in rad, spin in rad/s); a string must carry its unit (``"167 mph"``): a number
         written as text is refused, its unit is not guessed.
     dimension : str
@@ -74,13 +74,20 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
             raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
                                    f"'{example}', or a number in SI)", value)
         return np.asarray(to_si(value, dimension, path), dtype=float)
-    if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) for item in value):
+    if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) or hasattr(item, "magnitude")
+                                                          for item in value):  # strings or pint quantities, each
         return np.array([float(quantity_array(item, dimension, f"{path}[{index}]"))
                          for index, item in enumerate(value)])
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise FieldError(path, _words(dimension), value) from None
+    if isinstance(value, (list, tuple, np.ndarray)) and array.size:
+        # True read as 1.0 (spin_axis=[True, False] is 1 rad, 57 deg): refused as a lone True is
+        flags = np.asarray(value).dtype.kind == "b" or (not isinstance(value, np.ndarray) and any(
+            isinstance(item, (bool, np.bool_)) for item in np.asarray(value, dtype=object).ravel()))
+        if flags:
+            raise FieldError(path, f"{_words(dimension)} (not True/False)", value)
     return array
 
 
@@ -225,11 +232,11 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         pressure at ``altitude``), ``relative_humidity`` (fraction, or ``"50 %"``), ``altitude`` (m, or
         ``"5280 ft"``), ``headwind`` and ``crosswind`` (m/s or ``"10 mph"``; headwind against the shot,
         crosswind towards the right). None: 15 degC, 101 325 Pa, 50 %, still air. Each value is one air for
-        every shot, or an array of values (a list of strings with units, a pint array, SI numbers) giving each
-        shot its own: the air arrays broadcast with the launch's (an array of the launch's shape pairs shot ``i``
-        with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot without one: its pressure
-        is the ISA pressure at its altitude (at sea level without one); a shot may have a pressure or an
-        altitude, not both.
+        every shot, or an array of values (a list of strings with units or of pint quantities, a pint array, SI
+        numbers) giving each shot its own: the air arrays broadcast with the launch's (an array of the launch's
+        shape pairs shot ``i`` with air ``i``). In an array, NaN for ``pressure`` (``altitude``) marks a shot
+        without one: its pressure is the ISA pressure at its altitude (at sea level without one); a shot may have
+        a pressure or an altitude, not both.
     ball_mass, ball_radius : float, str or pint.Quantity
         Default the R&A/USGA limits, 45.93 g and 21.335 mm.
     model : str
