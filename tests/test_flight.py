@@ -885,3 +885,28 @@ def test_the_carry_command_says_why_a_retired_model_is_refused(capsys):
         carry.main(["measured_fit_late_crisis"])
     err = capsys.readouterr().err
     assert exit_.value.code == 2 and "retired on 2026-11-24" in err and "use 'measured_fit'" in err
+
+
+def test_a_result_records_its_air_models_constants_and_the_figure_says_when_they_changed(tmp_path, monkeypatch):
+    """A refit keeps the model's name (measured_fit, 2026-11-24): a result records a fingerprint of the coefficients
+    its flight was computed with, and the trajectory figure, which flies the stored launches again with today's
+    constants, says so when they differ from the stored ones."""
+    import impactlab
+    from impactlab.plot import trajectories
+
+    today = aerodynamics.model_fingerprint("measured_fit")
+    assert today == aerodynamics.model_fingerprint("measured_fit")  # the same constants, the same fingerprint
+    assert today != aerodynamics.model_fingerprint("measured_fit_usga_ball")  # only c0 differs there
+    monkeypatch.setitem(aerodynamics.MEASURED_FIT, "m", aerodynamics.MEASURED_FIT["m"] + 1e-3)
+    assert aerodynamics.model_fingerprint("measured_fit") != today  # any constant changed shows
+    monkeypatch.undo()
+    result = impactlab.run_study(_golf_study(LAUNCH + ["carry_distance"]))
+    assert result.carry_distance.attrs["aerodynamic_fingerprint"] == today
+    assert impactlab.fly(70.0, 0.2, 300.0).attrs["aerodynamic_fingerprint"] == today
+    titles = []
+    monkeypatch.setattr(trajectories, "_save", lambda figure, path: titles.append(figure._suptitle.get_text()))
+    trajectories.plot_trajectories(result, tmp_path / "t.png")
+    assert "stored carries" not in titles[-1]
+    result.carry_distance.attrs["aerodynamic_fingerprint"] = "0123456789ab"  # a result of other constants
+    trajectories.plot_trajectories(result, tmp_path / "t.png")
+    assert f"today's constants, {today}; the stored carries were computed with 0123456789ab" in titles[-1]

@@ -51,6 +51,7 @@ __all__ = [
     "MODEL_REFERENCES",
     "PUBLISHED_MODELS",
     "aero_coefficients",
+    "model_fingerprint",
     "model_function",
     "reynolds_number",
     "spin_decay_rate",
@@ -282,6 +283,21 @@ def model_function(model):
                    else "")
         raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
     return MODELS[model][0]
+
+
+def model_fingerprint(model) -> str:
+    """A short fingerprint of the coefficients the model named ``model`` gives today: the SHA-256 of its CD and CL,
+    rounded to 1e-9, on a fixed grid of S 0-1.2 and Re 3e4-3e5 (12 hex digits).
+
+    A result records it beside ``aerodynamic_model``, so a figure that flies the stored launches again can tell when
+    the model's constants changed since (a refit keeps the name): the paths would not match the stored carries.
+    """
+    import hashlib
+
+    s, re = np.meshgrid(np.linspace(0.0, 1.2, 25), np.geomspace(3.0e4, 3.0e5, 31))
+    cd, cl = model_function(model)(s, re)
+    values = np.round(np.concatenate([np.ravel(cd), np.ravel(cl)]), 9) + 0.0  # + 0.0: no negative zeros
+    return hashlib.sha256(values.tobytes()).hexdigest()[:12]
 
 
 def aero_coefficients(s, re, model=DEFAULT_MODEL):

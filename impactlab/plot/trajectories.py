@@ -11,7 +11,7 @@ import xarray as xr
 
 from impactlab.errors import FieldError
 from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, output_unit_factor
-from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS, DEFAULT_MODEL
+from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, model_fingerprint
 from impactlab.physics.flight import fly
 from impactlab.scene.flight import air_arrays
 from impactlab.model.derive import FLIGHT_INPUTS
@@ -80,6 +80,13 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     recorded = [dataset[name].attrs["aerodynamic_model"] for name in flown
                 if "aerodynamic_model" in dataset[name].attrs]
     aerodynamics = recorded[0] if recorded else UNRECORDED_AIR_MODEL if flown else DEFAULT_MODEL
+    # the constants the stored flight was computed with (a refit keeps the model's name): the paths are flown with
+    # today's, and the title says so when they differ (results written before fingerprints were recorded say nothing)
+    stored = {str(dataset[name].attrs["aerodynamic_fingerprint"]) for name in flown
+              if "aerodynamic_fingerprint" in dataset[name].attrs}
+    today = model_fingerprint(aerodynamics)
+    changed = (f" (today's constants, {today}; the stored carries were computed with {', '.join(sorted(stored))})"
+               if stored - {today} else "")
     mass = float(scene.get("ball_mass", BALL_MASS))
     radius = float(scene.get("ball_radius", BALL_RADIUS))
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
@@ -145,7 +152,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
     scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     # conditions() names the air model when the result records one; a launch-only result is flown with the default
-    air_model = "" if "aerodynamics" in scene else f"{aerodynamics} aerodynamics, "
+    air_model = "" if "aerodynamics" in scene and not changed else f"{aerodynamics} aerodynamics{changed}, "
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
                     + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}", fontsize=9)
     longest = max(len(text) for text in side.get_legend_handles_labels()[1])

@@ -19,7 +19,7 @@ from xarray.indexes import PandasIndex
 
 from impactlab._version import __version__
 from impactlab.io.results import CF_CONVENTIONS, RESULT_FORMAT
-from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, model_fingerprint
 from impactlab.model.diagnostics import flag_attributes
 from impactlab.study.core import Study
 from impactlab.vocabulary import FLIGHT_OUTPUTS, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
@@ -48,7 +48,8 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
         attributes: dict[str, object] = {"units": spec.units, "long_name": spec.long_name}
         if name in FLIGHT_OUTPUTS:  # which air model flew the ball: the default can change between versions
             attributes.update(aerodynamic_model=DEFAULT_MODEL,
-                              aerodynamic_references=MODEL_REFERENCES[DEFAULT_MODEL])
+                              aerodynamic_references=MODEL_REFERENCES[DEFAULT_MODEL],
+                              aerodynamic_fingerprint=model_fingerprint(DEFAULT_MODEL))
         reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
                    if name in result["missing"]]
         if reasons:

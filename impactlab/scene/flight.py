@@ -401,6 +401,8 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         **air_attributes,
         "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),
         "ball_radius_m": float(radius) if radius.ndim == 0 else str(radius.tolist()),
+        # the coefficients' fingerprint: a refit keeps the model's name (aerodynamics.model_fingerprint)
+        "aerodynamic_fingerprint": aerodynamics.model_fingerprint(model),
     }
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
