@@ -194,9 +194,9 @@ MEASURED_FIT_OFFSETS = {"modern": 0.191258, "usga_1998": 0.21136, "bh_1976": 0.2
                         "acushnet_invention": 0.191965, "acushnet_prior_art": 0.199902}
 
 
-def _crisis_step(s, re, shift=1.0):
-    # the drag crisis' logistic step 1 / (1 + exp((Re - shift Re_d exp(-m S)) / w_d)) of measured_fit, no overflow
-    midpoint = shift * MEASURED_FIT["re_d"] * np.exp(-MEASURED_FIT["m"] * s)
+def _crisis_step(s, re):
+    # the drag crisis' logistic step 1 / (1 + exp((Re - Re_d exp(-m S)) / w_d)) of measured_fit, no overflow
+    midpoint = MEASURED_FIT["re_d"] * np.exp(-MEASURED_FIT["m"] * s)
     return 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / MEASURED_FIT["w_d"]))
 
 
