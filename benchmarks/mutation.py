@@ -366,7 +366,7 @@ MUTANTS = [
      "midpoint = re_d * np.exp(-spin_advance * s)", "midpoint = re_d * np.exp(-spin_advance * 0.0 * s)",
      T_AERO, "the fit's crisis midpoint not moving with spin (m fitted to nothing)"),
     ("aero-fit-drag-groups", "impactlab/data/aero_fit.py",
-     "return p[group[rows]] + p[n] * re[rows] / 1e5", "return p[0 * group[rows]] + p[n] * re[rows] / 1e5",
+     "return p[slot[group[rows]]] + p[n] * re[rows] / 1e5", "return p[slot[0 * group[rows]]] + p[n] * re[rows] / 1e5",
      T_AERO, "one drag offset for every ball instead of one per ball group"),
     ("candidates-m0-refit", "impactlab/data/flight_candidates.py",
      'if p["crisis_spin_advance"] == 0.0:', 'if False:',
