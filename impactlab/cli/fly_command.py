@@ -29,7 +29,7 @@ from impactlab.data.session import read_session
 from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
-from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, RETIRED_MODELS
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, retired_reason
 from impactlab.scene import flight
 from impactlab.units import DIMENSIONS, MPH, registry
 
@@ -56,8 +56,8 @@ COLUMNS = [("carry yd", "carry_distance", 1 / YARD, "{:.1f}"), ("offline yd", "o
 
 def _model_name(name: str) -> str:
     """``--model``'s value: a retired model is refused with why and what to use (argparse's choices say neither)."""
-    if name in RETIRED_MODELS:
-        raise argparse.ArgumentTypeError(f"{name!r} was {RETIRED_MODELS[name]}")
+    if retired_reason(name):
+        raise argparse.ArgumentTypeError(retired_reason(name))
     return name
 
 

@@ -20,7 +20,7 @@ from impactlab.data.session import read_session
 from impactlab.data.session_flight import fly_session
 from impactlab.errors import StudyError
 from impactlab.physics import flight
-from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS, RETIRED_MODELS
+from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS, retired_reason
 from impactlab.units import MPH
 
 YARD = 0.9144  #: m (exact, the international yard)
@@ -253,7 +253,7 @@ def main(argv=None) -> int:
                                      description="Fly TrackMan's tour tables with aerodynamic models (docs/flight.md).")
     parser.add_argument("models", nargs="*", metavar="MODEL", help=f"models to fly (default all: {', '.join(names)})")
     models = parser.parse_args(argv).models or names
-    retired = [f"{name!r} was {RETIRED_MODELS[name]}" for name in models if name in RETIRED_MODELS]
+    retired = [reason for reason in map(retired_reason, models) if reason]
     if retired:
         parser.error("; ".join(retired))
     unknown = [name for name in models if name not in MODELS]

@@ -53,6 +53,7 @@ __all__ = [
     "aero_coefficients",
     "model_fingerprint",
     "model_function",
+    "retired_reason",
     "reynolds_number",
     "spin_decay_rate",
     "spin_ratio",
@@ -270,6 +271,12 @@ MODEL_REFERENCES = {
 }
 
 
+def retired_reason(model) -> str:
+    """``"'<name>' was retired on ...; use ..."`` for a retired model's name (:data:`RETIRED_MODELS`), else ``""``:
+    the one wording every entry point refusing a model by name gives."""
+    return f"{model!r} was {RETIRED_MODELS[model]}" if isinstance(model, str) and model in RETIRED_MODELS else ""
+
+
 def model_function(model):
     """The function ``(S, Re) -> (CD, CL)`` of the model named ``model`` (a key of :data:`MODELS`).
 
@@ -279,9 +286,8 @@ def model_function(model):
         A name not in :data:`MODELS`; a retired one (:data:`RETIRED_MODELS`) is named with why and what to use.
     """
     if not isinstance(model, str) or model not in MODELS:
-        retired = (f" ({model!r} was {RETIRED_MODELS[model]})" if isinstance(model, str) and model in RETIRED_MODELS
-                   else "")
-        raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
+        retired = retired_reason(model)
+        raise ValueError(f"unknown model {model!r}{f' ({retired})' if retired else ''}; choose from {sorted(MODELS)}")
     return MODELS[model][0]
 
 

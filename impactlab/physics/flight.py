@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from impactlab.physics.aerodynamics import _RHO_REF, BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, RETIRED_MODELS
+from impactlab.physics.aerodynamics import _RHO_REF, BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, model_function
 from impactlab.physics.atmosphere import G0, air_density, air_viscosity, pressure_at_altitude
 
 __all__ = ["fly"]
@@ -286,12 +286,8 @@ def fly(
     """
     if callable(model):
         coef_fn, lam_default = _checked_coefficients(model), 2.0e-5
-    elif isinstance(model, str) and model in MODELS:
-        coef_fn, lam_default = MODELS[model]
-    else:
-        retired = (f" ({model!r} was {RETIRED_MODELS[model]})" if isinstance(model, str) and model in RETIRED_MODELS
-                   else "")
-        raise ValueError(f"unknown model {model!r}{retired}; choose from {sorted(MODELS)}")
+    else:  # model_function refuses a name it does not ship (a retired one with why)
+        coef_fn, lam_default = model_function(model), MODELS[model][1]
     lam = lam_default if spin_decay is None else float(spin_decay)
 
     wind = np.asarray(wind, dtype=float)

@@ -39,6 +39,11 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
     sweep_dims = [axis.dim for axis in study.sweep]
     time = _common_time([result["time"] for result in results])
     data_vars = {}
+    # which air model flew the ball, once for every flight output: the default can change between versions, and a
+    # refit keeps its name (the fingerprint of its coefficients tells)
+    air_model = ({"aerodynamic_model": DEFAULT_MODEL, "aerodynamic_references": MODEL_REFERENCES[DEFAULT_MODEL],
+                  "aerodynamic_fingerprint": model_fingerprint(DEFAULT_MODEL)}
+                 if set(FLIGHT_OUTPUTS).intersection(study.all_outputs) else {})
     for name in study.all_outputs:
         spec = OUTPUTS[name]
         history = time is not None and is_history(name)
@@ -46,10 +51,8 @@ def assemble(study: Study, plan: StudyPlan, results: list[dict]) -> xr.Dataset:
         stacked = np.array([_on_time(result, name, time, history) for result in results])
         stacked = stacked.reshape((len(results),) + shape + ((time.size,) if history and time is not None else ()))
         attributes: dict[str, object] = {"units": spec.units, "long_name": spec.long_name}
-        if name in FLIGHT_OUTPUTS:  # which air model flew the ball: the default can change between versions
-            attributes.update(aerodynamic_model=DEFAULT_MODEL,
-                              aerodynamic_references=MODEL_REFERENCES[DEFAULT_MODEL],
-                              aerodynamic_fingerprint=model_fingerprint(DEFAULT_MODEL))
+        if name in FLIGHT_OUTPUTS:
+            attributes.update(air_model)
         reasons = [f"{entry.id}: {result['missing'][name]}" for entry, result in zip(study.models, results)
                    if name in result["missing"]]
         if reasons:

@@ -361,11 +361,10 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
             note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given_value) else ""
             raise FieldError(where, f"{limit.words} between {limit.impossible[0]:g} and {limit.impossible[1]:g} "
                              f"{unit} ({limit.why})", f"{value * factor:.6g} {unit}{note}")
-    if model in aerodynamics.RETIRED_MODELS:
-        raise FieldError("model", f"an aerodynamic model ({model!r} was {aerodynamics.RETIRED_MODELS[model]})",
-                         str(model), choices=aerodynamics.MODELS)
     if model not in aerodynamics.MODELS:
-        raise FieldError("model", "an aerodynamic model", str(model), choices=aerodynamics.MODELS)
+        retired = aerodynamics.retired_reason(model)
+        raise FieldError("model", "an aerodynamic model" + (f" ({retired})" if retired else ""), str(model),
+                         choices=aerodynamics.MODELS)
     air = conditions_from(conditions)
     launch_shape = np.broadcast_shapes(*(array.shape for array in values.values()))
     try:
