@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
-from impactlab.data.shots import read_shots
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
+from impactlab.data.sessions.shots import read_shots
 from impactlab.model.registry import get_model
 
 NOISE = {"club_speed": 1.0, "attack_angle": 0.5, "dynamic_loft": 0.5, "ball_speed": 1.0,

@@ -1,5 +1,5 @@
 """Benchmark: a launch-monitor session whose every shot states its own air, flown one call per air against one call
-with per-shot air arrays (``impactlab fly SESSION``, :func:`impactlab.data.session_flight.fly_session`).
+with per-shot air arrays (``impactlab fly SESSION``, :func:`impactlab.data.sessions.flight.fly_session`).
 
 Run:  python benchmarks/bench_session_air.py [--shots 400] [--repeat 2]
 
@@ -55,8 +55,8 @@ def best(function, repeat: int) -> tuple[float, object]:
 
 def main():
     import impactlab
-    from impactlab.data.session import read_session
-    from impactlab.data.session_flight import fly_session
+    from impactlab.data.sessions.reader import read_session
+    from impactlab.data.sessions.flight import fly_session
     from impactlab.scene.air import Conditions
 
     parser = argparse.ArgumentParser()

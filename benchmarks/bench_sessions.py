@@ -52,8 +52,8 @@ def session_text(rows: int, seed: int = 1) -> str:
 
 
 def main():
-    from impactlab.data.session import describe, read_session, write_normalised
-    from impactlab.data.shots import table_inputs
+    from impactlab.data.sessions.reader import describe, read_session, write_normalised
+    from impactlab.data.sessions.shots import table_inputs
 
     parser = argparse.ArgumentParser()
     parser.add_argument("--rows", type=int, default=100_000)

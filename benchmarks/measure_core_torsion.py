@@ -37,7 +37,7 @@ from ball_laws import (measured_cells, model_cells, per_unit,  # noqa: E402  (do
 from bench_ball_laws import per_impact  # noqa: E402
 
 from impactlab.data.shot_report import shot_table  # noqa: E402
-from impactlab.data.shots import predict, shot_errors, table_inputs  # noqa: E402
+from impactlab.data.sessions.shots import predict, shot_errors, table_inputs  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.physics import core_torsion  # noqa: E402
 from impactlab.testing import _complete, reference_inputs, reference_inputs_3d  # noqa: E402

@@ -37,7 +37,7 @@ from ball_laws import (measured_cells, model_cells, scene_inputs,  # noqa: E402 
 from bench_ball_laws import per_impact  # noqa: E402
 
 from impactlab.data.shot_report import shot_table  # noqa: E402
-from impactlab.data.shots import predict, shot_errors, table_inputs  # noqa: E402
+from impactlab.data.sessions.shots import predict, shot_errors, table_inputs  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.physics import face_flex  # noqa: E402
 from impactlab.physics.contact import contact_state  # noqa: E402

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from impactlab.data.shots import predict, table_inputs
+from impactlab.data.sessions.shots import predict, table_inputs
 from impactlab.data.validation.observations import load_observations, strike_table
 from impactlab.model.case_inputs import CaseInputs
 from impactlab.model.registry import get_model

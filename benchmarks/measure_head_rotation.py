@@ -22,7 +22,7 @@ import attrs
 import numpy as np
 
 from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
+from impactlab.data.sessions.shots import errors_by_source, predict, shot_errors, table_inputs
 from impactlab.data.validation.observations import gear_effect, load_observations, vertical_gear_effect
 from impactlab.model.registry import get_model
 

@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 from ball_laws import ROWS  # noqa: E402  (docs/ball_laws.py: the tour rows with TrackMan's spin lofts)
 
 from impactlab.data.shot_report import shot_table  # noqa: E402
-from impactlab.data.shots import predict, shot_errors, table_inputs  # noqa: E402
+from impactlab.data.sessions.shots import predict, shot_errors, table_inputs  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.physics.delivery import spin_loft  # noqa: E402
 

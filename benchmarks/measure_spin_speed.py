@@ -46,9 +46,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs"))
 
 from ball_laws import ROWS, per_unit  # noqa: E402  (the tour rows with TrackMan's spin lofts, measured)
 
-from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate  # noqa: E402
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate  # noqa: E402
 from impactlab.data.shot_report import shot_table  # noqa: E402
-from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs  # noqa: E402
+from impactlab.data.sessions.shots import errors_by_source, predict, shot_errors, table_inputs  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 
 MM = 1e-3

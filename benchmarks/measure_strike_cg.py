@@ -37,9 +37,9 @@ import attrs
 import numpy as np
 
 import impactlab.scene.catalogue as catalogue
-from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
 from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
+from impactlab.data.sessions.shots import errors_by_source, predict, shot_errors, table_inputs
 from impactlab.data.validation.observations import load_observations, strike_table
 from impactlab.model.registry import get_model
 

@@ -16,9 +16,9 @@ import argparse
 
 import attrs
 
-from impactlab.data.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate, model_with
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, apply, calibrate, cross_validate, model_with
 from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import errors_by_source, predict, shot_errors, table_inputs
+from impactlab.data.sessions.shots import errors_by_source, predict, shot_errors, table_inputs
 from impactlab.data.validation.observations import (cover_effect, gear_effect, load_observations,
                                                     vertical_gear_effect)
 from impactlab.model.registry import get_model

@@ -50,8 +50,8 @@ T_AERO = ["tests/test_flight.py"]
 #: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)
 T_FACE_FLEX = ["tests/test_face_flex.py"]
 T_CORE_TORSION = ["tests/test_core_torsion.py"]
-#: the drag level settled on measured radar flights, the tour tables held out (impactlab.data.flight_fit, carry)
-T_FLIGHT_FIT = ["tests/test_flight_fit.py"]
+#: the drag level settled on measured radar flights, the tour tables held out (validation.flight.flight_fit, carry)
+T_FLIGHT_FIT = ["validation/flight/tests/test_flight_fit.py"]
 
 # (id, file, old, new, tests, what the bug is). ``old`` must occur exactly once in the file.
 MUTANTS = [
@@ -119,13 +119,13 @@ MUTANTS = [
      "for i in range(reach - 1):\n                    limit = max((h - xi2[i]) * load, 0.0)",
      T_MAW, "kernel loop skips the outermost spring in contact (off by one)"),
     # --- data/least_squares.py (the one least-squares core of fit and calibrate)
-    ("least-squares-variances", "impactlab/data/least_squares.py",
+    ("least-squares-variances", "impactlab/data/fit/least_squares.py",
      "sigma[depends] = np.sqrt(np.maximum(np.diag(inner), 0.0))", "sigma[depends] = np.maximum(np.diag(inner), 0.0)",
      ["tests/test_least_squares.py"], "uncertainties reported as variances, not standard deviations"),
-    ("least-squares-no-rescale", "impactlab/data/least_squares.py",
+    ("least-squares-no-rescale", "impactlab/data/fit/least_squares.py",
      "inner = inner * (float(residuals @ residuals) / (n - depends.sum()))", "inner = inner",
      ["tests/test_least_squares.py"], "unit-weight fits not rescaled by the reduced chi-square"),
-    ("least-squares-near-bound-half-sigma", "impactlab/data/least_squares.py",
+    ("least-squares-near-bound-half-sigma", "impactlab/data/fit/least_squares.py",
      "(distance <= uncertainties)", "(distance <= 0.5 * uncertainties)",
      ["tests/test_least_squares.py"], "'near its bound' only within half a sigma"),
     # --- physics/kernels/contact3d.py (the 3-D kernel's one MDR spring update, and its callers)
@@ -342,16 +342,16 @@ MUTANTS = [
     ("friction-ploughing-face-gain", "impactlab/physics/friction_laws.py",
      "ploughing_friction(slope, e - gain)", "ploughing_friction(slope, e)",
      T_FRICTION, "the ploughing loss from e with a wood face's spring-like gain, not the ball's own e"),
-    ("json-escaped-quote", "impactlab/data/session_json.py",
+    ("json-escaped-quote", "impactlab/data/sessions/json_records.py",
      "skip = offset + 1", "skip = -1",
      T_JSON, "an escaped quote inside a JSON string ends the string: later shots get the wrong line"),
-    ("json-case-fold", "impactlab/data/session_json.py",
+    ("json-case-fold", "impactlab/data/sessions/json_records.py",
      "folded = [{key.lower(): value for", "folded = [{key: value for",
      T_JSON, "keys spelled BackSpin in one message and Backspin in another land in different columns"),
-    ("json-session-prefix", "impactlab/data/session_json.py",
+    ("json-session-prefix", "impactlab/data/sessions/json_records.py",
      'if key != lists[0]}, "../")', 'if key != lists[0]}, "")',
      T_JSON, "a session's own keys (its club) not prefixed: they collide with the shots' keys"),
-    ("json-line-off-by-one", "impactlab/data/session_json.py",
+    ("json-line-off-by-one", "impactlab/data/sessions/json_records.py",
      "lines += [bisect.bisect_left(breaks, offset) + 1 for", "lines += [bisect.bisect_left(breaks, offset) for",
      T_JSON, "shot lines counted from 0: every message names the line above the shot"),
     ("aero-crisis-width", "impactlab/physics/aerodynamics.py",
@@ -370,7 +370,7 @@ MUTANTS = [
      T_AERO, "one drag offset for every ball instead of one per ball group"),
     ("candidates-m0-refit", "impactlab/data/flight_candidates.py",
      'if p["crisis_spin_advance"] == 0.0:', 'if False:',
-     ["tests/test_flight_candidates.py"], "the crisis without the spin advance flown with the advanced crisis' "
+     ["validation/flight/tests/test_flight_candidates.py"], "the crisis without the spin advance flown with the advanced crisis' "
      "constants instead of its own refit"),
     ("aero-lift-loss-spin", "impactlab/physics/aerodynamics.py",
      '** 2 - s / c["s_l"])', '** 2 + s / c["s_l"])',
@@ -515,7 +515,7 @@ MUTANTS = [
     ("face-limit-correction", "models/_compliant.py",
      "correct = three_d & sliding & (loss == 0.0)  #", "correct = three_d & sliding & (loss == 0.0) & (face is None)  #",
      T_FACE_FLEX, "maw hysteretic: the annular strips' correction and flag 64 dropped on flexing-face cases"),
-    ("face-calibration-gain", "impactlab/data/calibration.py",
+    ("face-calibration-gain", "impactlab/data/fit/calibration.py",
      'if "face_restitution_gain" in names and float(', 'if False and float(',
      T_FACE_FLEX, "the calibration fits the gain the flexing face replaces (flat, and at 0 the face off)"),
     ("face-bare-unit", "impactlab/study/core.py",

@@ -24,7 +24,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import impactlab  # noqa: E402
-from impactlab.data.shots import predict, table_inputs  # noqa: E402
+from impactlab.data.sessions.shots import predict, table_inputs  # noqa: E402
 from impactlab.data.validation.observations import cover_effect, load_observations, strike_table  # noqa: E402
 from impactlab.model.registry import get_model  # noqa: E402
 from impactlab.scene.catalogue import CLUB_PRESETS  # noqa: E402

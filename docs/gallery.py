@@ -23,18 +23,19 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                                  "impactlab run studies/flight.yaml --plot (or impactlab plot RESULT --trajectories)"),
          "aero_coefficients": ("Measured golf-ball lift and drag against spin ratio (every ball group, above and in "
                                "its drag crisis) beside measured_fit at Re 6e4, 1e5, 2e5 and smits_smith_1994",
-                               "python docs/aero_coefficients.py"),
+                               "python -m validation.flight.plot_aero_coefficients"),
          "flight_fit_c0": ("Carry RMS against the ball's drag level c0 on the PGA TOUR radar seasons (fitted) and on "
                            "TrackMan's three tour tables without their drivers (held out), and the held-out rows' "
-                           "carry errors against launch spin ratio", "python docs/flight_fit_c0.py"),
+                           "carry errors against launch spin ratio", "python -m validation.flight.plot_flight_fit_c0"),
          "flight_altitude": ("Driver carry against air density at the PGA TOUR radar seasons' mean launch: the "
                              "measured dose-response (raw and launch-adjusted) and altitude venues beside the models, "
                              "as flown and with Re frozen; the density slope over c0 and lift scale within their "
-                             "bounds", "python docs/flight_altitude.py"),
+                             "bounds", "python -m validation.flight.plot_flight_altitude"),
          "flight_candidates": ("The drag crisis' advance with spin: held-out tour-table carry errors against launch "
                                "spin ratio with measured_fit and with the crisis at one Re, carry RMS against the "
                                "spin advance (radar seasons and tables), and both crisis models against the measured "
-                               "drag of spinning and non-spinning balls", "python docs/flight_candidates.py"),
+                               "drag of spinning and non-spinning balls",
+                               "python -m validation.flight.plot_flight_candidates"),
          "ball_laws_spin_per_unit": ("Spin per unit of club speed x sin(spin loft) against spin loft for each "
                                      "ball-law form (friction law dashed) beside TrackMan's tour rows and bands, "
                                      "the wedge cover difference, and a wet face's spin loss",

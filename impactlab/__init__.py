@@ -25,9 +25,9 @@ from impactlab.scene.flight import fly as _fly
 if TYPE_CHECKING:  # what the lazy names below are, for type checkers and editors (nothing is imported at run time)
     import xarray as xr
 
-    from impactlab.data.calibration import Calibration, calibrate, cross_validate
-    from impactlab.data.fitting import FitResult, fit
-    from impactlab.data.shots import ShotTable, predict, read_shots, table_inputs
+    from impactlab.data.fit.calibration import Calibration, calibrate, cross_validate
+    from impactlab.data.fit.fitting import FitResult, fit
+    from impactlab.data.sessions.shots import ShotTable, predict, read_shots, table_inputs
     from impactlab.data.validation import get_dataset
     from impactlab.study.core import Study
 
@@ -43,12 +43,12 @@ __all__ = [
 
 #: names imported from their module on first use: the calibration and the fits import scipy.optimize
 _LAZY = {
-    "read_shots": "impactlab.data.shots", "ShotTable": "impactlab.data.shots",
-    "table_inputs": "impactlab.data.shots", "predict": "impactlab.data.shots",
-    "calibrate": "impactlab.data.calibration", "cross_validate": "impactlab.data.calibration",
-    "Calibration": "impactlab.data.calibration",
+    "read_shots": "impactlab.data.sessions.shots", "ShotTable": "impactlab.data.sessions.shots",
+    "table_inputs": "impactlab.data.sessions.shots", "predict": "impactlab.data.sessions.shots",
+    "calibrate": "impactlab.data.fit.calibration", "cross_validate": "impactlab.data.fit.calibration",
+    "Calibration": "impactlab.data.fit.calibration",
     "get_dataset": "impactlab.data.validation",
-    "fit": "impactlab.data.fitting", "FitResult": "impactlab.data.fitting",
+    "fit": "impactlab.data.fit.fitting", "FitResult": "impactlab.data.fit.fitting",
 }
 
 

@@ -100,7 +100,7 @@ def test_campaus_moments_and_gyration_radii_imply_maltbys_head_masses():
 def test_a_more_lofted_iron_sends_the_ball_off_slower_and_higher():
     # one delivery (40 m/s, level, face at its static loft) through the irons: physics, not numbers from the code:
     # more loft means a smaller normal speed, hence a slower, higher-launched ball with more spin
-    from impactlab.data.shots import predict
+    from impactlab.data.sessions.shots import predict
     from impactlab.model.registry import get_model
     from impactlab.scene.clubs import Strike
     from impactlab.scene.core import Contact, Delivery, Scene

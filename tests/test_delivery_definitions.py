@@ -333,7 +333,7 @@ def test_ball_and_club_presets_sweep_as_labelled_dimensions(monkeypatch):
 def test_shot_tables_take_spin_loft_and_face_to_path_columns():
     """A TrackMan export's Spin Loft and Face To Path give the dynamic loft and face angle a row leaves out; given
     beside them they must agree, else the row is refused with its line."""
-    from impactlab.data.shots import read_csv
+    from impactlab.data.sessions.shots import read_csv
     from impactlab.errors import StudyError
 
     header = ("Club,Club Speed [mph],Attack Angle [deg],Club Path [deg],Face To Path [deg],Spin Loft [deg],"

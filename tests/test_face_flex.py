@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from scipy import integrate, optimize, special
 
-from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.shot_report import shot_table
 from impactlab.errors import FieldError, ModelInputError
 from impactlab.model.registry import get_model

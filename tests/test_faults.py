@@ -213,7 +213,7 @@ def test_bad_output_paths_are_refused_before_running(tmp_path, capsys, old_resul
 
 
 def test_export_and_fit_outputs_are_checked_first(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("impactlab.data.fitting.fit", lambda *a, **k: pytest.fail("fitted before refusing"))
+    monkeypatch.setattr("impactlab.data.fit.fitting.fit", lambda *a, **k: pytest.fail("fitted before refusing"))
     code, err = cli(capsys, "fit", "wood2018", "--json", tmp_path)
     assert code == 2 and "is a folder; give a file name inside it, e.g." in err and ".json" in err
     code, err = cli(capsys, "export", tmp_path / "absent.h5", "-o", tmp_path / "nodir" / "x.json")

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import impactlab
-from impactlab.data.session import read_session
-from impactlab.data.session_flight import fly_session
+from impactlab.data.sessions.reader import read_session
+from impactlab.data.sessions.flight import fly_session
 from impactlab.errors import FieldError
 from impactlab.physics import flight as physics
 from impactlab.scene import flight

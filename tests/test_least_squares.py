@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.data import least_squares
-from impactlab.data.calibration import calibrate
-from impactlab.data.shots import read_csv
+from impactlab.data.fit import least_squares
+from impactlab.data.fit.calibration import calibrate
+from impactlab.data.sessions.shots import read_csv
 from impactlab.model.registry import get_model
 
 # a straight line y = a + b t through 5 points with unequal sigmas, solved by hand below (Numerical Recipes, 3rd
@@ -130,7 +130,7 @@ def test_a_calibration_at_its_bound_and_beyond_the_cor_limit_says_so_in_text_and
 
 
 def test_a_row_the_model_cannot_predict_is_left_out_and_named(monkeypatch):
-    from impactlab.data import calibration
+    from impactlab.data.fit import calibration
 
     table = read_csv(IMPOSSIBLE.replace("250", "150") + "odd,driver,100,0,12,150,12\n")
     real = calibration.predict

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactlab.data.session import read_session_text
-from impactlab.data.session_flight import fly_session
+from impactlab.data.sessions.reader import read_session_text
+from impactlab.data.sessions.flight import fly_session
 from impactlab.errors import StudyError
 
 MPH = 0.44704

@@ -7,13 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from impactlab.data.calibration import apply, calibrate, cross_validate
+from impactlab.data.fit.calibration import apply, calibrate, cross_validate
 from impactlab.cli import main
 from impactlab.errors import StudyError
 from impactlab.physics.contact import contact_state
 from impactlab.model.registry import get_model
 from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import ERROR_KEYS, predict, read_csv, read_yaml, shot_errors, summary, table_inputs
+from impactlab.data.sessions.shots import ERROR_KEYS, predict, read_csv, read_yaml, shot_errors, summary, table_inputs
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
 MPH = 0.44704  # m/s, by definition (1 mile = 1609.344 m, 1 h = 3600 s)

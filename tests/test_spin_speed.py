@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from impactlab.data.shot_report import shot_table
-from impactlab.data.shots import predict, table_inputs
+from impactlab.data.sessions.shots import predict, table_inputs
 from impactlab.model.registry import get_model
 from impactlab.scene.catalogue import CLUB_PRESETS
 from impactlab.scene.core import Contact, Delivery, Scene, Strike, complete_inputs

@@ -306,7 +306,7 @@ def test_general_contact_scenes_keep_their_wide_ranges():
 
 
 def test_measured_magnitudes_below_zero_are_refused(tmp_path):
-    from impactlab.data.shots import read_csv
+    from impactlab.data.sessions.shots import read_csv
     text = ("label,club,Club Speed [mph],Attack Angle [deg],Dynamic Loft [deg],Ball Speed [mph],Spin Rate [rpm]\n"
             "a,driver,110,-1,12,-160,2500\nb,driver,110,-1,12,160,-2500\n")
     with pytest.raises(StudyError) as info:

@@ -125,7 +125,7 @@ def test_offset_units_convert_as_an_affine_map():
 def test_a_temperature_column_in_no_temperature_unit_is_refused(tmp_path, unit):
     """'[F]' is pint's farad and '[C]' its coulomb, '[deg]' an angle: none is read as a temperature (never
     guessed); the row and column are named."""
-    from impactlab.data.session import read_session
+    from impactlab.data.sessions.reader import read_session
     from impactlab.errors import StudyError
 
     path = tmp_path / "air.csv"

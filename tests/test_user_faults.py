@@ -328,7 +328,7 @@ def test_a_file_the_user_may_not_read_is_said_so_not_to_choose_a_writable_folder
     real_access = impactlab.run.faults.os.access
     monkeypatch.setattr("impactlab.run.faults.os.access",
                         lambda path, mode: False if str(path) == str(session) else real_access(path, mode))
-    monkeypatch.setattr("impactlab.data.session.read_session", refuse)
+    monkeypatch.setattr("impactlab.data.sessions.reader.read_session", refuse)
     monkeypatch.setattr("impactlab.cli.data_commands.read_session", refuse)
     code, err = cli(capsys, "shots", session)
     assert code == 3

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.data.fitting import fit
+from impactlab.data.fit.fitting import fit
 from impactlab.data.validation import DATASETS, errors, load_dataset_study, predictions
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"

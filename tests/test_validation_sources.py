@@ -6,8 +6,8 @@ import attrs
 import numpy as np
 import pytest
 
-from impactlab.data.calibration import calibrate, cross_validate, source_folds
-from impactlab.data.shots import errors_by_source, read_yaml, shot_errors
+from impactlab.data.fit.calibration import calibrate, cross_validate, source_folds
+from impactlab.data.sessions.shots import errors_by_source, read_yaml, shot_errors
 from impactlab.model.registry import get_model
 
 RPM = 2 * math.pi / 60
@@ -48,8 +48,8 @@ def test_errors_per_source_against_hand_values():
 
 def _pulled_table(pull=1.05):
     """Source A's ball speeds are the restitution model's at e = 0.78; source B's are ``pull`` times the model's."""
-    from impactlab.data.calibration import apply
-    from impactlab.data.shots import predict, table_inputs
+    from impactlab.data.fit.calibration import apply
+    from impactlab.data.sessions.shots import predict, table_inputs
 
     table = read_yaml(TABLE.replace("b1, source: B", "b1, source: B").replace(
         "  - {label: b1", "  - {label: b2, source: B, club: 6_iron, club_speed: 38, attack_angle: -4, dynamic_loft: 22,"
@@ -141,9 +141,9 @@ def test_the_vertical_gear_effect_observation_is_loaded_as_published_and_compare
 
 
 def test_rolling_hysteresis_is_fitted_as_a_model_option():
-    from impactlab.data.calibration import apply
+    from impactlab.data.fit.calibration import apply
     from impactlab.data.shot_report import shot_table
-    from impactlab.data.shots import predict, table_inputs
+    from impactlab.data.sessions.shots import predict, table_inputs
     from impactlab.errors import FieldError
 
     table = shot_table("trackman_tour")

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.data.session import read_session, read_session_text
+from impactlab.data.sessions.reader import read_session, read_session_text
 from impactlab.errors import StudyError
 from impactlab.scene.catalogue import club_key
 
@@ -169,7 +169,7 @@ def test_garmin_dutch_and_spanish_headers_map_onto_the_english_columns(vendor, h
 
 
 def test_a_translated_layout_names_its_base_translates_real_columns_and_restates_worded_rules():
-    from impactlab.data.session_layouts import _with_base
+    from impactlab.data.sessions.layouts import _with_base
 
     base = {"id": "b", "name": "b", "source": "", "recognise": ["Club"], "units": "row",
             "columns": {"Club": "club", "Speed": "ball_speed"},

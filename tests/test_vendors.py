@@ -1,4 +1,4 @@
-"""Launch-monitor exports read as exported (impactlab.data.session): each vendor's layout on a fixture made from a
+"""Launch-monitor exports read as exported (impactlab.data.sessions.reader): each vendor's layout on a fixture made from a
 real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and units
 converted by their definitions, not values computed by the reader."""
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from impactlab.cli import main
-from impactlab.data.session import read_session, read_session_text, write_normalised
+from impactlab.data.sessions.reader import read_session, read_session_text, write_normalised
 from impactlab.errors import StudyError
 
 DATA = Path(__file__).parent / "data" / "vendors"
@@ -194,7 +194,7 @@ def test_a_bad_session_ends_in_one_message_with_its_line_and_exit_2(tmp_path, ca
 
 
 def test_validate_writes_each_shot_measured_beside_each_models_prediction(tmp_path, capsys):
-    from impactlab.data.shots import predict, table_inputs
+    from impactlab.data.sessions.shots import predict, table_inputs
     from impactlab.model.registry import get_model
 
     out = tmp_path / "pred.csv"
@@ -253,7 +253,7 @@ def test_the_separator_is_the_one_the_rows_agree_on_and_mixed_marks_are_refused(
 
 
 def test_every_shipped_layout_loads_and_a_broken_one_is_named():
-    from impactlab.data.session_layouts import _vendor_from_document, vendor_maps
+    from impactlab.data.sessions.layouts import _vendor_from_document, vendor_maps
 
     maps = vendor_maps()
     assert {"trackman_tps", "garmin_golf", "foresight_fsx", "rapsodo_mlm2pro", "flightscope_cloud",
@@ -266,7 +266,7 @@ def test_every_shipped_layout_loads_and_a_broken_one_is_named():
 
 
 def test_a_yaml_shot_table_takes_launch_monitor_club_names():
-    from impactlab.data.shots import read_yaml
+    from impactlab.data.sessions.shots import read_yaml
 
     text = ("name: t\nrows:\n  - {club: 8 Iron, club_speed: 80 mph, attack_angle: -4 deg, dynamic_loft: 30 deg, "
             "ball_speed: 105 mph}\n  - {club: Putter, club_speed: 10 mph, attack_angle: 0 deg, dynamic_loft: 4 deg, "
@@ -403,7 +403,7 @@ def test_square_golf_leading_left_right_summary_rows_and_its_all_zero_club_data_
 
 
 def test_a_layout_writes_left_right_one_way():
-    from impactlab.data.session_layouts import _vendor_from_document
+    from impactlab.data.sessions.layouts import _vendor_from_document
     document = {"id": "x", "name": "x", "source": "x", "recognise": ["a"], "units": "header", "columns": {},
                 "left_right_suffix": True, "left_right_prefix": True}
     with pytest.raises(StudyError, match="L/R one way"):
@@ -588,7 +588,7 @@ def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
     does not count line breaks from the file's start for every shot (that took 17 s on the indented capture)."""
     import time
 
-    from impactlab.data.session_json import json_rows
+    from impactlab.data.sessions.json_records import json_rows
 
     message = ('{"DeviceID": "X", "Units": "Yards", "ShotNumber": %d, "BallData": {"Speed": 140.0, "HLA": 1.5, '
                '"VLA": 12.0, "TotalSpin": 2500.0}, "ShotDataOptions": {"ContainsBallData": true}}')

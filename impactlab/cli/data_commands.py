@@ -2,7 +2,7 @@
 tables), ``fit`` (model parameters from data) and ``shots`` (read a launch-monitor export as exported).
 
 The shot tables' calibration and the fits import scipy.optimize (about 0.2 s): ``impactlab.data.shot_report``
-and ``impactlab.data.fitting`` are imported inside ``validate`` and ``fit`` only, so no other command pays for
+and ``impactlab.data.fit.fitting`` are imported inside ``validate`` and ``fit`` only, so no other command pays for
 them.
 """
 
@@ -13,8 +13,8 @@ import sys
 
 import numpy as np
 
-from impactlab.data.session import describe as describe_session
-from impactlab.data.session import read_session, write_normalised
+from impactlab.data.sessions.reader import describe as describe_session
+from impactlab.data.sessions.reader import read_session, write_normalised
 from impactlab.data.validation import DATASETS, get_dataset, load_dataset_study
 from impactlab.data.validation import errors as dataset_errors
 from impactlab.data.validation.benchmark_report import describe as describe_benchmark
@@ -125,7 +125,7 @@ def _cmd_validate(args) -> int:
 
 def _cmd_fit(args) -> int:
     # scipy.optimize (about 0.2 s) is imported by the fits: only validate and fit pay for it
-    from impactlab.data.fitting import describe, fit
+    from impactlab.data.fit.fitting import describe, fit
     from impactlab.data.shot_report import fit_shots, shot_table
 
     if args.json:  # refused before minutes of fitting, not after

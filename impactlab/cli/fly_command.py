@@ -5,7 +5,7 @@ Two forms:
 - ``impactlab fly --ball-speed "167 mph" --launch-angle "10.9 deg" --spin-rate "2686 rpm"`` flies the launch (or
   launches: each option takes several values, which broadcast) given on the command line;
 - ``impactlab fly SESSION`` flies each shot of an export with its measured launch
-  (:func:`impactlab.data.session_flight.fly_session`) and prints the monitor's own carry beside the prediction.
+  (:func:`impactlab.data.sessions.flight.fly_session`) and prints the monitor's own carry beside the prediction.
 
 Every value carries its unit (a bare number is refused: no unit is guessed). The air is the standard air unless
 ``--temperature``, ``--pressure`` or ``--altitude``, ``--humidity``, ``--headwind``, ``--crosswind`` say otherwise;
@@ -25,8 +25,8 @@ import warnings
 import numpy as np
 import xarray as xr
 
-from impactlab.data.session import read_session
-from impactlab.data.session_flight import MONITOR, PREDICTED, fly_session
+from impactlab.data.sessions.reader import read_session
+from impactlab.data.sessions.flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, retired_reason

@@ -16,8 +16,8 @@ import attrs
 import numpy as np
 import yaml
 
-from impactlab.data.session import read_session
-from impactlab.data.session_flight import fly_session
+from impactlab.data.sessions.reader import read_session
+from impactlab.data.sessions.flight import fly_session
 from impactlab.errors import StudyError
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS, retired_reason
@@ -155,20 +155,20 @@ def session_carry(path, model: str = DEFAULT_MODEL, conditions=None, include_fla
                   session_air: bool = False) -> dict:
     """Fly the launch of every shot of a launch-monitor export that has the vendor's carry; model beside vendor.
 
-    The table of docs/flight.md ("Launch-monitor exports"): :func:`impactlab.data.session_flight.fly_session` (the
+    The table of docs/flight.md ("Launch-monitor exports"): :func:`impactlab.data.sessions.flight.fly_session` (the
     one code path of ``impactlab fly SESSION``), kept to the shots with a carry, by default with the monitor's
     flagged launches too and in the standard air (the vendors' own models are compared on one air).
 
     Parameters
     ----------
     path : path-like
-        An export :func:`impactlab.data.session.read_session` reads.
+        An export :func:`impactlab.data.sessions.reader.read_session` reads.
     model : str
         A key of :data:`impactlab.physics.aerodynamics.MODELS`.
     conditions : mapping, optional
         The air, as :func:`impactlab.fly` takes it (each value with its unit); None: the standard air.
     include_flagged, session_air : bool
-        As :func:`~impactlab.data.session_flight.fly_session`: fly launches the monitor flags (estimated spins);
+        As :func:`~impactlab.data.sessions.flight.fly_session`: fly launches the monitor flags (estimated spins);
         fly each shot in the air its export states.
 
     Returns

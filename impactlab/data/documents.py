@@ -1,6 +1,6 @@
 """The measured-data documents as the user writes them, structured by cattrs like the blocks of a study.
 
-Two documents: a YAML shot table (:func:`impactlab.data.shots.read_yaml`) and a measured-data file
+Two documents: a YAML shot table (:func:`impactlab.data.sessions.shots.read_yaml`) and a measured-data file
 (:func:`impactlab.data.validation.load_measured`). Each has a frozen attrs class per block whose fields are the
 keys a user may write, typed by what they hold; :func:`structure_document` turns the parsed YAML into it with
 unknown keys refused and every value of the wrong shape (a list where a mapping belongs, a mapping where a
@@ -46,7 +46,7 @@ def _field(expected: str, default: Any = None):
 
 @attrs.frozen
 class ShotTableBlock:
-    """A YAML shot table (:func:`impactlab.data.shots.read_yaml`)."""
+    """A YAML shot table (:func:`impactlab.data.sessions.shots.read_yaml`)."""
 
     _what = "a shot table"
     _key_of = "a shot table"

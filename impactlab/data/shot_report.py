@@ -21,7 +21,7 @@ import numpy as np
 
 from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
-from impactlab.data.shots import (
+from impactlab.data.sessions.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, read_shots, read_yaml, shot_errors, summary,
     table_inputs,
 )
@@ -29,10 +29,10 @@ from impactlab.data.validation.observations import (cover_effect, describe, gear
                                                     vertical_gear_effect)
 from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
-from impactlab.data.calibration import DEFAULT_PARAMETERS, calibrate
-from impactlab.data.session_json import JSON_SESSIONS
-from impactlab.data.calibration import cross_validate as leave_one_out
-from impactlab.data.least_squares import usable_rows
+from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
+from impactlab.data.sessions.json_records import JSON_SESSIONS
+from impactlab.data.fit.calibration import cross_validate as leave_one_out
+from impactlab.data.fit.least_squares import usable_rows
 
 if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
     from matplotlib.figure import Figure
@@ -111,7 +111,7 @@ def plot_shots(table: ShotTable, predictions: dict, path: str | os.PathLike[str]
 def shots_figure(table: ShotTable, predictions: dict) -> Figure:
     """Measured values (with their one-sigma bars) beside each model's prediction, one panel per quantity.
 
-    ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Returns a matplotlib
+    ``predictions`` maps a model id to :func:`impactlab.data.sessions.shots.predict`'s arrays (SI). Returns a matplotlib
     ``Figure`` (no pyplot state is touched).
     """
     # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
@@ -211,7 +211,7 @@ SOURCE_COLUMNS = {"ball_speed [%]": "speed %", "launch angle [deg]": "launch deg
 
 
 def source_table(table: ShotTable, predictions: dict) -> dict:
-    """source -> model -> {error key -> RMS over the source's rows} (:func:`impactlab.data.shots.errors_by_source`)."""
+    """source -> model -> {error key -> RMS over the source's rows} (:func:`impactlab.data.sessions.shots.errors_by_source`)."""
     out: dict = {}
     for model, predicted in predictions.items():
         for source, rms in errors_by_source(shot_errors(predicted, table), table).items():
@@ -249,7 +249,7 @@ _CSV_QUANTITIES = (("ball_speed", "m/s", 1.0), ("vertical_launch_angle", "deg", 
 def prediction_rows(table: ShotTable, predictions: dict) -> list[dict]:
     """One row per shot and model: the shot's delivery, each measured quantity beside the model's prediction.
 
-    ``predictions`` maps a model id to :func:`impactlab.data.shots.predict`'s arrays (SI). Keys carry their unit
+    ``predictions`` maps a model id to :func:`impactlab.data.sessions.shots.predict`'s arrays (SI). Keys carry their unit
     (``ball_speed measured [m/s]``); a quantity the table does not measure is an empty cell.
     """
     out = []

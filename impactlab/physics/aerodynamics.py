@@ -183,7 +183,7 @@ def _cd_cl_lyu_induced(s, re):
 
 
 #: ``measured_fit`` constants: least squares on the measurements of impactlab/data/validation/aero_coefficients.yaml
-#: only (:func:`impactlab.data.aero_fit.fit`; tests/test_flight.py refits and compares). Supercritical lift
+#: only (:func:`validation.flight.aero_fit.fit`; tests/test_flight.py refits and compares). Supercritical lift
 #: a S / (1 + b S); supercritical drag c0 + c_re Re/1e5 + k CL_sc^2 (c0 of the modern balls); drag crisis
 #: d / (1 + exp((Re - Re_d exp(-m S)) / w_d)), reached at a lower Re the more the ball spins; lift in the crisis times
 #: 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S/s_l).
@@ -202,7 +202,7 @@ def _crisis_step(s, re):
 
 
 def _cd_cl_measured_fit(s, re, c0=None):
-    # Fitted by impactlab (impactlab.data.aero_fit) to measured CD and CL of golf balls: Lyu, Kensrud & Smith 2020
+    # Fitted by impactlab (validation.flight.aero_fit) to measured CD and CL of golf balls: Lyu, Kensrud & Smith 2020
     # and Lyu et al. 2018 (modern balls, free flight), Naruo, Mizota & Shimozono 2004 (wind tunnel, S to 1.13),
     # Acushnet's US 6,729,976 and the USGA's US 6,186,002 (indoor test ranges), Bridgestone's patent tables, Bearman &
     # Harvey 1976 (wind tunnel). Never fitted to TrackMan's tables.

@@ -215,7 +215,7 @@ def fly(
         Or a function ``(S, Re) -> (CD, CL)`` of arrays (dimensionless), flown
         with the spin decay of the registered models (``lam`` 2.0e-5, or
         ``spin_decay``); used to fit a coefficient to measured flights
-        (:mod:`impactlab.data.flight_fit`). Its answer must be two finite
+        (:mod:`validation.flight.flight_fit`). Its answer must be two finite
         arrays of the shape of S (or two numbers) with CD >= 0, else
         ValueError.
     spin_decay : float or None, optional

@@ -17,9 +17,9 @@ The fit has three least-squares stages, each on the rows its physics concerns:
    are not) and ``CL *= 1 - beta exp(-ln(Re/Re_l)^2 / (2 sigma^2)) exp(-S / s_l)``.
 
 :func:`fit` can leave blocks out (``exclude``), fit another table of rows (``data``) or give a ball group its own
-induced-drag factor (``own_k``): the cross-validation by source of :mod:`impactlab.data.aero_sources`.
+induced-drag factor (``own_k``): the cross-validation by source of :mod:`validation.flight.aero_sources`.
 
-``python -m impactlab.data.aero_fit`` prints the fitted constants and the residuals of each stage; the constants
+``python -m validation.flight.aero_fit`` prints the fitted constants and the residuals of each stage; the constants
 written in :mod:`impactlab.physics.aerodynamics` are these (tests/test_flight.py refits and compares).
 """
 
@@ -213,7 +213,7 @@ def fit(spin_advance: bool = True, exclude=(), data: dict | None = None, own_k=(
         Fit the crisis midpoint's spin advance m (``measured_fit``); False holds m = 0, the crisis of a ball without
         spin at every S (the model before 2026-11-24, kept to show what m changes).
     exclude : collection of str
-        Blocks of the measurements file left out (cross-validation by source, :mod:`impactlab.data.aero_sources`).
+        Blocks of the measurements file left out (cross-validation by source, :mod:`validation.flight.aero_sources`).
     data : dict, optional
         A table of :func:`measurements`' keys fitted instead of the file's (a sensitivity, e.g. rows at another Re).
     own_k : collection of str

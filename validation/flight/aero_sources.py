@@ -1,18 +1,18 @@
 """``measured_fit`` cross-validated by source: each publication of the measured CD and CL left out in turn.
 
-:mod:`impactlab.data.aero_fit` fits ``measured_fit`` to every measured row at once. Here each source (a publication,
+:mod:`validation.flight.aero_fit` fits ``measured_fit`` to every measured row at once. Here each source (a publication,
 :data:`SOURCES`) is left out of that fit in turn (:func:`leave_one_out`), and
 
 (a) the left-out source's own CD and CL rows are compared with the refit (how well the other sources predict it) and
     with the full fit (:func:`source_residuals`);
 (b) TrackMan's three tour tables (:data:`impactlab.data.carry.TABLES`, never fitted) are flown with the refit, with the
     refit's modern drag level ``c0`` and with ``c0`` refitted on the PGA TOUR radar seasons as
-    :mod:`impactlab.data.flight_fit` does (:func:`radar_c0`).
+    :mod:`validation.flight.flight_fit` does (:func:`radar_c0`).
 
 :func:`sensitivities` does the same for structural choices: the 1976 ball's own induced-drag factor k, Naruo et al.'s
 rows entered at each Re they were measured at (instead of 1e5), the non-spinning drag the spin advance rests on
 moved by a ball-to-ball difference, the spin advance of the crisis held at the largest S
-measured (:data:`ADVANCE_CAPS`), and no advance. ``python -m impactlab.data.aero_sources`` prints the tables
+measured (:data:`ADVANCE_CAPS`), and no advance. ``python -m validation.flight.aero_sources`` prints the tables
 (about 30 s).
 
 References
@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from impactlab.data import aero_fit, flight_fit
+from validation.flight import aero_fit, flight_fit
 from impactlab.data.carry import TABLES, carry_table, validate_carry
 
 #: publication -> the blocks of impactlab/data/validation/aero_coefficients.yaml it measured
@@ -79,13 +79,13 @@ def blocks_of(source: str) -> tuple:
 
 
 def coefficients(result: dict, c0: float | None = None, advance_cap: float | None = None):
-    """A fit of :func:`impactlab.data.aero_fit.fit` as a function ``(S, Re) -> (CD, CL)`` for
+    """A fit of :func:`validation.flight.aero_fit.fit` as a function ``(S, Re) -> (CD, CL)`` for
     :func:`impactlab.physics.flight.fly`: ``measured_fit``'s formulas at the fit's constants.
 
     Parameters
     ----------
     result : dict
-        :func:`impactlab.data.aero_fit.fit`'s output.
+        :func:`validation.flight.aero_fit.fit`'s output.
     c0 : float, optional
         Supercritical drag level; default the fit's modern balls' offset.
     advance_cap : float, optional
@@ -111,7 +111,7 @@ def source_residuals(result: dict, blocks, own_offset: bool = False) -> dict:
     """RMS of CD and CL of the rows of ``blocks`` about the fit ``result``, in the form the fit gives each row: the
     modern balls' rows with the crisis terms (:func:`coefficients`; a row without Re, Lyu 2018 Fig. 4a, above 9e4,
     taken at 1e6), the other balls' rows above their own crisis with the supercritical drag and lift (stages 1-2 of
-    :func:`impactlab.data.aero_fit.fit`; their rows in the crisis are not fitted and not counted).
+    :func:`validation.flight.aero_fit.fit`; their rows in the crisis are not fitted and not counted).
 
     ``own_offset`` takes each row's own ball-group offset for the drag (NaN where the fit has none) instead of the
     model's drag level: how well the fit describes the rows, not how well it predicts them.
@@ -154,8 +154,8 @@ def tour_rms(cd_cl) -> dict:
 
 
 def radar_c0(result: dict, advance_cap: float | None = None) -> float:
-    """``c0`` least-squares fitted to the carries of :data:`impactlab.data.flight_fit.SOURCES` (PGA TOUR radar
-    seasons, each in its own air) with the rest of ``result`` held, as :func:`impactlab.data.flight_fit.fit` does
+    """``c0`` least-squares fitted to the carries of :data:`validation.flight.flight_fit.SOURCES` (PGA TOUR radar
+    seasons, each in its own air) with the rest of ``result`` held, as :func:`validation.flight.flight_fit.fit` does
     for ``measured_fit``; bounded by the smallest and largest drag offset of the fit's ball groups."""
     from scipy.optimize import least_squares  # scipy-heavy: only when fitting
 
@@ -195,7 +195,7 @@ def leave_one_out(sources=tuple(SOURCES)) -> list:
 
 
 def naruo_at(re) -> dict:
-    """:func:`impactlab.data.aero_fit.measurements` with Naruo et al.'s rows at Reynolds number ``re`` (a number,
+    """:func:`validation.flight.aero_fit.measurements` with Naruo et al.'s rows at Reynolds number ``re`` (a number,
     or one per row)."""
     m = dict(aero_fit.measurements())
     rows = m["block"] == "naruo_2004"
@@ -215,7 +215,7 @@ def naruo_reachable() -> np.ndarray:
 
 
 def naruo_within_reach() -> dict:
-    """:func:`impactlab.data.aero_fit.measurements` without Naruo et al.'s rows beyond the largest S their tunnel
+    """:func:`validation.flight.aero_fit.measurements` without Naruo et al.'s rows beyond the largest S their tunnel
     could set at any of their Re (S 1.0 and 1.13 beyond 0.896, :data:`NARUO_REACH_TOLERANCE`: the paper's polynomial
     evaluated there)."""
     m = aero_fit.measurements()
@@ -224,7 +224,7 @@ def naruo_within_reach() -> dict:
 
 
 def still_at_75k(shift: float = 0.0, in_crisis: bool = False) -> dict:
-    """:func:`impactlab.data.aero_fit.measurements` with the non-spinning 13-ball mean CD at Re 7.5e4 (Lyu et al.
+    """:func:`validation.flight.aero_fit.measurements` with the non-spinning 13-ball mean CD at Re 7.5e4 (Lyu et al.
     2018 Fig. 3a, 0.302) moved by ``shift`` (the spin advance rests on it against three other balls spinning, and
     the balls' drag is "relatively large (> 0.1)" apart below Re 1e5), or counted in the crisis (``in_crisis``: out
     of stage 2's supercritical rows; the fit's own crisis puts 40 % of the drag step there)."""
@@ -283,11 +283,11 @@ def format_report(sources=tuple(SOURCES), structural: bool = True) -> str:
 
 
 def main(argv=None) -> int:
-    """``python -m impactlab.data.aero_sources [--source NAME]``: the tables of :func:`format_report`; one source
+    """``python -m validation.flight.aero_sources [--source NAME]``: the tables of :func:`format_report`; one source
     (no structural variants) with ``--source``; an unknown source or argument is one message and exit code 2."""
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m impactlab.data.aero_sources",
+    parser = argparse.ArgumentParser(prog="python -m validation.flight.aero_sources",
                                      description="measured_fit cross-validated by source of the measured CD and CL.")
     parser.add_argument("--source", choices=list(SOURCES), help="leave out only this source")
     args = parser.parse_args(argv)

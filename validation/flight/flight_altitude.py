@@ -2,7 +2,7 @@
 
 Drag and lift both scale with the air density, so how much a driver's carry gains in thinner air depends on how large
 both are against gravity: a measured density derivative of carry separates the drag level from the lift level, which
-the radar seasons' carry alone cannot (:mod:`impactlab.data.flight_fit`). The measurement
+the radar seasons' carry alone cannot (:mod:`validation.flight.flight_fit`). The measurement
 (impactlab/data/validation/pgatour_radar_altitude.yaml, :func:`evidence`) is the source's fit of 40 near-sea-level
 events' player-matched carry differences on air density, raw and with the launch differences removed: the truth for
 a fixed launch lies between the two (:func:`bracket`), plus three altitude venues.
@@ -12,11 +12,11 @@ a fixed launch lies between the two (:func:`bracket`), plus three altitude venue
   of density ratio and relative (per cent of carry per per cent of density), the altitude venues' gains, and with
   ``freeze_re`` the coefficients held at the seasons' Reynolds numbers (the density's effect without the model's Re
   dependence: a diagnostic, not a model);
-- :func:`fit`: ``c0``, a lift scale (bounded as :mod:`impactlab.data.flight_fit` bounds them) and optionally the drag
-  crisis position (bounded as :mod:`impactlab.data.flight_candidates`), least squares on the seasons' carry, apex and
+- :func:`fit`: ``c0``, a lift scale (bounded as :mod:`validation.flight.flight_fit` bounds them) and optionally the drag
+  crisis position (bounded as :mod:`validation.flight.flight_candidates`), least squares on the seasons' carry, apex and
   hang time plus the density slope's distance outside the measured bracket; :func:`held_out` flies the tour tables.
 
-``python -m impactlab.data.flight_altitude`` prints the tables of docs/flight.md ("Carry against air density").
+``python -m validation.flight.flight_altitude`` prints the tables of docs/flight.md ("Carry against air density").
 
 References
 ----------
@@ -32,7 +32,7 @@ from importlib import resources
 import numpy as np
 import yaml
 
-from impactlab.data import flight_candidates, flight_fit
+from validation.flight import flight_candidates, flight_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import MEASURED_FIT, MODELS, model_function
@@ -174,8 +174,8 @@ def density_response(model="measured_fit", launch=None, freeze_re=False, ratios=
 def coefficients(c0: float = MEASURED_FIT["c0"], lift_scale: float = 1.0, crisis_shift: float = 1.0,
                  lift_loss_shift: float = 1.0):
     """``measured_fit`` with drag level ``c0``, every CL times ``lift_scale`` (the induced drag unscaled, as
-    :func:`impactlab.data.flight_fit.coefficients`), the drag crisis at Re_d times ``crisis_shift`` and the lift lost
-    at low Re centred at Re_l times ``lift_loss_shift`` (:func:`impactlab.data.flight_candidates.coefficients`)."""
+    :func:`validation.flight.flight_fit.coefficients`), the drag crisis at Re_d times ``crisis_shift`` and the lift lost
+    at low Re centred at Re_l times ``lift_loss_shift`` (:func:`validation.flight.flight_candidates.coefficients`)."""
     base = flight_candidates.coefficients(c0=c0, crisis_shift=crisis_shift, lift_loss_shift=lift_loss_shift)
 
     def cd_cl(s, re):
@@ -360,8 +360,8 @@ def format_report() -> str:
 
 
 def main(argv=None) -> int:
-    """``python -m impactlab.data.flight_altitude``: the tables of docs/flight.md
-    (:func:`impactlab.data.flight_fit.report_command`)."""
+    """``python -m validation.flight.flight_altitude``: the tables of docs/flight.md
+    (:func:`validation.flight.flight_fit.report_command`)."""
     return flight_fit.report_command("flight_altitude", "Every flight model's driver carry against air density "
                                      "beside the PGA TOUR radar's measured dose-response, and fits with it "
                                      "(docs/flight.md).", format_report, argv)

@@ -1,6 +1,6 @@
 """Which physical change of the flight model moves its carry against the tour tables, and which way.
 
-With the drag level settled on measured radar flights (:mod:`impactlab.data.flight_fit`), TrackMan's tour tables are
+With the drag level settled on measured radar flights (:mod:`validation.flight.flight_fit`), TrackMan's tour tables are
 2.1-2.7 % RMS held out, with a misfit that follows the launch spin ratio: the 3-woods to 3-irons 1-4 % long and landing
 4-7 deg too shallow, the short irons 1-6 % short. This module tries one physical change at a time, each a parameter of
 ``measured_fit`` bounded to a published measured range (:data:`PARAMETERS`):
@@ -17,7 +17,7 @@ PGA TOUR radar seasons alone (the honest number: no tour table in the fit), and 
 the other two tables (optimistic: the tables share an instrument and partly players). Carry RMS per held-out table,
 land angles and heights against the tables, hang times and apexes against the seasons show whether a candidate fixes
 the carry by breaking the flight's shape. :func:`crisis_scan` shows what the seasons and the tables say about the crisis
-position. ``python -m impactlab.data.flight_candidates`` prints the tables of docs/flight.md ("Which change moves
+position. ``python -m validation.flight.flight_candidates`` prints the tables of docs/flight.md ("Which change moves
 the spin-ratio residual"), about five minutes.
 
 References
@@ -38,7 +38,7 @@ import functools
 
 import numpy as np
 
-from impactlab.data import aero_fit, flight_fit
+from validation.flight import aero_fit, flight_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics.aerodynamics import MEASURED_FIT
 
@@ -73,7 +73,7 @@ PARAMETERS = {
     "crisis_spin_advance": ((0.87, 1.68), MEASURED_FIT["m"],
                             "m of the drag-crisis midpoint Re_d exp(-m S): the fit's 1.27 +- 2 sigma (0.41); 0 is a "
                             "crisis that stays where it is without spin (its own refit, "
-                            "impactlab.data.aero_fit.fit_without_spin_advance)"),
+                            "validation.flight.aero_fit.fit_without_spin_advance)"),
 }
 #: parameters that are scales or positions: a value <= 0 describes no ball (an inverted or infinitely sharp step)
 POSITIVE = ("crisis_shift", "crisis_width", "lift_loss_shift", "lift_saturation")
@@ -291,8 +291,8 @@ def format_report() -> str:
 
 
 def main(argv=None) -> int:
-    """``python -m impactlab.data.flight_candidates``: the tables of docs/flight.md
-    (:func:`impactlab.data.flight_fit.report_command`)."""
+    """``python -m validation.flight.flight_candidates``: the tables of docs/flight.md
+    (:func:`validation.flight.flight_fit.report_command`)."""
     return flight_fit.report_command("flight_candidates", "Fit each candidate change of the flight model on "
                                      "measured flights and fly TrackMan's tour tables held out (docs/flight.md).",
                                      format_report, argv)

@@ -1,7 +1,7 @@
 """The ball's flight parameters fitted to measured flights that are not TrackMan's tour tables; the tables held out.
 
 ``measured_fit`` (:mod:`impactlab.physics.aerodynamics`) takes every coefficient from measured CD and CL of golf balls
-(:mod:`impactlab.data.aero_fit`), but one number decides its carries more than any other: the ball's supercritical
+(:mod:`validation.flight.aero_fit`), but one number decides its carries more than any other: the ball's supercritical
 drag level ``c0``, which the measured balls spread over 0.207-0.274 (the modern balls', the 1998 USGA ball's and the
 1976 ball's offsets, :data:`impactlab.physics.aerodynamics.MEASURED_FIT_OFFSETS`). This module settles ``c0`` on
 measured flights (launch, and the carry a radar tracked to the ground), bounded to that measured range, and then flies
@@ -18,8 +18,9 @@ TrackMan's three per-club tour tables (:data:`impactlab.data.carry.TABLES`) with
   :func:`impactlab.data.carry.validate_carry` flies them), carry RMS with and without the driver rows, heights and
   land angles per club.
 
-``python -m impactlab.data.flight_fit`` prints the tables of docs/flight.md ("Settling the drag level on measured
-flights"); :data:`FITTED` holds the fitted constants (tests/test_flight_fit.py refits them from the YAML).
+``python -m validation.flight.flight_fit`` prints the tables of docs/flight.md ("Settling the drag level on measured
+flights"); :data:`FITTED` holds the fitted constants (validation/flight/tests/test_flight_fit.py refits them from the
+YAML).
 
 References
 ----------
@@ -35,7 +36,7 @@ from importlib import resources
 import numpy as np
 import yaml
 
-from impactlab.data import aero_fit
+from validation.flight import aero_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics.aerodynamics import MEASURED_FIT, MEASURED_FIT_OFFSETS, aero_coefficients
 
@@ -68,7 +69,7 @@ def coefficients(c0: float = MEASURED_FIT["c0"], lift_scale: float = 1.0):
 @functools.cache
 def lift_scale_bounds(percentiles: tuple = (10.0, 90.0)) -> tuple:
     """The spread of the measured CL rows about ``measured_fit``'s supercritical lift at S <= :data:`DRIVER_S`:
-    the ``percentiles`` of measured over fitted CL (the rows of :func:`impactlab.data.aero_fit.measurements` above
+    the ``percentiles`` of measured over fitted CL (the rows of :func:`validation.flight.aero_fit.measurements` above
     each ball's drag crisis)."""
     m = aero_fit.measurements()
     rows = m["supercritical"] & np.isfinite(m["cl"]) & (m["s"] <= DRIVER_S) & (m["s"] > 0)
@@ -287,7 +288,7 @@ def report_command(module: str, description: str, report, argv=None) -> int:
 
 
 def main(argv=None) -> int:
-    """``python -m impactlab.data.flight_fit``: the tables of docs/flight.md (:func:`report_command`)."""
+    """``python -m validation.flight.flight_fit``: the tables of docs/flight.md (:func:`report_command`)."""
     return report_command("flight_fit", "Fit the ball's drag level on measured radar flights and fly TrackMan's "
                                         "tour tables held out (docs/flight.md).", format_report, argv)
 

@@ -4,7 +4,7 @@ Draws docs/figures/aero_coefficients.png from impactlab/data/validation/aero_coe
 measurement, marker per ball group, filled above the ball's drag crisis, open in it) and the coefficient models of
 impactlab.physics.aerodynamics at three Reynolds numbers (docs/flight.md).
 
-Run from the project root: ``.venv/bin/python docs/aero_coefficients.py`` (a few seconds).
+Run from the project root: ``.venv/bin/python -m validation.flight.plot_aero_coefficients`` (a few seconds).
 """
 
 from __future__ import annotations
@@ -17,10 +17,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from impactlab.data.aero_fit import GROUPS, measurements  # noqa: E402
+from validation.flight.aero_fit import GROUPS, measurements  # noqa: E402
 from impactlab.physics.aerodynamics import aero_coefficients  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 LABELS = {"modern": "modern balls (Lyu 2018/2020, Bridgestone)", "usga_1998": "USGA ITR ball (c. 1998)",
           "bh_1976": "Bearman & Harvey 1976", "naruo_2004": "Naruo et al. 2004 (Skyway, wind tunnel)",
           "acushnet_invention": "Acushnet US 6,729,976 ball", "acushnet_prior_art": "Acushnet's prior-art ball"}

@@ -10,7 +10,7 @@ Draws docs/figures/flight_altitude.png (docs/flight.md, "Carry against air densi
   0.38-0.52 is reached nowhere in it), where the seasons' mean hang time is met (black: 0 and +0.2 s) and where their
   mean carry is (white), and two fits of the table in docs/flight.md.
 
-Run from the project root: ``.venv/bin/python docs/flight_altitude.py`` (about half a minute).
+Run from the project root: ``.venv/bin/python -m validation.flight.plot_flight_altitude`` (about half a minute).
 """
 
 from __future__ import annotations
@@ -23,11 +23,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from impactlab.data import flight_altitude as fa  # noqa: E402
-from impactlab.data import flight_fit  # noqa: E402
+from validation.flight import flight_altitude as fa  # noqa: E402
+from validation.flight import flight_fit  # noqa: E402
 from impactlab.data.carry import TABLES, carry_table, validate_carry  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def main() -> Path:

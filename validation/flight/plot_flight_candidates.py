@@ -12,7 +12,7 @@ Draws docs/figures/flight_candidates.png (docs/flight.md, "Which change moves th
   measured rows: three modern balls at 2250 rpm (Lyu, Kensrud & Smith 2020, Fig. 3) and the 13-ball non-spinning
   mean (Lyu et al. 2018, Fig. 3a).
 
-Run from the project root: ``.venv/bin/python docs/flight_candidates.py`` (about half a minute).
+Run from the project root: ``.venv/bin/python -m validation.flight.plot_flight_candidates`` (about half a minute).
 """
 
 from __future__ import annotations
@@ -25,14 +25,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from impactlab.data import aero_fit, flight_candidates  # noqa: E402
+from validation.flight import aero_fit, flight_candidates  # noqa: E402
 from impactlab.data.carry import TABLES, carry_table  # noqa: E402
 from impactlab.physics.aerodynamics import BALL_RADIUS, MEASURED_FIT  # noqa: E402
 from impactlab.physics.atmosphere import air_density, air_viscosity  # noqa: E402
 
 from flight_fit_c0 import STYLE  # noqa: E402  (docs/: each table's colour, marker and name, as in that figure)
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _radar_fit(**fixed) -> dict:

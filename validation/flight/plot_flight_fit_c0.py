@@ -8,7 +8,7 @@ Draws docs/figures/flight_fit_c0.png (docs/flight.md, "Settling the drag level o
   ball's c0. The tables' curves are drawn after the fit, as a diagnostic: nothing was chosen on them.
 - right: each held-out table row's carry error at the fitted c0 against its launch spin ratio S = R omega / v.
 
-Run from the project root: ``.venv/bin/python docs/flight_fit_c0.py`` (about ten seconds).
+Run from the project root: ``.venv/bin/python -m validation.flight.plot_flight_fit_c0`` (about ten seconds).
 """
 
 from __future__ import annotations
@@ -21,11 +21,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from impactlab.data import flight_fit  # noqa: E402
+from validation.flight import flight_fit  # noqa: E402
 from impactlab.data.carry import TABLES, carry_table, validate_carry  # noqa: E402
 from impactlab.physics.aerodynamics import BALL_RADIUS, MEASURED_FIT_OFFSETS  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 STYLE = {"trackman_carry": ("tab:blue", "s", "classic PGA table"),
          "trackman_carry_pga_2023": ("tab:orange", "^", "PGA 2023 table"),
          "trackman_carry_lpga_2023": ("tab:green", "D", "LPGA 2023 table")}

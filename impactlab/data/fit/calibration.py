@@ -3,15 +3,15 @@
 Weighted least squares (``scipy.optimize.least_squares``, bounded trust region)
 of the model's predicted ball speed, launch angle, launch direction, spin rate
 and spin axis against every measured value of a
-:class:`~impactlab.data.shots.ShotTable`, each residual divided by its measurement
+:class:`~impactlab.data.sessions.shots.ShotTable`, each residual divided by its measurement
 uncertainty. Several parameters at once (:data:`PARAMETERS`): friction, the
 cover's tangential loss, a linear restitution law of the normal speed (e at
 40 m/s and its slope), the restitution gain of a thin wood face, and a mean
 strike offset up the face. The optimiser, the covariance (not rescaled: the
 residuals are in units of their sigma), and the rules for "identified", "at its
 bound" and "beyond a physical limit" (a driver's COR above the USGA/R&A limit of
-0.830) are those of :mod:`impactlab.data.least_squares`, shared with
-:mod:`impactlab.data.fitting`. Rows the model cannot predict (a non-finite
+0.830) are those of :mod:`impactlab.data.fit.least_squares`, shared with
+:mod:`impactlab.data.fit.fitting`. Rows the model cannot predict (a non-finite
 prediction of a measured value) are left out and named.
 
 Cross-validation: fit on all rows but some, predict those; by default one row
@@ -28,11 +28,11 @@ from typing import Any
 import attrs
 import numpy as np
 
-from impactlab.data import least_squares
+from impactlab.data.fit import least_squares
 from impactlab.errors import FieldError
 from impactlab.model.base import ImpactModel
 from impactlab.scene.materials import Ball, RestitutionLaw
-from impactlab.data.shots import (
+from impactlab.data.sessions.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, shot_errors, summary, table_inputs,
 )
 from impactlab.physics.contact import approach_state
@@ -70,10 +70,10 @@ class Calibration:
 
     ``values`` and ``uncertainties`` are SI (one standard deviation, not a variance; ``inf`` where not
     identified); ``identified``, ``at_bound`` and ``near_bound`` per parameter and ``beyond_limit`` (one sentence
-    per physical limit the fit exceeds) follow the rules of :mod:`impactlab.data.least_squares`;
+    per physical limit the fit exceeds) follow the rules of :mod:`impactlab.data.fit.least_squares`;
     ``unused_rows`` names the rows left out (the model could not predict them). ``rms_before`` and ``rms_after``
     are the RMS of the sigma-weighted residuals; ``errors_before`` and ``errors_after`` the RMS errors per
-    measured quantity (:func:`impactlab.data.shots.summary`).
+    measured quantity (:func:`impactlab.data.sessions.shots.summary`).
     """
 
     model: str

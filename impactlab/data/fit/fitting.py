@@ -6,7 +6,7 @@ set: residuals (predicted - measured)/sigma, sigma the source's stated
 uncertainty, or 1 when it gives none. The optimiser, the covariance (rescaled
 by the reduced chi-square SSR/(n - p) when the source gives no uncertainty)
 and the rules for "identified" and "at its bound" are those of
-:mod:`impactlab.data.least_squares`, shared with the shot-table calibration.
+:mod:`impactlab.data.fit.least_squares`, shared with the shot-table calibration.
 Points the model cannot predict (a non-finite prediction) are left out and
 named.
 """
@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import attrs
 import numpy as np
 
-from impactlab.data import least_squares
+from impactlab.data.fit import least_squares
 from impactlab.errors import FieldError
 from impactlab.study.arrays import case_inputs
 from impactlab.data.validation import MeasuredData, load_dataset_study, point_order
@@ -38,7 +38,7 @@ class FitResult:
     """A least-squares fit of one model's parameters to a measured dataset.
 
     Uncertainties are one standard deviation, not variances (inf where the data do not identify the
-    parameter); ``identified``, ``at_bound`` and ``near_bound`` follow :mod:`impactlab.data.least_squares`;
+    parameter); ``identified``, ``at_bound`` and ``near_bound`` follow :mod:`impactlab.data.fit.least_squares`;
     ``residuals`` are predicted minus measured at the optimum over the points used, ``rms`` their root mean
     square and ``start_rms`` the same before fitting; ``unused_points`` names the measured points left out
     (the model could not predict them)."""
@@ -62,7 +62,7 @@ class FitResult:
 
 def describe(result: FitResult) -> str:
     """One line: each parameter with its one-sigma uncertainty, its bound or 'not identified' said
-    (:func:`impactlab.data.least_squares.state`), and the points left out."""
+    (:func:`impactlab.data.fit.least_squares.state`), and the points left out."""
     near = result.near_bound or (False,) * len(result.parameters)
     lines = [f"{name} = {least_squares.state(value, sigma, known, at, close, spec='.3f', sigma_spec='.3f')}"
              for name, value, sigma, known, at, close in zip(result.parameters, result.values, result.uncertainties,

@@ -1,5 +1,5 @@
-"""The one bounded least-squares core behind ``impactlab fit``: datasets (:mod:`~impactlab.data.fitting`) and shot
-tables (:mod:`~impactlab.data.calibration`).
+"""The one bounded least-squares core behind ``impactlab fit``: datasets (:mod:`~impactlab.data.fit.fitting`) and shot
+tables (:mod:`~impactlab.data.fit.calibration`).
 
 Problem
 -------

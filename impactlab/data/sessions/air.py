@@ -1,6 +1,6 @@
 """The air a launch-monitor export states for its shots: its temperature, pressure, humidity and density in columns
 (Garmin), or in words in a text column (TrackMan's Condition), read into the session's air fields and checked
-against each other; :func:`impactlab.data.session_flight.fly_session` flies each shot in it.
+against each other; :func:`impactlab.data.sessions.flight.fly_session` flies each shot in it.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import re
 
 import numpy as np
 
-from impactlab.data.session_layouts import FIELDS, _norm, _unit_factor, split_header
+from impactlab.data.sessions.layouts import FIELDS, _norm, _unit_factor, split_header
 from impactlab.errors import FieldError, StudyError
 from impactlab.physics.atmosphere import air_density
 

@@ -1,6 +1,6 @@
 """A launch-monitor session flown: each shot's measured launch through the air, beside what the monitor reported.
 
-``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as :func:`impactlab.data.session.read_session`
+``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as :func:`impactlab.data.sessions.reader.read_session`
 reads it, flies every shot that has a ball speed, a launch angle and a spin rate with
 :func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and flight time
 beside each prediction where the export has them. Nothing is guessed for a shot:
@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from impactlab.data.session import Session
-from impactlab.data.session_air import AIR_IN_WORDS
+from impactlab.data.sessions.reader import Session
+from impactlab.data.sessions.air import AIR_IN_WORDS
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
@@ -64,7 +64,7 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     Parameters
     ----------
     session : Session
-        A session as :func:`impactlab.data.session.read_session` returns it (SI values).
+        A session as :func:`impactlab.data.sessions.reader.read_session` returns it (SI values).
     model : str
         Aerodynamic model, a key of :data:`impactlab.physics.aerodynamics.MODELS`.
     conditions : mapping, optional

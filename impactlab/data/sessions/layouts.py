@@ -1,7 +1,7 @@
 """Launch-monitor layouts as data: the session vocabulary, each vendor's column map, and how a header is read.
 
 :data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML
-column maps of ``impactlab/data/vendors/`` (the module docstring of :mod:`impactlab.data.session` says what a
+column maps of ``impactlab/data/sessions/vendors/`` (the module docstring of :mod:`impactlab.data.sessions.reader` says what a
 map holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and
 :func:`_recognise` turn a header row into fields, units and the layout that wrote it.
 """
@@ -16,7 +16,7 @@ import attrs
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import DIMENSIONS, ZERO_DEPENDS_ON_UNIT, to_si, unit_affine
-from impactlab.data.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
+from impactlab.data.sessions.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
 #: impactlab.vocabulary (inputs: club_speed is the delivery's speed; outputs: ball_speed, back_spin...) and the ball
@@ -78,7 +78,7 @@ class ColumnRule:
 
 @attrs.frozen
 class VendorMap:
-    """A vendor's export layout (one YAML file of ``impactlab/data/vendors``); see the module docstring."""
+    """A vendor's export layout (one YAML file of ``impactlab/data/sessions/vendors``); see the module docstring."""
 
     id: str
     name: str
@@ -302,9 +302,9 @@ def vendor_maps() -> dict[str, VendorMap]:
     import yaml
 
     documents = {}
-    for entry in sorted(resources.files("impactlab.data.vendors").iterdir(), key=lambda e: e.name):
+    for entry in sorted(resources.files("impactlab.data.sessions.vendors").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".yaml"):
-            documents[f"impactlab/data/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
+            documents[f"impactlab/data/sessions/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
     by_id = {document.get("id"): document for document in documents.values() if isinstance(document, dict)}
     maps = {}
     for where, document in documents.items():

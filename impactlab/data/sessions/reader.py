@@ -2,9 +2,9 @@
 
 A session file is a table a launch monitor's software wrote (TrackMan, Garmin Golf, Foresight FSX, Rapsodo,
 FlightScope, Square Golf), JSON shot records (GSPro Open Connect messages, Uneekor's report; read as rows by
-:mod:`impactlab.data.session_json`) or a table in impactlab's own vocabulary (``Club Speed [mph]``,
+:mod:`impactlab.data.sessions.json_records`) or a table in impactlab's own vocabulary (``Club Speed [mph]``,
 ``ball_speed (m/s)``). Each vendor's
-layout is a YAML column map in ``impactlab/data/vendors/`` (:func:`vendor_maps`): the header names that recognise
+layout is a YAML column map in ``impactlab/data/sessions/vendors/`` (:func:`vendor_maps`): the header names that recognise
 it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
 column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
 clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
@@ -35,17 +35,17 @@ import numpy as np
 from impactlab.scene.plausibility import wrong_sign
 from impactlab.errors import StudyError
 from impactlab.scene.catalogue import club_key
-from impactlab.data.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
-from impactlab.data.session_layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, VendorMap,
+from impactlab.data.sessions.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
+from impactlab.data.sessions.layouts import (DESCRIPTIONS, FIELDS, GENERIC, TEXT_FIELDS, VendorMap,
                                             _column_plan, _header_index, _norm, _recognise, split_header)
-from impactlab.data.session_json import json_rows, looks_like_json
-from impactlab.data.session_air import _air_from_text, _check_air
-from impactlab.data.session_values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
+from impactlab.data.sessions.json_records import json_rows, looks_like_json
+from impactlab.data.sessions.air import _air_from_text, _check_air
+from impactlab.data.sessions.values import (_UNITS_CELL, _check_spin_signs, _club_names, _decimal_mark, _derive,
                                            _flag_all_zero, _flag_estimated, _flag_excluded, _flag_no_data,
                                            _flag_without, _legacy_text, _merge_repeated, _progress, _read_bytes,
                                            _read_flags, _row_key, _rows_of, _to_numbers, _units_difference)
 # the report and the normalised table of a session, importable from here (the CLI and users import them so)
-from impactlab.data.session_report import describe as describe, write_normalised as write_normalised
+from impactlab.data.sessions.report import describe as describe, write_normalised as write_normalised
 
 #: the delivery the impact models need in every row
 NEEDED_DELIVERY = ("club_speed", "attack_angle", "dynamic_loft")
@@ -147,10 +147,10 @@ class Session:
         return keep, out
 
     def shot_table(self, include_flagged: bool = False, every_row: bool = False):
-        """The :class:`~impactlab.data.shots.ShotTable` of the rows the impact models can use.
+        """The :class:`~impactlab.data.sessions.shots.ShotTable` of the rows the impact models can use.
 
         The one assembly of a shot table: launch-monitor exports and impactlab's YAML tables
-        (:func:`impactlab.data.shots.read_yaml`) both come here as a session. Flagged values (estimated, clamped)
+        (:func:`impactlab.data.sessions.shots.read_yaml`) both come here as a session. Flagged values (estimated, clamped)
         are left out of the comparison unless ``include_flagged``; a row without face angle or club path keeps its
         ball speed, launch angle and spin but not its launch direction and spin axis (a square face would be a
         guess). A row the models cannot use (:meth:`usable`) is skipped with its reason, or, with ``every_row`` (a

@@ -1,5 +1,5 @@
 """The report of ``impactlab shots`` and the normalised table it writes (``--csv``) of a session
-(:class:`impactlab.data.session.Session`)."""
+(:class:`impactlab.data.sessions.reader.Session`)."""
 
 from __future__ import annotations
 
@@ -14,11 +14,11 @@ import numpy as np
 
 from impactlab.io.safe_output import write_atomically
 from impactlab.units import DIMENSIONS, unit_affine
-from impactlab.data.session_layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
+from impactlab.data.sessions.layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
 from impactlab.scene.plausibility import MAGNITUDES, wrong_sign
 
-if TYPE_CHECKING:  # annotations only: impactlab.data.session imports this module to re-export its functions
-    from impactlab.data.session import Session
+if TYPE_CHECKING:  # annotations only: impactlab.data.sessions.reader imports this module to re-export its functions
+    from impactlab.data.sessions.reader import Session
 
 #: which measurements each prediction needs, for the report
 NEEDS = {

@@ -34,11 +34,11 @@ from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, com
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 from impactlab.data.documents import ShotTableBlock, structure_document
-from impactlab.data.session import GENERIC, Session, read_session, read_session_text
-from impactlab.data.session_json import JSON_SESSIONS
-from impactlab.data.session_layouts import FIELDS
+from impactlab.data.sessions.reader import GENERIC, Session, read_session, read_session_text
+from impactlab.data.sessions.json_records import JSON_SESSIONS
+from impactlab.data.sessions.layouts import FIELDS
 # the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
-from impactlab.data.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
+from impactlab.data.sessions.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
                                        ShotTable, _field_of)
 
 def _convert(value, field: str, unit: str | None, where: str) -> float:
@@ -70,8 +70,8 @@ def _convert(value, field: str, unit: str | None, where: str) -> float:
 
 def _session_of_rows(rows: list[dict], file: str, name: str, units: dict, loft_at: str,
                      sigma_defaults: dict) -> Session:
-    """A YAML table's parsed rows (SI values, text, ``_line``) as a :class:`~impactlab.data.session.Session`, so
-    that :meth:`~impactlab.data.session.Session.shot_table` is the one assembly of every shot table.
+    """A YAML table's parsed rows (SI values, text, ``_line``) as a :class:`~impactlab.data.sessions.reader.Session`, so
+    that :meth:`~impactlab.data.sessions.reader.Session.shot_table` is the one assembly of every shot table.
 
     What the YAML format says and an export does not is settled here: a row's uncertainty defaults to the table's
     ``sigma:`` block; a row that gives neither club path nor face angle (nor face to path) is square, as the table's
@@ -113,7 +113,7 @@ def _check_text(row: dict, where: str, problems: list) -> None:
 def read_csv(text: str, file: str = "<csv>", name: str | None = None, source: str = "",
              include_flagged: bool = False) -> ShotTable:
     """A shot table from CSV text: a launch-monitor export as exported, or impactlab's own layout (a header row of
-    fields with units, one shot per line); see :mod:`impactlab.data.session`. Rows the impact models cannot use
+    fields with units, one shot per line); see :mod:`impactlab.data.sessions.reader`. Rows the impact models cannot use
     are skipped with their reason (``ShotTable.skipped``); a cell that cannot be read refuses the file."""
     session = read_session_text(text, file)
     table = session.shot_table(include_flagged)

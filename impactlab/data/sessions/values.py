@@ -1,6 +1,6 @@
 """From a session file's text to per-column values: bytes and rows, decimal marks, numbers, flags, derived values.
 
-The steps of :func:`impactlab.data.session.read_session_text` below the column plan: reading the file's bytes
+The steps of :func:`impactlab.data.sessions.reader.read_session_text` below the column plan: reading the file's bytes
 (UTF-8 or UTF-16, never a binary file), splitting rows with the separator the file states or its header implies,
 telling decimal commas from points (a file mixing both is refused), reading a column's cells as numbers, and
 the flags and derived values (spin from back and side spin, face angle from face to path) a layout implies.
@@ -19,7 +19,7 @@ import numpy as np
 
 from impactlab.errors import StudyError
 from impactlab.study.yaml_lines import checked_bytes, utf8_text
-from impactlab.data.session_layouts import FIELDS, VendorMap, _norm, split_header
+from impactlab.data.sessions.layouts import FIELDS, VendorMap, _norm, split_header
 
 #: the largest file read as a session [bytes]
 MAX_SESSION_BYTES = 512 * 2**20

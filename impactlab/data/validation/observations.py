@@ -15,7 +15,7 @@ from importlib import resources
 import attrs
 import numpy as np
 
-from impactlab.data.shots import DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, predict, table_inputs
+from impactlab.data.sessions.shots import DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, predict, table_inputs
 from impactlab.units import to_si
 
 

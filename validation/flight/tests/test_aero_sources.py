@@ -1,4 +1,4 @@
-"""measured_fit cross-validated by source (impactlab.data.aero_sources; aero_fit's exclude / data / own_k).
+"""measured_fit cross-validated by source (validation.flight.aero_sources; aero_fit's exclude / data / own_k).
 
 Oracles: the measurement file read here with yaml (row counts per stage from its own thresholds); the shipped model
 (impactlab.physics.aerodynamics); a stage a source has no rows in is left bit-identical; a source whose rows are
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import yaml
 
-from impactlab.data import aero_fit, aero_sources, flight_fit
+from validation.flight import aero_fit, aero_sources, flight_fit
 from impactlab.physics.aerodynamics import aero_coefficients
 
 

@@ -1,4 +1,5 @@
-"""The driver's carry against air density (impactlab.data.flight_altitude; docs/flight.md, "Carry against air density").
+"""The driver's carry against air density (validation.flight.flight_altitude;
+docs/flight.md, "Carry against air density").
 
 Oracles: the numbers of the source (jhoblitt/tmelevation, docs/research/land-angle-spike/altitude-evidence.md section 2
 and altitude-evidence.md.notes.md @ a541508), typed here from its text; a point-mass flight with constant CD and CL
@@ -14,7 +15,7 @@ import functools
 import numpy as np
 import pytest
 
-from impactlab.data import flight_altitude as fa
+from validation.flight import flight_altitude as fa
 from impactlab.physics import flight
 from impactlab.physics.atmosphere import air_density
 

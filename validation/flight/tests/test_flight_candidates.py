@@ -1,5 +1,5 @@
-"""Candidate changes of the flight model against the tour tables' spin-ratio residual (impactlab.data.flight_candidates;
-docs/flight.md, "Which change moves the spin-ratio residual").
+"""Candidate changes of the flight model against the tour tables' spin-ratio residual
+(validation.flight.flight_candidates; docs/flight.md, "Which change moves the spin-ratio residual").
 
 Oracles: each parameter's formula by hand at chosen points; the measured CD and CL rows' own least squares (written
 here with numpy/scipy, not the module's fit) for the bounds; published spin-decay rates (TrackMan's "typically 4 % per
@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactlab.data import aero_fit, flight_candidates
+from validation.flight import aero_fit, flight_candidates
 from impactlab.data.carry import TABLES, carry_table
 from impactlab.physics import aerodynamics, flight
 from impactlab.physics.aerodynamics import MEASURED_FIT, aero_coefficients

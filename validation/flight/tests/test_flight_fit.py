@@ -1,5 +1,5 @@
 """The ball's drag level settled on measured flights that are not TrackMan's tour tables, and the tables held out
-(impactlab.data.flight_fit; docs/flight.md, "Settling the drag level on measured flights").
+(validation.flight.flight_fit; docs/flight.md, "Settling the drag level on measured flights").
 
 Oracles: the numbers of the cited source table (PGA TOUR radar season averages as tabulated in jhoblitt/tmelevation
 provenance.md @ 98f8a49, section 5), written here from that table; TrackMan's 2023 PGA driver row; a fit that must
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import yaml
 
-from impactlab.data import flight_fit
+from validation.flight import flight_fit
 from impactlab.data.carry import TABLES, YARD, carry_table, validate_carry
 from impactlab.physics import aerodynamics, flight
 from impactlab.physics.atmosphere import air_density
@@ -256,17 +256,17 @@ def test_a_malformed_carry_table_is_one_clear_message(tmp_path, monkeypatch, cha
 
 
 @pytest.mark.parametrize("module, argv, fragment", [
-    ("carry", ["nosuch"], "unknown model nosuch"),
-    ("carry", ["measured_fit", "--bogus"], "unrecognized arguments: --bogus"),
-    ("flight_fit", ["measured_fit"], "unrecognized arguments: measured_fit"),
+    ("impactlab.data.carry", ["nosuch"], "unknown model nosuch"),
+    ("impactlab.data.carry", ["measured_fit", "--bogus"], "unrecognized arguments: --bogus"),
+    ("validation.flight.flight_fit", ["measured_fit"], "unrecognized arguments: measured_fit"),
 ])
 def test_the_flight_commands_refuse_a_wrong_argument_with_exit_code_2(module, argv, fragment, capsys):
-    """python -m impactlab.data.carry / flight_fit: before, an unknown model was a ValueError traceback (exit 1)
+    """python -m impactlab.data.carry / validation.flight.flight_fit: before, an unknown model was a ValueError traceback (exit 1)
     and flight_fit ignored any argument and ran its 6-second report."""
     import importlib
 
     with pytest.raises(SystemExit) as caught:
-        importlib.import_module(f"impactlab.data.{module}").main(argv)
+        importlib.import_module(module).main(argv)
     assert caught.value.code == 2
     err = capsys.readouterr().err
     assert fragment in err and "Traceback" not in err
