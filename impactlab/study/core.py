@@ -36,7 +36,7 @@ from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
 from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
 from impactlab.study.sweeps import PRESET_MARK, SweepAxis, SweepField, build_sweep, friction_law_entry
-from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
+from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
                                   check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
@@ -387,6 +387,37 @@ def _check_face_marker(document, scene, sweep, models, sensitivity) -> None:
                              parameter.describe())
 
 
+def _select_value(axis: SweepAxis | None, value, where: str):
+    """A plot's ``select`` value as the dataset's coordinate holds it, checked against the dimension's values.
+
+    A quantity with a unit (``0 mm``, ``10 deg``) is converted to the coordinate's unit (mm, deg: the input's
+    display unit); a bare number is the coordinate's value in that unit, as the result file shows it; a labelled
+    dimension takes a label. Refused at load, naming the values there are, rather than after the whole run.
+    """
+    if axis is None:  # the model dimension: checked by the caller
+        return value
+    if axis.grouped:
+        labels = list(axis.labels) if axis.labels else list(range(axis.size))
+        if value not in labels:
+            raise FieldError(where, f"a value of dimension {axis.dim!r}", value, choices=[str(v) for v in labels])
+        return value
+    field = axis.fields[0]
+    spec = INPUTS[field.input]
+    coords = [float(f"{v * spec.display_factor:.12g}") for v in field.values]
+    unit = spec.display_unit or spec.unit
+    if isinstance(value, str) or hasattr(value, "units"):
+        number = float(f"{to_si(value, spec.dimension, where) * spec.display_factor:.12g}")
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        number = float(value)
+    else:
+        raise FieldError(where, f"a value of {axis.dim!r} with its unit (the coordinate is in {unit})", value)
+    matches = [c for c in coords if math.isclose(c, number, rel_tol=1e-9, abs_tol=1e-9 * max(map(abs, coords)))]
+    if not matches:
+        raise FieldError(where, f"one of the swept values of {axis.dim!r} (in {unit})", value,
+                         choices=[f"{c:g} {unit}".strip() for c in coords])
+    return matches[0]
+
+
 def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
     if value is None:
         return ()
@@ -426,6 +457,8 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
                                  choices=dims + [MODEL_DIM])
             if key == MODEL_DIM and model_ids and select[key] not in model_ids:  # else it fails after the run
                 raise FieldError(f"{where}.select.{key}", "a model of the study", str(select[key]), choices=model_ids)
+        select = {key: _select_value(next((axis for axis in sweep if axis.dim == key), None), value,
+                                     f"{where}.select.{key}") for key, value in select.items()}
         title = block.title or ""
         xlim = block.xlim
         if xlim is not None and not (isinstance(xlim, list) and len(xlim) == 2 and all(
