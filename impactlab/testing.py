@@ -36,6 +36,7 @@ import numpy as np
 from impactlab.errors import ModelContractError
 from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS, FACE_SURFACES
 from impactlab.model.base import ImpactModel
+from impactlab.model.contract import declaration_problems
 from impactlab.physics.mechanics import effective_mass
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.scene.catalogue import CLUB_PRESETS
@@ -119,6 +120,8 @@ def check_declarations(model: ImpactModel) -> None:
     """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the
     vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
     cls = type(model)
+    problems = declaration_problems(cls)  # what the registry checks when a plugin loads (rule 9 included)
+    assert not problems, "; ".join(problems)
     assert isinstance(cls.name, str) and cls.name.isidentifier() and not keyword.iskeyword(cls.name), \
         f"name must be a Python identifier, got {cls.name!r}"
     assert isinstance(cls.label, str) and cls.label, "label must be a non-empty string"

@@ -100,6 +100,16 @@ class ImpactModel:
        :meth:`expert_resolution` (a resolution the options fix by hand, which
        the memory estimate of :mod:`impactlab.study.limits` counts) are methods
        with defaults for models that have neither.
+    9. **A 3-D contact is seen whole, or refused.** On a 3-D scene (a golf
+       delivery, a club head's body, a strike point, a curved face) the hook
+       must see every input of
+       :data:`impactlab.physics.contact.CONTACT_STATE_INPUTS` the scene gives:
+       declare them (``optional_inputs``), or set ``takes_contact_state = True``
+       and read the geometry only through ``inputs.contact_state()``, which is
+       then the whole scene's. A model that does neither is refused on 3-D
+       scenes when it is planned, naming the inputs
+       (:mod:`impactlab.model.contract`); its declarations are checked
+       against the vocabulary when the plugin loads.
 
     The public :meth:`compute` validates inputs, hands the hook only what it
     declared, checks what came back, derives the rest, converts to the
@@ -119,6 +129,9 @@ class ImpactModel:
     has_tolerance: ClassVar[bool] = False
     #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
     provides_histories: ClassVar[bool] = False
+    #: rule 9: the hook reads the contact geometry only through ``inputs.contact_state()``, which then is the
+    #: state of the whole scene whatever the model declared (otherwise it must declare the contact-state inputs)
+    takes_contact_state: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs: Any):
         super().__init_subclass__(**kwargs)
@@ -257,7 +270,8 @@ class ImpactModel:
         n_cases = batch.n_cases
         raw = {}
         if plan.from_model:
-            raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
+            raw = self._compute(batch.only(self.requires | self.optional_inputs,
+                                           share_contact=self.takes_contact_state), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
             if any(is_history(name) for name in keep):

@@ -18,6 +18,7 @@ import attrs
 from impactlab.model.derive import FROM_DELIVERY, FROM_FLIGHT, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from impactlab.model.derive import DERIVATION_OPTIONAL, FLIGHT_INPUTS
 from impactlab.errors import ModelInputError
+from impactlab.model.contract import require_contact_inputs
 from impactlab.physics.aerodynamics import DEFAULT_MODEL as DEFAULT_AIR_MODEL
 from impactlab.vocabulary import INPUTS
 
@@ -81,9 +82,13 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
     """Plan the outputs ``requested`` from a model class (set logic on declarations only).
 
     ``given_inputs``, when known, lets the plan tell outputs that need inputs
-    the scene lacks (a golf delivery) from those it can give.
+    the scene lacks (a golf delivery) from those it can give; on a 3-D scene it
+    refuses a model whose hook would not see the whole contact state
+    (:func:`impactlab.model.contract.require_contact_inputs`, ModelInputError).
     """
     requested = tuple(dict.fromkeys(requested))
+    if given_inputs is not None:  # on a 3-D scene the hook must see the whole contact (impactlab.model.contract)
+        require_contact_inputs(model_cls, given_inputs)
     provides = frozenset(model_cls.provides)
     from_model, derived, missing = set(), set(), {}
     for name in requested:
