@@ -86,7 +86,9 @@ class ImpactModel:
     7. **Conformance.** ``impactlab.testing.check_model`` must pass: declared
        names exist, energy never increases for a fixed face, frictionless and
        head-on impacts give no tangential impulse, mirrored impacts mirror,
-       declared capabilities hold.
+       declared capabilities hold, and reference values: J_t = mu J_n in gross
+       slip, the rigid-body closed form, a 3-D off-centre strike against an
+       independent rigid-body solution.
     8. **Capabilities are declared, never guessed.** The framework reads them
        from the class, not from the options' fields:
        ``has_tolerance`` (class attribute, default False): ``Options`` has a
