@@ -280,6 +280,8 @@ class ImpactModel:
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
         raw.update(derive(plan.derived, raw, batch))
+        for name in plan.plugin:  # outputs plugins derive from the model's arrays (impactlab.vocabulary)
+            raw[name] = _plugin_output(name, raw, n_cases)
         time = np.asarray(raw.pop("time"), dtype=float) if "time" in raw else None
         values = {}
         for name in plan.requested:
@@ -383,6 +385,22 @@ class ModelResult:
             "model_references": "; ".join(model.references),
             "impactlab_version": __version__,
         }
+
+
+def _plugin_output(name: str, raw: Mapping[str, np.ndarray], n_cases: int) -> np.ndarray:
+    """A plugin's derived output (:class:`impactlab.vocabulary.DerivedOutput`) from the SI arrays it needs."""
+    spec = OUTPUTS[name]
+    assert spec.function is not None, "only plugin outputs are computed here"
+    try:
+        value = np.asarray(spec.function(**{need: np.asarray(raw[need], dtype=float) for need in spec.needs}),
+                           dtype=float)
+    except Exception as exc:  # the plugin's own error, named as such
+        raise ModelContractError(f"derived output {name!r} (a plugin's, impactlab.outputs) failed: "
+                                 f"{type(exc).__name__}: {exc}") from None
+    if value.shape != (n_cases,):
+        raise ModelContractError(f"derived output {name!r} (a plugin's, impactlab.outputs) returned shape "
+                                 f"{value.shape}, expected ({n_cases},): one value per case")
+    return value
 
 
 def _jsonable(value: Any) -> Any:

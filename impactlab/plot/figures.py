@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
+from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 from impactlab.study.datasets import DATASETS
 from impactlab.plot.style import _MARKERS, _STYLES, _axis_label, _display, _save, conditions
 # the ball-flight figure has its own module; the CLI and users import it from here
@@ -19,10 +19,44 @@ from impactlab.plot.trajectories import (MAX_TRAJECTORIES as MAX_TRAJECTORIES,
                                          plot_trajectories as plot_trajectories)
 
 
-def _draw_measured(axis, output: str, names, xs) -> None:
-    """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label."""
+def _shot_values(path: str, output: str, x_input: str | None) -> tuple[np.ndarray, np.ndarray | None, int]:
+    """A user's shot file (impactlab.data.sessions): the shots' ``output`` in the vocabulary's units, their x (the
+    swept input's display units) where the file gives it, and the number of rows without the output (skipped)."""
+    from impactlab.data.sessions.reader import read_session  # the readers sit above the figures' layer
+
+    session = read_session(path)
+    ys = np.asarray(session.values.get(output, np.full(session.size, np.nan)), float) * OUTPUTS[output].factor
+    field = {"speed": "club_speed"}.get(x_input or "", x_input)
+    xs = None
+    if field and field in session.values and np.isfinite(session.values[field]).any():
+        xs = np.asarray(session.values[field], float) * INPUTS[x_input].display_factor
+    keep = np.isfinite(ys) & (np.isfinite(xs) if xs is not None else True)
+    return ys[keep], None if xs is None else xs[keep], int(np.sum(~keep))
+
+
+def _draw_measured(axis, output: str, names, xs, x_input: str | None = None) -> None:
+    """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label.
+
+    A name that is not a shipped dataset is a user's shot file: its shots are drawn at their own x where the file
+    gives the swept quantity (a club-speed sweep beside the shots' club speeds), else as a column of mean +- SD.
+    """
     step = (xs.max() - xs.min()) / max(xs.size - 1, 1) if xs.size > 1 else 1.0
+    files = [name for name in names if name not in DATASETS]
+    names = [name for name in names if name in DATASETS]
+    for path in files:
+        ys, shot_xs, skipped = _shot_values(path, output, x_input)
+        label = f"measured: {Path(path).name} ({ys.size} shots" + (f", {skipped} without it" if skipped else "")
+        if shot_xs is not None:
+            axis.plot(shot_xs, ys, "k.", markersize=4, alpha=0.6, zorder=4, label=label + ")")
+        elif ys.size:
+            names.append(("file", path, ys, label))
     for column, name in enumerate(names):
+        if isinstance(name, tuple):  # a shot file without the swept quantity: its mean +- SD in a column
+            _, path, ys, label = name
+            where = xs.max() + step * (0.6 + 1.2 * column)
+            axis.errorbar([where], [float(np.mean(ys))], yerr=[float(np.std(ys, ddof=1)) if ys.size > 1 else 0.0],
+                          fmt="kD", markersize=5, capsize=3, zorder=4, label=label + ", mean +- SD)")
+            continue
         data = DATASETS[name]
         if data.quantity != output:
             continue
@@ -36,6 +70,8 @@ def _draw_measured(axis, output: str, names, xs) -> None:
         for label, value, where in zip(data.labels, data.values, positions):
             axis.annotate(label, (where, value), xytext=(4, 0), textcoords="offset points", fontsize=6,
                           va="center", rotation=0)
+    if not names:
+        return
     # the measured points sit right of a rule: they were taken at no stated friction, not at the x there
     axis.axvline(xs.max() + 0.3 * step, color="0.6", linewidth=0.8, label="_separator")
     axis.annotate("measured", (xs.max() + 0.35 * step, 1.0), xycoords=("data", "axes fraction"), xytext=(0, -10),
@@ -122,7 +158,9 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
         A zoomed view of the horizontal axis; the vertical axis follows the data inside it.
     measured : sequence of str
         Shipped measured datasets (:data:`impactlab.study.datasets.DATASETS`) of a drawn output: their
-        values, with error bars where the source states them, beside the curves at the right.
+        values, with error bars where the source states them, beside the curves at the right; or paths of a
+        user's shot files (launch-monitor exports, shot tables): their shots at their own x where the file gives
+        the swept quantity, else their mean +- SD at the right.
     """
     # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures; matplotlib is
     # imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
@@ -203,7 +241,8 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
                 axis.set_xlabel(_axis_label(attrs_x.get("long_name", x), attrs_x.get("units", ""), 60), fontsize=8)
         axis.grid(True, alpha=0.3)
         if measured and x and not along_output:
-            _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float))
+            _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float),
+                           INPUT_BY_PATH.get(dataset[x].attrs.get("study_path", "")))
         if xlim is not None:
             _zoom(axis, xlim)
     for axis in list(axes.flat)[len(names):]:

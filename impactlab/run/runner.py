@@ -107,7 +107,8 @@ def plan_study(study: Study) -> StudyPlan:
 
 def case_input_names(study: Study) -> set[str]:
     """The names of :func:`case_inputs` of ``study``, without building its arrays."""
-    names = set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
+    names = (set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
+             | {name for name, _ in study.plugin_inputs})
     if all(name in names for name in DELIVERY_INPUTS):
         names.add("angle")
     if ball_law_applies(study):
@@ -147,6 +148,12 @@ def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
         so that neither is done twice.
     """
     study = load_study(source)
+    if study.option_sweep:  # swept model options: one run per value, joined (impactlab.run.options)
+        from impactlab.run.options import run_option_sweep
+
+        return run_option_sweep(study, run_study, output=output, progress_folder=progress_folder, progress=progress,
+                                executor=executor, workers=workers, scheduler=scheduler, chunk_size=chunk_size,
+                                show_progress=show_progress)
     if plan is None or plan.source is not study:
         plan = plan_study(study)
     if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.run.sensitivity)
