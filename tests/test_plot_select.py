@@ -39,7 +39,7 @@ def test_a_quantity_with_its_unit_selects_the_coordinate_in_its_own_unit():
     assert dict(_study("0").plots[0].select) == {"high": 0.0}  # a bare number: the coordinate's value as stored
 
 
-@pytest.mark.parametrize("select", ["3 mm", "10 deg", "[1, 2]"])
+@pytest.mark.parametrize("select", ["3 mm", "10 deg", "[0 mm, 2 mm]", "{a: 1}"])
 def test_a_value_not_swept_is_refused_at_load_naming_the_choices(select):
     with pytest.raises(FieldError, match=r"plots\[0\]\.select\.high") as info:
         _study(select)
@@ -60,3 +60,7 @@ def test_the_cli_draws_the_figure_and_refuses_before_running(tmp_path, capsys):
     assert main(["run", str(path), "-o", str(tmp_path / "bad.h5"), "-q"]) == 2
     assert not (tmp_path / "bad.h5").exists()
     assert "internal error" not in capsys.readouterr().err
+
+
+def test_a_list_selects_several_values_each_converted():
+    assert dict(_study("[-1 cm, 10 mm]").plots[0].select) == {"high": [-10.0, 10.0]}

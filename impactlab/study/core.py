@@ -538,6 +538,10 @@ def _select_value(axis: SweepAxis | None, value, where: str):
     """
     if axis is None:  # the model dimension: checked by the caller
         return value
+    if isinstance(value, (list, tuple)):  # several values: a figure of those lines only
+        if not value:
+            raise FieldError(where, f"a value of {axis.dim!r} or a non-empty list of them", value)
+        return [_select_value(axis, item, f"{where}[{index}]") for index, item in enumerate(value)]
     if axis.grouped:
         labels = list(axis.labels) if axis.labels else list(range(axis.size))
         if value not in labels:
