@@ -113,6 +113,25 @@ def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
     return best, share
 
 
+def coincidence_note(dataset: xr.Dataset, names: Sequence[str], dims: Sequence[str]) -> str:
+    """The title line of a figure whose lines coincide along a dimension, or "" (each of ``dims`` whose every value
+    draws the same curve, of every model and output ``names``, within 2e-3 of the output's span)."""
+    same = [dim for dim in dims if dataset.sizes[dim] > 1 and all(_flat_along(dataset[name], dim) for name in names)]
+    return "; ".join(f"the curves of {dim} = {', '.join(_text(v) for v in dataset[dim])} coincide (one curve per "
+                     "model)" for dim in same)
+
+
+def _flat_along(variable: xr.DataArray, dim: str, tolerance: float = 2e-3) -> bool:
+    """Whether ``variable`` is the same at every value of ``dim`` (within ``tolerance`` of its span; NaN alike)."""
+    values = np.moveaxis(np.asarray(variable.values, float), variable.dims.index(dim), 0)
+    finite = values[np.isfinite(values)]
+    span = float(finite.max() - finite.min()) if finite.size else 0.0
+    first = values[:1]
+    both = np.isfinite(values) & np.isfinite(first)
+    return bool(np.array_equal(np.isnan(values), np.broadcast_to(np.isnan(first), values.shape))
+                and np.all(np.abs(np.where(both, values - first, 0.0)) <= tolerance * span + 1e-300))
+
+
 def _text(coordinate) -> str:
     value = coordinate.item()
     return f"{value:g}" if isinstance(value, (int, float)) else str(value)
@@ -258,6 +277,11 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
                                   for other, panels in ordered[:2]) + ("; ..." if len(ordered) > 2 else "")
                 line.set_label(f"{line.get_label()} ({where})")
     heading = title or dataset.attrs.get("title", "")
+    # a dimension whose every value draws the same curve (of each model, in each panel) is said in the title, not
+    # only in the legend: a reader must not take three coinciding curves for one (Fig. 5's club speeds)
+    note = coincidence_note(dataset, names, others)
+    if note:
+        heading += "\n" + note
     context = conditions(dataset)
     figure.suptitle(heading + (f"\n{context}" if context else ""), fontsize=10)
     if len(names) == 1 and len(axes.flat[0].lines) <= 4:
