@@ -5,8 +5,10 @@ hold: each name has one unit, one long name and one shape everywhere in
 impactlab (model hooks, datasets, HDF5 files, plots, docs).
 
 Sign conventions (face frame, see docs/conventions.md): ``x`` lies in the
-face along the incoming slip of the contact point, ``z`` is the face normal
-pointing away from the face. Backspin (the spin friction gives a ball sliding
+face along the incoming slip of the contact point at a positive angle (a ball
+without spin; up a lofted face), fixed by the geometry: at a negative angle the
+slip runs along -x and the tangential outputs change sign; ``z`` is the face
+normal pointing away from the face. Backspin (the spin friction gives a ball sliding
 up a lofted face) is positive.
 """
 
