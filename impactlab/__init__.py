@@ -127,6 +127,6 @@ def available_models() -> dict[str, type[ImpactModel]]:
 
 # the inputs and outputs plugins declare (entry points impactlab.inputs, impactlab.outputs), once impactlab is whole:
 # a plugin's module may import impactlab itself
-from impactlab.vocabulary import load_plugins as _load_plugins  # noqa: E402
+from impactlab.model.extensions import load_plugins as _load_plugins  # noqa: E402
 
 _load_plugins()

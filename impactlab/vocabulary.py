@@ -277,118 +277,6 @@ INPUTS.update({
                            _conditions_value("crosswind"), low=-50.0, high=50.0),
 })
 
-# -- extension points: inputs and outputs a plugin declares through its entry points, never by editing impactlab --
-
-#: entry-point group of scene fields a plugin adds (a study's ``plugin:`` block, sweepable like any field)
-INPUT_ENTRY_POINT_GROUP = "impactlab.inputs"
-#: entry-point group of outputs a plugin derives from a model's arrays (usable in ``outputs:`` and figures)
-OUTPUT_ENTRY_POINT_GROUP = "impactlab.outputs"
-
-
-@attrs.frozen
-class PluginInput:
-    """A scene field a plugin declares (entry-point group ``impactlab.inputs``; the entry point's name is the
-    input's name). A study sets it in its ``plugin:`` block (``plugin: {NAME: 0.2 J/m^2}``) and sweeps it as
-    ``plugin.NAME``; a model reads it like any input it declares in ``requires`` or ``optional_inputs``. A study
-    that does not give it leaves it absent (no default is guessed).
-
-    Attributes
-    ----------
-    unit : str
-        The SI unit the model receives (``"1"`` for a number).
-    dimension : str
-        A key of :data:`impactlab.units.DIMENSIONS` (``"dimensionless"``, ``"length"``, ...): a study writes the
-        value with a unit of that dimension.
-    description : str
-        What it is, for messages and the result file.
-    low, high : float
-        Allowed SI range (inclusive).
-    """
-
-    unit: str
-    dimension: str
-    description: str
-    low: float = -math.inf
-    high: float = math.inf
-
-
-@attrs.frozen
-class DerivedOutput:
-    """An output a plugin derives from a model's arrays (entry-point group ``impactlab.outputs``; the entry point's
-    name is the output's name).
-
-    Attributes
-    ----------
-    units : str
-        Units of the stored values (after ``factor``).
-    long_name : str
-        What it is (figure axes, the result file).
-    needs : tuple of str
-        Scalar outputs of the vocabulary it is computed from; the planner asks the model (or the framework's
-        derivation) for them, and the output is NaN with the reason where a model cannot give one.
-    function : callable
-        ``function(**arrays) -> array``: each need by name as a 1-D SI array (one value per case), the result
-        in SI, one value per case.
-    factor : float
-        SI result -> ``units`` (e.g. 1000 for mm from m). Default 1.
-    """
-
-    units: str
-    long_name: str
-    needs: tuple[str, ...]
-    function: Callable[..., Any]
-    factor: float = 1.0
-
-
-def _plugin_entries(group: str) -> list:
-    """The entry points of ``group``, sorted by name (discovered once, when the vocabulary is made)."""
-    from importlib import metadata
-
-    return sorted(metadata.entry_points(group=group), key=lambda entry: (entry.name, entry.value))
-
-
-def _plugin_declarations(group: str, kind: type) -> dict[str, Any]:
-    """Name -> declaration of each loadable plugin entry of ``group``; a broken one is skipped with a PluginWarning
-    naming it (it never takes the vocabulary down)."""
-    import warnings
-
-    from impactlab.errors import PluginWarning
-
-    found: dict[str, Any] = {}
-    for entry in _plugin_entries(group):
-        where = f"{group} plugin '{entry.name} = {entry.value}'"
-        try:
-            declared = entry.load()
-            if isinstance(declared, dict):
-                declared = kind(**declared)
-            if not isinstance(declared, kind):
-                raise TypeError(f"it is a {type(declared).__name__}, not a {kind.__name__} (or its fields as a dict)")
-            if not entry.name.isidentifier():
-                raise ValueError("its name is not a Python identifier")
-        except Exception as exc:  # a plugin's error of any kind: skipped, the rest of the vocabulary loads
-            warnings.warn(f"{where} is skipped: {type(exc).__name__}: {exc}", PluginWarning, stacklevel=3)
-            continue
-        found[entry.name] = declared
-    return found
-
-
-def _register_plugin_inputs() -> None:
-    import warnings
-
-    from impactlab.errors import PluginWarning
-
-    for name, declared in _plugin_declarations(INPUT_ENTRY_POINT_GROUP, PluginInput).items():
-        if name in INPUTS or declared.dimension not in DIMENSIONS:
-            warnings.warn(f"{INPUT_ENTRY_POINT_GROUP} plugin {name!r} is skipped: "
-                          + (f"the name is taken by impactlab's input {INPUTS[name].path}" if name in INPUTS
-                             else f"dimension {declared.dimension!r} is not one of {', '.join(DIMENSIONS)}"),
-                          PluginWarning, stacklevel=2)
-            continue
-        INPUTS[name] = InputSpec(f"plugin.{name}", declared.unit, declared.dimension, declared.description,
-                                 lambda scene: None, low=declared.low, high=declared.high)
-        INPUT_BY_PATH[f"plugin.{name}"] = name
-
-
 #: study path -> input name (a delivery's club speed is the impact speed)
 INPUT_BY_PATH: dict[str, str] = {spec.path: name for name, spec in INPUTS.items() if name != "handedness"}
 INPUT_BY_PATH["delivery.club_speed"] = "speed"
@@ -423,7 +311,7 @@ class OutputSpec:
     diagnostic: bool = False
     #: computed only when asked for by name (the ball flight): left out of "every output" defaults
     on_request: bool = False
-    #: a plugin's output (:class:`DerivedOutput`): the outputs it is computed from, and how
+    #: a plugin's output (impactlab.model.extensions.DerivedOutput): the outputs it is computed from, and how
     needs: tuple[str, ...] = ()
     function: Callable[..., Any] | None = attrs.field(default=None, eq=False)
 
@@ -496,28 +384,8 @@ OUTPUTS: dict[str, OutputSpec] = {
 
 
 
-def _register_plugin_outputs() -> None:
-    import warnings
-
-    from impactlab.errors import PluginWarning
-
-    builtin = {name for name, spec in OUTPUTS.items() if spec.kind == SCALAR and spec.function is None}
-    for name, declared in _plugin_declarations(OUTPUT_ENTRY_POINT_GROUP, DerivedOutput).items():
-        needs = tuple(declared.needs)
-        problem = (f"the name is taken by impactlab's output {name!r}" if name in OUTPUTS
-                   else f"needs {', '.join(sorted(set(needs) - builtin))}, not scalar outputs of impactlab"
-                   if not needs or not set(needs) <= builtin
-                   else "its function is not callable" if not callable(declared.function) else "")
-        if problem:
-            warnings.warn(f"{OUTPUT_ENTRY_POINT_GROUP} plugin {name!r} is skipped: {problem}", PluginWarning,
-                          stacklevel=2)
-            continue
-        OUTPUTS[name] = OutputSpec(declared.units, declared.long_name, factor=float(declared.factor), needs=needs,
-                                   function=declared.function)
-
-
-#: outputs plugins derive from a model's arrays (:class:`DerivedOutput`), computed only when named
-#: (filled by :func:`load_plugins`)
+#: outputs plugins derive from a model's arrays (impactlab.model.extensions.DerivedOutput), computed only when named
+#: (filled by :func:`impactlab.model.extensions.load_plugins` when impactlab is imported)
 PLUGIN_OUTPUTS: tuple[str, ...] = ()
 
 #: outputs with one value per case, in vocabulary order (diagnostics included)
@@ -533,24 +401,11 @@ EVERY_SCALAR_OUTPUT = tuple(name for name in SCALAR_OUTPUTS
 FLIGHT_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.on_request)
 
 
-_PLUGINS_LOADED = False
-
-
-def load_plugins() -> None:
-    """Add the inputs and outputs plugins declare (entry-point groups ``impactlab.inputs`` and
-    ``impactlab.outputs``) to :data:`INPUTS`, :data:`INPUT_BY_PATH` and :data:`OUTPUTS`, once.
-
-    Called when ``impactlab`` has been imported (its ``__init__``), so that a plugin module may import impactlab
-    itself; a broken declaration is skipped with a :class:`~impactlab.errors.PluginWarning`. The dictionaries
-    change in place; the tuples of names derived from them (:data:`SCALAR_OUTPUTS`, :data:`PLUGIN_OUTPUTS`) are
-    made again here, so read them as ``vocabulary.NAME``, or use :func:`is_scalar`.
-    """
-    global _PLUGINS_LOADED, SCALAR_OUTPUTS, PLUGIN_OUTPUTS, _SCALARS
-    if _PLUGINS_LOADED:
-        return
-    _PLUGINS_LOADED = True
-    _register_plugin_inputs()
-    _register_plugin_outputs()
+def refresh_output_names() -> None:
+    """Make the tuples of output names again after outputs joined :data:`OUTPUTS` (plugins' derived outputs,
+    :func:`impactlab.model.extensions.load_plugins`): :data:`SCALAR_OUTPUTS`, :data:`PLUGIN_OUTPUTS` and what
+    :func:`is_scalar` reads. Read them as ``vocabulary.NAME`` where plugins' outputs matter."""
+    global SCALAR_OUTPUTS, PLUGIN_OUTPUTS, _SCALARS
     PLUGIN_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.function is not None)
     SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
     _SCALARS = frozenset(SCALAR_OUTPUTS)
@@ -558,7 +413,7 @@ def load_plugins() -> None:
 
 def is_scalar(name: str) -> bool:
     """Whether ``name`` is a scalar output (one value per case); False for names outside the vocabulary."""
-    return name in _SCALARS
+    return name in _SCALARS  # a module global: plugins' outputs join it when impactlab is imported
 
 
 def is_history(name: str) -> bool:

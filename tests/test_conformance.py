@@ -153,7 +153,8 @@ def test_the_reference_values_hold_for_the_builtin_models_with_their_margins():
     import numpy as np
 
     from impactlab.model.registry import get_model
-    from impactlab.testing import _flat_head_inputs, flat_head_mobility, rigid_coulomb_closed_form, sliding_impulse_3d
+    from impactlab.model.reference import _flat_head_inputs
+    from impactlab.testing import flat_head_mobility, rigid_coulomb_closed_form, sliding_impulse_3d
 
     inputs, head = _flat_head_inputs(0.05)
     result = get_model("rigid_coulomb")().compute(inputs, ["normal_impulse", "tangential_impulse",

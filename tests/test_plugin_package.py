@@ -153,7 +153,7 @@ def test_a_bad_option_sweep_is_refused_at_load_naming_it(key, values, where):
 
 
 def test_a_figure_draws_a_users_shot_file_and_refuses_one_it_cannot(tmp_path):
-    from impactlab.plot.figures import _shot_values
+    from impactlab.plot.figures import _shot_values, check_shot_files
 
     (tmp_path / "shots.csv").write_text(SHOTS)
     (tmp_path / "study.yaml").write_text(textwrap.dedent("""\
@@ -175,9 +175,15 @@ def test_a_figure_draws_a_users_shot_file_and_refuses_one_it_cannot(tmp_path):
     np.testing.assert_allclose(xs, np.array([90.0, 100.0]) * 0.44704)
     assert skipped == 1
     text = (tmp_path / "study.yaml").read_text()
-    for bad, message in (("missing.csv", "a shot file that exists"), ("other.csv", "measures an output")):
-        (tmp_path / "other.csv").write_text("club,club_speed [mph],spin_rate [rpm]\nDriver,100,2500\n")
-        (tmp_path / "bad.yaml").write_text(text.replace("shots.csv", bad))
-        with pytest.raises(FieldError, match=message) as info:
-            impactlab.load_study(tmp_path / "bad.yaml")
-        assert "plots[0].measured[0]" in str(info.value)
+    (tmp_path / "bad.yaml").write_text(text.replace("shots.csv", "missing.csv"))
+    with pytest.raises(FieldError, match=r"plots\[0\]\.measured\[0\].*a shot file that exists"):
+        impactlab.load_study(tmp_path / "bad.yaml")
+    # a file that measures nothing the figure draws: refused before the run (impactlab run), exit 2, nothing written
+    (tmp_path / "other.csv").write_text("club,club_speed [mph],spin_rate [rpm]\nDriver,100,2500\n")
+    (tmp_path / "bad.yaml").write_text(text.replace("shots.csv", "other.csv"))
+    with pytest.raises(FieldError, match=r"plots\[0\]\.measured\[0\].*measures an output the figure draws"):
+        check_shot_files(impactlab.load_study(tmp_path / "bad.yaml"))
+    from impactlab.cli import main
+
+    assert main(["run", str(tmp_path / "bad.yaml"), "-o", str(tmp_path / "bad.h5"), "-q"]) == 2
+    assert not (tmp_path / "bad.h5").exists()

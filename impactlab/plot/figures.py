@@ -10,6 +10,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from impactlab.data.sessions.reader import read_session
+from impactlab.errors import FieldError, StudyError
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 from impactlab.study.datasets import DATASETS
 from impactlab.plot.style import _MARKERS, _STYLES, _axis_label, _display, _save, conditions
@@ -19,11 +21,34 @@ from impactlab.plot.trajectories import (MAX_TRAJECTORIES as MAX_TRAJECTORIES,
                                          plot_trajectories as plot_trajectories)
 
 
+def check_shot_files(study) -> None:
+    """Every user's shot file a study's figures name (``measured:``) reads as a launch-monitor export or shot table
+    and measures an output its figure draws; checked before the study runs (``impactlab run``), not after.
+
+    Raises
+    ------
+    FieldError
+        At ``plots[i].measured[j]`` of the study's file, saying what the file gives.
+    """
+    for index, plot in enumerate(study.plots):
+        for position, name in enumerate(plot.measured):
+            if name in DATASETS:
+                continue
+            where = f"plots[{index}].measured[{position}]"
+            try:
+                session = read_session(name)
+            except (StudyError, FieldError, OSError, ValueError) as exc:
+                raise FieldError(where, f"a shot file impactlab reads ({exc})", name).at(file=study.file) from None
+            measured = [y for y in plot.y if y in session.values and np.isfinite(session.values[y]).any()]
+            if not measured:
+                given = sorted(field for field, values in session.values.items() if np.isfinite(values).any())
+                raise FieldError(where, f"a shot file that measures an output the figure draws ({', '.join(plot.y)})",
+                                 f"{name} (its columns give {', '.join(given)})").at(file=study.file)
+
+
 def _shot_values(path: str, output: str, x_input: str | None) -> tuple[np.ndarray, np.ndarray | None, int]:
     """A user's shot file (impactlab.data.sessions): the shots' ``output`` in the vocabulary's units, their x (the
     swept input's display units) where the file gives it, and the number of rows without the output (skipped)."""
-    from impactlab.data.sessions.reader import read_session  # the readers sit above the figures' layer
-
     session = read_session(path)
     ys = np.asarray(session.values.get(output, np.full(session.size, np.nan)), float) * OUTPUTS[output].factor
     field = {"speed": "club_speed"}.get(x_input or "", x_input)

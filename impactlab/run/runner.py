@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.run.assemble import assemble
+from impactlab.run.options import run_option_sweep
 from impactlab.model.diagnostics import warn as warn_validity
 from impactlab.model.planning import OutputPlan, require_inputs
 from impactlab.run.sensitivity import run_sensitivity
@@ -149,8 +150,6 @@ def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
     """
     study = load_study(source)
     if study.option_sweep:  # swept model options: one run per value, joined (impactlab.run.options)
-        from impactlab.run.options import run_option_sweep
-
         return run_option_sweep(study, run_study, output=output, progress_folder=progress_folder, progress=progress,
                                 executor=executor, workers=workers, scheduler=scheduler, chunk_size=chunk_size,
                                 show_progress=show_progress)

@@ -11,7 +11,6 @@ See docs/user-guide.md for the format.
 from __future__ import annotations
 
 import copy
-import json
 import math
 import os
 from collections.abc import Mapping
@@ -33,11 +32,13 @@ from impactlab.scene.materials import FACE_SURFACES
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike, reusing_blocks)
 from impactlab.study.datasets import DATASETS
+from impactlab.study.extensions import (SHOT_FILE_SUFFIXES, OptionAxis, build_option_sweep, build_plugin_inputs,
+                                        select_value, shot_file, without_option_sweeps)
 from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
 from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
 from impactlab.study.sweeps import PRESET_MARK, SweepAxis, SweepField, build_sweep, friction_law_entry
-from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, INPUTS, MODEL_DIM, OUTPUTS, is_scalar,
+from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, is_scalar,
                                   check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
@@ -80,27 +81,6 @@ class PlotSpec:
         """The figure's specification as plain data (stored with the results, read back by ``impactlab plot``)."""
         return {"name": self.name, "y": list(self.y), "x": self.x, "select": dict(self.select), "title": self.title,
                 "kind": self.kind, "xlim": list(self.xlim) if self.xlim else None, "measured": list(self.measured)}
-
-
-@attrs.frozen
-class OptionAxis:
-    """A model option swept like a field: ``sweep: {model_option.ENTRY.OPTION: [v1, v2, ...]}``.
-
-    One dimension ``dim`` of the results; the entry ``entry`` runs once per value with its options but this one
-    as written, every other model is the same along it.
-    """
-
-    dim: str
-    entry: str
-    option: str
-    values: tuple = ()
-    #: the configured model of each value
-    models: tuple = attrs.field(default=(), eq=False, repr=False)
-
-    @property
-    def size(self) -> int:
-        """Number of values along this dimension."""
-        return len(self.values)
 
 
 @attrs.frozen
@@ -333,13 +313,13 @@ def _build_study(document, text: str, file: str | None) -> Study:
         raise FieldError("description", "text", description)
     if "models" not in document:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
-    document, option_keys = _without_option_sweeps(document)
+    document, option_keys = without_option_sweeps(document)
     with reusing_blocks():  # the sweep's trial scenes share all but the swept block with the base scene
         scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
         models = _build_models(document["models"])
         sweep = build_sweep(document, models)
-    plugin_inputs = _build_plugin_inputs(document.get("plugin"))
-    option_sweep = _build_option_sweep(option_keys, models, [axis.dim for axis in sweep])
+    plugin_inputs = build_plugin_inputs(document.get("plugin"))
+    option_sweep = build_option_sweep(option_keys, models, [axis.dim for axis in sweep])
     check_cases(int(np.prod([axis.size for axis in sweep] + [axis.size for axis in option_sweep], dtype=object))
                 if sweep or option_sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
@@ -354,84 +334,6 @@ def _build_study(document, text: str, file: str | None) -> Study:
                  plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models],
                                     option_sweep, file),
                  sensitivity=sensitivity, plugin_inputs=plugin_inputs, option_sweep=option_sweep)
-
-
-#: a swept model option: ``model_option.ENTRY.OPTION`` (ENTRY a model's id in the study)
-OPTION_MARK = "model_option."
-
-
-def _without_option_sweeps(document: Mapping) -> tuple[Mapping, list]:
-    """The document without its ``model_option.*`` sweep keys (the scene's sweep knows nothing of models), and
-    those keys with their values."""
-    sweep = document.get("sweep")
-    if not isinstance(sweep, Mapping) or not any(str(key).startswith(OPTION_MARK) for key in sweep):
-        return document, []
-    keys = [(str(key), value) for key, value in sweep.items() if str(key).startswith(OPTION_MARK)]
-    rest = {key: value for key, value in sweep.items() if not str(key).startswith(OPTION_MARK)}
-    return {**document, "sweep": rest}, keys
-
-
-def _build_option_sweep(keys: list, models: tuple[ModelEntry, ...], taken: list[str]) -> tuple[OptionAxis, ...]:
-    """The swept model options, each value made into the entry's model (its options' own validation, at the path)."""
-    axes: list[OptionAxis] = []
-    ids = [entry.id for entry in models]
-    for key, values in keys:
-        where = f"sweep.{key}"
-        parts = key[len(OPTION_MARK):].split(".")
-        if len(parts) != 2 or not all(parts):
-            raise FieldError(where, "model_option.ENTRY.OPTION (ENTRY a model id of the study)", key)
-        entry_id, option = parts
-        entry = next((entry for entry in models if entry.id == entry_id), None)
-        if entry is None:
-            raise FieldError(where, "a model id of the study after model_option.", entry_id, choices=ids)
-        options = entry.model.options
-        known = [field.name for field in attrs.fields(type(options))] if attrs.has(type(options)) else []
-        if option not in known:
-            raise FieldError(where, f"an option of model {entry.model.name!r}", option,
-                             choices=known or ["(this model takes no options)"])
-        if not isinstance(values, list) or not values:
-            raise FieldError(where, "a non-empty list of the option's values", values)
-        configured = []
-        for index, value in enumerate(values):
-            dimension = attrs.fields_dict(type(options))[option].metadata.get("dimension")
-            if dimension is not None:
-                to_si(value, dimension, f"{where}[{index}]")  # a bare number refused (0 excepted), as in models:
-            try:
-                configured.append(type(entry.model)(attrs.evolve(options, **{option: value})))
-            except FieldError as exc:
-                raise FieldError(f"{where}[{index}]", exc.expected, value, exc.choices) from None
-            except (TypeError, ValueError) as exc:
-                raise FieldError(f"{where}[{index}]", f"a valid value of option {option!r} of model "
-                                 f"{entry.model.name!r} ({exc})", value) from None
-        if len({json.dumps(model.options_dict(), sort_keys=True) for model in configured}) != len(configured):
-            raise FieldError(where, "distinct values (two would make one model twice)", values)
-        names = taken + [axis.dim for axis in axes]
-        dim = option if option not in names + [MODEL_DIM, "time"] else f"{entry_id}_{option}"
-        if dim in names:
-            raise FieldError(where, "an option swept once per model", key)
-        axes.append(OptionAxis(dim, entry_id, option, tuple(values), tuple(configured)))
-    return tuple(axes)
-
-
-def _build_plugin_inputs(block) -> tuple[tuple[str, float], ...]:
-    """The ``plugin:`` block: values of the scene fields plugins declare (impactlab.vocabulary.PluginInput), SI."""
-    if block is None:
-        return ()
-    plugin = {name: spec for name, spec in INPUTS.items() if spec.path.startswith("plugin.")}
-    if not isinstance(block, Mapping):
-        raise FieldError("plugin", "a mapping of the scene fields plugins declare to their values", block,
-                         choices=plugin)
-    values = []
-    for key, value in block.items():
-        if key not in plugin:
-            raise FieldError(f"plugin.{key}", "a scene field a plugin declares (entry-point group "
-                             "impactlab.inputs)", str(key), choices=plugin or ["(no plugin declares one)"])
-        spec = plugin[key]
-        number = to_si(value, spec.dimension, f"plugin.{key}")
-        if spec.out_of_range(np.asarray([number]))[0]:
-            raise FieldError(f"plugin.{key}", spec.range_text(), value)
-        values.append((str(key), number))
-    return tuple(values)
 
 
 def _check_face_surface(scene, sweep, models, block: str) -> None:
@@ -496,74 +398,6 @@ def _check_face_marker(document, scene, sweep, models, sensitivity) -> None:
                              parameter.describe())
 
 
-#: the suffixes of a user's shot file a figure's ``measured:`` may name (impactlab.data.sessions reads them)
-SHOT_FILE_SUFFIXES = (".csv", ".yaml", ".yml", ".session", ".txt")
-
-
-def shot_file(given: str, wanted, where: str, study_file: str | None = None) -> str:
-    """A user's shot file named in a figure's ``measured:``, checked when the study loads: it exists (a relative
-    path is the study file's folder's), reads as a launch-monitor export or shot table
-    (:func:`impactlab.data.sessions.read_session`), and measures at least one output the figure draws.
-
-    Returns
-    -------
-    str
-        The file's absolute path (what the result stores, so ``impactlab plot`` redraws it from anywhere).
-    """
-    from impactlab.data.sessions.reader import read_session  # the measured data's reader sits above the study layer
-
-    path = Path(given).expanduser()
-    if not path.is_absolute() and study_file and not study_file.startswith("<"):
-        path = Path(study_file).parent / path
-    if not path.is_file():
-        raise FieldError(where, "a shot file that exists (a relative path is the study file's folder's)", given)
-    try:
-        session = read_session(path)
-    except (StudyError, FieldError, OSError, ValueError) as exc:
-        raise FieldError(where, f"a shot file impactlab reads ({exc})", given) from None
-    measures = [name for name in wanted if name in session.values and np.isfinite(session.values[name]).any()]
-    if not measures:
-        given_fields = sorted(name for name, values in session.values.items() if np.isfinite(values).any())
-        raise FieldError(where, f"a shot file that measures an output the figure draws ({', '.join(wanted)})",
-                         f"{given} (its columns give {', '.join(given_fields)})")
-    return str(path.resolve())
-
-
-def _select_value(axis: SweepAxis | None, value, where: str):
-    """A plot's ``select`` value as the dataset's coordinate holds it, checked against the dimension's values.
-
-    A quantity with a unit (``0 mm``, ``10 deg``) is converted to the coordinate's unit (mm, deg: the input's
-    display unit); a bare number is the coordinate's value in that unit, as the result file shows it; a labelled
-    dimension takes a label. Refused at load, naming the values there are, rather than after the whole run.
-    """
-    if axis is None:  # the model dimension: checked by the caller
-        return value
-    if isinstance(value, (list, tuple)):  # several values: a figure of those lines only
-        if not value:
-            raise FieldError(where, f"a value of {axis.dim!r} or a non-empty list of them", value)
-        return [_select_value(axis, item, f"{where}[{index}]") for index, item in enumerate(value)]
-    if axis.grouped:
-        labels = list(axis.labels) if axis.labels else list(range(axis.size))
-        if value not in labels:
-            raise FieldError(where, f"a value of dimension {axis.dim!r}", value, choices=[str(v) for v in labels])
-        return value
-    field = axis.fields[0]
-    spec = INPUTS[field.input]
-    coords = [float(f"{v * spec.display_factor:.12g}") for v in field.values]
-    unit = spec.display_unit or spec.unit
-    if isinstance(value, str) or hasattr(value, "units"):
-        number = float(f"{to_si(value, spec.dimension, where) * spec.display_factor:.12g}")
-    elif isinstance(value, (int, float)) and not isinstance(value, bool):
-        number = float(value)
-    else:
-        raise FieldError(where, f"a value of {axis.dim!r} with its unit (the coordinate is in {unit})", value)
-    matches = [c for c in coords if math.isclose(c, number, rel_tol=1e-9, abs_tol=1e-9 * max(map(abs, coords)))]
-    if not matches:
-        raise FieldError(where, f"one of the swept values of {axis.dim!r} (in {unit})", value,
-                         choices=[f"{c:g} {unit}".strip() for c in coords])
-    return matches[0]
-
-
 def _build_plots(value, sweep, outputs, model_ids=(), option_sweep=(), file=None) -> tuple[PlotSpec, ...]:
     if value is None:
         return ()
@@ -608,7 +442,7 @@ def _build_plots(value, sweep, outputs, model_ids=(), option_sweep=(), file=None
             if option_axis is not None and chosen not in option_axis.values:
                 raise FieldError(f"{where}.select.{key}", f"a swept value of option {option_axis.option!r}",
                                  str(chosen), choices=[str(v) for v in option_axis.values])
-        select = {key: _select_value(next((axis for axis in sweep if axis.dim == key), None), value,
+        select = {key: select_value(next((axis for axis in sweep if axis.dim == key), None), value,
                                      f"{where}.select.{key}") for key, value in select.items()}
         title = block.title or ""
         xlim = block.xlim
@@ -625,7 +459,7 @@ def _build_plots(value, sweep, outputs, model_ids=(), option_sweep=(), file=None
                 continue
             if isinstance(data, str) and (data.lower().endswith(SHOT_FILE_SUFFIXES) or os.sep in data
                                           or "/" in data):
-                measured[position] = shot_file(data, wanted, f"{where}.measured[{position}]", file)
+                measured[position] = shot_file(data, f"{where}.measured[{position}]", file)
                 continue
             raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn, or "
                              "the path of a shot file (.csv, .yaml: a launch-monitor export or a shot table)",
