@@ -53,7 +53,7 @@ def _shot_values(path: str, output: str, x_input: str | None) -> tuple[np.ndarra
     ys = np.asarray(session.values.get(output, np.full(session.size, np.nan)), float) * OUTPUTS[output].factor
     field = {"speed": "club_speed"}.get(x_input or "", x_input)
     xs = None
-    if field and field in session.values and np.isfinite(session.values[field]).any():
+    if x_input and field and field in session.values and np.isfinite(session.values[field]).any():
         xs = np.asarray(session.values[field], float) * INPUTS[x_input].display_factor
     keep = np.isfinite(ys) & (np.isfinite(xs) if xs is not None else True)
     return ys[keep], None if xs is None else xs[keep], int(np.sum(~keep))

@@ -208,7 +208,7 @@ def table1_published_claims() -> list[Claim]:
     """Section 3.1 on Table 1 itself: where TrackMan and Wood et al. differ most (arithmetic on the table)."""
     published = table1()
     gaps = {club: abs(row["trackman"] - row["wood"][0]) for club, row in published.items()}
-    two = sorted(gaps, key=gaps.get, reverse=True)[:2]
+    two = sorted(gaps, key=lambda club: gaps[club], reverse=True)[:2]
     return [Claim("Section 3.1", "the biggest discrepancies (TrackMan vs Wood et al.) come from the driver and "
                   "7-iron", "driver and 7-iron",
                   ", ".join(f"{club}: {gap:g} points" for club, gap in gaps.items()),
