@@ -57,6 +57,7 @@ def test_a_plugin_package_sweeps_its_option_and_field_adds_an_output_and_draws_a
     done = _python("-m", "impactlab", "run", "plug.yaml", "-o", "out.h5", "--plot", "-q", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "out_ratio.png").stat().st_size > 0 and (tmp_path / "out_speed.png").stat().st_size > 0
+    assert not (tmp_path / "out.h5.progress").exists()  # each value's run kept its chunks there until the file
     with xr.open_dataset(tmp_path / "out.h5") as ds:  # the result reads without the plugin
         ratio = ds["impulse_ratio"]
         assert ratio.dims == ("model", "club_speed", "tack", "grip")

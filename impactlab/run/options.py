@@ -8,6 +8,7 @@ is the same along it.
 
 from __future__ import annotations
 
+import shutil
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -50,6 +51,8 @@ def run_option_sweep(study: Study, run: Callable[..., xr.Dataset], *, output: st
     dataset = dataset.transpose(*dims, ...)
     if output is not None:
         write_results(dataset, output)
+        if progress_folder is not None:  # every run's chunks are in the file now (a killed sweep resumes from them)
+            shutil.rmtree(progress_folder, ignore_errors=True)
     return dataset
 
 
