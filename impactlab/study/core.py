@@ -329,6 +329,9 @@ def _build_study(document, text: str, file: str | None) -> Study:
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
                                         {field.input for axis in sweep for field in axis.fields})
     _check_face_marker(document, scene, sweep, models, sensitivity)
+    if sensitivity is not None and option_sweep:
+        raise FieldError(f"sweep.model_option.{option_sweep[0].entry}.{option_sweep[0].option}",
+                         "no model option swept in a sensitivity study (give each value its own study)", "a sweep")
     return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
                  source=text, file=file,
                  plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models],
