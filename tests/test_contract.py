@@ -338,3 +338,12 @@ GOLF = {"name": "golf", "ball": {"preset": "urethane_tour"}, "club": {"preset": 
         "delivery": {"club_speed": "45 m/s", "path": "0 deg", "face_angle": "0 deg", "attack_angle": "0 deg",
                      "dynamic_loft": "12 deg"},
         "strike": {"toe": "10 mm", "high": "0 mm"}, "outputs": ["spin_axis"]}
+
+
+def test_the_conformance_suite_names_the_missing_3d_inputs():
+    from impactlab.testing import check_declarations
+
+    with pytest.raises(AssertionError, match=r"provides lateral_impulse \(3-D contacts\) but does not declare .*"
+                                             r"strike_toe"):
+        check_declarations(_forgetful()())
+    check_declarations(_forgetful(takes_contact_state=True)())  # taking the framework's state is the other way
