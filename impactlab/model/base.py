@@ -77,8 +77,9 @@ class ImpactModel:
        a 1-D array of n_time increasing instants in seconds, shared by all
        cases (pad a case that ended sooner with NaN).
     5. **Vectorised and pure.** The hook handles a whole batch at once, does
-       not change its inputs and gives the same result for the same inputs,
-       whatever the batch around a case.
+       not change its inputs and gives the same scalar results for the same
+       inputs, whatever the batch around a case; histories are sampled on the
+       batch's one ``time`` axis (rule 4), so their instants depend on the batch.
     6. **Physics, not bookkeeping.** A model that provides ``normal_impulse``
        and ``tangential_impulse`` gets launch angle, spin, velocities,
        tangential restitution and energy loss derived by the framework; it
