@@ -123,3 +123,10 @@ def available_models() -> dict[str, type[ImpactModel]]:
     from impactlab.model.registry import available
 
     return available()
+
+
+# the inputs and outputs plugins declare (entry points impactlab.inputs, impactlab.outputs), once impactlab is whole:
+# a plugin's module may import impactlab itself
+from impactlab.model.extensions import load_plugins as _load_plugins  # noqa: E402
+
+_load_plugins()

@@ -20,6 +20,13 @@ or head-on impact gives no tangential impulse, mirrored impacts mirror, the
 normal impulse lies between 0 and that of an elastic impact, beta lies in
 [-1, 1], a case's result does not depend on the batch around it, and an
 optional input not given is absent (rule 3): no spin, a fixed face.
+
+Invariants let a wrong model pass (2 mu, a dropped sideways impulse), so the suite also holds every model to
+reference values written here apart from the models: gross slip gives J_t = mu J_n exactly (``full_sliding``); the
+rigid-body closed form of Stronge (``rigid_limit``, :func:`rigid_coulomb_closed_form`); a ball arriving rolling
+gets no tangential impulse (``arriving_rolling``); an off-centre strike on a free head against an independent
+rigid-body solution (``3d_sideways_impulse``, :func:`flat_head_mobility`, :func:`sliding_impulse_3d`). Each
+failure names the likely cause. They live in :mod:`impactlab.model.reference` and run from here.
 """
 
 from __future__ import annotations
@@ -36,6 +43,11 @@ import numpy as np
 from impactlab.errors import ModelContractError
 from impactlab.scene.materials import BALL_PRESETS, FACE_PRESETS, FACE_SURFACES
 from impactlab.model.base import ImpactModel
+from impactlab.model.contract import declaration_problems
+# the reference values' oracles are re-exported here, beside the checks that use them, for plugins' own tests
+from impactlab.model.reference import (check_3d_sideways_impulse, check_arriving_rolling, check_full_sliding,  # noqa: F401
+                                       check_rigid_limit, flat_head_mobility, rigid_coulomb_closed_form,
+                                       sliding_impulse_3d)
 from impactlab.physics.mechanics import effective_mass
 from impactlab.scene.clubs import ClubHead, Strike
 from impactlab.scene.catalogue import CLUB_PRESETS
@@ -119,6 +131,8 @@ def check_declarations(model: ImpactModel) -> None:
     """Declarations (rule 1): name an identifier, label and references given, declared inputs and outputs in the
     vocabulary, Options a frozen attrs class with defaults, references in the docstring."""
     cls = type(model)
+    problems = declaration_problems(cls)  # what the registry checks when a plugin loads (rule 9 included)
+    assert not problems, "; ".join(problems)
     assert isinstance(cls.name, str) and cls.name.isidentifier() and not keyword.iskeyword(cls.name), \
         f"name must be a Python identifier, got {cls.name!r}"
     assert isinstance(cls.label, str) and cls.label, "label must be a non-empty string"
@@ -378,7 +392,11 @@ CHECKS: dict[str, Callable[[ImpactModel], None]] = {
     "batch_independence": check_batch_independence,
     "inputs_untouched": check_inputs_untouched,
     "optional_inputs_absent": check_optional_inputs_absent,
+    "full_sliding": check_full_sliding,
+    "rigid_limit": check_rigid_limit,
+    "arriving_rolling": check_arriving_rolling,
     "3d_energy_never_increases": check_3d_energy_never_increases,
+    "3d_sideways_impulse": check_3d_sideways_impulse,
     "3d_heel_toe_mirror": check_3d_heel_toe_mirror,
     "3d_batch_independence": check_3d_batch_independence,
 }
@@ -423,3 +441,4 @@ def check_model(model: ModelLike) -> None:
             failures.append(f"{name}: {exc}")
     if failures:
         raise AssertionError(f"model {_model(model).name!r} fails conformance:\n  " + "\n  ".join(failures))
+

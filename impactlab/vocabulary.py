@@ -5,8 +5,10 @@ hold: each name has one unit, one long name and one shape everywhere in
 impactlab (model hooks, datasets, HDF5 files, plots, docs).
 
 Sign conventions (face frame, see docs/conventions.md): ``x`` lies in the
-face along the incoming slip of the contact point, ``z`` is the face normal
-pointing away from the face. Backspin (the spin friction gives a ball sliding
+face along the incoming slip of the contact point at a positive angle (a ball
+without spin; up a lofted face), fixed by the geometry: at a negative angle the
+slip runs along -x and the tangential outputs change sign; ``z`` is the face
+normal pointing away from the face. Backspin (the spin friction gives a ball sliding
 up a lofted face) is positive.
 """
 
@@ -309,6 +311,9 @@ class OutputSpec:
     diagnostic: bool = False
     #: computed only when asked for by name (the ball flight): left out of "every output" defaults
     on_request: bool = False
+    #: a plugin's output (impactlab.model.extensions.DerivedOutput): the outputs it is computed from, and how
+    needs: tuple[str, ...] = ()
+    function: Callable[..., Any] | None = attrs.field(default=None, eq=False)
 
 
 OUTPUTS: dict[str, OutputSpec] = {
@@ -377,6 +382,12 @@ OUTPUTS: dict[str, OutputSpec] = {
     "flight_time": OutputSpec("s", "flight time from launch to landing", on_request=True),
 }
 
+
+
+#: outputs plugins derive from a model's arrays (impactlab.model.extensions.DerivedOutput), computed only when named
+#: (filled by :func:`impactlab.model.extensions.load_plugins` when impactlab is imported)
+PLUGIN_OUTPUTS: tuple[str, ...] = ()
+
 #: outputs with one value per case, in vocabulary order (diagnostics included)
 SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
 DIAGNOSTIC_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.diagnostic)
@@ -384,14 +395,25 @@ DIAGNOSTIC_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.diagno
 HISTORY_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == HISTORY)
 _SCALARS, _HISTORIES = frozenset(SCALAR_OUTPUTS), frozenset(HISTORY_OUTPUTS)
 #: the scalar outputs a run gives when none are named: all but those computed only on request (the ball flight)
-EVERY_SCALAR_OUTPUT = tuple(name for name in SCALAR_OUTPUTS if not OUTPUTS[name].on_request)
+EVERY_SCALAR_OUTPUT = tuple(name for name in SCALAR_OUTPUTS
+                            if not OUTPUTS[name].on_request and OUTPUTS[name].function is None)
 #: the ball-flight outputs
 FLIGHT_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.on_request)
 
 
+def refresh_output_names() -> None:
+    """Make the tuples of output names again after outputs joined :data:`OUTPUTS` (plugins' derived outputs,
+    :func:`impactlab.model.extensions.load_plugins`): :data:`SCALAR_OUTPUTS`, :data:`PLUGIN_OUTPUTS` and what
+    :func:`is_scalar` reads. Read them as ``vocabulary.NAME`` where plugins' outputs matter."""
+    global SCALAR_OUTPUTS, PLUGIN_OUTPUTS, _SCALARS
+    PLUGIN_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.function is not None)
+    SCALAR_OUTPUTS = tuple(name for name, spec in OUTPUTS.items() if spec.kind == SCALAR)
+    _SCALARS = frozenset(SCALAR_OUTPUTS)
+
+
 def is_scalar(name: str) -> bool:
     """Whether ``name`` is a scalar output (one value per case); False for names outside the vocabulary."""
-    return name in _SCALARS
+    return name in _SCALARS  # a module global: plugins' outputs join it when impactlab is imported
 
 
 def is_history(name: str) -> bool:

@@ -226,12 +226,14 @@ def test_annuli_refuses_a_3d_scene_naming_mdr():
 
 def test_a_one_line_model_gives_nan_with_the_reason_on_a_free_head():
     from impactlab.model.base import ImpactModel
+    from impactlab.physics.contact import CONTACT_STATE_INPUTS
 
     class OneLine(ImpactModel):
         name = "one_line"
         label = "test"
         references = ("test",)
         requires = frozenset({"ball_mass", "ball_radius", "ball_inertia_factor", "speed", "angle"})
+        optional_inputs = CONTACT_STATE_INPUTS - requires  # it sees the 3-D contact (rule 9), and solves one line
         provides = frozenset({"normal_impulse", "tangential_impulse"})
 
         def _compute(self, inputs, outputs):

@@ -1,5 +1,7 @@
 """The shipped conformance suite, run over every registered model."""
 
+import re
+
 import pytest
 
 from impactlab.model.registry import available
@@ -85,3 +87,86 @@ def test_conformance_catches_a_model_whose_absent_club_is_not_a_fixed_face():
 
     with pytest.raises(AssertionError, match="optional_inputs_absent: .* differs"):
         check_model(PointMassByDefault)
+
+
+# -- reference values: deliberately broken variants of rigid_coulomb, each caught, each with its likely cause ----
+
+def _variant(name, change):
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    def _compute(self, inputs, outputs):
+        return change(self, inputs, outputs)
+
+    return type(name, (RigidCoulombModel,), {"name": name.lower(), "__doc__": f"{name}. References: none.",
+                                              "_compute": _compute})
+
+
+def _with_inputs(inputs, **changes):
+    from impactlab.model import CaseInputs
+
+    return CaseInputs({**{name: inputs[name] for name in inputs}, **changes})
+
+
+def _parent(self, inputs, outputs):
+    from impactlab_models.rigid_coulomb import RigidCoulombModel
+
+    return RigidCoulombModel._compute(self, inputs, outputs)
+
+
+def _two_mu(self, inputs, outputs):
+    return _parent(self, _with_inputs(inputs, friction=2.0 * inputs["friction"]), outputs)
+
+
+def _no_lateral(self, inputs, outputs):
+    result = _parent(self, inputs, outputs)
+    result["lateral_impulse"] = 0.0 * result["lateral_impulse"]
+    return result
+
+
+def _spin_flipped(self, inputs, outputs):
+    return _parent(self, _with_inputs(inputs, spin=-inputs["spin"]) if "spin" in inputs else inputs, outputs)
+
+
+def _point_mass_head(self, inputs, outputs):
+    from impactlab.model import CaseInputs
+    from impactlab.physics.contact import INERTIA_INPUTS
+
+    return _parent(self, CaseInputs({name: inputs[name] for name in inputs if name not in INERTIA_INPUTS}), outputs)
+
+
+@pytest.mark.parametrize(("change", "check", "cause"), [
+    (_two_mu, "full_sliding", "a factor (2 mu?)"),
+    (_no_lateral, "3d_sideways_impulse", "sideways impulse is dropped"),
+    (_spin_flipped, "arriving_rolling", "incoming spin is counted with the wrong sign"),
+    (_point_mass_head, "3d_sideways_impulse", "taken as a point mass"),
+])
+def test_the_suite_catches_each_broken_variant_naming_the_cause(change, check, cause):
+    from impactlab.testing import CHECKS
+
+    model = _variant(change.__name__.strip("_").title().replace("_", ""), change)()
+    with pytest.raises(AssertionError, match=re.escape(cause)):
+        CHECKS[check](model)
+
+
+def test_the_reference_values_hold_for_the_builtin_models_with_their_margins():
+    """The oracles are independent of the models: rigid_coulomb meets them to its integration error."""
+    import numpy as np
+
+    from impactlab.model.registry import get_model
+    from impactlab.model.reference import _flat_head_inputs
+    from impactlab.testing import flat_head_mobility, rigid_coulomb_closed_form, sliding_impulse_3d
+
+    inputs, head = _flat_head_inputs(0.05)
+    result = get_model("rigid_coulomb")().compute(inputs, ["normal_impulse", "tangential_impulse",
+                                                           "lateral_impulse"])
+    velocity = 45.0 * np.array([np.sin(np.radians(30.0)), 0.0, -np.cos(np.radians(30.0))])
+    impulse, _ = sliding_impulse_3d(velocity, flat_head_mobility(inputs, head, 0), 0.05,
+                                    result["normal_impulse"].values[0])
+    # Stronge's integration over 2000 steps of the normal impulse: first order in 1/steps where the slip turns
+    assert result["lateral_impulse"].values[0] == pytest.approx(impulse[1], rel=1e-3)
+    assert result["tangential_impulse"].values[0] == pytest.approx(-impulse[0], rel=1e-4)
+    # the closed form by hand: 40 m/s at 60 deg on a fixed face, m 45.9 g, K^2 0.4, mu 0.1, e 0.8: sliding,
+    # J_n = 1.8 * 0.0459 * 20 = 1.6524 N s, J_t = 0.16524 N s, spin R omega = J_t/(K^2 m) = 9.0 m/s
+    closed = rigid_coulomb_closed_form(40.0, np.radians(60.0), 0.0459, 0.4, np.inf, 0.1, 0.8)
+    assert closed["sliding"] and closed["normal_impulse"] == pytest.approx(1.6524)
+    assert closed["tangential_impulse"] == pytest.approx(0.16524) and closed["spin_times_radius"] == pytest.approx(9.0)

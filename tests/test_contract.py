@@ -233,3 +233,117 @@ def test_table1_is_stored_once():
     assert list(published) == list(DATASETS["wood2018"].labels)
     assert published["driver"] == {"trackman": 87.0, "wood": (83.0, 8.0)}
     assert published["pitching wedge"] == {"trackman": 70.0, "wood": (72.0, 6.0)}
+
+
+# -- rule 9: a 3-D contact is seen whole or refused (issue 34) ------------------------------------------------------
+
+def _forgetful(base=RigidCoulombModel, **attributes):
+    """rigid_coulomb's physics in a plugin that declares what a plate experiment needs and no more (as issue 34's
+    researcher did): it never hears of the strike point, the head's body or the delivery."""
+    from impactlab.physics.contact import CONTACT_STATE_INPUTS
+
+    namespace = {"__doc__": "Forgets the 3-D inputs. References: none.", "name": "forgetful",
+                 "optional_inputs": base.optional_inputs - (CONTACT_STATE_INPUTS - {"spin", "club_mass"}),
+                 **attributes}
+    if "provides" in attributes:  # a model on one line: gives only what it provides
+        def _compute(self, inputs, outputs):
+            return {key: value for key, value in base._compute(self, inputs, outputs).items() if key in self.provides}
+
+        namespace["_compute"] = _compute
+    return type("Forgetful", (base,), namespace)
+
+
+def _driver_strikes():
+    from impactlab.testing import reference_inputs_3d
+
+    inputs = reference_inputs_3d()
+    keep = (inputs["club_inertia_toe_up"] != 0.0) & (inputs["face_angle"] == 0.0) & (inputs["friction"] == 0.4)
+    return {key: value[keep] for key, value in inputs.items()}
+
+
+def test_a_model_that_does_not_see_the_3d_contact_is_refused_naming_the_inputs():
+    from impactlab.errors import ModelInputError
+
+    Forgetful = _forgetful(provides=frozenset({"normal_impulse", "tangential_impulse"}))
+    with pytest.raises(ModelInputError) as info:
+        Forgetful().compute(_driver_strikes(), ["spin_axis"])
+    message = str(info.value)
+    for name, path in (("strike_toe", "strike.toe"), ("club_inertia_toe", "club.inertia.toe"),
+                       ("face_angle", "delivery.face_angle"), ("face_bulge_radius", "club.bulge_radius")):
+        assert f"{name} ({path})" in message
+    assert "takes_contact_state" in message and "CONTACT_STATE_INPUTS" in message
+    # planned in a study: refused before the first case runs (exit 2 on the command line)
+    study = impactlab.load_study({**GOLF, "models": [{"name": Forgetful()}]})
+    from impactlab.run.runner import plan_study
+
+    with pytest.raises(ModelInputError, match="strike_toe"):
+        plan_study(study)
+
+
+def test_on_a_plate_the_same_model_runs_as_before():
+    from impactlab.testing import reference_inputs
+
+    inputs = reference_inputs(n_angles=3)
+    Forgetful = _forgetful(provides=frozenset({"normal_impulse", "tangential_impulse"}))
+    a = Forgetful().compute(inputs, ["normal_impulse", "tangential_impulse"])
+    b = RigidCoulombModel().compute(inputs, ["normal_impulse", "tangential_impulse"])
+    assert np.array_equal(a["tangential_impulse"].values, b["tangential_impulse"].values)
+
+
+def test_a_model_that_takes_the_contact_state_sees_the_whole_scene():
+    """The silent error of issue 34: without the strike point the forgetful model posed centre strikes. Taking
+    the framework's contact state it gives rigid_coulomb's answer exactly, heel and toe spinning opposite ways."""
+    Taking = _forgetful(takes_contact_state=True)
+    inputs = _driver_strikes()
+    names = ["lateral_impulse", "spin_axis"]
+    ours, reference = Taking().compute(inputs, names), RigidCoulombModel().compute(inputs, names)
+    np.testing.assert_array_equal(ours["spin_axis"].values, reference["spin_axis"].values)
+    toe = inputs["strike_toe"]
+    axis = ours["spin_axis"].values
+    # gear effect: a toe strike draws (axis < 0, curving left), a heel strike fades
+    assert np.all(axis[toe > 0.005] < axis[toe < -0.005].min())
+
+
+def test_plugins_are_checked_when_they_load():
+    from importlib import metadata
+
+    from impactlab.errors import PluginWarning
+    from impactlab.model import registry
+
+    module = type(sys)("contract_plugins")
+    module.Forgetful3D = _forgetful()  # provides lateral_impulse: claims 3-D contacts it cannot see
+    module.Misspelt = type("Misspelt", (RigidCoulombModel,), {"name": "misspelt", "__doc__": "References: x.",
+                                                              "requires": RigidCoulombModel.requires | {"spinn"}})
+    module.Fine = _forgetful(takes_contact_state=True, name="fine")
+    sys.modules["contract_plugins"] = module
+    real = list(metadata.entry_points(group=registry.ENTRY_POINT_GROUP))
+    fakes = [metadata.EntryPoint(name, f"contract_plugins:{attr}", registry.ENTRY_POINT_GROUP)
+             for name, attr in (("forgetful", "Forgetful3D"), ("misspelt", "Misspelt"), ("fine", "Fine"))]
+    try:
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(registry, "_entry_points", lambda: real + fakes)
+            with pytest.warns(PluginWarning) as caught:
+                found = registry.refresh()
+    finally:
+        del sys.modules["contract_plugins"]
+        registry.refresh()
+    text = " | ".join(str(w.message) for w in caught)
+    assert "forgetful" not in found and "misspelt" not in found and "fine" in found
+    assert "provides lateral_impulse (3-D contacts) but does not declare" in text and "strike_toe" in text
+    assert "requires names spinn, unknown to the vocabulary's inputs" in text
+
+
+GOLF = {"name": "golf", "ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+        "contact": {"friction": 0.4, "restitution": 0.8},
+        "delivery": {"club_speed": "45 m/s", "path": "0 deg", "face_angle": "0 deg", "attack_angle": "0 deg",
+                     "dynamic_loft": "12 deg"},
+        "strike": {"toe": "10 mm", "high": "0 mm"}, "outputs": ["spin_axis"]}
+
+
+def test_the_conformance_suite_names_the_missing_3d_inputs():
+    from impactlab.testing import check_declarations
+
+    with pytest.raises(AssertionError, match=r"provides lateral_impulse \(3-D contacts\) but does not declare .*"
+                                             r"strike_toe"):
+        check_declarations(_forgetful()())
+    check_declarations(_forgetful(takes_contact_state=True)())  # taking the framework's state is the other way

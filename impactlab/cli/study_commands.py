@@ -29,7 +29,7 @@ from impactlab.io.safe_output import (JSON_SUFFIXES, PICTURE_SUFFIXES, REPORT_SU
 from impactlab.model.diagnostics import ValidityWarning, messages
 from impactlab.model.registry import available
 from impactlab.plot.analysis import plot_sensitivity, plot_work_precision
-from impactlab.plot.figures import (TRAJECTORY_LAUNCH, draw_declared, plot_histories, plot_results,
+from impactlab.plot.figures import (TRAJECTORY_LAUNCH, check_shot_files, draw_declared, plot_histories, plot_results,
                                     plot_trajectories)
 from impactlab.plot.paper import report
 from impactlab.run.faults import set_interrupt_hint
@@ -54,6 +54,8 @@ def _cmd_run(args) -> int:
     if args.output and len(args.study) > 1:
         raise StudyError("-o/--output names one result file; with several studies use --outdir")
     studies = [load_study(Path(path)) for path in args.study]  # every file is checked before anything runs
+    for study in studies:  # and the shot files its figures draw beside the curves
+        check_shot_files(study)
     say = (lambda text: None) if args.quiet else (lambda text: print(text, file=sys.stderr))
     if args.plan:
         for study in studies:

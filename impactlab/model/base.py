@@ -77,8 +77,9 @@ class ImpactModel:
        a 1-D array of n_time increasing instants in seconds, shared by all
        cases (pad a case that ended sooner with NaN).
     5. **Vectorised and pure.** The hook handles a whole batch at once, does
-       not change its inputs and gives the same result for the same inputs,
-       whatever the batch around a case.
+       not change its inputs and gives the same scalar results for the same
+       inputs, whatever the batch around a case; histories are sampled on the
+       batch's one ``time`` axis (rule 4), so their instants depend on the batch.
     6. **Physics, not bookkeeping.** A model that provides ``normal_impulse``
        and ``tangential_impulse`` gets launch angle, spin, velocities,
        tangential restitution and energy loss derived by the framework; it
@@ -86,7 +87,9 @@ class ImpactModel:
     7. **Conformance.** ``impactlab.testing.check_model`` must pass: declared
        names exist, energy never increases for a fixed face, frictionless and
        head-on impacts give no tangential impulse, mirrored impacts mirror,
-       declared capabilities hold.
+       declared capabilities hold, and reference values: J_t = mu J_n in gross
+       slip, the rigid-body closed form, a 3-D off-centre strike against an
+       independent rigid-body solution.
     8. **Capabilities are declared, never guessed.** The framework reads them
        from the class, not from the options' fields:
        ``has_tolerance`` (class attribute, default False): ``Options`` has a
@@ -100,6 +103,16 @@ class ImpactModel:
        :meth:`expert_resolution` (a resolution the options fix by hand, which
        the memory estimate of :mod:`impactlab.study.limits` counts) are methods
        with defaults for models that have neither.
+    9. **A 3-D contact is seen whole, or refused.** On a 3-D scene (a golf
+       delivery, a club head's body, a strike point, a curved face) the hook
+       must see every input of
+       :data:`impactlab.physics.contact.CONTACT_STATE_INPUTS` the scene gives:
+       declare them (``optional_inputs``), or set ``takes_contact_state = True``
+       and read the geometry only through ``inputs.contact_state()``, which is
+       then the whole scene's. A model that does neither is refused on 3-D
+       scenes when it is planned, naming the inputs
+       (:mod:`impactlab.model.contract`); its declarations are checked
+       against the vocabulary when the plugin loads.
 
     The public :meth:`compute` validates inputs, hands the hook only what it
     declared, checks what came back, derives the rest, converts to the
@@ -119,6 +132,9 @@ class ImpactModel:
     has_tolerance: ClassVar[bool] = False
     #: rule 8: ``provides`` names a history output; set from ``provides`` for every subclass, never by hand
     provides_histories: ClassVar[bool] = False
+    #: rule 9: the hook reads the contact geometry only through ``inputs.contact_state()``, which then is the
+    #: state of the whole scene whatever the model declared (otherwise it must declare the contact-state inputs)
+    takes_contact_state: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs: Any):
         super().__init_subclass__(**kwargs)
@@ -257,13 +273,16 @@ class ImpactModel:
         n_cases = batch.n_cases
         raw = {}
         if plan.from_model:
-            raw = self._compute(batch.only(self.requires | self.optional_inputs), plan.from_model)
+            raw = self._compute(batch.only(self.requires | self.optional_inputs,
+                                           share_contact=self.takes_contact_state), plan.from_model)
             self._check_returned(raw, plan, n_cases)
             keep = set(plan.from_model)
             if any(is_history(name) for name in keep):
                 keep.add("time")
             raw = {name: value for name, value in raw.items() if name in keep}
         raw.update(derive(plan.derived, raw, batch))
+        for name in plan.plugin:  # outputs plugins derive from the model's arrays (impactlab.vocabulary)
+            raw[name] = _plugin_output(name, raw, n_cases)
         time = np.asarray(raw.pop("time"), dtype=float) if "time" in raw else None
         values = {}
         for name in plan.requested:
@@ -367,6 +386,22 @@ class ModelResult:
             "model_references": "; ".join(model.references),
             "impactlab_version": __version__,
         }
+
+
+def _plugin_output(name: str, raw: Mapping[str, np.ndarray], n_cases: int) -> np.ndarray:
+    """A plugin's derived output (:class:`impactlab.vocabulary.DerivedOutput`) from the SI arrays it needs."""
+    spec = OUTPUTS[name]
+    assert spec.function is not None, "only plugin outputs are computed here"
+    try:
+        value = np.asarray(spec.function(**{need: np.asarray(raw[need], dtype=float) for need in spec.needs}),
+                           dtype=float)
+    except Exception as exc:  # the plugin's own error, named as such
+        raise ModelContractError(f"derived output {name!r} (a plugin's, impactlab.outputs) failed: "
+                                 f"{type(exc).__name__}: {exc}") from None
+    if value.shape != (n_cases,):
+        raise ModelContractError(f"derived output {name!r} (a plugin's, impactlab.outputs) returned shape "
+                                 f"{value.shape}, expected ({n_cases},): one value per case")
+    return value
 
 
 def _jsonable(value: Any) -> Any:

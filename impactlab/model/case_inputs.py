@@ -116,15 +116,20 @@ class CaseInputs(Mapping):
             cached = self._state[1] = types.MappingProxyType(plane)
         return cached
 
-    def only(self, names: Iterable[str]) -> CaseInputs:
+    def only(self, names: Iterable[str], share_contact: bool = False) -> CaseInputs:
         """The inputs among ``names`` (what a model declared).
 
-        The view shares this batch's contact state where it keeps every input that state reads; otherwise
-        (a model that does not declare, say, the club's inertia) its state is its own, from what it sees.
+        The view shares this batch's contact state where it keeps every input that state reads, or where
+        ``share_contact`` (a model that takes the framework's contact state, ``takes_contact_state``); otherwise
+        its state is its own, from what it sees (on a 3-D scene the planner refuses a model in that case,
+        :mod:`impactlab.model.contract`).
         """
         names = set(names)
         kept = {name: array for name, array in self._arrays.items() if name in names}
         same_contact = all(name in names for name in CONTACT_STATE_INPUTS if name in self._arrays)
+        if share_contact and not same_contact:
+            self.contact_state()  # filled from this batch's arrays: the view must not compute it from fewer
+            same_contact = True
         return CaseInputs._view(kept, self.n_cases, self._state if same_contact else None)
 
     def slice(self, start: int, stop: int) -> CaseInputs:

@@ -18,8 +18,9 @@ import attrs
 from impactlab.model.derive import FROM_DELIVERY, FROM_FLIGHT, FROM_MATERIALS, IMPULSES, NEEDS, derivable
 from impactlab.model.derive import DERIVATION_OPTIONAL, FLIGHT_INPUTS
 from impactlab.errors import ModelInputError
+from impactlab.model.contract import require_contact_inputs
 from impactlab.physics.aerodynamics import DEFAULT_MODEL as DEFAULT_AIR_MODEL
-from impactlab.vocabulary import INPUTS
+from impactlab.vocabulary import INPUTS, OUTPUTS
 
 if TYPE_CHECKING:  # model.base imports this module
     from impactlab.model.base import ImpactModel
@@ -50,6 +51,8 @@ class OutputPlan:
     derived: frozenset[str]
     missing: dict[str, str]
     inputs: frozenset[str]
+    #: outputs plugins derive from the model's arrays (impactlab.vocabulary.DerivedOutput), after the model ran
+    plugin: tuple[str, ...] = ()
 
     def describe(self) -> str:
         """One paragraph in words."""
@@ -81,12 +84,20 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
     """Plan the outputs ``requested`` from a model class (set logic on declarations only).
 
     ``given_inputs``, when known, lets the plan tell outputs that need inputs
-    the scene lacks (a golf delivery) from those it can give.
+    the scene lacks (a golf delivery) from those it can give; on a 3-D scene it
+    refuses a model whose hook would not see the whole contact state
+    (:func:`impactlab.model.contract.require_contact_inputs`, ModelInputError).
     """
     requested = tuple(dict.fromkeys(requested))
+    if given_inputs is not None:  # on a 3-D scene the hook must see the whole contact (impactlab.model.contract)
+        require_contact_inputs(model_cls, given_inputs)
     provides = frozenset(model_cls.provides)
     from_model, derived, missing = set(), set(), {}
-    for name in requested:
+    plugin = tuple(name for name in requested if OUTPUTS[name].function is not None)
+    # a plugin's output is planned through the outputs it needs (asked of the model or derived like any other)
+    needs = tuple(dict.fromkeys(need for name in plugin for need in OUTPUTS[name].needs))
+    for name in tuple(name for name in requested if name not in plugin) + tuple(
+            need for need in needs if need not in requested):
         if name in provides:
             from_model.add(name)
             continue
@@ -96,6 +107,16 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
             from_model |= IMPULSES | (provides & {"lateral_impulse", "rolling_moment", "rolling_moment_slip"})
         else:
             missing[name] = reason or model_cls.why_not_provided(name)
+    kept = []
+    for name in plugin:
+        lacking = [need for need in OUTPUTS[name].needs if need in missing]
+        if lacking:
+            missing[name] = "; ".join(f"needs {need}: {missing[need]}" for need in lacking)
+        else:
+            kept.append(name)
+    for need in needs:  # a need nobody asked for is not reported missing on its own
+        if need not in requested:
+            missing.pop(need, None)
     inputs = set(model_cls.requires) | (set(model_cls.optional_inputs) & set(INPUTS))
     if derived:
         inputs |= NEEDS["impulses"] | DERIVATION_OPTIONAL
@@ -106,4 +127,4 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
     if derived & FROM_MATERIALS:
         inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
-                      frozenset(inputs))
+                      frozenset(inputs), tuple(kept))

@@ -2,8 +2,10 @@
 
 Built-in models register exactly like third-party ones (see pyproject.toml).
 Discovery is lazy and cached; :func:`refresh` rediscovers. A plugin that fails
-to import, is not an :class:`~impactlab.model.base.ImpactModel` subclass, or
-reuses a taken name is skipped with a :class:`~impactlab.errors.PluginWarning`;
+to import, is not an :class:`~impactlab.model.base.ImpactModel` subclass, has
+declarations that do not hold (:func:`impactlab.model.contract.declaration_problems`:
+names unknown to the vocabulary, options without defaults, a 3-D model that
+cannot see the 3-D contact) or reuses a taken name is skipped with a :class:`~impactlab.errors.PluginWarning`;
 it never breaks the registry for the others.
 """
 
@@ -15,6 +17,7 @@ from importlib import metadata
 
 from impactlab.errors import ModelNotFoundError, PluginWarning
 from impactlab.model.base import ImpactModel
+from impactlab.model.contract import declaration_problems
 
 ENTRY_POINT_GROUP = "impactlab.models"
 
@@ -37,6 +40,11 @@ def _discover() -> dict[str, type[ImpactModel]]:
         if not (isinstance(model_cls, type) and issubclass(model_cls, ImpactModel)):
             warnings.warn(f"impactlab model plugin '{where}' is not an ImpactModel subclass and is skipped",
                           PluginWarning, stacklevel=3)
+            continue
+        problems = declaration_problems(model_cls)  # checked when it loads, not when it first computes
+        if problems:
+            warnings.warn(f"impactlab model plugin '{where}' is skipped: its declarations do not hold: "
+                          + "; ".join(problems), PluginWarning, stacklevel=3)
             continue
         name = model_cls.name or entry_point.name
         if name != entry_point.name:

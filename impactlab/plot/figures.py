@@ -10,7 +10,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactlab.vocabulary import MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
+from impactlab.data.sessions.reader import read_session
+from impactlab.errors import FieldError, StudyError
+from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_scalar
 from impactlab.study.datasets import DATASETS
 from impactlab.plot.style import _MARKERS, _STYLES, _axis_label, _display, _save, conditions
 # the ball-flight figure has its own module; the CLI and users import it from here
@@ -19,10 +21,67 @@ from impactlab.plot.trajectories import (MAX_TRAJECTORIES as MAX_TRAJECTORIES,
                                          plot_trajectories as plot_trajectories)
 
 
-def _draw_measured(axis, output: str, names, xs) -> None:
-    """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label."""
+def check_shot_files(study) -> None:
+    """Every user's shot file a study's figures name (``measured:``) reads as a launch-monitor export or shot table
+    and measures an output its figure draws; checked before the study runs (``impactlab run``), not after.
+
+    Raises
+    ------
+    FieldError
+        At ``plots[i].measured[j]`` of the study's file, saying what the file gives.
+    """
+    for index, plot in enumerate(study.plots):
+        for position, name in enumerate(plot.measured):
+            if name in DATASETS:
+                continue
+            where = f"plots[{index}].measured[{position}]"
+            try:
+                session = read_session(name)
+            except (StudyError, FieldError, OSError, ValueError) as exc:
+                raise FieldError(where, f"a shot file impactlab reads ({exc})", name).at(file=study.file) from None
+            measured = [y for y in plot.y if y in session.values and np.isfinite(session.values[y]).any()]
+            if not measured:
+                given = sorted(field for field, values in session.values.items() if np.isfinite(values).any())
+                raise FieldError(where, f"a shot file that measures an output the figure draws ({', '.join(plot.y)})",
+                                 f"{name} (its columns give {', '.join(given)})").at(file=study.file)
+
+
+def _shot_values(path: str, output: str, x_input: str | None) -> tuple[np.ndarray, np.ndarray | None, int]:
+    """A user's shot file (impactlab.data.sessions): the shots' ``output`` in the vocabulary's units, their x (the
+    swept input's display units) where the file gives it, and the number of rows without the output (skipped)."""
+    session = read_session(path)
+    ys = np.asarray(session.values.get(output, np.full(session.size, np.nan)), float) * OUTPUTS[output].factor
+    field = {"speed": "club_speed"}.get(x_input or "", x_input)
+    xs = None
+    if x_input and field and field in session.values and np.isfinite(session.values[field]).any():
+        xs = np.asarray(session.values[field], float) * INPUTS[x_input].display_factor
+    keep = np.isfinite(ys) & (np.isfinite(xs) if xs is not None else True)
+    return ys[keep], None if xs is None else xs[keep], int(np.sum(~keep))
+
+
+def _draw_measured(axis, output: str, names, xs, x_input: str | None = None) -> None:
+    """Measured values of ``output`` at the right of the curves: one column per dataset, a point per label.
+
+    A name that is not a shipped dataset is a user's shot file: its shots are drawn at their own x where the file
+    gives the swept quantity (a club-speed sweep beside the shots' club speeds), else as a column of mean +- SD.
+    """
     step = (xs.max() - xs.min()) / max(xs.size - 1, 1) if xs.size > 1 else 1.0
+    files = [name for name in names if name not in DATASETS]
+    names = [name for name in names if name in DATASETS]
+    for path in files:
+        ys, shot_xs, skipped = _shot_values(path, output, x_input)
+        label = f"measured: {Path(path).name} ({ys.size} shots" + (f", {skipped} without it" if skipped else "")
+        if shot_xs is not None:
+            axis.plot(shot_xs, ys, "k.", markersize=4, alpha=0.6, zorder=4, label=label + ")")
+        elif ys.size:
+            names.append(("file", path, ys, label))
     for column, name in enumerate(names):
+        if isinstance(name, tuple):  # a shot file without the swept quantity: its mean +- SD in a column
+            _, path, ys, label = name
+            where = xs.max() + step * (0.6 + 1.2 * column)
+            axis.errorbar([where], [float(np.mean(ys))], yerr=[float(np.std(ys, ddof=1)) if ys.size > 1 else 0.0],
+                          fmt="kD", markersize=5, capsize=3, zorder=4, label=label + ", mean +- SD)")
+            continue
         data = DATASETS[name]
         if data.quantity != output:
             continue
@@ -36,6 +95,8 @@ def _draw_measured(axis, output: str, names, xs) -> None:
         for label, value, where in zip(data.labels, data.values, positions):
             axis.annotate(label, (where, value), xytext=(4, 0), textcoords="offset points", fontsize=6,
                           va="center", rotation=0)
+    if not names:
+        return
     # the measured points sit right of a rule: they were taken at no stated friction, not at the x there
     axis.axvline(xs.max() + 0.3 * step, color="0.6", linewidth=0.8, label="_separator")
     axis.annotate("measured", (xs.max() + 0.35 * step, 1.0), xycoords=("data", "axes fraction"), xytext=(0, -10),
@@ -75,6 +136,25 @@ def _lies_on(drawn, xs, ys, tolerance) -> tuple[str | None, float]:
         if both.any() and 0.5 <= np.mean(same[both]) > share:
             best, share = other, float(np.mean(same[both]))
     return best, share
+
+
+def coincidence_note(dataset: xr.Dataset, names: Sequence[str], dims: Sequence[str]) -> str:
+    """The title line of a figure whose lines coincide along a dimension, or "" (each of ``dims`` whose every value
+    draws the same curve, of every model and output ``names``, within 2e-3 of the output's span)."""
+    same = [dim for dim in dims if dataset.sizes[dim] > 1 and all(_flat_along(dataset[name], dim) for name in names)]
+    return "; ".join(f"the curves of {dim} = {', '.join(_text(v) for v in dataset[dim])} coincide (one curve per "
+                     "model)" for dim in same)
+
+
+def _flat_along(variable: xr.DataArray, dim: str, tolerance: float = 2e-3) -> bool:
+    """Whether ``variable`` is the same at every value of ``dim`` (within ``tolerance`` of its span; NaN alike)."""
+    values = np.moveaxis(np.asarray(variable.values, float), variable.dims.index(dim), 0)
+    finite = values[np.isfinite(values)]
+    span = float(finite.max() - finite.min()) if finite.size else 0.0
+    first = values[:1]
+    both = np.isfinite(values) & np.isfinite(first)
+    return bool(np.array_equal(np.isnan(values), np.broadcast_to(np.isnan(first), values.shape))
+                and np.all(np.abs(np.where(both, values - first, 0.0)) <= tolerance * span + 1e-300))
 
 
 def _text(coordinate) -> str:
@@ -122,7 +202,9 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
         A zoomed view of the horizontal axis; the vertical axis follows the data inside it.
     measured : sequence of str
         Shipped measured datasets (:data:`impactlab.study.datasets.DATASETS`) of a drawn output: their
-        values, with error bars where the source states them, beside the curves at the right.
+        values, with error bars where the source states them, beside the curves at the right; or paths of a
+        user's shot files (launch-monitor exports, shot tables): their shots at their own x where the file gives
+        the swept quantity, else their mean +- SD at the right.
     """
     # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures; matplotlib is
     # imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
@@ -203,7 +285,8 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
                 axis.set_xlabel(_axis_label(attrs_x.get("long_name", x), attrs_x.get("units", ""), 60), fontsize=8)
         axis.grid(True, alpha=0.3)
         if measured and x and not along_output:
-            _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float))
+            _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float),
+                           INPUT_BY_PATH.get(dataset[x].attrs.get("study_path", "")))
         if xlim is not None:
             _zoom(axis, xlim)
     for axis in list(axes.flat)[len(names):]:
@@ -219,6 +302,11 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
                                   for other, panels in ordered[:2]) + ("; ..." if len(ordered) > 2 else "")
                 line.set_label(f"{line.get_label()} ({where})")
     heading = title or dataset.attrs.get("title", "")
+    # a dimension whose every value draws the same curve (of each model, in each panel) is said in the title, not
+    # only in the legend: a reader must not take three coinciding curves for one (Fig. 5's club speeds)
+    note = coincidence_note(dataset, names, others)
+    if note:
+        heading += "\n" + note
     context = conditions(dataset)
     figure.suptitle(heading + (f"\n{context}" if context else ""), fontsize=10)
     if len(names) == 1 and len(axes.flat[0].lines) <= 4:

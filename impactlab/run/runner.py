@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.run.assemble import assemble
+from impactlab.run.options import run_option_sweep
 from impactlab.model.diagnostics import warn as warn_validity
 from impactlab.model.planning import OutputPlan, require_inputs
 from impactlab.run.sensitivity import run_sensitivity
@@ -107,7 +108,8 @@ def plan_study(study: Study) -> StudyPlan:
 
 def case_input_names(study: Study) -> set[str]:
     """The names of :func:`case_inputs` of ``study``, without building its arrays."""
-    names = set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
+    names = (set(study.scene.inputs()) | {field.input for axis in study.sweep for field in axis.fields}
+             | {name for name, _ in study.plugin_inputs})
     if all(name in names for name in DELIVERY_INPUTS):
         names.add("angle")
     if ball_law_applies(study):
@@ -147,6 +149,10 @@ def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
         so that neither is done twice.
     """
     study = load_study(source)
+    if study.option_sweep:  # swept model options: one run per value, joined (impactlab.run.options)
+        return run_option_sweep(study, run_study, output=output, progress_folder=progress_folder, progress=progress,
+                                executor=executor, workers=workers, scheduler=scheduler, chunk_size=chunk_size,
+                                show_progress=show_progress)
     if plan is None or plan.source is not study:
         plan = plan_study(study)
     if study.sensitivity is not None:  # a sensitivity and model-form study (impactlab.run.sensitivity)

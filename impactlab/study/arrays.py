@@ -40,6 +40,8 @@ def case_inputs(study: Study) -> dict[str, np.ndarray]:
     """
     base = study.scene.inputs()
     grids = np.meshgrid(*[np.arange(axis.size) for axis in study.sweep], indexing="ij") if study.sweep else []
+    # the scene fields plugins declare (a study's plugin: block) come with the scene's own
+    base = {**base, **dict(study.plugin_inputs)}
     inputs = {name: np.full(study.n_cases, value, dtype=float) for name, value in base.items()}
     for axis, grid in zip(study.sweep, grids):
         for field in axis.fields:

@@ -32,11 +32,13 @@ from impactlab.scene.materials import FACE_SURFACES
 from impactlab.study.scene_blocks import (build_ball, build_club, build_contact, build_delivery, build_face,  # noqa: F401
                           build_impact, build_scene, build_strike, reusing_blocks)
 from impactlab.study.datasets import DATASETS
+from impactlab.study.extensions import (SHOT_FILE_SUFFIXES, OptionAxis, build_option_sweep, build_plugin_inputs,
+                                        select_value, shot_file, without_option_sweeps)
 from impactlab.study.schema import PlotBlock, StudyBlock, keys_of
 from impactlab.study.structuring import lookup, structure
 from impactlab.study.sensitivity import SensitivitySpec, parse_sensitivity
 from impactlab.study.sweeps import PRESET_MARK, SweepAxis, SweepField, build_sweep, friction_law_entry
-from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, SCALAR_OUTPUTS,
+from impactlab.vocabulary import (DEFAULT_OUTPUTS, DIAGNOSTIC_OUTPUTS, MODEL_DIM, OUTPUTS, is_scalar,
                                   check_output_names)
 from impactlab.study.yaml_lines import line_of, load_yaml, parse_path, read_text_file
 
@@ -110,6 +112,10 @@ class Study:
     plots: tuple[PlotSpec, ...] = ()
     #: a sensitivity and model-form study (run by impactlab.run.sensitivity), or None for a plain sweep
     sensitivity: SensitivitySpec | None = None
+    #: values of the scene fields plugins declare (the ``plugin:`` block), name -> SI value
+    plugin_inputs: tuple[tuple[str, float], ...] = ()
+    #: model options swept (``sweep: {model_option.ENTRY.OPTION: [...]}``), dimensions after the sweep's own
+    option_sweep: tuple[OptionAxis, ...] = ()
 
     @property
     def all_outputs(self) -> tuple[str, ...]:
@@ -307,11 +313,15 @@ def _build_study(document, text: str, file: str | None) -> Study:
         raise FieldError("description", "text", description)
     if "models" not in document:
         raise FieldError("models", "a list of models to run", "nothing", choices=available())
+    document, option_keys = without_option_sweeps(document)
     with reusing_blocks():  # the sweep's trial scenes share all but the swept block with the base scene
         scene = build_scene(document)  # the base scene first: its errors are its own, not a sweep's
         models = _build_models(document["models"])
         sweep = build_sweep(document, models)
-    check_cases(int(np.prod([axis.size for axis in sweep], dtype=object)) if sweep else 1, f"study {name!r} sweep")
+    plugin_inputs = build_plugin_inputs(document.get("plugin"))
+    option_sweep = build_option_sweep(option_keys, models, [axis.dim for axis in sweep])
+    check_cases(int(np.prod([axis.size for axis in sweep] + [axis.size for axis in option_sweep], dtype=object))
+                if sweep or option_sweep else 1, f"study {name!r} sweep")
     outputs = _build_outputs(document.get("outputs"))
     _check_face_surface(scene, sweep, models, "club" if "club" in document else "face")
     sensitivity = None
@@ -319,10 +329,14 @@ def _build_study(document, text: str, file: str | None) -> Study:
         sensitivity = parse_sensitivity(document["sensitivity"], [entry.id for entry in models], scene.inputs(),
                                         {field.input for axis in sweep for field in axis.fields})
     _check_face_marker(document, scene, sweep, models, sensitivity)
+    if sensitivity is not None and option_sweep:
+        raise FieldError(f"sweep.model_option.{option_sweep[0].entry}.{option_sweep[0].option}",
+                         "no model option swept in a sensitivity study (give each value its own study)", "a sweep")
     return Study(name=name, description=description, scene=scene, sweep=sweep, models=models, outputs=outputs,
                  source=text, file=file,
-                 plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models]),
-                 sensitivity=sensitivity)
+                 plots=_build_plots(document.get("plots"), sweep, outputs, [entry.id for entry in models],
+                                    option_sweep, file),
+                 sensitivity=sensitivity, plugin_inputs=plugin_inputs, option_sweep=option_sweep)
 
 
 def _check_face_surface(scene, sweep, models, block: str) -> None:
@@ -387,12 +401,12 @@ def _check_face_marker(document, scene, sweep, models, sensitivity) -> None:
                              parameter.describe())
 
 
-def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
+def _build_plots(value, sweep, outputs, model_ids=(), option_sweep=(), file=None) -> tuple[PlotSpec, ...]:
     if value is None:
         return ()
     if not isinstance(value, list):
         raise FieldError("plots", "a list of figures ({name, y, x, select, title, kind})", value)
-    dims = [axis.dim for axis in sweep]
+    dims = [axis.dim for axis in sweep] + [axis.dim for axis in option_sweep]
     plots = []
     for index, item in enumerate(value):
         where = f"plots[{index}]"
@@ -413,7 +427,7 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
         if kind not in PLOT_KINDS:
             raise FieldError(f"{where}.kind", "a kind of figure", kind, choices=PLOT_KINDS)
         x = block.x
-        scalar_outputs = [name for name in outputs if name in SCALAR_OUTPUTS]
+        scalar_outputs = [name for name in outputs if is_scalar(name)]
         if x is not None and x not in dims + scalar_outputs:
             raise FieldError(f"{where}.x", "a sweep dimension or a scalar output of the study", x,
                              choices=dims + scalar_outputs)
@@ -426,19 +440,33 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
                                  choices=dims + [MODEL_DIM])
             if key == MODEL_DIM and model_ids and select[key] not in model_ids:  # else it fails after the run
                 raise FieldError(f"{where}.select.{key}", "a model of the study", str(select[key]), choices=model_ids)
+        for key, chosen in select.items():
+            option_axis = next((axis for axis in option_sweep if axis.dim == key), None)
+            if option_axis is not None and chosen not in option_axis.values:
+                raise FieldError(f"{where}.select.{key}", f"a swept value of option {option_axis.option!r}",
+                                 str(chosen), choices=[str(v) for v in option_axis.values])
+        select = {key: select_value(next((axis for axis in sweep if axis.dim == key), None), value,
+                                     f"{where}.select.{key}") for key, value in select.items()}
         title = block.title or ""
         xlim = block.xlim
         if xlim is not None and not (isinstance(xlim, list) and len(xlim) == 2 and all(
                 isinstance(v, (int, float)) and not isinstance(v, bool) for v in xlim) and xlim[0] < xlim[1]):
             raise FieldError(f"{where}.xlim", "[low, high] of the horizontal axis, low < high", xlim)
         measured = block.measured or []
-        measured = [measured] if isinstance(measured, str) else measured
+        measured = [measured] if isinstance(measured, str) else list(measured) if isinstance(measured, list) \
+            else measured
         if not isinstance(measured, list):
             raise FieldError(f"{where}.measured", "a shipped measured dataset or a list of them", measured)
         for position, data in enumerate(measured):
-            if not isinstance(data, str) or data not in DATASETS or DATASETS[data].quantity not in wanted:
-                raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn",
-                                 data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
+            if isinstance(data, str) and data in DATASETS and DATASETS[data].quantity in wanted:
+                continue
+            if isinstance(data, str) and (data.lower().endswith(SHOT_FILE_SUFFIXES) or os.sep in data
+                                          or "/" in data):
+                measured[position] = shot_file(data, f"{where}.measured[{position}]", file)
+                continue
+            raise FieldError(f"{where}.measured[{position}]", "a shipped measured dataset of an output drawn, or "
+                             "the path of a shot file (.csv, .yaml: a launch-monitor export or a shot table)",
+                             data, choices=[k for k, v in DATASETS.items() if v.quantity in wanted])
         plots.append(PlotSpec(name, tuple(wanted), x, tuple(select.items()), str(title), kind,
                               (float(xlim[0]), float(xlim[1])) if xlim else None, tuple(measured)))
     names = [plot.name for plot in plots]
@@ -447,4 +475,4 @@ def _build_plots(value, sweep, outputs, model_ids=()) -> tuple[PlotSpec, ...]:
     return tuple(plots)
 
 
-__all__ = ["Study", "SweepAxis", "SweepField", "ModelEntry", "load_study", "build_scene"]
+__all__ = ["Study", "SweepAxis", "SweepField", "ModelEntry", "OptionAxis", "load_study", "build_scene"]

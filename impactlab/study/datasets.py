@@ -72,8 +72,8 @@ DATASETS: dict[str, MeasuredData] = {
     ),
     "trackman": MeasuredData(
         name="trackman",
-        source=f"{TABLE1}; TrackMan values published by D. Dewhurst, The Golf Club: Engineering and Physics "
-               "(2018); no uncertainty stated",
+        source=f"{TABLE1}; TrackMan values as published by P. Dewhurst, The Science of the Perfect Swing, 1st ed., "
+               "Oxford University Press, New York (2015) (the paper's reference 4); no uncertainty stated",
         quantity="vertical_launch_ratio", labels=("driver", "7-iron", "pitching wedge"),
         values=(0.87, 0.75, 0.70), sigma=None,
         study="table1_clubs.yaml", dimension="club",

@@ -268,6 +268,8 @@ class StudyBlock:
     outputs: Any = None
     plots: Any = None
     sensitivity: Any = None
+    #: scene fields plugins declare (entry-point group impactlab.inputs): {NAME: value with its unit}
+    plugin: Any = None
 
 
 @attrs.frozen
