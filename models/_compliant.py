@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 from typing import Protocol, runtime_checkable
 
+import attrs
 import numpy as np
 
 from impactlab.validators import check
@@ -18,7 +19,7 @@ from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rolling_line import planar_couple
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      core_inputs, face_inputs, face_restitution, law_friction, rolling_on)
+                      BallLawOptions, core_inputs, face_inputs, face_restitution, law_friction, rolling_on)
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -92,6 +93,8 @@ class HertzTangentialModel(ImpactModel):
     #: whether the 3-D law's parameters depend on kappa (grouping of cases); DEM laws with a fixed ratio do
     _3d_depends_on_kappa = False
     has_tolerance = True
+    #: every ball and face law of BallLawOptions (the reference-value checks hold with all of them off)
+    ball_law_options = tuple(field.name for field in attrs.fields(BallLawOptions))
 
     def __init__(self, options=None, **option_values):
         super().__init__(options, **option_values)

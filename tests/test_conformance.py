@@ -170,3 +170,27 @@ def test_the_reference_values_hold_for_the_builtin_models_with_their_margins():
     closed = rigid_coulomb_closed_form(40.0, np.radians(60.0), 0.0459, 0.4, np.inf, 0.1, 0.8)
     assert closed["sliding"] and closed["normal_impulse"] == pytest.approx(1.6524)
     assert closed["tangential_impulse"] == pytest.approx(0.16524) and closed["spin_times_radius"] == pytest.approx(9.0)
+
+
+def test_reference_checks_apply_to_the_plain_ball_and_only_a_declared_law_lifts_them():
+    """ball_laws_on names the laws a configuration switches on; with none on, the rigid-limit check still catches a
+    model whose spin is off, and with the rolling law on (which changes the spin on purpose) it is not applied."""
+    from impactlab.model.reference import check_rigid_limit
+    from impactlab.model.registry import get_model
+
+    assert get_model("maw")().ball_laws_on() == ()
+    assert get_model("maw")(rolling_hysteresis=0.3).ball_laws_on() == ("rolling_hysteresis",)
+    assert get_model("rigid_coulomb")(rolling_hysteresis="restitution").ball_laws_on() == ("rolling_hysteresis",)
+    assert get_model("rigid_coulomb")().ball_laws_on() == ()
+    plain = get_model("rigid_coulomb")()
+    check_rigid_limit(plain)
+
+    class HalfSpin(type(plain)):
+        """The rigid model with its spin halved (a dropped factor 2 in R J_t / I), no law declared."""
+
+        def _compute(self, inputs, outputs):
+            result = super()._compute(inputs, outputs)
+            return {key: (0.5 * value if key == "tangential_impulse" else value) for key, value in result.items()}
+
+    with pytest.raises(AssertionError, match="rigid closed form"):
+        check_rigid_limit(HalfSpin())

@@ -135,6 +135,9 @@ class ImpactModel:
     #: rule 9: the hook reads the contact geometry only through ``inputs.contact_state()``, which then is the
     #: state of the whole scene whatever the model declared (otherwise it must declare the contact-state inputs)
     takes_contact_state: ClassVar[bool] = False
+    #: names of the ``Options`` fields that switch on a law of the ball or face (rolling resistance, a friction law,
+    #: a turning core, a flexing face...): the reference-value checks hold for the plain ball (:meth:`ball_laws_on`)
+    ball_law_options: ClassVar[tuple[str, ...]] = ()
 
     def __init_subclass__(cls, **kwargs: Any):
         super().__init_subclass__(**kwargs)
@@ -197,6 +200,18 @@ class ImpactModel:
             raise ModelContractError(f"model {self.name!r} declares no tolerance (has_tolerance is False), so it has "
                                      "no reference run")
         return attrs.evolve(self.options, tolerance=tolerance)
+
+    def ball_laws_on(self) -> tuple[str, ...]:
+        """The ball and face laws this configuration switches on: the options named in :attr:`ball_law_options`
+        whose values differ from their defaults (``()``: the plain ball).
+
+        The conformance suite's reference-value checks (``rigid_limit``, ``arriving_rolling``: closed forms of a
+        rigid sphere under Coulomb friction) hold for the plain ball only; a law such as the cover's rolling
+        resistance changes the spin on purpose, so those checks are not applied to a configuration with a law on.
+        """
+        defaults = self.Options()
+        return tuple(name for name in self.ball_law_options
+                     if getattr(self.options, name) != getattr(defaults, name))
 
     def solves_3d(self) -> bool:
         """Whether this configuration solves 3-D contacts (a free head struck off-centre, a curved face).
