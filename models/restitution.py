@@ -74,6 +74,7 @@ class RestitutionModel(ImpactModel):
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
+    ball_law_options = ("friction_law",)
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()

@@ -77,7 +77,7 @@ class RigidCoulombModel(ImpactModel):
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS | ROLLING_OUTPUTS
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
-    ball_law_options = ("rolling_hysteresis",)
+    ball_law_options = ("rolling_hysteresis", "friction_law")
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()

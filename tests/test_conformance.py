@@ -182,6 +182,7 @@ def test_reference_checks_apply_to_the_plain_ball_and_only_a_declared_law_lifts_
     assert get_model("maw")(rolling_hysteresis=0.3).ball_laws_on() == ("rolling_hysteresis",)
     assert get_model("rigid_coulomb")(rolling_hysteresis="restitution").ball_laws_on() == ("rolling_hysteresis",)
     assert get_model("rigid_coulomb")().ball_laws_on() == ()
+    assert get_model("restitution")(friction_law="adhesion").ball_laws_on() == ("friction_law",)
     plain = get_model("rigid_coulomb")()
     check_rigid_limit(plain)
 

@@ -205,9 +205,11 @@ class ImpactModel:
         """The ball and face laws this configuration switches on: the options named in :attr:`ball_law_options`
         whose values differ from their defaults (``()``: the plain ball).
 
-        The conformance suite's reference-value checks (``rigid_limit``, ``arriving_rolling``: closed forms of a
-        rigid sphere under Coulomb friction) hold for the plain ball only; a law such as the cover's rolling
-        resistance changes the spin on purpose, so those checks are not applied to a configuration with a law on.
+        The conformance suite's reference-value checks (``full_sliding``, ``rigid_limit``, ``arriving_rolling``,
+        ``3d_sideways_impulse``:
+        closed forms of a rigid sphere under Coulomb friction) hold for the plain ball only; a law such as the
+        cover's rolling resistance or a friction law changes the impulses on purpose, so those checks are not
+        applied to a configuration with a law on (the other checks are).
         """
         defaults = self.Options()
         return tuple(name for name in self.ball_law_options
