@@ -11,6 +11,8 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterable
 
+from impactlab.foreign import shown
+
 
 class ImpactLabError(Exception):
     """Base class of every user-facing impactlab error.
@@ -61,12 +63,12 @@ class FieldError(ImpactLabError, ValueError):
 
     def _message(self) -> str:
         where = ""
-        if self.file:
-            where = f"{self.file}:{self.line}: " if self.line else f"{self.file}: "
-        given = self.given if isinstance(self.given, str) else repr(self.given)
-        text = f"{where}{self.path or '<top>'}: expected {self.expected}, got {given}"
+        if self.file:  # a file's name, a key and a value read from it: foreign text, shown escaped
+            where = f"{shown(self.file)}:{self.line}: " if self.line else f"{shown(self.file)}: "
+        given = shown(self.given) if isinstance(self.given, str) else shown(repr(self.given))
+        text = f"{where}{shown(self.path or '<top>')}: expected {self.expected}, got {given}"
         if self.choices:
-            text += f". Choices: {', '.join(self.choices)}"
+            text += f". Choices: {', '.join(shown(choice) for choice in self.choices)}"
             close = closest(str(self.given), self.choices)
             if close:
                 text += f" (did you mean {close!r}?)"

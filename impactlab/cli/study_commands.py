@@ -24,6 +24,7 @@ from impactlab.errors import FieldError, StudyError
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
+from impactlab.io.stored import check_stored
 from impactlab.io.safe_output import (JSON_SUFFIXES, PICTURE_SUFFIXES, REPORT_SUFFIXES, RESULT_SUFFIXES,
                                       check_outdir, check_output, name_in, refuse_clashes)
 from impactlab.model.diagnostics import ValidityWarning, messages
@@ -260,6 +261,8 @@ def _cmd_plot(args) -> int:
     if args.trajectories:
         default = Path(args.file).with_name(f"{Path(args.file).stem}_trajectories.png")
         output = _picture(args.output or default, reads=[args.file])
+        for note in check_stored(dataset, args.file, aerodynamics_needed=True):  # a stored result is an input
+            print(f"impactlab: note: {note}", file=sys.stderr)
         print(f"wrote {plot_trajectories(dataset, output)}", file=sys.stderr)
         return 0
     output = _picture(args.output or Path(args.file).with_suffix(".png"), reads=[args.file])
@@ -329,19 +332,32 @@ def _cmd_paper(args) -> int:
     return 0
 
 
+def _checked_result(path) -> xr.Dataset:
+    """A result file to export, its launch values, units, air and aerodynamic model checked (io.stored)."""
+    dataset = open_results(path)
+    for note in check_stored(dataset, path, aerodynamics_needed=False):
+        print(f"impactlab: note: {note}", file=sys.stderr)
+    return dataset
+
+
 def _cmd_export(args) -> int:
     if args.gspro is not None:
         host, port = parse_address(args.gspro)  # a bad address is said before the file is read
-        shots = checked_shots(open_results(args.file), model=args.model, device_id=args.device_id)
+        shots = checked_shots(_checked_result(args.file), model=args.model, device_id=args.device_id)
         say = (lambda text: print(text, file=sys.stderr))
         if not shots:
             say("no shot to send: no case of the result has every ball value (all NaN)")
             return 0
         replies = send_shots(shots, host, port, timeout=args.timeout, progress=say)
-        say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
-            f"(the last: {replies[-1].describe()})")
+        if replies.set_aside:  # a reply that answered no shot: which 200 answers which shot is not certain
+            say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: each was answered with Code 200, and "
+                f"{len(replies.set_aside)} more reply(ies) answered no shot (set aside, said above); if one of them "
+                "was in fact a shot's answer, a shot's own 200 was taken for the next one: check GSPro's shot list")
+        else:
+            say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
+                f"(the last: {replies[-1].describe()})")
         return 0
     check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
-    count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
+    count = write_gspro(_checked_result(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0

@@ -9,6 +9,7 @@ from typing import Any
 import yaml
 
 from impactlab.errors import ResourceLimitError, StudyError
+from impactlab.foreign import MAX_NESTING, nesting_message, shown
 from impactlab.study.limits import max_yaml_nodes
 
 #: a study or table larger than this is not a hand-written text file
@@ -108,7 +109,7 @@ def parse_path(text: str) -> Path:
 #: deep. PyYAML's C composer recurses once per level in C, so a document nested ~50,000 deep (100 KB of
 #: ``[[[[...``) overflows the C stack and kills the process with a segmentation fault before Python can catch
 #: anything: :func:`nesting_depth` measures the depth from the text, before the parser sees it.
-MAX_YAML_DEPTH = 100
+MAX_YAML_DEPTH = MAX_NESTING  # the one bound of every structured input (impactlab.foreign)
 
 
 def nesting_depth(text: str, limit: int = MAX_YAML_DEPTH) -> tuple[int, int]:
@@ -227,8 +228,7 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
                          f"{MAX_TEXT_BYTES:,})")
     depth, line = nesting_depth(text) if nesting_bound(text) > MAX_YAML_DEPTH else (0, 0)
     if line:
-        raise StudyError(f"{file or '<study>'}:{line}: the YAML nests more than {MAX_YAML_DEPTH} levels deep (a "
-                         "study nests about 6); write the data flatter")
+        raise StudyError(f"{shown(file or '<study>')}:{line}: {nesting_message('YAML', MAX_YAML_DEPTH)}")
     loader = _LOADER(text)
     try:
         node = loader.get_single_node()

@@ -1,0 +1,336 @@
+"""Trust in what comes from outside (issue 35): files, simulator replies and stored results.
+
+Each test injects one fault a hostile or broken source can carry and checks what the user sees through
+``impactlab.cli.main``: one message, exit status 2 (the user's input) or 3 (the environment: a server), no
+traceback, no internal error, and no raw control character on the terminal. The GSPro Connect stand-in is a
+local TCP server on a thread; its timing is driven by events and by what it reads, never by sleeps.
+"""
+
+import json
+import math
+import socket
+import threading
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from impactlab._version import __version__
+from impactlab.cli import main
+from impactlab.foreign import MAX_NESTING, check_json_nesting, json_depth_exceeded, shown, terminal_safe
+from impactlab.io.results import write_results
+
+#: the control characters a hostile text carries: clear screen and home, a colour, a bell, CR LF, a BiDi override
+HOSTILE = "\x1b[2J\x1b[H\x1b[31mred\x07\r\nimpactlab: error: forged line\u202e"
+WAIT = 30.0  # seconds a socket waits for anything: generous, only a hang reaches it
+
+
+def raw_controls(text: str) -> list[str]:
+    """Control characters other than line breaks and tabs in what reached the terminal."""
+    return [char for char in text if (ord(char) < 32 and char not in "\n\t") or 0x7F <= ord(char) < 0xA0
+            or char in "\u202e\u202d\u2066\u2067\u2068\u2069"]
+
+
+def assert_clean(captured, status, expected_status):
+    text = captured.out + captured.err
+    assert status == expected_status, text
+    assert "Traceback" not in text and "internal error" not in text, text
+    assert raw_controls(text) == [], text
+    # no line of the output is one a foreign text forged
+    assert not any(line.startswith("impactlab: error: forged") for line in text.splitlines()), text
+
+
+# ---- 2. the one escaping function ------------------------------------------------------------------------------
+
+def test_shown_escapes_every_control_character_and_keeps_printable_text():
+    assert shown("Golf Club 7i, 10.5° – ok") == "Golf Club 7i, 10.5° – ok"
+    assert shown(HOSTILE) == ("\\x1b[2J\\x1b[H\\x1b[31mred\\x07\\r\\nimpactlab: error: forged line\\u202e")
+    assert shown("\x9b2J\x00\x7f") == "\\x9b2J\\x00\\x7f"  # C1 CSI, NUL and DEL too
+    # whole messages keep their line breaks and tabs, nothing else
+    assert terminal_safe("a\tb\nc\x1b[0m\r") == "a\tb\nc\\x1b[0m\\r"
+    assert raw_controls(shown("".join(map(chr, range(0x00, 0xA0))))) == []
+
+
+# ---- 1. one bound on nesting, checked before a parser recurses ---------------------------------------------------
+
+def test_the_depth_scan_counts_brackets_outside_strings_only():
+    assert json_depth_exceeded("[" * 101 + "]" * 101) == 1
+    assert json_depth_exceeded("[" * 100 + "]" * 100) == 0
+    # brackets inside strings, escaped quotes included, are text
+    assert json_depth_exceeded('{"a": "' + "[" * 500 + '\\"' + "{" * 500 + '"}') == 0
+    assert json_depth_exceeded('{"a":\n\n' + "[" * 200 + "]" * 200 + "}") == 3  # the line where it exceeds
+
+
+def test_a_json_shot_file_nested_100000_deep_is_refused_by_fly(tmp_path, capsys):
+    path = tmp_path / "deep.json"
+    path.write_text('{"BallData": ' + "[" * 100_000 + "]" * 100_000 + "}")
+    status = main(["fly", str(path)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert f"nests more than {MAX_NESTING} levels deep" in captured.err
+
+
+def test_a_deep_json_dataset_is_refused_by_validate_not_crashed(tmp_path, capsys):
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000 + "]" * 100_000)
+    status = main(["validate", "--dataset", str(path)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert f"nests more than {MAX_NESTING} levels deep" in captured.err
+
+
+def test_the_yaml_and_json_readers_say_the_same_words(tmp_path, capsys):
+    (tmp_path / "deep.yaml").write_text("[" * 5_000 + "]" * 5_000)
+    assert main(["run", str(tmp_path / "deep.yaml"), "-q"]) == 2
+    yaml_words = capsys.readouterr().err.split(": ", 3)[-1]
+    with pytest.raises(Exception) as caught:
+        check_json_nesting("[" * 5_000, "x.json")
+    assert str(caught.value).split(": ", 2)[-1] == yaml_words.strip().replace("YAML", "JSON")
+
+
+# ---- a local GSPro Connect ---------------------------------------------------------------------------------------
+
+OK = b'{"Code":200,"Message":"Shot received successfully"}'
+PLAYER = b'{"Code":201,"Message":"GSPro Player Information","Player":{"Handed":"RH","Club":"DR"}}'
+
+
+class LocalGSPro:
+    """GSPro Connect on 127.0.0.1: ``on_connect`` bytes first, then for message i it sends ``answer(i)``.
+
+    It splits the client's stream with ``json.JSONDecoder.raw_decode`` (not the code under test's splitter)."""
+
+    def __init__(self, answer, on_connect=b""):
+        self.answer, self.on_connect = answer, on_connect
+        self.messages = []
+        self.error = None
+        self.listener = socket.create_server(("127.0.0.1", 0))
+        self.listener.settimeout(WAIT)
+        self.address = f"127.0.0.1:{self.listener.getsockname()[1]}"
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+
+    def __enter__(self):
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc_info):
+        self.thread.join(WAIT)
+        self.listener.close()
+        assert not self.thread.is_alive()
+        if self.error is not None:
+            raise self.error
+
+    def _serve(self):
+        try:
+            connection, _ = self.listener.accept()
+            with connection:
+                connection.settimeout(WAIT)
+                if self.on_connect:
+                    connection.sendall(self.on_connect)
+                decoder, text = json.JSONDecoder(), ""
+                while True:
+                    data = connection.recv(4096)
+                    if not data:
+                        return
+                    text += data.decode()
+                    while True:
+                        text = text.lstrip()
+                        try:
+                            message, end = decoder.raw_decode(text)
+                        except ValueError:
+                            break
+                        text = text[end:]
+                        answer = self.answer(len(self.messages))
+                        self.messages.append(message)
+                        if answer is None:
+                            return
+                        connection.sendall(answer)
+        except (OSError, ValueError) as exc:
+            self.error = exc
+
+
+# ---- stored results: a delivery result written by hand ----------------------------------------------------------
+
+def hand_result(path, changes=None, scene_changes=None, attrs_changes=None):
+    """A golf result of two cases of one model, as impactlab writes it, with ``changes`` applied (variable ->
+    values, or (values, attrs)); the base scene's air and the carry's aerodynamic attributes may be changed too."""
+    from impactlab.physics.aerodynamics import model_fingerprint
+
+    back = np.array([3725.0, 3729.0])
+    side = np.array([-829.0, 414.8])
+    values = {"ball_speed": (np.array([55.36, 55.46]), "m/s"),
+              "vertical_launch_angle": (np.array([10.55, 10.56]), "degree"),
+              "horizontal_launch_angle": (np.array([-2.21, 2.605]), "degree"),
+              "spin_rate": (np.hypot(back, side), "rpm"),
+              "spin_axis": (np.degrees(np.arctan2(side, back)), "degree"),
+              "back_spin": (back, "rpm"), "side_spin": (side, "rpm"),
+              "carry_distance": (np.array([164.1, 166.0]), "m")}
+    data = {}
+    for name, (column, unit) in values.items():
+        attrs = {"units": unit}
+        if name == "carry_distance":
+            attrs.update(aerodynamic_model="measured_fit", aerodynamic_fingerprint=model_fingerprint("measured_fit"))
+        data[name] = [np.asarray(column, float), attrs]
+    for name, change in (changes or {}).items():
+        if isinstance(change, tuple):
+            data[name][0] = np.asarray(change[0], float)
+            data[name][1].update(change[1])
+        else:
+            data[name][0] = np.asarray(change, float)
+    scene = {"speed": 40.2336, "attack_angle": math.radians(-4), "dynamic_loft": math.radians(14),
+             "path": math.radians(1), "face_angle": 0.0, "handedness": 1.0, "ball_mass": 0.04593,
+             "ball_radius": 0.021335, **(scene_changes or {})}
+    dataset = xr.Dataset({name: (("model", "face_angle"), column[None, :], attrs)
+                          for name, (column, attrs) in data.items()},
+                         coords={"model": ["rigid_coulomb"],
+                                 "face_angle": ("face_angle", [-3.0, 3.0],
+                                                {"units": "deg", "study_path": "delivery.face_angle"})},
+                         attrs={"impactlab_version": __version__, "impactlab_format": 1, "study_name": "hand",
+                                "base_scene_si": json.dumps(scene), "models": json.dumps(
+                                    [{"id": "rigid_coulomb", "name": "rigid_coulomb", "options": {}}]),
+                                **(attrs_changes or {})})
+    write_results(dataset, path)
+    return path
+
+
+@pytest.fixture
+def result_file(tmp_path):
+    return hand_result(tmp_path / "hand.h5")
+
+
+def test_the_hand_result_is_sound_and_exports(result_file, tmp_path, capsys):
+    # the oracle of the tests below: unaltered, both paths take the file
+    assert main(["export", str(result_file), "-o", str(tmp_path / "shots.json")]) == 0
+    shots = json.loads((tmp_path / "shots.json").read_text())
+    assert [shot["BallData"]["Speed"] for shot in shots] == [round(55.36 / 0.44704, 2), round(55.46 / 0.44704, 2)]
+    assert main(["plot", str(result_file), "--trajectories", "-o", str(tmp_path / "t.png")]) == 0
+    assert_clean(capsys.readouterr(), 0, 0)
+
+
+# ---- 1 and 2 through the GSPro link: a deep reply, escape sequences in a Message ----------------------------------
+
+def test_a_gspro_reply_nested_30000_deep_is_refused_not_crashed(result_file, capsys):
+    deep = b'{"Code":200,"Message":"ok","Player":' + b"[" * 30_000 + b"]" * 30_000 + b"}"
+    assert len(deep) < 64 * 1024  # under the reply size limit: the depth bound is what refuses it
+    with LocalGSPro(lambda i: deep) as server:
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 3)
+    assert f"nests more than {MAX_NESTING} levels deep" in captured.err
+
+
+def test_a_servers_escape_sequences_never_reach_the_terminal(result_file, capsys):
+    hostile = json.dumps({"Code": 501, "Message": HOSTILE}).encode()
+    with LocalGSPro(lambda i: hostile) as server:
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 3)
+    # said, escaped: the user sees what the server sent
+    assert "\\x1b[2J" in captured.err and "\\x07" in captured.err and "\\r\\n" in captured.err
+    assert len(captured.err.strip().splitlines()) == 1
+
+
+def test_a_notices_player_names_are_escaped_too(result_file, capsys):
+    notice = json.dumps({"Code": 201, "Message": "Player", "Player": {"Club": HOSTILE}}).encode()
+    with LocalGSPro(lambda i: notice + OK) as server:
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    assert_clean(capsys.readouterr(), status, 0)
+
+
+# ---- 4. replies paired with their shots; notices counted -----------------------------------------------------------
+
+def test_a_stray_200_on_connect_is_set_aside_and_said(result_file, capsys):
+    with LocalGSPro(lambda i: OK, on_connect=b'{"Code":200}') as server:
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    assert len(server.messages) == 2
+    # whichever 200 came first, one reply more than shots came, and it is said, not counted as an answer
+    assert "answers no shot sent, so it is set aside" in captured.err
+    assert "every one accepted" not in captured.err
+    assert "1 more reply(ies) answered no shot" in captured.err
+
+
+def test_a_second_200_after_each_shot_is_never_the_next_shots_answer(result_file, capsys):
+    from impactlab.io.gspro_connect import send_shots
+    from impactlab.io.interchange import gspro_shots
+    from impactlab.io.results import open_results
+
+    shots = gspro_shots(open_results(result_file))
+    lines = []
+    with LocalGSPro(lambda i: OK + b'{"Code":200}') as server:
+        replies = send_shots(shots, *server.address.split(":")[:1], int(server.address.split(":")[1]),
+                             timeout=WAIT, progress=lines.append)
+    # each shot is sent after its own answer came (the server saw both), the extra 200s set aside, one per shot
+    assert len(server.messages) == 2 and len(replies) == 2
+    assert len(replies.set_aside) == 2
+    assert "before shot 2 of 2" in replies.set_aside[0] and "after the last shot" in replies.set_aside[1]
+    assert sum("set aside" in line for line in lines) == 2
+
+
+def test_a_flood_of_notices_is_counted_not_printed_line_by_line(result_file, capsys):
+    flood = PLAYER * 5_000
+    with LocalGSPro(lambda i: flood + OK) as server:
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    assert len(server.messages) == 2
+    lines = captured.err.strip().splitlines()
+    assert len(lines) <= 4, lines
+    assert "10,000 notice(s) of its own" in captured.err and "10,000 x Code 201" in captured.err
+
+
+# ---- 3. stored results are inputs: plot --trajectories and export check what they read ---------------------------
+
+ALTERED = {
+    "ball speed of 7e5 m/s": ({"ball_speed": [7e5, 55.46]}, {},
+                              "ball_speed at model rigid_coulomb, face_angle -3.0: 1.56586e+06 mph; expected a "
+                              "positive ball speed up to 300 mph"),
+    "95 deg launch": ({"vertical_launch_angle": [95.0, 10.56]}, {}, "vertical_launch_angle at model rigid_coulomb, "
+                                                                    "face_angle -3.0: 95 degree"),
+    "rad on values in degrees": ({"vertical_launch_angle": ([10.55, 10.56], {"units": "rad"})}, {},
+                                 "604.47 degree (10.55 rad as its units attribute states)"),
+    "rad on a spin axis in degrees": ({"spin_axis": ([-1.5, 0.5], {"units": "rad"})}, {},
+                                      "spin_axis at model rigid_coulomb, face_angle -3.0: -85.9437 deg, where its "
+                                      "back and side spin tilt the axis -12.5"),
+    "a units attribute of another quantity": ({"ball_speed": ([55.36, 55.46], {"units": "kg"})}, {},
+                                              "ball_speed: its units attribute kg is not a unit of its quantity"),
+    "air temperature 5000 K": ({}, {"air_temperature": 5000.0}, "the stored air, temperature: expected an air "
+                                                                "temperature between -90 and 60 degC"),
+    "a retired aerodynamic model": ({"carry_distance": ([164.1, 166.0], {"aerodynamic_model":
+                                                                          "measured_fit_late_crisis"})}, {},
+                                    "'measured_fit_late_crisis' was retired on 2026-11-24"),
+    "an unknown aerodynamic model": ({"carry_distance": ([164.1, 166.0], {"aerodynamic_model": "x\x1b[2J"})}, {},
+                                     "is not an aerodynamic model of this impactlab"),
+}
+
+
+@pytest.mark.parametrize("command", ["plot", "export"])
+@pytest.mark.parametrize("case", list(ALTERED))
+def test_an_altered_result_is_refused_with_the_reason(tmp_path, capsys, command, case):
+    changes, scene, words = ALTERED[case]
+    path = hand_result(tmp_path / "altered.h5", changes, scene)
+    argv = (["plot", str(path), "--trajectories", "-o", str(tmp_path / "t.png")] if command == "plot" else
+            ["export", str(path), "-o", str(tmp_path / "shots.json")])
+    status = main(argv)
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert words in captured.err, captured.err
+    assert not (tmp_path / "t.png").exists() and not (tmp_path / "shots.json").exists()
+
+
+def test_a_refitted_models_fingerprint_is_said(tmp_path, capsys):
+    path = hand_result(tmp_path / "old.h5", {"carry_distance": ([164.1, 166.0],
+                                                                {"aerodynamic_fingerprint": "000000000000"})})
+    status = main(["export", str(path), "-o", str(tmp_path / "shots.json")])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    assert "fingerprint 000000000000" in captured.err and "refitted" in captured.err
+
+
+def test_a_figure_that_would_be_empty_is_said_not_drawn(tmp_path, capsys):
+    path = hand_result(tmp_path / "nan.h5", {"spin_axis": [np.nan, np.nan]})
+    status = main(["plot", str(path), "--trajectories", "-o", str(tmp_path / "t.png")])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert "spin_axis NaN in every case" in captured.err and "would be empty" in captured.err
+    assert not (tmp_path / "t.png").exists()
