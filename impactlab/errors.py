@@ -54,7 +54,9 @@ class FieldError(ImpactLabError, ValueError):
     def __init__(self, path: str, expected: str, given: object = None, choices: Iterable[str] | None = None,
                  file: str | None = None, line: int | None = None):
         self.path = path
-        self.expected = expected
+        # an expectation worded by its field (units.unit_missing: an air pressure's example in hPa, a modulus' in
+        # MPa) is worded again when the path is known
+        self.expected = expected.for_path(path) if hasattr(expected, "for_path") else expected
         self.given = given
         self.choices = tuple(choices) if choices is not None else None
         self.file = file

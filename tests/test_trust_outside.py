@@ -8,6 +8,7 @@ local TCP server on a thread; its timing is driven by events and by what it read
 
 import json
 import math
+import re
 import socket
 import threading
 
@@ -293,7 +294,7 @@ ALTERED = {
                                       "spin_axis at model rigid_coulomb, face_angle -3.0: -85.9437 deg, where its "
                                       "back and side spin tilt the axis -12.5"),
     "a units attribute of another quantity": ({"ball_speed": ([55.36, 55.46], {"units": "kg"})}, {},
-                                              "ball_speed: its units attribute kg is not a unit of its quantity"),
+                                              "ball_speed.units: expected a speed"),
     "air temperature 5000 K": ({}, {"air_temperature": 5000.0}, "the stored air, temperature: expected an air "
                                                                 "temperature between -90 and 60 degC"),
     "a retired aerodynamic model": ({"carry_distance": ([164.1, 166.0], {"aerodynamic_model":
@@ -334,3 +335,116 @@ def test_a_figure_that_would_be_empty_is_said_not_drawn(tmp_path, capsys):
     assert_clean(captured, status, 2)
     assert "spin_axis NaN in every case" in captured.err and "would be empty" in captured.err
     assert not (tmp_path / "t.png").exists()
+
+
+# ---- 2. foreign text from files: a column header, a club name, a file name ---------------------------------------
+
+def hostile_export(folder):
+    """A shot table whose file name, a column header and a club name carry escape sequences and a bell."""
+    path = folder / "ev\x1b[2Jil\x07.csv"
+    path.write_text("Club,Ball Speed,Launch Angle,Spin Rate,Spin Axis,\x1b[2JEvil\x07 \u202eheader\n"
+                    ",[mph],[deg],[rpm],[deg],[]\n"
+                    "Driver\x1b[31m\x07,160,12,2600,1,1\nDriver,161,12,2700,1,1\n")
+    return path
+
+
+@pytest.mark.parametrize("command", ["shots", "fly"])
+def test_escape_sequences_in_a_files_names_never_reach_the_terminal(tmp_path, capsys, command):
+    status = main([command, str(hostile_export(tmp_path))])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    text = captured.out + captured.err
+    assert "ev\\x1b[2Jil\\x07.csv" in text  # the file name, escaped: the user still sees what it is
+    assert "Driver\\x1b[31m\\x07" in text  # the club name
+    if command == "shots":
+        assert "\\x1b[2JEvil\\x07 \\u202eheader" in text  # the unused column's header
+
+
+def test_a_refusal_quoting_a_files_text_is_escaped(tmp_path, capsys):
+    path = tmp_path / "bad\x1b[2J.yaml"
+    path.write_text("name: t\x07\nball: {preset: \"urethane\x1b[31m\"}\n")
+    status = main(["run", str(path), "--plan"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert "bad\\x1b[2J.yaml" in captured.err
+
+
+# ---- 5. options that change nothing are said; spec sheets within golf's ranges; examples in the usual unit ---------
+
+SHEET = ("name: my driver\nnames: [My Driver]\nloft: 10.5 deg\nlie: 58 deg\nmass: 203 g\n"
+         "moi: {up: 5200 g cm^2, toe: 2900 g cm^2, target: 4000 g cm^2}\ncg: {toe: 0 mm, high: 2 mm, depth: 38 mm}\n")
+TABLE = ("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Ball Speed [mph]\n"
+         "Driver,110,2,13,163\n8 Iron,80,-4,30,105\n")
+
+
+@pytest.mark.parametrize("command", ["shots", "validate", "fit"])
+def test_a_club_sheet_matching_no_row_is_refused_by_name(tmp_path, capsys, command):
+    sheet, table = tmp_path / "mine.yaml", tmp_path / "s.csv"
+    sheet.write_text(SHEET)
+    table.write_text(TABLE)
+    argv = {"shots": ["shots", str(table)], "validate": ["validate", "--dataset", str(table), "--model",
+                                                         "rigid_coulomb"],
+            "fit": ["fit", str(table), "--model", "rigid_coulomb"]}[command]
+    status = main([*argv, "--club", str(sheet)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert (f"--club {sheet} (it answers to 'My Driver'): matches no row of" in captured.err
+            and "would change nothing" in captured.err)
+    assert re.search(r"its rows name '8[ _]iron', 'driver'", captured.err, flags=re.IGNORECASE)
+    # the same sheet naming the table's club is taken (the check does not refuse a sheet that is used)
+    sheet.write_text(SHEET.replace("[My Driver]", "[My Driver, Driver]"))
+    if command == "shots":
+        assert main([*argv, "--club", str(sheet)]) == 0
+        capsys.readouterr()
+
+
+@pytest.mark.parametrize("old, new, words", [
+    # kg m^2 written where g cm^2 was meant: 10^7 times a driver's moment
+    ("g cm^2", "kg m^2", "club.moi.toe: expected a moment of inertia between 50.75 and 64318.5 g cm^2 for this 203 "
+                         "g head"),
+    ("g cm^2", "mg mm^2", "club.moi.toe: expected a moment of inertia between"),
+    ("mass: 203 g", "mass: 203 kg", "club.mass: expected a club-head mass between 50 and 1000 g"),
+    ("depth: 38 mm", "depth: 38 cm", "club.cg.depth: expected a centre of mass inside the head"),
+])
+def test_a_spec_sheets_values_beyond_any_golf_head_are_refused_with_the_range(tmp_path, capsys, old, new, words):
+    sheet, table = tmp_path / "mine.yaml", tmp_path / "s.csv"
+    sheet.write_text(SHEET.replace(old, new).replace("[My Driver]", "[Driver]"))
+    table.write_text(TABLE)
+    status = main(["shots", str(table), "--club", str(sheet)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert words in captured.err and f"{sheet}:" in captured.err
+
+
+def test_the_moment_range_is_the_heads_mass_at_5_to_178_mm():
+    from impactlab.scene.catalogue import CLUB_PRESETS
+    from impactlab.study.club_specs import check_golf_ranges
+
+    # hand-computed: 0.203 kg x (0.005 m)^2 = 5.075e-6 kg m^2 = 50.75 g cm^2; x (0.178 m)^2 = 6.432e-3 = 64318 g cm^2
+    assert 0.203 * 0.005 ** 2 * 1e7 == pytest.approx(50.75)
+    for head in CLUB_PRESETS.values():  # every catalogue club is a golf head and passes
+        check_golf_ranges(head)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["fly", "--ball-speed", "160 mph", "--launch-angle", "12 deg", "--spin-rate", "2500 rpm", "--pressure", "1013"],
+     "e.g. '1013 hPa'"),
+])
+def test_a_bare_air_pressures_example_is_in_hpa(capsys, argv, words):
+    assert main(argv) == 2
+    assert words in capsys.readouterr().err
+
+
+def test_a_studys_bare_air_pressure_is_shown_in_hpa_and_a_modulus_in_mpa(tmp_path, capsys):
+    study = tmp_path / "p.yaml"
+    study.write_text("name: t\nball: {preset: urethane_tour}\nclub: {preset: driver}\ncontact: {friction: 0.4}\n"
+                     "delivery: {club_speed: 100 mph, path: 0 deg, face_angle: 0 deg, attack_angle: 0 deg, "
+                     "dynamic_loft: 12 deg}\nconditions: {pressure: 1013}\nmodels: [rigid_coulomb]\n"
+                     "outputs: [ball_speed, carry_distance]\n")
+    assert main(["run", str(study), "--plan"]) == 2
+    err = capsys.readouterr().err
+    assert "conditions.pressure: expected an air pressure with its unit, e.g. 1013 hPa or 101300 Pa" in err
+    assert "MPa" not in err
+    study.write_text(study.read_text().replace("conditions: {pressure: 1013}", "conditions: {altitude: 1500}"))
+    assert main(["run", str(study), "--plan"]) == 2
+    assert "conditions.altitude: expected an altitude with its unit, e.g. 1500 m" in capsys.readouterr().err

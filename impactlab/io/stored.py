@@ -70,8 +70,7 @@ def launch_in_vocabulary_units(dataset: xr.Dataset, path: str | os.PathLike, nam
         try:
             factor = output_unit_factor(name, units)
         except FieldError as exc:
-            raise _refuse(path, f"{name}: its units attribute {shown(units)!s} is not a unit of its quantity "
-                                f"({exc.expected})") from None
+            raise _refuse(path, f"its units attribute is not a unit of the output's quantity: {exc}") from None
         out[name] = dataset[name] * factor
     return out
 
