@@ -448,3 +448,77 @@ def test_a_studys_bare_air_pressure_is_shown_in_hpa_and_a_modulus_in_mpa(tmp_pat
     study.write_text(study.read_text().replace("conditions: {pressure: 1013}", "conditions: {altitude: 1500}"))
     assert main(["run", str(study), "--plan"]) == 2
     assert "conditions.altitude: expected an altitude with its unit, e.g. 1500 m" in capsys.readouterr().err
+
+
+# ---- 4. never replace a file the user did not name as output of this kind; one size limit -------------------------
+
+RAW_EXPORT = ("Club,Ball Speed,Launch Angle,Spin Rate,Spin Axis\n,[mph],[deg],[rpm],[deg]\n"
+              "Driver,160,12,2600,1\nDriver,150,13,2800,-2\n")
+
+
+@pytest.mark.parametrize("command", ["shots", "fly", "validate"])
+def test_csv_aimed_at_a_raw_export_is_refused_unless_forced(tmp_path, capsys, command):
+    session, other = tmp_path / "today.csv", tmp_path / "yesterday.csv"
+    session.write_text(RAW_EXPORT)
+    other.write_text(RAW_EXPORT.replace("160", "161"))  # the user's other raw export, the only copy
+    table = tmp_path / "t.csv"
+    table.write_text(TABLE)
+    argv = {"shots": ["shots", str(session)], "fly": ["fly", str(session)],
+            "validate": ["validate", "--dataset", str(table), "--model", "rigid_coulomb"]}[command]
+    status = main([*argv, "--csv", str(other)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert "exists and is not a table impactlab wrote" in captured.err and "--force" in captured.err
+    assert other.read_text() == RAW_EXPORT.replace("160", "161")  # untouched
+    # a new file, then impactlab's own previous output, are written without --force; --force replaces the export
+    fresh = tmp_path / "out.csv"
+    assert main([*argv, "--csv", str(fresh)]) == 0
+    assert main([*argv, "--csv", str(fresh)]) == 0
+    assert main([*argv, "--csv", str(other), "--force"]) == 0
+    assert other.read_text() == fresh.read_text()
+    capsys.readouterr()
+
+
+def test_impactlabs_own_tables_carry_the_marker_and_exports_do_not(tmp_path):
+    from impactlab.io.safe_output import written_by_impactlab
+
+    path = tmp_path / "x.csv"
+    for header, own in (("line,label,club,ball_speed [m/s],flags", True),
+                        ("table,shot,club,handedness,model,ball_speed measured [m/s]", True),
+                        ("line,club,carry_distance [m],flagged", True), ("shot,carry_distance [m]", True),
+                        ("Club,Ball Speed,Launch Angle", False),  # a vendor's export
+                        ("club,ball_speed [mph]", False),  # a hand-written table in the vocabulary's names
+                        ("line,label,Ball Speed [mph],flags", False)):
+        path.write_text(header + "\n")
+        assert written_by_impactlab(path) is own, header
+
+
+def test_an_input_beyond_the_one_size_limit_is_refused_before_it_is_read(tmp_path, capsys):
+    from impactlab.foreign import MAX_INPUT_BYTES
+
+    path = tmp_path / "huge.csv"
+    with open(path, "wb") as stream:  # a sparse file: its size is what is checked, before a byte is read
+        stream.write(b"Club,Ball Speed\n")
+        stream.truncate(MAX_INPUT_BYTES + 1)
+    for argv in (["shots", str(path)], ["fly", str(path)], ["run", str(path.with_suffix(".yaml"))]):
+        if argv[0] == "run":
+            path.rename(path.with_suffix(".yaml"))
+        status = main(argv)
+        captured = capsys.readouterr()
+        assert_clean(captured, status, 2)
+        assert f"{MAX_INPUT_BYTES + 1:,} bytes (64 MiB) is too large" in captured.err
+        assert "at most 67,108,864 bytes, 64 MiB" in captured.err
+
+
+def test_a_file_of_repeated_rows_never_prints_a_line_per_row(tmp_path, capsys, monkeypatch):
+    from impactlab.cli import fly_command
+
+    monkeypatch.setattr(fly_command, "MAX_PRINTED_ROWS", 10)
+    path = tmp_path / "copies.csv"
+    path.write_text("Club,Ball Speed,Launch Angle,Spin Rate,Spin Axis\n,[mph],[deg],[rpm],[deg]\n"
+                    + "Driver,160,12,2600,1\n" * 60)
+    assert main(["fly", str(path)]) == 0
+    out = capsys.readouterr().out
+    rows = [line for line in out.splitlines() if re.match(r"^\| \d+ \| Driver", line)]
+    assert len(rows) == 10 and "50 shot(s) not shown (--csv FILE writes every one)" in out
+    assert "59 of 60 shot(s) repeat an earlier shot's launch exactly" in out

@@ -100,6 +100,7 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
 
 
+FORCE_HELP = "--csv: replace an existing file that is not a table impactlab wrote (refused by default)"
 CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
@@ -191,6 +192,7 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--include-flagged", action="store_true",
                           help="shot tables: compare estimated and clamped values too (left out by default)")
     validate.add_argument("--club", action="append", help=CLUB_HELP)
+    validate.add_argument("--force", action="store_true", help=FORCE_HELP)
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
@@ -202,6 +204,7 @@ def build_parser() -> argparse.ArgumentParser:
     shots.add_argument("--include-flagged", action="store_true",
                        help="count estimated and clamped values as usable (left out of fits by default)")
     shots.add_argument("--club", action="append", help=CLUB_HELP)
+    shots.add_argument("--force", action="store_true", help=FORCE_HELP)
     shots.set_defaults(handler=_cmd_shots)
 
     add_fly_parser(commands)

@@ -22,7 +22,8 @@ from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.cli.club_options import refuse_unmatched, unmatched
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import JSON_SUFFIXES, TABLE_SUFFIXES, check_output, write_atomically
+from impactlab.io.safe_output import (JSON_SUFFIXES, TABLE_SUFFIXES, check_output, refuse_replacing_foreign,
+                                      write_atomically)
 from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
@@ -60,6 +61,7 @@ def _cmd_validate(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
                      formats=TABLE_SUFFIXES)
+        refuse_replacing_foreign(args.csv, "--csv file", args.force)
     over: list[str] = []
     specs = [read_club_spec(path) for path in args.club or ()]
     matched: set[str] = set()  # the --club sheets some row of a table validated names
@@ -187,6 +189,7 @@ def _cmd_shots(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
                      formats=TABLE_SUFFIXES)
+        refuse_replacing_foreign(args.csv, "--csv file", args.force)
 
     session = read_session(args.file, args.vendor)
     specs = [read_club_spec(path) for path in args.club or ()]

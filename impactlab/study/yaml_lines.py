@@ -9,11 +9,12 @@ from typing import Any
 import yaml
 
 from impactlab.errors import ResourceLimitError, StudyError
-from impactlab.foreign import MAX_NESTING, nesting_message, shown
+from impactlab.foreign import MAX_INPUT_BYTES, MAX_NESTING, nesting_message, shown
 from impactlab.study.limits import max_yaml_nodes
 
-#: a study or table larger than this is not a hand-written text file
-MAX_TEXT_BYTES = 16 * 2**20
+#: the one size limit of an input file (impactlab.foreign.MAX_INPUT_BYTES, 64 MiB), refused by its size before a byte
+#: is read
+MAX_TEXT_BYTES = MAX_INPUT_BYTES
 _BOMS = {b"\xff\xfe\x00\x00": "UTF-32", b"\x00\x00\xfe\xff": "UTF-32", b"\xff\xfe": "UTF-16",
          b"\xfe\xff": "UTF-16"}
 
@@ -35,7 +36,9 @@ def checked_bytes(path: FilePath, what: str, limit: int, missing: str = "", fold
     if not stat.S_ISREG(info.st_mode):
         raise StudyError(f"{path}: is not a regular file (a device or pipe); give a {what}")
     if info.st_size > limit:
-        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a {what} (at most {limit:,})")
+        raise StudyError(f"{shown(path)}: {info.st_size:,} bytes ({info.st_size / 2**20:.0f} MiB) is too large for a "
+                         f"{what} (at most {limit:,} bytes, {limit / 2**20:.0f} MiB, impactlab's one limit on input "
+                         "files; split the file)")
     return path.read_bytes()
 
 
