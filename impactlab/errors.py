@@ -11,8 +11,6 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterable
 
-from impactlab.foreign import shown
-
 
 class ImpactLabError(Exception):
     """Base class of every user-facing impactlab error.
@@ -129,3 +127,57 @@ def closest(word: str, choices: Iterable[str]) -> str | None:
     """The choice closest to ``word``, or None when nothing is close."""
     match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
     return match[0] if match else None
+
+
+# ---- foreign text shown escaped (issue 35; impactlab.foreign gathers the rules for outside input) ----
+
+def _escape_table(keep: str = "") -> dict[int, str]:
+    table: dict[int, str] = {}
+    for code in list(range(0x00, 0x20)) + [0x7F] + list(range(0x80, 0xA0)):
+        char = chr(code)
+        if char in keep:
+            continue
+        table[code] = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}.get(char, f"\\x{code:02x}")
+    # characters that reorder or hide the text around them (bidirectional overrides and isolates, the
+    # zero-width marks): a file name can read differently from what it is (Trojan Source, CVE-2021-42574)
+    for code in (0x061C, 0x200B, 0x200E, 0x200F, *range(0x202A, 0x202F), *range(0x2066, 0x206A), 0xFEFF):
+        table[code] = f"\\u{code:04x}"
+    table[0x2028] = "\\u2028"
+    table[0x2029] = "\\u2029"
+    return table
+
+
+_SHOWN = _escape_table()
+_TERMINAL = _escape_table(keep="\n\t")
+
+
+def shown(text: object) -> str:
+    """``text`` (or ``str(text)``) fit to put in a message: every control character escaped.
+
+    Parameters
+    ----------
+    text : object
+        Text from outside impactlab (a reply, a header, a club or file name).
+
+    Returns
+    -------
+    str
+        The text with C0/C1 control characters written as ``\\x1b``, ``\\r``, ``\\n``, ``\\t``, ``\\x07``..., and the
+        Unicode direction and zero-width marks as ``\\u202e``...; printable text is unchanged.
+
+    Examples
+    --------
+    >>> shown("Hi\\x1b[2J\\r\\nimpactlab: error: forged\\x07")
+    'Hi\\\\x1b[2J\\\\r\\\\nimpactlab: error: forged\\\\x07'
+    """
+    return str(text).translate(_SHOWN)
+
+
+def terminal_safe(text: str) -> str:
+    """:func:`shown` with line breaks and tabs kept: for whole messages and tables impactlab writes."""
+    return text.translate(_TERMINAL)
+
+
+def has_control(text: str) -> bool:
+    """Whether ``text`` holds a character :func:`shown` escapes."""
+    return text.translate(_SHOWN) != text

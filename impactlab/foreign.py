@@ -8,8 +8,9 @@ Two rules for every reader and every message (issue 35):
   beyond :data:`MAX_NESTING` levels with the words the YAML readers use (``nests more than 100 levels deep``).
 - **Foreign text is shown escaped.** A server's ``Message``, a column header, a club name or a file name may
   hold escape sequences (clear screen, colours), a bell, or CR LF that forge lines of impactlab's own output.
-  :func:`shown` writes every control character as its escape (``\\x1b``, ``\\r``, ``\\n``, ``\\x07``) and the
-  Unicode direction overrides as ``\\u202e``; :class:`TerminalGuard` applies the same table, line breaks and
+  :func:`shown` (defined in :mod:`impactlab.errors`, whose messages use it) writes every control character as
+  its escape (``\\x1b``, ``\\r``, ``\\n``, ``\\x07``) and the Unicode direction overrides as ``\\u202e``;
+  :class:`TerminalGuard` applies the same table, line breaks and
   tabs excepted, to everything the command line writes, so a path that forgot :func:`shown` still reaches the
   terminal without a raw control character.
 """
@@ -20,6 +21,8 @@ import json
 import re
 from typing import Any
 
+from impactlab.errors import _TERMINAL, StudyError, has_control, shown, terminal_safe
+
 #: the deepest nesting of any structured input (YAML, JSON files, JSON replies): a study nests about 6 levels,
 #: a GSPro message 2, a Uneekor report 4
 MAX_NESTING = 100
@@ -28,58 +31,6 @@ MAX_NESTING = 100
 #: more than any session a launch monitor exports; refused by its size before a byte of it is read
 MAX_INPUT_BYTES = 64 * 2**20
 MAX_INPUT_WORDS = "64 MiB"
-
-
-def _escape_table(keep: str = "") -> dict[int, str]:
-    table: dict[int, str] = {}
-    for code in list(range(0x00, 0x20)) + [0x7F] + list(range(0x80, 0xA0)):
-        char = chr(code)
-        if char in keep:
-            continue
-        table[code] = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}.get(char, f"\\x{code:02x}")
-    # characters that reorder or hide the text around them (bidirectional overrides and isolates, the
-    # zero-width marks): a file name can read differently from what it is (Trojan Source, CVE-2021-42574)
-    for code in (0x061C, 0x200B, 0x200E, 0x200F, *range(0x202A, 0x202F), *range(0x2066, 0x206A), 0xFEFF):
-        table[code] = f"\\u{code:04x}"
-    table[0x2028] = "\\u2028"
-    table[0x2029] = "\\u2029"
-    return table
-
-
-_SHOWN = _escape_table()
-_TERMINAL = _escape_table(keep="\n\t")
-
-
-def shown(text: object) -> str:
-    """``text`` (or ``str(text)``) fit to put in a message: every control character escaped.
-
-    Parameters
-    ----------
-    text : object
-        Text from outside impactlab (a reply, a header, a club or file name).
-
-    Returns
-    -------
-    str
-        The text with C0/C1 control characters written as ``\\x1b``, ``\\r``, ``\\n``, ``\\t``, ``\\x07``..., and the
-        Unicode direction and zero-width marks as ``\\u202e``...; printable text is unchanged.
-
-    Examples
-    --------
-    >>> shown("Hi\\x1b[2J\\r\\nimpactlab: error: forged\\x07")
-    'Hi\\\\x1b[2J\\\\r\\\\nimpactlab: error: forged\\\\x07'
-    """
-    return str(text).translate(_SHOWN)
-
-
-def terminal_safe(text: str) -> str:
-    """:func:`shown` with line breaks and tabs kept: for whole messages and tables impactlab writes."""
-    return text.translate(_TERMINAL)
-
-
-def has_control(text: str) -> bool:
-    """Whether ``text`` holds a character :func:`shown` escapes."""
-    return text.translate(_SHOWN) != text
 
 
 class TerminalGuard:
@@ -98,10 +49,12 @@ class TerminalGuard:
         return self._stream
 
     def write(self, text: str) -> int:
+        """Write ``text`` with its control characters escaped (line breaks, tabs and a kept CR aside)."""
         self._stream.write(text.translate(self._table) if isinstance(text, str) else text)
         return len(text)
 
     def writelines(self, lines) -> None:
+        """Write each of ``lines`` as :meth:`write` does."""
         for line in lines:
             self.write(line)
 
@@ -168,8 +121,6 @@ def check_json_nesting(text: str, where: str, limit: int = MAX_NESTING) -> None:
     StudyError
         ``FILE:LINE: the JSON nests more than 100 levels deep ...`` (exit status 2).
     """
-    from impactlab.errors import StudyError  # errors shows its texts through this module: imported here
-
     line = json_depth_exceeded(text, limit)
     if line:
         raise StudyError(f"{shown(where)}:{line}: {nesting_message('JSON', limit)}")
@@ -177,8 +128,6 @@ def check_json_nesting(text: str, where: str, limit: int = MAX_NESTING) -> None:
 
 def loads_json(text: str, where: str) -> Any:
     """``json.loads`` of foreign text, its nesting bounded first; a StudyError (not a traceback) for bad JSON."""
-    from impactlab.errors import StudyError
-
     check_json_nesting(text, where)
     try:
         return json.loads(text)

@@ -134,6 +134,7 @@ class UnitMissing(str):
     dimension: str
 
     def for_path(self, path: str | None) -> str:
+        """The same expectation worded for the field ``path`` (its usual unit in the example)."""
         return unit_missing(self.value, self.dimension, path)
 
 

@@ -522,3 +522,24 @@ def test_a_file_of_repeated_rows_never_prints_a_line_per_row(tmp_path, capsys, m
     rows = [line for line in out.splitlines() if re.match(r"^\| \d+ \| Driver", line)]
     assert len(rows) == 10 and "50 shot(s) not shown (--csv FILE writes every one)" in out
     assert "59 of 60 shot(s) repeat an earlier shot's launch exactly" in out
+
+
+def test_a_result_attribute_nested_deep_is_refused_as_altered(tmp_path, capsys):
+    path = hand_result(tmp_path / "deep.h5", attrs_changes={"plots": "[" * 50_000 + "]" * 50_000})
+    for argv in (["show", str(path)], ["export", str(path), "-o", str(tmp_path / "s.json")]):
+        status = main(argv)
+        captured = capsys.readouterr()
+        assert_clean(captured, status, 2)
+        assert "its 'plots' attribute is not the JSON list" in captured.err
+        assert f"nesting more than {MAX_NESTING} levels deep" in captured.err
+
+
+def test_a_study_name_with_control_characters_names_no_file(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "n.yaml").write_text(
+        'name: "t\\nimpactlab: error: forged\\e[2J"\nball: {preset: urethane_tour}\nface: {rigid: true}\n'
+        "contact: {friction: 0.4, restitution: 0.8}\nimpact: {speed: 80 mph, angle: 15 deg}\n"
+        "models: [rigid_coulomb]\noutputs: [ball_speed]\n")
+    status = main(["run", "n.yaml", "-q"])
+    assert_clean(capsys.readouterr(), status, 2)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["n.yaml"]

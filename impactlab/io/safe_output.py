@@ -18,7 +18,7 @@ import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
-from impactlab.errors import EnvironmentFault, StudyError
+from impactlab.errors import EnvironmentFault, StudyError, has_control, shown
 
 
 #: how the temporary file of a write ends (a folder cleaned up after a killed run looks for it)
@@ -104,9 +104,9 @@ def check_outdir(folder: str | os.PathLike) -> Path:
 
 def name_in(folder: Path, name: str, suffix: str) -> Path:
     """FOLDER/NAME+SUFFIX for a name taken from a study, refused if it would leave FOLDER or hide itself."""
-    if not name or name in (".", "..") or name.startswith(".") or "/" in name or "\\" in name or "\0" in name:
-        raise StudyError(f"study name {name!r} cannot name a file in {folder} (it has a slash, starts with a dot "
-                         "or is empty); rename the study, or give -o")
+    if not name or name in (".", "..") or name.startswith(".") or "/" in name or "\\" in name or has_control(name):
+        raise StudyError(f"study name {name!r} cannot name a file in {folder} (it has a slash or a control "
+                         "character, starts with a dot or is empty); rename the study, or give -o")
     return folder / f"{name}{suffix}"
 
 
@@ -213,8 +213,6 @@ def refuse_replacing_foreign(path: str | os.PathLike, what: str, force: bool = F
     ``--csv OUT`` replaced whatever OUT was, another raw launch-monitor export included: only a previous output of
     impactlab's (:func:`written_by_impactlab`) is replaced without ``--force``.
     """
-    from impactlab.foreign import shown
-
     path = Path(path)
     if force or not path.is_file() or written_by_impactlab(path):
         return

@@ -26,6 +26,7 @@ import xarray as xr
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.foreign import shown
+from impactlab.scene.air import Conditions
 from impactlab.physics.aerodynamics import MODELS, model_fingerprint, retired_reason
 from impactlab.scene.flight import IMPOSSIBLE_LAUNCH
 from impactlab.vocabulary import FLIGHT_OUTPUTS, output_unit_factor
@@ -159,8 +160,6 @@ def _check_spins(values: dict, path) -> None:
 
 def _check_air(dataset: xr.Dataset, path) -> None:
     """The stored base scene's air is an air ``fly`` accepts (its ranges: impactlab.scene.air.Conditions)."""
-    from impactlab.scene.air import Conditions
-
     try:
         scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
     except (TypeError, ValueError):
