@@ -100,8 +100,8 @@ class LocalGSPro:
 
     It splits the client's stream with ``json.JSONDecoder.raw_decode`` (not the code under test's splitter)."""
 
-    def __init__(self, answer, on_connect=b""):
-        self.answer, self.on_connect = answer, on_connect
+    def __init__(self, answer, on_connect=b"", close_after=None):
+        self.answer, self.on_connect, self.close_after = answer, on_connect, close_after
         self.messages = []
         self.error = None
         self.listener = socket.create_server(("127.0.0.1", 0))
@@ -145,6 +145,8 @@ class LocalGSPro:
                         if answer is None:
                             return
                         connection.sendall(answer)
+                        if self.close_after is not None and len(self.messages) == self.close_after:
+                            return  # closed: the client's wait for late replies ends here, not on a clock
         except (OSError, ValueError) as exc:
             self.error = exc
 
@@ -239,28 +241,41 @@ def test_a_notices_player_names_are_escaped_too(result_file, capsys):
 
 # ---- 4. replies paired with their shots; notices counted -----------------------------------------------------------
 
-def test_a_stray_200_on_connect_is_set_aside_and_said(result_file, capsys):
-    with LocalGSPro(lambda i: OK, on_connect=b'{"Code":200}') as server:
-        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
-    captured = capsys.readouterr()
-    assert_clean(captured, status, 0)
-    assert len(server.messages) == 2
-    # whichever 200 came first, one reply more than shots came, and it is said, not counted as an answer
-    assert "answers no shot sent, so it is set aside" in captured.err
-    assert "every one accepted" not in captured.err
-    assert "1 more reply(ies) answered no shot" in captured.err
-
-
-def test_a_second_200_after_each_shot_is_never_the_next_shots_answer(result_file, capsys):
+def _send(result_file, server, lines, settle=WAIT):
     from impactlab.io.gspro_connect import send_shots
     from impactlab.io.interchange import gspro_shots
     from impactlab.io.results import open_results
 
-    shots = gspro_shots(open_results(result_file))
+    host, port = server.address.split(":")
+    return send_shots(gspro_shots(open_results(result_file)), host, int(port), timeout=WAIT, progress=lines.append,
+                      settle=settle)
+
+
+def test_a_stray_200_on_connect_is_set_aside_and_said(result_file):
     lines = []
+    # the server closes after its second answer, so the client's wait for a late reply ends without a clock
+    with LocalGSPro(lambda i: OK, on_connect=b'{"Code":200}', close_after=2) as server:
+        replies = _send(result_file, server, lines)
+    assert len(server.messages) == 2 and len(replies) == 2
+    # whether the stray came before shot 1 went out or was read as its answer (then shot 1's own 200 is the one
+    # left over), one reply more than shots came, and it is set aside and said, never counted as an answer
+    assert len(replies.set_aside) == 1
+    assert sum("answers no shot sent, so it is set aside" in line for line in lines) == 1
+
+
+def test_the_closing_line_says_replies_that_answered_no_shot(result_file, capsys):
     with LocalGSPro(lambda i: OK + b'{"Code":200}') as server:
-        replies = send_shots(shots, *server.address.split(":")[:1], int(server.address.split(":")[1]),
-                             timeout=WAIT, progress=lines.append)
+        status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    assert "every one accepted" not in captured.err
+    assert "2 more reply(ies) answered no shot (set aside, said above)" in captured.err
+
+
+def test_a_second_200_after_each_shot_is_never_the_next_shots_answer(result_file):
+    lines = []
+    with LocalGSPro(lambda i: OK + b'{"Code":200}', close_after=2) as server:
+        replies = _send(result_file, server, lines)
     # each shot is sent after its own answer came (the server saw both), the extra 200s set aside, one per shot
     assert len(server.messages) == 2 and len(replies) == 2
     assert len(replies.set_aside) == 2
@@ -543,3 +558,32 @@ def test_a_study_name_with_control_characters_names_no_file(tmp_path, capsys, mo
     status = main(["run", "n.yaml", "-q"])
     assert_clean(capsys.readouterr(), status, 2)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["n.yaml"]
+
+
+def test_show_prints_a_results_names_escaped(tmp_path, capsys):
+    path = hand_result(tmp_path / "names.h5", attrs_changes={"models": json.dumps(
+        [{"id": "rigid_coulomb", "name": "rigid\r\nimpactlab: error: forged\x1b[2J", "options": {}}])})
+    status = main(["show", str(path)])
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 0)
+    assert "rigid\\r\\nimpactlab: error: forged\\x1b[2J" in captured.out
+
+
+@pytest.mark.parametrize("reader", ["club spec", "shot table YAML", "study JSON"])
+def test_every_structured_reader_bounds_its_nesting(tmp_path, capsys, reader):
+    deep = "[" * 20_000 + "]" * 20_000
+    table = tmp_path / "t.csv"
+    table.write_text(TABLE)
+    if reader == "club spec":
+        (tmp_path / "c.yaml").write_text(f"name: x\nloft: {deep}\n")
+        argv = ["shots", str(table), "--club", str(tmp_path / "c.yaml")]
+    elif reader == "shot table YAML":
+        (tmp_path / "rows.yaml").write_text(f"rows: {deep}\n")
+        argv = ["validate", "--dataset", str(tmp_path / "rows.yaml")]
+    else:  # JSON is YAML: a study written as JSON goes through the YAML reader's bound
+        (tmp_path / "s.json").write_text('{"name": ' + deep + "}")
+        argv = ["run", str(tmp_path / "s.json"), "--plan"]
+    status = main(argv)
+    captured = capsys.readouterr()
+    assert_clean(captured, status, 2)
+    assert f"nests more than {MAX_NESTING} levels deep" in captured.err

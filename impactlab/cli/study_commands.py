@@ -20,7 +20,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.data.convergence import LADDER, work_precision
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, StudyError, shown
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
@@ -209,25 +209,26 @@ def _cmd_models(args) -> int:
 
 def _cmd_show(args) -> int:
     dataset = open_results(args.file)
-    print(f"{args.file}: study {dataset.attrs.get('study_name', '?')!r}, "
+    print(f"{shown(args.file)}: study {dataset.attrs.get('study_name', '?')!r}, "
           f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
     for dim, size in dataset.sizes.items():
         coord = dataset[dim]
         if dim == "model" or coord.dtype.kind not in "iuf":  # names (models, labels, outputs, parameters)
-            print(f"  {dim:<10} {size:>5}  {', '.join(map(str, coord.values))}")
+            print(f"  {shown(dim):<10} {size:>5}  {', '.join(shown(value) for value in coord.values)}")
         else:
             print(f"  {dim:<10} {size:>5}  {float(coord.min()):g} .. {float(coord.max()):g} "
                   f"{coord.attrs.get('units', '')}")
     print("variables:")
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
-        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(map(str, variable.dims))}){missing}")
+        print(f"  {shown(name):<24} [{shown(variable.attrs.get('units', ''))}] "
+              f"({', '.join(shown(dim) for dim in variable.dims)}){shown(missing)}")
     if dataset.attrs.get("study_type") == "sensitivity":
         print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
               f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
     print("models:")
-    for model in json.loads(dataset.attrs.get("models", "[]")):
-        print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")
+    for model in json.loads(dataset.attrs.get("models", "[]")):  # a file's text: shown escaped
+        print(f"  {shown(model['id'])}: {shown(model['name'])} {json.dumps(model['options'])}")
     _print_validity_notes(dataset)
     return 0
 

@@ -422,7 +422,7 @@ class Replies(list):
 
 
 def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0,
-               progress: Callable[[str], None] | None = None) -> Replies:
+               progress: Callable[[str], None] | None = None, settle: float = SETTLE_SECONDS) -> Replies:
     """Send GSPro Open Connect messages one at a time, each after the previous one is accepted.
 
     Parameters
@@ -437,6 +437,9 @@ def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0
     progress : callable, optional
         Called with a line of text about the first unsolicited message of each kind GSPro sends (201-203), each
         reply set aside (it came when no shot awaited an answer), and at the end the counts of repeats.
+    settle : float
+        Seconds to wait after the last shot's answer for a reply that answers no shot (at most ``timeout``; the
+        wait ends early when GSPro closes the connection).
 
     Returns
     -------
@@ -455,7 +458,7 @@ def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0
             for index, shot in enumerate(shots):
                 accepted.append(client.send(wire_message(shot), _name(shot, index, len(shots))))
             client.note_read()
-            client.settle("after the last shot's answer", wait=min(SETTLE_SECONDS, timeout))
+            client.settle("after the last shot's answer", wait=min(settle, timeout))
         except GSProConnectError as exc:
             raise GSProConnectError(f"{exc}; {len(accepted)} of {len(shots)} shot(s) were accepted before it"
                                     ) from None
