@@ -8,8 +8,9 @@ quantities (issue 35), each refusal naming the file, the variable, the first cas
 - every ``units`` attribute names a unit of its quantity (:func:`impactlab.vocabulary.output_unit_factor`);
 - launch values lie in the ranges no golf shot leaves (:data:`impactlab.scene.flight.IMPOSSIBLE_LAUNCH`: ball
   speed up to 300 mph, spin up to 20,000 rpm; launch angles within +-90 deg, as ``fly`` refuses them);
-- the spins agree with one another where the file holds them all: the spin rate is the magnitude of back and side
-  spin, and the spin axis their angle (a ``rad`` attribute put on an axis stored in degrees breaks this);
+- the spins agree with one another where the file holds them all: the spin axis is the angle of back and side
+  spin (a ``rad`` attribute put on an axis stored in degrees breaks this), and the spin rate's magnitude is never
+  below theirs;
 - the stored air is an air :class:`impactlab.scene.air.Conditions` accepts (an air temperature of 5000 K is not);
 - the aerodynamic model a flight output names is one of this impactlab (a retired one refused with why and what to
   use), and a fingerprint that differs from today's model is said.
@@ -41,7 +42,9 @@ STORED_RANGES = {
                                                      "leaves backwards)"),
     "horizontal_launch_angle": (-90.0, 90.0, "degree", "a launch direction between -90 and 90 deg of the target "
                                                        "line"),
-    "spin_rate": (0.0, 20000.0, "rpm", IMPOSSIBLE_LAUNCH["spin_rate"][1]),
+    # a result's spin rate is signed (negative: topspin, impactlab.physics.contact), its magnitude fly's limit
+    "spin_rate": (-20000.0, 20000.0, "rpm", "a spin rate within +-20,000 rpm (negative: topspin; golf balls leave a "
+                                            "club with at most about 12,000 rpm)"),
     "back_spin": (-20000.0, 20000.0, "rpm", "a back spin within +-20,000 rpm (golf balls leave a club with at most "
                                             "about 12,000 rpm)"),
     "side_spin": (-20000.0, 20000.0, "rpm", "a side spin within +-20,000 rpm"),
@@ -129,26 +132,27 @@ def check_stored(dataset: xr.Dataset, path: str | os.PathLike, aerodynamics_need
 
 
 def _check_spins(values: dict, path) -> None:
-    """Spin rate, back spin, side spin and spin axis of one case are one spin: their magnitudes and angle agree."""
+    """Spin rate, back spin, side spin and spin axis of one case are one spin (impactlab.physics.contact): the axis
+    is atan2(side, back) exactly, and the spin rate's magnitude is the whole spin's, never below the part across
+    the flight, hypot(back, side) (the rest is rifle spin along the flight, which a wedge's launch carries)."""
     if not all(name in values for name in ("back_spin", "side_spin")):
         return
     back, side = xr.broadcast(values["back_spin"], values["side_spin"])
+    across = np.hypot(back, side)
     if "spin_rate" in values:
-        rate, magnitude = xr.broadcast(values["spin_rate"], np.hypot(back, side))
-        rate_v, magnitude_v = np.asarray(rate.values, float), np.asarray(magnitude.values, float)
+        rate, magnitude = xr.broadcast(values["spin_rate"], across)
+        rate_v, magnitude_v = np.abs(np.asarray(rate.values, float)), np.asarray(magnitude.values, float)
         bad = np.isfinite(rate_v) & np.isfinite(magnitude_v) & (
-            np.abs(rate_v - magnitude_v) > SPIN_TOLERANCE * np.maximum(magnitude_v, 100.0))
+            rate_v < magnitude_v - SPIN_TOLERANCE * np.maximum(magnitude_v, 100.0))
         if bad.any():
             index = np.flatnonzero(bad.ravel())[0]
-            raise _refuse(path, f"spin_rate at {_first_case(rate, bad)}: {rate_v.ravel()[index]:.6g} rpm, where its "
-                                f"back and side spin make {magnitude_v.ravel()[index]:.6g} rpm (the spin rate is "
-                                "their magnitude); a units attribute or a value was changed")
+            raise _refuse(path, f"spin_rate at {_first_case(rate, bad)}: {rate_v.ravel()[index]:.6g} rpm, below the "
+                                f"{magnitude_v.ravel()[index]:.6g} rpm its back and side spin make (the spin rate is "
+                                "the magnitude of the whole spin); a units attribute or a value was changed")
     if "spin_axis" in values:
-        axis, angle = xr.broadcast(values["spin_axis"], np.degrees(np.arctan2(side, back)))
+        axis, angle, size = xr.broadcast(values["spin_axis"], np.degrees(np.arctan2(side, back)), across)
         axis_v, angle_v = np.asarray(axis.values, float), np.asarray(angle.values, float)
-        spinning = np.isfinite(axis_v) & np.isfinite(angle_v) & (np.hypot(*np.broadcast_arrays(
-            np.asarray(xr.broadcast(back, axis)[0].values, float), np.asarray(xr.broadcast(side, axis)[0].values,
-                                                                               float))) > 1.0)
+        spinning = np.isfinite(axis_v) & np.isfinite(angle_v) & (np.asarray(size.values, float) > 1.0)
         difference = np.abs((axis_v - angle_v + 180.0) % 360.0 - 180.0)
         bad = spinning & (difference > AXIS_TOLERANCE_DEG)
         if bad.any():
