@@ -71,6 +71,7 @@ def test_a_json_shot_file_nested_100000_deep_is_refused_by_fly(tmp_path, capsys)
     assert f"nests more than {MAX_NESTING} levels deep" in captured.err
 
 
+@pytest.mark.slow  # validate imports scipy.optimize first
 def test_a_deep_json_dataset_is_refused_by_validate_not_crashed(tmp_path, capsys):
     path = tmp_path / "deep.json"
     path.write_text("[" * 100_000 + "]" * 100_000)
@@ -200,6 +201,7 @@ def result_file(tmp_path):
     return hand_result(tmp_path / "hand.h5")
 
 
+@pytest.mark.slow  # draws the figure and flies the paths (the first flight compiles the integrator)
 def test_the_hand_result_is_sound_and_exports(result_file, tmp_path, capsys):
     # the oracle of the tests below: unaltered, both paths take the file
     assert main(["export", str(result_file), "-o", str(tmp_path / "shots.json")]) == 0
