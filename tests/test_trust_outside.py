@@ -589,3 +589,23 @@ def test_every_structured_reader_bounds_its_nesting(tmp_path, capsys, reader):
     captured = capsys.readouterr()
     assert_clean(captured, status, 2)
     assert f"nests more than {MAX_NESTING} levels deep" in captured.err
+
+
+def test_argparses_own_messages_show_arguments_escaped(capsys):
+    # a file name from a shell glob lands in argparse's 'unrecognized arguments' as given
+    with pytest.raises(SystemExit) as stopped:
+        main(["shots", "a.csv", "b\x1b[2J\r\nimpactlab: error: forged.csv"])
+    captured = capsys.readouterr()
+    assert stopped.value.code == 2
+    assert raw_controls(captured.err) == [] and "b\\x1b[2J\\r\\nimpactlab: error: forged.csv" in captured.err
+
+
+def test_the_terminal_guard_escapes_what_a_command_prints_and_keeps_a_progress_bars_return():
+    import io
+
+    from impactlab.foreign import TerminalGuard
+
+    out, err = io.StringIO(), io.StringIO()
+    TerminalGuard(out).write("a\x1b[2J\tb\r\n")
+    TerminalGuard(err, keep_cr=True).write("50%|####\r")
+    assert out.getvalue() == "a\\x1b[2J\tb\\r\n" and err.getvalue() == "50%|####\r"

@@ -24,6 +24,7 @@ from impactlab.cli.fly_command import add_parser as add_fly_parser
 from impactlab.cli.study_commands import (_cmd_convergence, _cmd_export, _cmd_models, _cmd_paper, _cmd_plot,
                                           _cmd_run, _cmd_show)
 from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
+from impactlab.errors import shown
 from impactlab.run.faults import run_command
 from impactlab.study import limits
 from impactlab.study.limits import parse_size
@@ -97,7 +98,8 @@ class _Parser(argparse.ArgumentParser):
             message += (f" (a value starting with '-' reads as an option: join it with '=', {option.group(1)}=-VALUE, "
                         "or write a space before its unit, '-5 deg')")
         command = self.prog.split(" ", 1)[1] + ": " if " " in self.prog else ""
-        self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
+        # argparse quotes arguments as given (a file name from a glob may hold escape sequences): shown escaped
+        self.exit(2, f"impactlab: error: {command}{shown(message)}; see `{self.prog} --help`\n")
 
 
 FORCE_HELP = "--csv: replace an existing file that is not a table impactlab wrote (refused by default)"
