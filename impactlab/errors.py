@@ -52,7 +52,9 @@ class FieldError(ImpactLabError, ValueError):
     def __init__(self, path: str, expected: str, given: object = None, choices: Iterable[str] | None = None,
                  file: str | None = None, line: int | None = None):
         self.path = path
-        self.expected = expected
+        # an expectation worded by its field (units.unit_missing: an air pressure's example in hPa, a modulus' in
+        # MPa) is worded again when the path is known
+        self.expected = expected.for_path(path) if hasattr(expected, "for_path") else expected
         self.given = given
         self.choices = tuple(choices) if choices is not None else None
         self.file = file
@@ -61,12 +63,12 @@ class FieldError(ImpactLabError, ValueError):
 
     def _message(self) -> str:
         where = ""
-        if self.file:
-            where = f"{self.file}:{self.line}: " if self.line else f"{self.file}: "
-        given = self.given if isinstance(self.given, str) else repr(self.given)
-        text = f"{where}{self.path or '<top>'}: expected {self.expected}, got {given}"
+        if self.file:  # a file's name, a key and a value read from it: foreign text, shown escaped
+            where = f"{shown(self.file)}:{self.line}: " if self.line else f"{shown(self.file)}: "
+        given = shown(self.given) if isinstance(self.given, str) else shown(repr(self.given))
+        text = f"{where}{shown(self.path or '<top>')}: expected {self.expected}, got {given}"
         if self.choices:
-            text += f". Choices: {', '.join(self.choices)}"
+            text += f". Choices: {', '.join(shown(choice) for choice in self.choices)}"
             close = closest(str(self.given), self.choices)
             if close:
                 text += f" (did you mean {close!r}?)"
@@ -125,3 +127,57 @@ def closest(word: str, choices: Iterable[str]) -> str | None:
     """The choice closest to ``word``, or None when nothing is close."""
     match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
     return match[0] if match else None
+
+
+# ---- foreign text shown escaped (issue 35; impactlab.foreign gathers the rules for outside input) ----
+
+def _escape_table(keep: str = "") -> dict[int, str]:
+    table: dict[int, str] = {}
+    for code in list(range(0x00, 0x20)) + [0x7F] + list(range(0x80, 0xA0)):
+        char = chr(code)
+        if char in keep:
+            continue
+        table[code] = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}.get(char, f"\\x{code:02x}")
+    # characters that reorder or hide the text around them (bidirectional overrides and isolates, the
+    # zero-width marks): a file name can read differently from what it is (Trojan Source, CVE-2021-42574)
+    for code in (0x061C, 0x200B, 0x200E, 0x200F, *range(0x202A, 0x202F), *range(0x2066, 0x206A), 0xFEFF):
+        table[code] = f"\\u{code:04x}"
+    table[0x2028] = "\\u2028"
+    table[0x2029] = "\\u2029"
+    return table
+
+
+_SHOWN = _escape_table()
+_TERMINAL = _escape_table(keep="\n\t")
+
+
+def shown(text: object) -> str:
+    """``text`` (or ``str(text)``) fit to put in a message: every control character escaped.
+
+    Parameters
+    ----------
+    text : object
+        Text from outside impactlab (a reply, a header, a club or file name).
+
+    Returns
+    -------
+    str
+        The text with C0/C1 control characters written as ``\\x1b``, ``\\r``, ``\\n``, ``\\t``, ``\\x07``..., and the
+        Unicode direction and zero-width marks as ``\\u202e``...; printable text is unchanged.
+
+    Examples
+    --------
+    >>> shown("Hi\\x1b[2J\\r\\nimpactlab: error: forged\\x07")
+    'Hi\\\\x1b[2J\\\\r\\\\nimpactlab: error: forged\\\\x07'
+    """
+    return str(text).translate(_SHOWN)
+
+
+def terminal_safe(text: str) -> str:
+    """:func:`shown` with line breaks and tabs kept: for whole messages and tables impactlab writes."""
+    return text.translate(_TERMINAL)
+
+
+def has_control(text: str) -> bool:
+    """Whether ``text`` holds a character :func:`shown` escapes."""
+    return text.translate(_SHOWN) != text

@@ -92,9 +92,26 @@ def unit_affine(unit: str, si_unit: str) -> tuple[float, float]:
     return one - zero, zero
 
 
-def _example(value: float, dimension: str) -> str:
-    """``200`` as a mass -> "200 g or 0.2 kg": the number in the usual unit, and what that is in SI."""
+#: fields whose usual unit is not their dimension's (by the last part of the field path): an air pressure is quoted in
+#: hPa, a modulus in MPa ('1013 MPa' was the example for a bare air pressure of 1013); an altitude in m, not mm
+FIELD_EXAMPLES: dict[str, tuple[str, float, str]] = {
+    "pressure": ("hPa", 100.0, "an air pressure"),
+    "air_pressure": ("hPa", 100.0, "an air pressure"),
+    "altitude": ("m", 1.0, "an altitude"),
+}
+
+
+def _field_key(path: str | None) -> str:
+    """The last part of a field path without its index: ``conditions.pressure[2]`` -> ``pressure``."""
+    return (path or "").rsplit(".", 1)[-1].split("[", 1)[0].lstrip("-").replace("-", "_")
+
+
+def _example(value: float, dimension: str, path: str | None = None) -> str:
+    """``200`` as a mass -> "200 g or 0.2 kg": the number in the usual unit of the field (``path``) or of its
+    dimension, and what that is in SI."""
     unit, size = EXAMPLE_UNITS[dimension]
+    if _field_key(path) in FIELD_EXAMPLES and dimension == _FIELD_DIMENSIONS[_field_key(path)]:
+        unit, size, _ = FIELD_EXAMPLES[_field_key(path)]
     si_unit = DIMENSIONS[dimension][0]
     if dimension == "temperature":  # 0 degC is 273.15 K by definition (SI Brochure, 9th ed., 2.3.1)
         return f"{value:g} {unit} or {value + 273.15:.6g} {si_unit}"
@@ -105,13 +122,35 @@ def _example(value: float, dimension: str) -> str:
     return f"{value:g} {unit} or {value * size:.6g} {si_unit}"
 
 
-def unit_missing(value: float, dimension: str) -> str:
-    """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed)."""
+_FIELD_DIMENSIONS = {"pressure": "pressure", "air_pressure": "pressure", "altitude": "length"}
+
+
+class UnitMissing(str):
+    """:func:`unit_missing`'s text, which knows how to word itself again once the field's path is known: a value is
+    converted before the study loader attaches the path (``conditions.pressure``) that chooses the example's unit
+    (:class:`impactlab.errors.FieldError` calls :meth:`for_path`)."""
+
+    value: float
+    dimension: str
+
+    def for_path(self, path: str | None) -> str:
+        """The same expectation worded for the field ``path`` (its usual unit in the example)."""
+        return unit_missing(self.value, self.dimension, path)
+
+
+def unit_missing(value: float, dimension: str, path: str | None = None) -> str:
+    """The expectation a bare number for a dimensional quantity is refused with (its unit is not guessed); the
+    example is in the usual unit of the field ``path`` names (:data:`FIELD_EXAMPLES`), else of its dimension."""
     words = DIMENSIONS[dimension][2]
+    key = _field_key(path)
+    if key in FIELD_EXAMPLES and dimension == _FIELD_DIMENSIONS[key]:
+        words = FIELD_EXAMPLES[key][2]
     note = f"; {UNIT_NOTES[dimension]}" if dimension in UNIT_NOTES else ""
     value = float(value) if math.isfinite(float(value)) else 1.0  # 'e.g. nan mph' shows nothing worth writing
-    return (f"{words} with its unit, e.g. {_example(value, dimension)} (a bare number's unit is never "
-            f"guessed{note})")
+    text = UnitMissing(f"{words} with its unit, e.g. {_example(value, dimension, path)} (a bare number's unit is "
+                       f"never guessed{note})")
+    text.value, text.dimension = value, dimension
+    return text
 
 
 @functools.cache
@@ -178,7 +217,7 @@ def _bare_zero(value, dimension: str, path: str) -> float:
     number = float(value)
     if number == 0.0 and dimension not in ZERO_DEPENDS_ON_UNIT:
         return 0.0
-    raise FieldError(path, unit_missing(number, dimension), value)
+    raise FieldError(path, unit_missing(number, dimension, path), value)
 
 
 def _is_pint(value) -> bool:

@@ -10,7 +10,7 @@ run (an annotation may name a type of a module that imports this one).
 The layers, lowest first (docs/architecture.md draws them); a module may import from its own layer and any
 layer below it, never from one above:
 
-0. foundation: ``errors``, ``units``, ``vocabulary``, ``validators``, ``_version``
+0. foundation: ``errors``, ``units``, ``vocabulary``, ``validators``, ``_version``, ``foreign``
 1. ``physics`` (plain array functions in SI)
 2. ``peers`` (other codes run as references: LAMMPS)
 3. ``scene`` (ball, face, club head, strike, delivery, scene)
@@ -34,7 +34,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "impactlab"
 
 #: layer of each first name under impactlab (a module or a subpackage), lowest first
 LAYERS: dict[str, int] = {
-    "errors": 0, "units": 0, "vocabulary": 0, "validators": 0, "_version": 0,
+    "errors": 0, "units": 0, "vocabulary": 0, "validators": 0, "_version": 0, "foreign": 0,
     "physics": 1,
     "peers": 2,
     "scene": 3,

@@ -24,6 +24,7 @@ from impactlab.cli.fly_command import add_parser as add_fly_parser
 from impactlab.cli.study_commands import (_cmd_convergence, _cmd_export, _cmd_models, _cmd_paper, _cmd_plot,
                                           _cmd_run, _cmd_show)
 from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
+from impactlab.errors import shown
 from impactlab.run.faults import run_command
 from impactlab.study import limits
 from impactlab.study.limits import parse_size
@@ -97,9 +98,11 @@ class _Parser(argparse.ArgumentParser):
             message += (f" (a value starting with '-' reads as an option: join it with '=', {option.group(1)}=-VALUE, "
                         "or write a space before its unit, '-5 deg')")
         command = self.prog.split(" ", 1)[1] + ": " if " " in self.prog else ""
-        self.exit(2, f"impactlab: error: {command}{message}; see `{self.prog} --help`\n")
+        # argparse quotes arguments as given (a file name from a glob may hold escape sequences): shown escaped
+        self.exit(2, f"impactlab: error: {command}{shown(message)}; see `{self.prog} --help`\n")
 
 
+FORCE_HELP = "--csv: replace an existing file that is not a table impactlab wrote (refused by default)"
 CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
@@ -191,6 +194,7 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--include-flagged", action="store_true",
                           help="shot tables: compare estimated and clamped values too (left out by default)")
     validate.add_argument("--club", action="append", help=CLUB_HELP)
+    validate.add_argument("--force", action="store_true", help=FORCE_HELP)
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
@@ -202,6 +206,7 @@ def build_parser() -> argparse.ArgumentParser:
     shots.add_argument("--include-flagged", action="store_true",
                        help="count estimated and clamped values as usable (left out of fits by default)")
     shots.add_argument("--club", action="append", help=CLUB_HELP)
+    shots.add_argument("--force", action="store_true", help=FORCE_HELP)
     shots.set_defaults(handler=_cmd_shots)
 
     add_fly_parser(commands)

@@ -20,8 +20,10 @@ from impactlab.data.validation import errors as dataset_errors
 from impactlab.data.validation.benchmark_report import describe as describe_benchmark
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
+from impactlab.cli.club_options import refuse_unmatched, unmatched
 from impactlab.errors import FieldError, StudyError
-from impactlab.io.safe_output import JSON_SUFFIXES, TABLE_SUFFIXES, check_output, write_atomically
+from impactlab.io.safe_output import (JSON_SUFFIXES, TABLE_SUFFIXES, check_output, refuse_replacing_foreign,
+                                      write_atomically)
 from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
 from impactlab.study.club_specs import read_club_spec
@@ -59,7 +61,12 @@ def _cmd_validate(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
                      formats=TABLE_SUFFIXES)
+        refuse_replacing_foreign(args.csv, "--csv file", args.force)
     over: list[str] = []
+    specs = [read_club_spec(path) for path in args.club or ()]
+    matched: set[str] = set()  # the --club sheets some row of a table validated names
+    tables: list[str] = []
+    seen: list[str] = []  # the clubs the tables' rows name
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
     drawn = False  # a shot table validated, whose figure --plot draws
 
@@ -67,9 +74,13 @@ def _cmd_validate(args) -> int:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
             print_observations(args.model or SHOT_MODELS)
             continue
-        with user_clubs(read_club_spec(path) for path in args.club or ()):
+        with user_clubs(specs) as clubs:
             table = shot_table(name, args.include_flagged)
             if table is not None:
+                matched.update(set(args.club or ()) - set(unmatched(args.club or (), specs, clubs.added,
+                                                                     table.clubs)))
+                tables.append(name)
+                seen.extend(table.clubs)
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 drawn = True
                 continue
@@ -106,6 +117,12 @@ def _cmd_validate(args) -> int:
     if args.model and not drawn:
         raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
                          "validated (a dataset's table shows every model of its study); leave --model out")
+    unused = [path for path in args.club or () if path not in matched]
+    if unused:  # said after the run: the tables are read one by one (a sheet may name the clubs of any of them)
+        with user_clubs(specs) as clubs:
+            refuse_unmatched(unused, [specs[list(args.club).index(path)] for path in unused],
+                             [clubs.added[list(args.club).index(path)] for path in unused], seen,
+                             ", ".join(tables) or "any shot table validated")
     if args.plot and not drawn:
         raise StudyError("--plot: no shot table was validated (the figure draws shot tables' rows: give --dataset "
                          "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
@@ -135,9 +152,11 @@ def _cmd_fit(args) -> int:
     if args.by and not args.cross_validate:
         raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
                          "--by out)")
-    with user_clubs(read_club_spec(path) for path in args.club or ()):
+    specs = [read_club_spec(path) for path in args.club or ()]
+    with user_clubs(specs) as clubs:
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
+            refuse_unmatched(args.club or (), specs, clubs.added, table.clubs, args.dataset)
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
                                             ("--include-flagged", args.include_flagged)) if given]
@@ -170,9 +189,12 @@ def _cmd_shots(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
                      formats=TABLE_SUFFIXES)
+        refuse_replacing_foreign(args.csv, "--csv file", args.force)
 
     session = read_session(args.file, args.vendor)
-    with user_clubs(read_club_spec(path) for path in args.club or ()):
+    specs = [read_club_spec(path) for path in args.club or ()]
+    with user_clubs(specs) as clubs:
+        refuse_unmatched(args.club or (), specs, clubs.added, session.text.get("club", ()), args.file)
         print(describe_session(session, args.include_flagged))
     if args.csv:
         write_normalised(session, args.csv)

@@ -28,7 +28,9 @@ import xarray as xr
 from impactlab.data.sessions.reader import read_session
 from impactlab.data.sessions.flight import MONITOR, PREDICTED, fly_session
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
-from impactlab.io.safe_output import TABLE_SUFFIXES, check_output, refuse_overwriting, write_atomically
+from impactlab.foreign import shown
+from impactlab.io.safe_output import (TABLE_SUFFIXES, check_output, refuse_overwriting, refuse_replacing_foreign,
+                                      write_atomically)
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, retired_reason
 from impactlab.scene import flight
 from impactlab.units import DIMENSIONS, MPH, registry
@@ -82,6 +84,8 @@ def add_parser(commands) -> None:
                      help="a session: fly every shot in the standard air, not in the air its export states "
                           "(Garmin's Temperature, Air Pressure, Relative Humidity)")
     fly.add_argument("--csv", help="also write the table (every value in the units its header names)")
+    fly.add_argument("--force", action="store_true",
+                     help="--csv: replace an existing file that is not a table impactlab wrote (refused by default)")
     fly.set_defaults(handler=_cmd_fly)
 
 
@@ -100,6 +104,7 @@ def _cmd_fly(args) -> int:
         check_output(args.csv, what="--csv file", suffix=".csv", formats=TABLE_SUFFIXES)
         if args.file:
             refuse_overwriting(args.csv, args.file, "--csv file")
+        refuse_replacing_foreign(args.csv, "--csv file", args.force)
     given = {option: getattr(args, option) for option in LAUNCH_OPTIONS if getattr(args, option) is not None}
     conditions = {key: getattr(args, option) for option, key in AIR_OPTIONS.items()
                   if getattr(args, option) is not None}
@@ -206,13 +211,23 @@ def describe(result: xr.Dataset, model: str) -> str:
         out[-1] += f"; {a['air_source']}"
     session = "line" in result.coords
     if session:
-        out.insert(0, f"{result.attrs['file']}: {result.attrs['vendor']}, {result.sizes['shot']} shot(s) flown")
+        out.insert(0, f"{shown(result.attrs['file'])}: {shown(result.attrs['vendor'])}, {result.sizes['shot']} shot(s) "
+                      "flown")
     monitor = MONITOR + "carry_distance" in result
     titles = (["line", "club"] if session else ["shot"]) + ["ball mph", "launch deg", "spin rpm", "axis deg"] + [
         title for title, *_ in COLUMNS] + (["monitor carry yd", "model - monitor"] if monitor else [])
     out += ["", "| " + " | ".join(titles) + " |", "|" + "---|" * len(titles)]
-    for index in range(result.sizes["shot"]):
-        cells = ([str(int(result.line[index])), str(result.club.values[index]) or "-"] if session
+    count = result.sizes["shot"]
+    # a terminal table of a few hundred thousand rows is no table (a file of repeated rows printed 134 MB): the
+    # first and last rows are shown, the rest said; --csv writes every one
+    shown_rows = range(count) if count <= MAX_PRINTED_ROWS else [
+        *range(MAX_PRINTED_ROWS // 2), -1, *range(count - MAX_PRINTED_ROWS // 2, count)]
+    for index in shown_rows:
+        if index < 0:
+            out.append(f"| ... {count - 2 * (MAX_PRINTED_ROWS // 2):,} shot(s) not shown (--csv FILE writes every "
+                       "one) |")
+            continue
+        cells = ([str(int(result.line[index])), shown(result.club.values[index]) or "-"] if session
                  else [str(index + 1)])
         cells += [_cell(result.ball_speed[index] / MPH, "{:.1f}"), _cell(result.vertical_launch_angle[index],
                                                                           "{:.1f}"),
@@ -233,21 +248,44 @@ def describe(result: xr.Dataset, model: str) -> str:
             out += ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean "
                         f"{100 * error.mean():+.1f} %, RMS {rms:.1f} % (the monitor's carry is what it exported: "
                         "measured where a radar tracked the flight, its own model indoors or when normalised)"]
+    repeated = _repeated_launches(result)
+    if repeated:
+        out.append(f"{repeated:,} of {count:,} shot(s) repeat an earlier shot's launch exactly (ball speed, launch "
+                   "angle, spin and axis): a file of copied rows?")
     unflown = ~np.isfinite(result.carry_distance.values)
     if unflown.any():
-        names = ([f"line {int(line)}" for line in result.line.values[unflown]] if session
-                 else [f"shot {index + 1}" for index in np.flatnonzero(unflown)])
+        names = ([f"line {int(line)}" for line in result.line.values[unflown][:MAX_LISTED]] if session
+                 else [f"shot {index + 1}" for index in np.flatnonzero(unflown)[:MAX_LISTED]])
+        if unflown.sum() > MAX_LISTED:
+            names.append(f"{int(unflown.sum()) - MAX_LISTED:,} more")
         out.append(f"no carry for {', '.join(names)}: still in the air after the flight's 15 s limit, or a flight "
                    "that could not be integrated (a launch far outside golf's); nothing is given for it")
     downward = np.flatnonzero(np.asarray(result.vertical_launch_angle.values) < 0.0)
     if not session and downward.size:
-        out.append(f"shot {', '.join(str(index + 1) for index in downward)}: launched below the horizontal, from "
+        listed = [str(index + 1) for index in downward[:MAX_LISTED]] + (
+            [f"{downward.size - MAX_LISTED:,} more"] if downward.size > MAX_LISTED else [])
+        out.append(f"shot {', '.join(listed)}: launched below the horizontal, from "
                    "the ground it meets the ground at once (carry 0; the landing angle is the launch's)")
     if session and np.isnan(result.offline_distance.values).any():
         out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
     if session and result.attrs.get("skipped"):
-        out += ["", "not flown: " + result.attrs["skipped"]]
+        out += ["", "not flown: " + shown(result.attrs["skipped"])]
     return "\n".join(out)
+
+
+#: rows of the printed table (more are said by their count: --csv writes every one), and lines named in a note
+MAX_PRINTED_ROWS = 200
+MAX_LISTED = 20
+
+
+def _repeated_launches(result: xr.Dataset) -> int:
+    """How many shots repeat an earlier shot's launch exactly (ball speed, launch angle, spin rate and axis)."""
+    names = [name for name in ("ball_speed", "vertical_launch_angle", "spin_rate", "spin_axis") if name in result]
+    if result.sizes["shot"] < 2 or not names:
+        return 0
+    launch = np.stack([np.asarray(result[name].values, dtype=float) for name in names], axis=1)
+    launch = launch[np.isfinite(launch).all(axis=1)]
+    return int(len(launch) - len(np.unique(launch, axis=0))) if len(launch) else 0
 
 
 
@@ -262,10 +300,13 @@ def table_csv(result: xr.Dataset) -> str:
     coords = [name for name in ("line", "club") if name in result.coords]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(coords + [f"{name} [{result[name].attrs['units']}]" if "units" in result[name].attrs else name
-                              for name in names])
+    # the first columns are impactlab's marker (io.safe_output.TABLE_MARKERS): a session's line and club, or the
+    # launch's number, as the printed table has them
+    first = coords or ["shot"]
+    writer.writerow(first + [f"{name} [{result[name].attrs['units']}]" if "units" in result[name].attrs else name
+                             for name in names])
     for index in range(result.sizes["shot"]):
-        row = [str(result[name].values[index]) for name in coords]
+        row = [str(result[name].values[index]) for name in coords] if coords else [str(index + 1)]
         for name in names:
             value = result[name].values[index]
             row.append(str(bool(value)) if result[name].dtype == bool else

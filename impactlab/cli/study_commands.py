@@ -20,10 +20,11 @@ import numpy as np
 import xarray as xr
 
 from impactlab.data.convergence import LADDER, work_precision
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, StudyError, shown
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
 from impactlab.io.results import open_results, write_results
+from impactlab.io.stored import check_stored
 from impactlab.io.safe_output import (JSON_SUFFIXES, PICTURE_SUFFIXES, REPORT_SUFFIXES, RESULT_SUFFIXES,
                                       check_outdir, check_output, name_in, refuse_clashes)
 from impactlab.model.diagnostics import ValidityWarning, messages
@@ -210,25 +211,26 @@ def _cmd_models(args) -> int:
 
 def _cmd_show(args) -> int:
     dataset = open_results(args.file)
-    print(f"{args.file}: study {dataset.attrs.get('study_name', '?')!r}, "
+    print(f"{shown(args.file)}: study {dataset.attrs.get('study_name', '?')!r}, "
           f"impactlab {dataset.attrs.get('impactlab_version', '?')}, created {dataset.attrs.get('created', '?')}")
     for dim, size in dataset.sizes.items():
         coord = dataset[dim]
         if dim == "model" or coord.dtype.kind not in "iuf":  # names (models, labels, outputs, parameters)
-            print(f"  {dim:<10} {size:>5}  {', '.join(map(str, coord.values))}")
+            print(f"  {shown(dim):<10} {size:>5}  {', '.join(shown(value) for value in coord.values)}")
         else:
             print(f"  {dim:<10} {size:>5}  {float(coord.min()):g} .. {float(coord.max()):g} "
                   f"{coord.attrs.get('units', '')}")
     print("variables:")
     for name, variable in dataset.data_vars.items():
         missing = f"  (NaN for {variable.attrs['missing'].split(':')[0]}...)" if "missing" in variable.attrs else ""
-        print(f"  {name:<24} [{variable.attrs.get('units', '')}] ({', '.join(map(str, variable.dims))}){missing}")
+        print(f"  {shown(name):<24} [{shown(variable.attrs.get('units', ''))}] "
+              f"({', '.join(shown(dim) for dim in variable.dims)}){shown(missing)}")
     if dataset.attrs.get("study_type") == "sensitivity":
         print(f"sensitivity ({dataset.attrs['sampler']}, {dataset.attrs['analyser']}, SALib "
               f"{dataset.attrs['salib_version']}): {dataset.attrs['sensitivity']}")
     print("models:")
-    for model in json.loads(dataset.attrs.get("models", "[]")):
-        print(f"  {model['id']}: {model['name']} {json.dumps(model['options'])}")
+    for model in json.loads(dataset.attrs.get("models", "[]")):  # a file's text: shown escaped
+        print(f"  {shown(model['id'])}: {shown(model['name'])} {json.dumps(model['options'])}")
     _print_validity_notes(dataset)
     return 0
 
@@ -262,6 +264,8 @@ def _cmd_plot(args) -> int:
     if args.trajectories:
         default = Path(args.file).with_name(f"{Path(args.file).stem}_trajectories.png")
         output = _picture(args.output or default, reads=[args.file])
+        for note in check_stored(dataset, args.file, aerodynamics_needed=True):  # a stored result is an input
+            print(f"impactlab: note: {note}", file=sys.stderr)
         print(f"wrote {plot_trajectories(dataset, output)}", file=sys.stderr)
         return 0
     output = _picture(args.output or Path(args.file).with_suffix(".png"), reads=[args.file])
@@ -331,19 +335,32 @@ def _cmd_paper(args) -> int:
     return 0
 
 
+def _checked_result(path) -> xr.Dataset:
+    """A result file to export, its launch values, units, air and aerodynamic model checked (io.stored)."""
+    dataset = open_results(path)
+    for note in check_stored(dataset, path, aerodynamics_needed=False):
+        print(f"impactlab: note: {note}", file=sys.stderr)
+    return dataset
+
+
 def _cmd_export(args) -> int:
     if args.gspro is not None:
         host, port = parse_address(args.gspro)  # a bad address is said before the file is read
-        shots = checked_shots(open_results(args.file), model=args.model, device_id=args.device_id)
+        shots = checked_shots(_checked_result(args.file), model=args.model, device_id=args.device_id)
         say = (lambda text: print(text, file=sys.stderr))
         if not shots:
             say("no shot to send: no case of the result has every ball value (all NaN)")
             return 0
         replies = send_shots(shots, host, port, timeout=args.timeout, progress=say)
-        say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
-            f"(the last: {replies[-1].describe()})")
+        if replies.set_aside:  # a reply that answered no shot: which 200 answers which shot is not certain
+            say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: each was answered with Code 200, and "
+                f"{len(replies.set_aside)} more reply(ies) answered no shot (set aside, said above); if one of them "
+                "was in fact a shot's answer, a shot's own 200 was taken for the next one: check GSPro's shot list")
+        else:
+            say(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro}: every one accepted "
+                f"(the last: {replies[-1].describe()})")
         return 0
     check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
-    count = write_gspro(open_results(args.file), args.output, model=args.model, device_id=args.device_id)
+    count = write_gspro(_checked_result(args.file), args.output, model=args.model, device_id=args.device_id)
     print(f"wrote {count} GSPro Open Connect shots to {args.output}", file=sys.stderr)
     return 0

@@ -59,8 +59,8 @@ def _is_shot_json(path: Path) -> bool:
     (a mapping with ``points:``)."""
     try:
         value, _ = json.JSONDecoder().raw_decode(path.read_text(encoding="utf-8").lstrip("\ufeff \t\r\n"))
-    except (OSError, UnicodeDecodeError, ValueError):
-        return True  # the session reader says what is wrong with it, at its line
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
+        return True  # the session reader says what is wrong with it, at its line (a nesting too deep included)
     return not (isinstance(value, dict) and "points" in value)
 
 

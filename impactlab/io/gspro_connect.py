@@ -15,6 +15,14 @@ client implementations, and gathered in the project's notes on vendors):
   own, not as answers, and are noted; ``501`` / ``5XX`` is a failure. Clients key on ``Code``,
   never on ``Message`` (its text varies).
 
+How replies are paired with shots (issue 35): a reply answers a shot only if it arrives after the shot
+was sent and while the shot waits for its answer. Whatever arrived before a shot is sent (a stray
+``{"Code":200}`` on connect, a second 200 after the previous shot's) is read first, set aside and said,
+never taken as the next shot's answer; so is anything that arrives after the last shot's answer. The
+notices (201-203) are counted: the first of each kind is said, repeats only in the closing count (a server
+sending 201s for 2 s printed 7,194 lines). Every text of the server's is shown escaped
+(:func:`impactlab.foreign.shown`).
+
 Why the standard library: no package on PyPI speaks this protocol (none is named for GSPro in
 PyPI's index), and a client is a socket, ``json`` and a brace counter.
 """
@@ -23,13 +31,16 @@ from __future__ import annotations
 
 import json
 import re
+import select
 import socket
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
 
 import attrs
 
 from impactlab.errors import EnvironmentFault, FieldError
+from impactlab.foreign import MAX_NESTING, json_depth_exceeded, shown
 from impactlab.io.interchange import wire_message
 
 #: GSPro Connect's port (the vendor writes "0921")
@@ -136,18 +147,34 @@ class Reply:
 
     def describe(self) -> str:
         """``Code 501: Bad JSON data``, with the player of a 201."""
-        text = f"Code {self.code}: {self.message or '(no Message)'}"
+        # the server's words are foreign text: escaped (a Message holding ESC [2J cleared the user's screen, and a
+        # CR LF forged a line of impactlab's own output), and cut to a line's length
+        text = f"Code {self.code}: {_cut(shown(self.message)) if self.message else '(no Message)'}"
         player = self.body.get("Player")
         if isinstance(player, dict) and player:
-            text += " (" + ", ".join(f"{key} {value}" for key, value in player.items()) + ")"
+            text += " (" + _cut(", ".join(f"{shown(key)} {shown(value)}" for key, value in player.items())) + ")"
         return text
+
+
+#: the most characters of a server's Message shown (a reply may be 64 KiB long)
+MAX_SHOWN = 200
+
+
+def _cut(text: str) -> str:
+    return text if len(text) <= MAX_SHOWN else f"{text[:MAX_SHOWN]}... ({len(text):,} characters)"
 
 
 def parse_reply(text: bytes) -> Reply:
     """One object split from the stream, read as a reply; NotJsonError if it is not JSON or has no integer Code."""
     try:
-        body = json.loads(text.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError):
+        decoded = text.decode("utf-8")
+    except UnicodeDecodeError:
+        raise NotJsonError(text, "a reply that is not JSON") from None
+    if json_depth_exceeded(decoded):  # json.loads recurses once per level: a reply 30,000 deep was a RecursionError
+        raise NotJsonError(text, f"a reply whose JSON nests more than {MAX_NESTING} levels deep (GSPro's nest 2)")
+    try:
+        body = json.loads(decoded)
+    except ValueError:
         raise NotJsonError(text, "a reply that is not JSON") from None
     code = body.get("Code") if isinstance(body, dict) else None
     if isinstance(code, float) and code.is_integer():
@@ -190,19 +217,25 @@ class OpenConnectClient:
         Seconds to wait for the connection, and for the reply to each shot.
 
     on_notice : callable, optional
-        Called with a line of text for each message GSPro sends of its own accord (201, 202, 203):
-        these are kept in :attr:`notices` and do not answer a shot.
+        Called with a line of text for the first message of each kind GSPro sends of its own accord (201, 202,
+        203), and for each reply set aside (one that answered no shot); repeats are counted in
+        :attr:`notice_counts` and :attr:`set_aside`, said once by :meth:`summary`.
 
     Every failure is a :class:`GSProConnectError` saying what happened: the connection refused or
     not answered, no reply within ``timeout``, the connection closed, a reply that is not JSON, or
     a reply other than 200 (its Code and Message).
     """
 
+    #: the set-aside replies said one by one; beyond, only counted
+    SAID_SET_ASIDE = 5
+
     def __init__(self, host: str, port: int, timeout: float, on_notice: Callable[[str], None] | None = None):
         self.host, self.port, self.timeout = host, port, timeout
         self.on_notice = on_notice
         self.where = f"GSPro Connect at {host}:{port}" if ":" not in host else f"GSPro Connect at [{host}]:{port}"
-        self.notices: list[Reply] = []
+        self.notices: list[Reply] = []  # the first of each kind
+        self.notice_counts: Counter[str] = Counter()  # each kind of notice (its words) -> how many came
+        self.set_aside: list[str] = []  # replies that answered no shot, in words (when they came)
         self._splitter = JsonStreamSplitter()
         self._waiting: list[Reply] = []  # replies read but not yet consumed, in order
         self._socket: socket.socket | None = None
@@ -241,6 +274,9 @@ class OpenConnectClient:
     def send(self, payload: bytes, what: str) -> Reply:
         """Send one message (``what`` names it in errors) and return GSPro's 200 reply to it.
 
+        Whatever GSPro sent before the message goes out is read first and set aside (:meth:`settle`): a reply that
+        came before its shot answers another, or none.
+
         Raises
         ------
         GSProConnectError
@@ -249,6 +285,7 @@ class OpenConnectClient:
         """
         if self._socket is None:
             raise GSProConnectError(f"{self.where}: not connected")
+        self.settle(f"before {what} was sent", wait=0.0)
         try:
             self._socket.settimeout(self.timeout)
             self._socket.sendall(payload)
@@ -262,6 +299,56 @@ class OpenConnectClient:
         if reply.code != ACCEPTED:
             raise GSProConnectError(f"{self.where} did not accept {what}: {reply.describe()}")
         return reply
+
+    def settle(self, when: str, wait: float = 0.0) -> None:
+        """Read what has arrived (waiting up to ``wait`` s for more), noting notices and setting replies aside.
+
+        Called before each shot is sent (``wait`` 0: only what is there) and after the last one's answer (a short
+        wait, so that a second 200 to the last shot is seen too).
+        """
+        if self._socket is None:
+            return
+        self._take_waiting(when)
+        deadline = time.monotonic() + wait
+        for _ in range(64):  # at most 256 KiB here: a server that never stops sending is read by the next wait
+            remaining = max(deadline - time.monotonic(), 0.0)
+            try:
+                ready, _, _ = select.select([self._socket], [], [], remaining)
+            except (OSError, ValueError):
+                return
+            if not ready:
+                return
+            try:
+                data = self._socket.recv(4096)
+            except (BlockingIOError, TimeoutError):
+                return
+            except OSError:
+                return  # the connection went away: the next send says so
+            if not data:
+                return
+            self._feed(data, f"text {when}")
+            self._take_waiting(when)
+
+    def _take_waiting(self, when: str) -> None:
+        for reply in self._waiting:
+            if reply.code in UNSOLICITED:
+                self._note(reply)
+            else:
+                self._set_aside(reply, when)
+        self._waiting.clear()
+
+    def _set_aside(self, reply: Reply, when: str) -> None:
+        self.set_aside.append(f"{reply.describe()} {when}")
+        if self.on_notice is not None and len(self.set_aside) <= self.SAID_SET_ASIDE:
+            self.on_notice(f"{self.where} sent {reply.describe()} {when}: it answers no shot sent, so it is set "
+                           "aside (not taken as the next shot's answer)")
+
+    def _feed(self, data: bytes, what: str) -> None:
+        try:
+            self._waiting.extend(parse_reply(text) for text in self._splitter.feed(data))
+        except NotJsonError as exc:
+            raise GSProConnectError(f"{self.where} answered {what} with {exc} (is {self.host}:{self.port} "
+                                    "GSPro Connect?)") from None
 
     def _next_answer(self, what: str) -> Reply:
         """The next reply that answers a message, unsolicited ones noted on the way, read before the deadline."""
@@ -288,23 +375,33 @@ class OpenConnectClient:
             if not data:
                 partial = " in the middle of a reply" if self._splitter.pending else ""
                 raise GSProConnectError(f"{self.where} closed the connection{partial} before answering {what}")
-            try:
-                self._waiting.extend(parse_reply(text) for text in self._splitter.feed(data))
-            except NotJsonError as exc:
-                raise GSProConnectError(f"{self.where} answered {what} with {exc} (is {self.host}:{self.port} "
-                                        "GSPro Connect?)") from None
+            self._feed(data, what)
 
     def note_read(self) -> None:
-        """Note the unsolicited messages already read (a 201 in the packet of the last 200), without waiting."""
-        for reply in self._waiting:
-            if reply.code in UNSOLICITED:
-                self._note(reply)
-        self._waiting.clear()
+        """Note the unsolicited messages already read (a 201 in the packet of the last 200), without waiting; a reply
+        there answers no shot and is set aside."""
+        self._take_waiting("after the last shot's answer")
 
     def _note(self, reply: Reply) -> None:
-        self.notices.append(reply)
-        if self.on_notice is not None:
-            self.on_notice(f"{self.where} says: {reply.describe()}")
+        words = reply.describe()
+        self.notice_counts[words] += 1
+        if self.notice_counts[words] == 1:  # the first of its kind said; repeats counted (summary)
+            self.notices.append(reply)
+            if self.on_notice is not None:
+                self.on_notice(f"{self.where} says: {words}")
+
+    def summary(self) -> list[str]:
+        """Lines counting what was not said one by one: repeated notices, replies set aside beyond the first few."""
+        lines = []
+        repeated = {words: count for words, count in self.notice_counts.items() if count > 1}
+        if repeated:
+            total = sum(self.notice_counts.values())
+            lines.append(f"{self.where} sent {total:,} notice(s) of its own (each kind said once above): "
+                         + "; ".join(f"{count:,} x {words}" for words, count in repeated.items()))
+        if len(self.set_aside) > self.SAID_SET_ASIDE:
+            lines.append(f"{self.where} sent {len(self.set_aside):,} replies that answered no shot (set aside; the "
+                         f"first {self.SAID_SET_ASIDE} said above)")
+        return lines
 
     def _timeout(self, what: str) -> GSProConnectError:
         partial = " (part of a reply came, not the rest)" if self._splitter.pending else ""
@@ -312,8 +409,20 @@ class OpenConnectClient:
                                  "(raise --timeout if GSPro is busy)")
 
 
+#: seconds to wait, after the last shot's answer, for a second reply to it (one that answers no shot)
+SETTLE_SECONDS = 0.1
+
+
+class Replies(list):
+    """GSPro's 200 reply to each shot, in order, with what else the connection brought: ``set_aside`` (replies that
+    answered no shot, in words) and ``notice_count`` (messages GSPro sent of its own accord)."""
+
+    set_aside: list[str]
+    notice_count: int
+
+
 def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0,
-               progress: Callable[[str], None] | None = None) -> list[Reply]:
+               progress: Callable[[str], None] | None = None, settle: float = SETTLE_SECONDS) -> Replies:
     """Send GSPro Open Connect messages one at a time, each after the previous one is accepted.
 
     Parameters
@@ -326,28 +435,39 @@ def send_shots(shots: Sequence[dict], host: str, port: int, timeout: float = 5.0
     timeout : float
         Seconds to wait for the connection and for each reply.
     progress : callable, optional
-        Called with a line of text about each unsolicited message GSPro sends (201-203).
+        Called with a line of text about the first unsolicited message of each kind GSPro sends (201-203), each
+        reply set aside (it came when no shot awaited an answer), and at the end the counts of repeats.
+    settle : float
+        Seconds to wait after the last shot's answer for a reply that answers no shot (at most ``timeout``; the
+        wait ends early when GSPro closes the connection).
 
     Returns
     -------
-    list of Reply
-        GSPro's 200 reply to each shot, in order.
+    Replies
+        GSPro's 200 reply to each shot, in order; its ``set_aside`` lists the replies that answered no shot.
 
     Raises
     ------
     GSProConnectError
         The first failure, saying which shot it stopped at and how many were accepted before it.
     """
-    accepted: list[Reply] = []
+    accepted = Replies()
     client = OpenConnectClient(host, port, timeout, on_notice=progress)
     with client:  # a failure to connect is said as it is
         try:
             for index, shot in enumerate(shots):
                 accepted.append(client.send(wire_message(shot), _name(shot, index, len(shots))))
             client.note_read()
+            client.settle("after the last shot's answer", wait=min(settle, timeout))
         except GSProConnectError as exc:
             raise GSProConnectError(f"{exc}; {len(accepted)} of {len(shots)} shot(s) were accepted before it"
                                     ) from None
+        finally:
+            if progress is not None:
+                for line in client.summary():
+                    progress(line)
+    accepted.set_aside = list(client.set_aside)
+    accepted.notice_count = sum(client.notice_counts.values())
     return accepted
 
 

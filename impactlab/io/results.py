@@ -10,6 +10,7 @@ from typing import Final
 import xarray as xr
 
 from impactlab.errors import StudyError
+from impactlab.foreign import MAX_NESTING, json_depth_exceeded, shown
 from impactlab.io.safe_output import write_atomically
 from impactlab.vocabulary import TIME_DIM
 from impactlab._version import __version__
@@ -123,7 +124,9 @@ def check_result(dataset: xr.Dataset, path: str | os.PathLike = "<dataset>") -> 
         if name not in attributes:
             continue
         try:
-            value = json.loads(attributes[name]) if attributes[name] != "" else kind()
+            # an altered attribute nested thousands deep made json recurse to a RecursionError: bounded first
+            value = (None if isinstance(attributes[name], str) and json_depth_exceeded(attributes[name]) else
+                     json.loads(attributes[name]) if attributes[name] != "" else kind())
         except (TypeError, ValueError):
             value = None
         if not isinstance(value, kind) or (name == "models" and not all(
@@ -131,8 +134,10 @@ def check_result(dataset: xr.Dataset, path: str | os.PathLike = "<dataset>") -> 
                 and isinstance(entry.get("options", {}), dict) for entry in value)):
             shape = "JSON list of models, each with id, name and options" if name == "models" else \
                 f"JSON {'list' if kind is list else 'mapping'}"
-            raise StudyError(f"{path}: not an impactlab result as written: its {name!r} attribute is not the "
-                             f"{shape} impactlab writes (got {str(attributes[name])[:60]!r}); the file was altered")
+            raise StudyError(f"{shown(path)}: not an impactlab result as written: its {name!r} attribute is not the "
+                             f"{shape} impactlab writes (got {str(attributes[name])[:60]!r}"
+                             + (f", nesting more than {MAX_NESTING} levels deep" if isinstance(attributes[name], str)
+                                and json_depth_exceeded(attributes[name]) else "") + "); the file was altered")
     if attributes.get("study_type") == "sensitivity":
         missing = [name for name in _SENSITIVITY_ATTRIBUTES if not isinstance(attributes.get(name), str)]
         if missing:

@@ -10,13 +10,15 @@ temporary file is removed and the old target is untouched.
 
 from __future__ import annotations
 
+import csv
 import os
+import re
 import stat
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 
-from impactlab.errors import EnvironmentFault, StudyError
+from impactlab.errors import EnvironmentFault, StudyError, has_control, shown
 
 
 #: how the temporary file of a write ends (a folder cleaned up after a killed run looks for it)
@@ -102,9 +104,9 @@ def check_outdir(folder: str | os.PathLike) -> Path:
 
 def name_in(folder: Path, name: str, suffix: str) -> Path:
     """FOLDER/NAME+SUFFIX for a name taken from a study, refused if it would leave FOLDER or hide itself."""
-    if not name or name in (".", "..") or name.startswith(".") or "/" in name or "\\" in name or "\0" in name:
-        raise StudyError(f"study name {name!r} cannot name a file in {folder} (it has a slash, starts with a dot "
-                         "or is empty); rename the study, or give -o")
+    if not name or name in (".", "..") or name.startswith(".") or "/" in name or "\\" in name or has_control(name):
+        raise StudyError(f"study name {name!r} cannot name a file in {folder} (it has a slash or a control "
+                         "character, starts with a dot or is empty); rename the study, or give -o")
     return folder / f"{name}{suffix}"
 
 
@@ -166,3 +168,59 @@ def write_figure(figure, path: str | os.PathLike, **options) -> Path:
     buffer.name = str(path)  # where it goes, for whoever watches savefig (the tests' figure audit)
     figure.savefig(buffer, format=path.suffix[1:].lower() or "png", **options)
     return write_atomically(path, buffer.getbuffer())
+
+
+#: the first header cells of each table impactlab writes (its marker): ``shots --csv`` (the normalised session,
+#: ending with ``flags``), ``validate --csv`` (measured beside predicted) and ``fly --csv`` (a session's shots, or the
+#: launches typed in, numbered by ``shot``)
+TABLE_MARKERS = {"shots": (("line",), ("flags",)), "validate": (("table", "shot", "club", "handedness", "model"), ()),
+                 "fly": (("line", "club"), ()), "fly launch": (("shot",), ())}
+#: every other header cell of an impactlab table: a lower-case name with its unit in brackets, or a text column
+_TABLE_CELL = re.compile(r"^[a-z][a-z0-9_]*( measured| predicted)? \[[^\]]*\]$")
+_TEXT_CELLS = {"line", "label", "club", "handedness", "source", "flags", "flagged", "table", "shot", "model"}
+#: how much of an existing file is read to find its header (a header longer than this is no table of impactlab's)
+_HEADER_BYTES = 64 * 1024
+
+
+def written_by_impactlab(path: str | os.PathLike) -> bool:
+    """Whether ``path`` holds a table impactlab wrote (``shots``, ``fly`` or ``validate --csv``), by its header.
+
+    The header is impactlab's marker: it starts with the text columns one of impactlab's writers puts first
+    (:data:`TABLE_MARKERS`) and every other cell is a vocabulary name with its unit in brackets
+    (``ball_speed [m/s]``). A launch-monitor export names its columns as its vendor does (``Ball Speed``), and a
+    hand-written table does not start with these columns.
+    """
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(_HEADER_BYTES)
+    except OSError:
+        return False
+    line = head.split(b"\n", 1)[0].rstrip(b"\r")
+    try:
+        cells = next(csv.reader([line.decode("utf-8")]))
+    except (UnicodeDecodeError, csv.Error, StopIteration):
+        return False
+    for first, last in TABLE_MARKERS.values():
+        if tuple(cells[:len(first)]) == first and (not last or tuple(cells[-len(last):]) == last) \
+                and all(cell in _TEXT_CELLS or _TABLE_CELL.match(cell) for cell in cells):
+            return True
+    return False
+
+
+def refuse_replacing_foreign(path: str | os.PathLike, what: str, force: bool = False) -> None:
+    """Refuse (exit 2) to replace an existing file that is not a table impactlab wrote, unless ``force``.
+
+    ``--csv OUT`` replaced whatever OUT was, another raw launch-monitor export included: only a previous output of
+    impactlab's (:func:`written_by_impactlab`) is replaced without ``--force``.
+    """
+    path = Path(path)
+    if force or not path.is_file() or written_by_impactlab(path):
+        return
+    try:
+        with open(path, "rb") as stream:
+            first = stream.read(80).split(b"\n", 1)[0].decode("utf-8", "replace").rstrip("\r")
+    except OSError:
+        first = ""
+    raise StudyError(f"{shown(path)} ({what}): exists and is not a table impactlab wrote (it begins "
+                     f"'{shown(first)}'): replacing it would lose it; give another name, or add --force to replace "
+                     "it")

@@ -11,7 +11,8 @@ import xarray as xr
 
 from impactlab.errors import FieldError
 from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, output_unit_factor
-from impactlab.physics.aerodynamics import BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, model_fingerprint
+from impactlab.physics.aerodynamics import (BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, model_fingerprint,
+                                           retired_reason)
 from impactlab.physics.flight import fly
 from impactlab.scene.flight import air_arrays
 from impactlab.model.derive import FLIGHT_INPUTS
@@ -84,6 +85,10 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     # today's, and the title says so when they differ (results written before fingerprints were recorded say nothing)
     stored = {str(dataset[name].attrs["aerodynamic_fingerprint"]) for name in flown
               if "aerodynamic_fingerprint" in dataset[name].attrs}
+    if aerodynamics not in MODELS:  # a result written before its model was retired (or an altered attribute)
+        raise FieldError("--trajectories", "a result whose flight outputs name an aerodynamic model of this impactlab"
+                         + (f" ({retired_reason(aerodynamics)})" if retired_reason(aerodynamics) else ""),
+                         str(aerodynamics), choices=MODELS)
     today = model_fingerprint(aerodynamics)
     changed = (f" (today's constants, {today}; the stored carries were computed with {', '.join(sorted(stored))})"
                if stored - {today} else "")
@@ -96,6 +101,16 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
                             for name in TRAJECTORY_LAUNCH})
     stacked = launch.stack(case=case_dims) if case_dims else launch.expand_dims(case=[0])
     n_cases = stacked.sizes["case"]
+    # a case is drawn when every launch value is computed: a NaN spin axis flew a NaN path, and a figure of
+    # empty panels was written without a word
+    computed = np.logical_and.reduce([np.isfinite(np.asarray(stacked[name].values, dtype=float))
+                                      for name in TRAJECTORY_LAUNCH])
+    if not computed.any():
+        nowhere = [name for name in TRAJECTORY_LAUNCH
+                   if not np.isfinite(np.asarray(stacked[name].values, dtype=float)).any()]
+        raise FieldError("--trajectories", "a result with at least one case whose launch is computed (the figure "
+                         "would be empty)", f"{', '.join(nowhere) or 'a NaN launch value'} NaN in every case"
+                         if nowhere else "every case lacking one launch value (NaN)")
     shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
     figure = Figure(figsize=(10.5, 7.5))
     side, top = figure.subplots(2, 1, sharex=True)
@@ -104,7 +119,8 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     for m, model in enumerate(stacked[MODEL_DIM].values):
         row = stacked.sel({MODEL_DIM: model}).isel(case=shown)
         spin = np.hypot(row["back_spin"].values, row["side_spin"].values) * np.pi / 30.0
-        finite = np.isfinite(row["ball_speed"].values) & np.isfinite(spin) & (row["ball_speed"].values > 0)
+        finite = np.logical_and.reduce([np.isfinite(np.asarray(row[name].values, dtype=float))
+                                        for name in TRAJECTORY_LAUNCH]) & (row["ball_speed"].values > 0)
         if not finite.any():
             continue
         result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
@@ -150,6 +166,8 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if np.any(wind):
         air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
+    if not computed.all():
+        count += f"; {int((~computed).sum())} model-case(s) without a computed launch (NaN) not drawn"
     scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     # conditions() names the air model when the result records one; a launch-only result is flown with the default
     air_model = "" if "aerodynamics" in scene and not changed else f"{aerodynamics} aerodynamics{changed}, "

@@ -27,6 +27,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from impactlab.errors import ImpactLabError, PlausibilityWarning, PluginWarning
+from impactlab.foreign import TerminalGuard, terminal_safe
 from impactlab.model.diagnostics import ValidityWarning
 from impactlab.io.safe_output import remove_temporaries
 
@@ -113,9 +114,9 @@ def show_warning(message: Warning | str, category: type[Warning], filename: str,
                  line: str | None = None) -> None:
     """Replacement for ``warnings.showwarning``: one line on stderr, never an exception."""
     if issubclass(category, _own_warnings()):
-        text = f"impactlab: warning: {message}\n"
+        text = f"impactlab: warning: {terminal_safe(str(message))}\n"
     else:  # a dependency's warning: say where it came from, as Python would, but on one line
-        text = f"impactlab: warning from {filename}:{lineno}: {category.__name__}: {message}\n"
+        text = f"impactlab: warning from {filename}:{lineno}: {category.__name__}: {terminal_safe(str(message))}\n"
     try:
         (file or sys.stderr).write(text)
     except (OSError, ValueError):  # stderr closed or a broken pipe: a warning must not end the run
@@ -221,6 +222,18 @@ def _stdout_closed() -> bool:
     return any(events & select.POLLERR for _, events in poller.poll(0))
 
 
+@contextlib.contextmanager
+def _guarded_streams() -> Iterator[None]:
+    """stdout and stderr written through :class:`impactlab.foreign.TerminalGuard` while a command runs."""
+    out, err = sys.stdout, sys.stderr
+    sys.stdout = TerminalGuard(out) if out is not None and not isinstance(out, TerminalGuard) else out
+    sys.stderr = TerminalGuard(err, keep_cr=True) if err is not None and not isinstance(err, TerminalGuard) else err
+    try:
+        yield
+    finally:
+        sys.stdout, sys.stderr = out, err
+
+
 def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
     """Run ``call()`` (a command returning its exit status) and turn every failure into message and status."""
     _interrupt_hint[0] = "no result file was written or changed"
@@ -228,11 +241,13 @@ def run_command(call: Callable[[], int], *, debug: bool = False) -> int:
     def fail(text: str, code: int) -> int:
         if debug:
             traceback.print_exc()
-        print(f"impactlab: {text}", file=sys.stderr)
+        print(f"impactlab: {terminal_safe(text)}", file=sys.stderr)
         return code
 
-    # catch_warnings puts the caller's showwarning and filters back when the command returns or raises
-    with warnings.catch_warnings():
+    # catch_warnings puts the caller's showwarning and filters back when the command returns or raises; the
+    # guards escape any control character a file or a server put in the text written (issue 35), the progress
+    # bar's carriage return on stderr excepted
+    with warnings.catch_warnings(), _guarded_streams():
         warnings.showwarning = show_warning
         warnings.simplefilter("default")
         try:

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from impactlab.errors import FieldError
+from impactlab.scene.plausibility import club_limits
 from impactlab.scene.clubs import ClubHead
 from impactlab.scene.catalogue import club_from_spec
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
@@ -15,7 +17,9 @@ def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
     path = Path(path)
     document, lines = load_yaml(read_text_file(path, "club spec"), str(path))
     try:
-        return club_from_spec(document, "club")
+        head, names = club_from_spec(document, "club")
+        check_golf_ranges(head)
+        return head, names
     except FieldError as exc:
         given, where = exc.given, exc.path
         if where in _SPEC_KEY and isinstance(document, dict) and _SPEC_KEY[where] in document:
@@ -23,6 +27,9 @@ def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
             # line): named by the sheet's key, at its line, as the sheet writes it
             where, given = f"club.{_SPEC_KEY[where]}", document[_SPEC_KEY[where]]
         keys = tuple(where.split(".")[1:])
+        if keys and keys[0] in _SPEC_KEY and len(keys) > 1:  # a component refused by its range: the sheet's key
+            keys = (_SPEC_KEY[keys[0]], *keys[1:])
+            where = "club." + ".".join(keys)
         line = line_of(lines, keys) if keys else None
         raise FieldError(where, exc.expected, given, exc.choices, file=str(path), line=line) from None
 
@@ -30,3 +37,45 @@ def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
 #: a club head's attribute -> the spec sheet's key that sets it
 _SPEC_KEY = {"loft": "loft", "lie": "lie", "mass": "mass", "inertia": "moi", "center_of_mass": "cg",
              "bulge_radius": "bulge", "roll_radius": "roll", "restitution_gain": "restitution_gain"}
+
+
+#: the nearest a head's mass can lie, on the whole, to an axis through its centre of mass [m]: a club head's mass
+#: is spread over a body some centimetres across, never within a few millimetres of one axis
+MIN_GYRATION_RADIUS = 0.005
+#: the farthest [m]: the Rules' longest head, a putter's 7 in (178 mm) heel to toe (R&A/USGA Equipment Rules,
+#: Part 2, 4b; rules text): no part of a head, let alone its whole mass, lies farther from its centre of mass
+MAX_GYRATION_RADIUS = 0.178
+
+
+def check_golf_ranges(head) -> None:
+    """Refuse a spec sheet's values no golf club head has (FieldError at ``club.<key>``, with the range and why).
+
+    The mass, the centre of mass and the face's curvature by the limits a golf scene applies
+    (:func:`impactlab.scene.plausibility.club_limits`); each principal moment of inertia (``moi.toe``, ``up``,
+    ``target``) between the head's mass at :data:`MIN_GYRATION_RADIUS` and at :data:`MAX_GYRATION_RADIUS` from the
+    axis. A moment typed in kg m^2 where g cm^2 was meant is 10^7 times too large and is refused by that range; the
+    range is shown in g cm^2, the unit spec sheets use (drivers 4000-5900 g cm^2 about the vertical axis; the
+    Rules' limit for woods is 5900 g cm^2 about the vertical axis, USGA Equipment Rules).
+    """
+    if head.is_sphere:
+        return
+    for limit, value in club_limits(head):
+        if value is None or not math.isfinite(value):
+            continue
+        shown = value * limit.factor
+        low, high = limit.impossible
+        if not low <= shown <= high:
+            span = f"at least {low:g}" if high == math.inf else f"between {low:g} and {high:g}"
+            raise FieldError(limit.path, f"{limit.words} {span} {limit.unit} ({limit.why})",
+                             f"{shown:.6g} {limit.unit}")
+    g_cm2 = 1e7  # g cm^2 per kg m^2
+    low = head.mass * MIN_GYRATION_RADIUS ** 2 * g_cm2
+    high = head.mass * MAX_GYRATION_RADIUS ** 2 * g_cm2
+    for name, value in head.inertia_components().items():
+        if "_" in name:  # products of inertia may be zero or negative
+            continue
+        if not low <= value * g_cm2 <= high:
+            raise FieldError(f"club.inertia.{name}", f"a moment of inertia between {low:.6g} and {high:.6g} g cm^2 for "
+                             f"this {head.mass * 1e3:.0f} g head (its mass at 5 to 178 mm from the axis: no head is "
+                             "smaller, and the Rules' longest, a putter's, is 178 mm heel to toe; drivers have "
+                             "4000-5900 g cm^2)", f"{value * g_cm2:.6g} g cm^2 ({value:.6g} kg m^2)")

@@ -9,10 +9,12 @@ from typing import Any
 import yaml
 
 from impactlab.errors import ResourceLimitError, StudyError
+from impactlab.foreign import MAX_INPUT_BYTES, MAX_NESTING, nesting_message, shown
 from impactlab.study.limits import max_yaml_nodes
 
-#: a study or table larger than this is not a hand-written text file
-MAX_TEXT_BYTES = 16 * 2**20
+#: the one size limit of an input file (impactlab.foreign.MAX_INPUT_BYTES, 64 MiB), refused by its size before a byte
+#: is read
+MAX_TEXT_BYTES = MAX_INPUT_BYTES
 _BOMS = {b"\xff\xfe\x00\x00": "UTF-32", b"\x00\x00\xfe\xff": "UTF-32", b"\xff\xfe": "UTF-16",
          b"\xfe\xff": "UTF-16"}
 
@@ -34,7 +36,9 @@ def checked_bytes(path: FilePath, what: str, limit: int, missing: str = "", fold
     if not stat.S_ISREG(info.st_mode):
         raise StudyError(f"{path}: is not a regular file (a device or pipe); give a {what}")
     if info.st_size > limit:
-        raise StudyError(f"{path}: {info.st_size:,} bytes is too large for a {what} (at most {limit:,})")
+        raise StudyError(f"{shown(path)}: {info.st_size:,} bytes ({info.st_size / 2**20:.0f} MiB) is too large for a "
+                         f"{what} (at most {limit:,} bytes, {limit / 2**20:.0f} MiB, impactlab's one limit on input "
+                         "files; split the file)")
     return path.read_bytes()
 
 
@@ -108,7 +112,7 @@ def parse_path(text: str) -> Path:
 #: deep. PyYAML's C composer recurses once per level in C, so a document nested ~50,000 deep (100 KB of
 #: ``[[[[...``) overflows the C stack and kills the process with a segmentation fault before Python can catch
 #: anything: :func:`nesting_depth` measures the depth from the text, before the parser sees it.
-MAX_YAML_DEPTH = 100
+MAX_YAML_DEPTH = MAX_NESTING  # the one bound of every structured input (impactlab.foreign)
 
 
 def nesting_depth(text: str, limit: int = MAX_YAML_DEPTH) -> tuple[int, int]:
@@ -227,8 +231,7 @@ def load_yaml(text: str, file: str | None = None) -> tuple[Any, dict[Path, int]]
                          f"{MAX_TEXT_BYTES:,})")
     depth, line = nesting_depth(text) if nesting_bound(text) > MAX_YAML_DEPTH else (0, 0)
     if line:
-        raise StudyError(f"{file or '<study>'}:{line}: the YAML nests more than {MAX_YAML_DEPTH} levels deep (a "
-                         "study nests about 6); write the data flatter")
+        raise StudyError(f"{shown(file or '<study>')}:{line}: {nesting_message('YAML', MAX_YAML_DEPTH)}")
     loader = _LOADER(text)
     try:
         node = loader.get_single_node()

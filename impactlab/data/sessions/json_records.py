@@ -17,6 +17,7 @@ import re
 from typing import Any
 
 from impactlab.errors import StudyError
+from impactlab.foreign import check_json_nesting
 
 
 #: file suffixes read as JSON shot records by ``validate --dataset`` and ``fit`` (``shots`` reads any file)
@@ -31,6 +32,7 @@ def looks_like_json(text: str) -> bool:
 
 def _values(text: str, file: str) -> list[tuple[int, Any]]:
     """(start offset, value) of every top-level JSON value of a stream (objects back to back)."""
+    check_json_nesting(text, file)  # json recurses once per level: bounded before it does (impactlab.foreign)
     decoder = json.JSONDecoder()
     out: list[tuple[int, Any]] = []
     position = 0

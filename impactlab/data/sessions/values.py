@@ -18,11 +18,12 @@ from pathlib import Path
 import numpy as np
 
 from impactlab.errors import StudyError
+from impactlab.foreign import MAX_INPUT_BYTES
 from impactlab.study.yaml_lines import checked_bytes, utf8_text
 from impactlab.data.sessions.layouts import FIELDS, VendorMap, _norm, split_header
 
-#: the largest file read as a session [bytes]
-MAX_SESSION_BYTES = 512 * 2**20
+#: the largest file read as a session [bytes]: impactlab's one limit on input files (impactlab.foreign)
+MAX_SESSION_BYTES = MAX_INPUT_BYTES
 #: rows above which a progress bar is drawn (on a terminal)
 PROGRESS_ROWS = 20_000
 
