@@ -14,13 +14,16 @@ import sys
 import numpy as np
 
 from impactlab.data.sessions.reader import describe as describe_session
+from impactlab.data.sessions.export import session_messages
 from impactlab.data.sessions.reader import read_session, write_normalised
+from impactlab.data.sessions.summary import show_rows_setting, skip_lines
 from impactlab.data.validation import DATASETS, get_dataset, load_dataset_study
 from impactlab.data.validation import errors as dataset_errors
 from impactlab.data.validation.benchmark_report import describe as describe_benchmark
 from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.errors import FieldError, StudyError
+from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.safe_output import JSON_SUFFIXES, TABLE_SUFFIXES, check_output, write_atomically
 from impactlab.model.registry import available
 from impactlab.scene.catalogue import user_clubs
@@ -69,6 +72,8 @@ def _cmd_validate(args) -> int:
             continue
         with user_clubs(read_club_spec(path) for path in args.club or ()):
             table = shot_table(name, args.include_flagged)
+            if table is not None and args.strict:
+                _strict(name, table)
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 drawn = True
@@ -137,6 +142,8 @@ def _cmd_fit(args) -> int:
                          "--by out)")
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
+        if table is not None and args.strict:
+            _strict(args.dataset, table)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
@@ -166,12 +173,50 @@ def _cmd_fit(args) -> int:
     return 0
 
 
+def _strict(name: str, table) -> None:
+    """--strict on a shot table: a session's bad rows refuse it (a table written by hand is refused whole anyway)."""
+    if table.unusual is not None:  # read from a session: its rows were judged by the row rules
+        read_session(name).refuse_bad_rows()
+
+
+def export_session(args) -> int:
+    """``impactlab export SESSION -o shots.json`` (or ``--gspro HOST:PORT``): the session's measured shots as GSPro
+    Open Connect messages (:func:`impactlab.data.sessions.export.session_messages`), rows not sent said by reason."""
+    if args.model is not None:
+        raise StudyError(f"--model {args.model}: chooses a model's shots in a result file; {args.file} is a session "
+                         "of measured shots (leave --model out)")
+    if args.output is not None:
+        check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
+    address = parse_address(args.gspro) if args.gspro is not None else None  # said before the file is read
+    session = read_session(args.file)
+    if args.strict:
+        session.refuse_bad_rows()
+    shots, skipped, zeroed = session_messages(session, device_id=args.device_id)
+    for line in skip_lines(skipped, session.size, (), show_rows_setting(), indent="", used="exported"):
+        print(line, file=sys.stderr)
+    if zeroed:
+        print(f"{zeroed} shot(s) without a spin axis or launch direction: sent with 0 (GSPro needs both)",
+              file=sys.stderr)
+    if not shots:
+        raise StudyError(f"{args.file}: no shot to export (each needs a ball speed, a launch angle and a spin rate)")
+    if address is not None:
+        replies = send_shots(shots, *address, timeout=args.timeout, progress=lambda text: print(text, file=sys.stderr))
+        print(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro} (the last: {replies[-1].describe()})",
+              file=sys.stderr)
+        return 0
+    write_atomically(args.output, json.dumps(shots, indent=1).encode())
+    print(f"wrote {len(shots)} GSPro Open Connect shots of {session.file} to {args.output}", file=sys.stderr)
+    return 0
+
+
 def _cmd_shots(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
                      formats=TABLE_SUFFIXES)
 
     session = read_session(args.file, args.vendor)
+    if args.strict:
+        session.refuse_bad_rows()
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         print(describe_session(session, args.include_flagged))
     if args.csv:

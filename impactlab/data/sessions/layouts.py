@@ -26,6 +26,9 @@ FIELDS = {
     "back_spin": "angular_speed", "side_spin": "angular_speed", "smash_factor": "dimensionless",
     "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",
     "landing_angle": "angle", "flight_time": "time",
+    # the monitor's flight beyond the carry, and how much of it was tracked (TrackMan's older layout: Carry Flat - Ball
+    # Speed, Side Total, Last data Point - Time)
+    "landing_ball_speed": "speed", "total_offline_distance": "length", "tracked_time": "time",
     # the air the monitor states for a shot (Garmin: Temperature [deg F], Air Pressure [kPa], Relative Humidity [%],
     # Air Density [g/L]); `impactlab fly SESSION` flies each shot in it
     "air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "dimensionless",
@@ -45,7 +48,9 @@ DESCRIPTIONS = {
     "spin_rate": "spin rate", "spin_axis": "spin axis", "back_spin": "back spin", "side_spin": "side spin",
     "smash_factor": "smash factor", "carry_distance": "carry", "total_distance": "total distance",
     "apex_height": "apex height", "offline_distance": "offline distance", "landing_angle": "landing angle",
-    "flight_time": "flight time", "air_temperature": "air temperature", "air_pressure": "air pressure",
+    "flight_time": "flight time", "landing_ball_speed": "ball speed at landing",
+    "total_offline_distance": "offline distance after the roll", "tracked_time": "time the monitor tracked the ball",
+    "air_temperature": "air temperature", "air_pressure": "air pressure",
     "relative_humidity": "relative humidity (a fraction; '[%]' in a units row)",
     "air_density": "air density (checked against the temperature, pressure and humidity)",
     "altitude": "altitude of the air (the ISA pressure there, where no pressure is given)",
@@ -96,6 +101,15 @@ class VendorMap:
     signs: str = ""
     missing: tuple[str, ...] = ("",)
     sentinel_at_least: float | None = None
+    #: [{value, scaled, why}]: numbers that mean "no value" (TrackMan's -2^31); ``scaled``: also the value times a
+    #: power of ten (the instrument's integer written in another unit); read as missing, flagged ``no data``
+    sentinels: tuple = ()
+    #: columns whose presence says the header is another layout's (the older TrackMan layout is the newer one's
+    #: columns without ``Spin Rate Type``)
+    unless: tuple[str, ...] = ()
+    #: {time, of, at_least, fields, why}: a flight tracked for less than ``at_least`` of its hang time (the field
+    #: ``time`` over the field ``of``) is the monitor's model output: its ``fields`` are flagged ``modelled``
+    tracked: dict | None = attrs.field(default=None, eq=False)
     estimated: dict | None = attrs.field(default=None, eq=False)
     clamped: dict = attrs.field(factory=dict, eq=False)
     #: field -> SI floor: values at or below it are the monitor's floor, flagged ``clamped`` (the R10 writes a launch
@@ -175,7 +189,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
-            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text"}
+            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text",
+            "sentinels", "tracked", "unless"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -234,7 +249,10 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         if not groups or set(groups) - {"air_temperature", "air_pressure", "relative_humidity", "altitude"}:
             raise StudyError(f"{where}: air_text.pattern: its named groups must be air fields (air_temperature, "
                              f"air_pressure, relative_humidity, altitude), got {sorted(groups)}")
+    sentinels = _sentinels(document.get("sentinels"), where)
+    tracked = _tracked(document.get("tracked"), where)
     return VendorMap(
+        sentinels=sentinels, tracked=tracked, unless=tuple(_norm(name) for name in document.get("unless") or ()),
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
         implied_units={_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
@@ -254,6 +272,30 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
         merge_repeated_columns=bool(document.get("merge_repeated_columns", False)), air_text=air_text,
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+
+
+def _sentinels(rules, where: str) -> tuple:
+    """A layout's numeric no-value markers, checked: ``[{value, scaled, why}]``."""
+    for rule in rules or ():
+        if not isinstance(rule, dict) or "value" not in rule or set(rule) - {"value", "scaled", "why"} or \
+                isinstance(rule["value"], bool) or not isinstance(rule["value"], (int, float)):
+            raise StudyError(f"{where}: sentinels: {rule!r}: expected {{value (a number), scaled, why}}")
+    return tuple({"value": float(rule["value"]), "scaled": bool(rule.get("scaled", False)),
+                  "why": str(rule.get("why", "a no-value marker"))} for rule in rules or ())
+
+
+def _tracked(rule, where: str) -> dict | None:
+    """A layout's rule of what its monitor tracked (``tracked``), checked."""
+    if rule is None:
+        return None
+    if not isinstance(rule, dict) or set(rule) != {"time", "of", "at_least", "fields", "why"}:
+        raise StudyError(f"{where}: tracked: {rule!r}: expected {{time, of, at_least, fields, why}}")
+    for field in (rule["time"], rule["of"], *rule["fields"]):
+        if field not in FIELDS:
+            raise StudyError(f"{where}: tracked: {field!r} is not a numeric session field")
+    if not 0 < float(rule["at_least"]) <= 1:
+        raise StudyError(f"{where}: tracked.at_least: expected a fraction of the hang time in (0, 1]")
+    return {**rule, "at_least": float(rule["at_least"]), "fields": tuple(rule["fields"])}
 
 
 #: rules of a layout that name a column and the words written in it: a translated layout restates them
@@ -347,7 +389,7 @@ def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
     maps = vendor_maps()
     names = {_norm(split_header(cell)[0]) for cell in header}
-    found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names]
+    found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names and not set(vendor.unless) & names]
     found.sort(key=lambda vendor: -len(vendor.recognise))
     if forced is not None:
         if forced != GENERIC.id and forced not in maps:
