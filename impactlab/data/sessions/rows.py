@@ -112,6 +112,7 @@ def row_verdict(values: dict, clubs: tuple, used: list, flags: dict) -> RowVerdi
     unusual: list = []
 
     def add(reason, mask, value):
+        mask = mask & ~np.isinf(value)  # an infinite value is said once, as not finite
         if mask.any():
             reasons.append((reason, mask, np.where(mask, value, np.nan)))
 
@@ -122,7 +123,9 @@ def row_verdict(values: dict, clubs: tuple, used: list, flags: dict) -> RowVerdi
         value = values.get(field)
         if value is None or value.dtype.kind != "f":
             continue
-        add(f"{header}: not a finite number", np.isinf(value), np.full(size, np.nan))
+        infinite = np.isinf(value)
+        if infinite.any():
+            reasons.append((f"{header}: not a finite number", infinite, np.full(size, np.nan)))
     with np.errstate(invalid="ignore"):
         _ranges(values, names, add, unusual)
         _strikes_and_smash(values, clubs, names, add, unusual)

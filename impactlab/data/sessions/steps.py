@@ -257,6 +257,11 @@ def read_columns(reading: _Reading, plan: list, repeated: list):
         elif bad:
             reading.unreadable[(field, cell)] = {index: raw[index].strip() for index in bad}
         marked, why = sentinel_mask(numbers, layout)
+        written = missing_mask & np.array([bool(value.strip()) for value in raw])  # '-', 'N/A': a marker, said
+        if written.any():
+            marked |= written
+            shown = sorted({raw[index].strip() for index in np.flatnonzero(written)[:50].tolist()})
+            why = "; ".join(filter(None, [why, f"a no-value word ({', '.join(map(repr, shown))})"]))
         if field in layout.zero_is_no_data:
             marked |= numbers == 0.0
         if marked.any():
