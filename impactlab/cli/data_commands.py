@@ -71,9 +71,7 @@ def _cmd_validate(args) -> int:
             print_observations(args.model or SHOT_MODELS)
             continue
         with user_clubs(read_club_spec(path) for path in args.club or ()):
-            table = shot_table(name, args.include_flagged)
-            if table is not None and args.strict:
-                _strict(name, table)
+            table = _strict(name, shot_table(name, args.include_flagged), args.strict)
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 drawn = True
@@ -141,9 +139,7 @@ def _cmd_fit(args) -> int:
         raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
                          "--by out)")
     with user_clubs(read_club_spec(path) for path in args.club or ()):
-        table = shot_table(args.dataset, args.include_flagged)
-        if table is not None and args.strict:
-            _strict(args.dataset, table)
+        table = _strict(args.dataset, shot_table(args.dataset, args.include_flagged), args.strict)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
@@ -173,10 +169,12 @@ def _cmd_fit(args) -> int:
     return 0
 
 
-def _strict(name: str, table) -> None:
-    """--strict on a shot table: a session's bad rows refuse it (a table written by hand is refused whole anyway)."""
-    if table.unusual is not None:  # read from a session: its rows were judged by the row rules
+def _strict(name: str, table, strict: bool):
+    """``table``, after ``--strict``: a session's bad rows refuse it (a table written by hand is refused whole
+    anyway)."""
+    if strict and table is not None and table.unusual is not None:  # a session's rows were judged by the row rules
         read_session(name).refuse_bad_rows()
+    return table
 
 
 def export_session(args) -> int:

@@ -88,10 +88,13 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         ``spin_axis`` [degree], NaN where the export has none); the predictions of :data:`PREDICTED` in the units
         of :data:`impactlab.vocabulary.OUTPUTS` (``offline_distance`` NaN where the spin axis or launch direction
         is missing); ``monitor_<name>`` for each predicted quantity the export has (NaN in the rows without
-        it); ``flagged`` (bool: a launch value flown though the monitor flags it); ``air_density`` [kg/m^3], the
-        air each shot was flown in. Attributes: ``file``, ``vendor``, ``aerodynamic_model``, ``skipped`` (one
-        "line N: reason" per shot not flown, ``; ``-joined), ``air_source`` (whose air, in words); where every shot
-        flew in one air, its ``air_*`` attributes as :func:`impactlab.fly` gives them.
+        it); ``monitor_measured`` (bool, where the layout says which flights its monitor tracked: TrackMan's
+        tracked time against the hang time); ``flagged`` (bool: a launch value flown though the monitor flags it);
+        ``air_density`` [kg/m^3], the air each shot was flown in. Attributes: ``file``, ``vendor``,
+        ``aerodynamic_model``, ``skipped`` (one "line N: reasons" per shot not flown, ``; ``-joined),
+        ``skipped_rows`` and ``unusual_rows`` (JSON: [line, reasons] pairs; [reason, lines] of the unusual values
+        flown), ``air_source`` (whose air, in words); where every shot flew in one air, its ``air_*`` attributes as
+        :func:`impactlab.fly` gives them.
 
     Raises
     ------
@@ -106,7 +109,7 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
     if rows.size == 0:
         raise StudyError(f"{session.file}: no shot to fly (each needs a ball speed, a launch angle and a spin "
                          f"rate): " + (reason_counts(skipped, file=str(session.file)) or "the file has no shots"))
-    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
+    axis = v["spin_axis"][rows]
     air, air_source = _airs(session, rows, conditions, session_air)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PlausibilityWarning)
@@ -121,6 +124,24 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         "flagged": ("shot", flagged[rows], {"long_name": "a launch value the monitor flags (estimated or clamped)"}),
         "air_density": ("shot", air_density, {"units": "kg/m^3", "long_name": "density of the air flown in"}),
     }
+    _predictions_and_monitor(session, rows, flown, data)
+    coords = {"line": ("shot", np.asarray(session.lines)[rows]),
+              "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
+    unusual = [(reason, [int(line) for line in session.lines[mask & fly_rows]])
+               for reason, mask in session.verdict().unusual if (mask & fly_rows).any()]
+    attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
+                  "skipped": "; ".join(f"line {line}: {reason}" for line, reason in skipped),
+                  "skipped_rows": json.dumps(skipped), "unusual_rows": json.dumps(unusual),
+                  "air_source": air_source}
+    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
+    return xr.Dataset(data, coords=coords, attrs=attributes)
+
+
+def _predictions_and_monitor(session: Session, rows: np.ndarray, flown: xr.Dataset, data: dict) -> None:
+    """Add to ``data`` the predictions of :data:`PREDICTED`, the monitor's own value of each (``monitor_<name>``)
+    and, where the layout says which flights its monitor tracked, ``monitor_measured`` per shot."""
+    v = session.values
+    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
     for name in PREDICTED:
         values = np.array(flown[name].values, dtype=float)
         if name == "offline_distance":
@@ -138,16 +159,6 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         data[MONITOR + "measured"] = ("shot", known & ~modelled, {
             "long_name": "the monitor's carry is measured (its flight tracked for at least "
                          f"{100 * session.vendor.tracked['at_least']:g} % of the hang time), not its model output"})
-    coords = {"line": ("shot", np.asarray(session.lines)[rows]),
-              "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
-    unusual = [(reason, [int(line) for line in session.lines[mask & fly_rows]])
-               for reason, mask in session.verdict().unusual if (mask & fly_rows).any()]
-    attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
-                  "skipped": "; ".join(f"line {line}: {reason}" for line, reason in skipped),
-                  "skipped_rows": json.dumps(skipped), "unusual_rows": json.dumps(unusual),
-                  "air_source": air_source}
-    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
-    return xr.Dataset(data, coords=coords, attrs=attributes)
 
 
 def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, session_air: bool):

@@ -38,7 +38,8 @@ from impactlab.data.sessions.rows import row_verdict
 from impactlab.errors import FieldError, StudyError
 from impactlab.scene.catalogue import club_key
 from impactlab.data.sessions.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
-from impactlab.data.sessions.layouts import (DESCRIPTIONS, GENERIC, VendorMap, _column_plan, _header_index,
+from impactlab.data.sessions.columns import _column_plan
+from impactlab.data.sessions.layouts import (DESCRIPTIONS, GENERIC, VendorMap, _header_index,
                                             _norm, _recognise, split_header)
 from impactlab.data.sessions.air import _air_from_text, _check_air
 from impactlab.data.sessions.consistency import check_consistency
