@@ -16,10 +16,12 @@ matches the column ``Name`` only when the header gives it a unit (FlightScope's 
 The reader (:func:`read_session`) never guesses: the separator comes from a ``sep=`` line or the header; decimal
 commas are recognised per file (a quoted ``"-0,9"`` is -0.9) and a file that mixes decimal marks is refused; a
 number without a unit is refused; two columns that give one quantity (``Ball Speed [mph]`` and ``Ball Speed
-[m/s]``) are refused, naming both; a cell that is not a number is refused with its file:line:column. Values are
-flagged, not dropped: no-data sentinels become missing, estimated and clamped values are kept in the session but
-left out of fits and comparisons unless asked (:meth:`Session.shot_table`), and the rows a model cannot use are
-skipped with their reason while the rest of the session is used.
+[m/s]``) are refused, naming both; a column no cell of which is a number is refused with its file:line:column.
+A bad row never sinks the file: a cell that is not a number, a row of another width, a value beyond any golf shot
+(:mod:`impactlab.data.sessions.rows`, one set of row rules for every command) skip that row with their reason.
+Values are flagged, not dropped: no-data sentinels become missing, estimated, clamped, inconsistent and modelled
+values are kept in the session but left out of fits and comparisons unless asked (:meth:`Session.shot_table`), and
+the rows a model cannot use are skipped with their reason while the rest of the session is used.
 
 All values are SI (angles in rad, spins in rad/s) with the signs of :mod:`impactlab.vocabulary`: horizontal
 angles, spin axis, side spin and offline distance positive to the right of the target line.
