@@ -207,7 +207,7 @@ class Session:
             why = {row: "; ".join(reason for r, reason, _ in found if r == row) for row in bad}
             skipped = sorted([*skipped, *((int(self.lines[index[row]]), why[row]) for row in bad)])
             keep[index[bad]] = False
-            self._refuse_if_empty(keep, skipped)
+            self._refuse_if_empty(keep, skipped, [message for _, _, message in found])
             rest = np.setdiff1d(np.arange(index.size), bad)
             index = index[rest]
             delivery, measured, sigma = ({key: value[rest] for key, value in part.items()}
@@ -218,15 +218,17 @@ class Session:
                               tuple((reason, tuple(int(line) for line in self.lines[mask & keep]))
                                     for reason, mask in self.verdict().unusual if (mask & keep).any()))
 
-    def _refuse_if_empty(self, keep: np.ndarray, skipped: list) -> None:
+    def _refuse_if_empty(self, keep: np.ndarray, skipped: list, details: tuple | list = ()) -> None:
+        """A StudyError when no row is kept: each reason at its first file:line, then the first ``details``."""
         if keep.any():
             return
         counts = Counter(reason for _, why in skipped for reason in why.split("; "))
         reasons = "; ".join(f"{self.file}:{next(line for line, why in skipped if reason in why.split('; '))}: "
                             f"{reason} ({count} row(s))" for reason, count in counts.most_common(10))
         more = f" (and {len(counts) - 10} other reasons)" if len(counts) > 10 else ""
+        shown = "".join(f"; {detail}" for detail in details[:10])
         raise StudyError(f"{self.file}: no row the impact models can use ({self.size} shot(s) read): "
-                         f"{reasons}{more}")
+                         f"{reasons}{more}{shown}")
 
     def _table_arrays(self, index: np.ndarray, include_flagged: bool):
         """(delivery, measured, sigma) of the rows ``index`` and the problems found in them: (position in

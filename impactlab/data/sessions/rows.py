@@ -163,10 +163,10 @@ def _ranges(values, names, add, unusual) -> None:
                     add(f"{header} beyond any golf shot ({low * factor:g} to {high * factor:g} {unit})",
                         np.abs(values[field]) >= high, shown)
         if field in UNUSUAL:
-            limit, unit, factor = UNUSUAL[field]
-            rare = (values[field] > limit) & (values[field] <= LAUNCH_LIMITS[field][1])
+            above, unit, factor = UNUSUAL[field]
+            rare = (values[field] > above) & (values[field] <= LAUNCH_LIMITS[field][1])
             if rare.any():
-                unusual.append((f"{header}: unusual for golf (above {limit * factor:g} {unit})", rare))
+                unusual.append((f"{header}: unusual for golf (above {above * factor:g} {unit})", rare))
 
 
 def _strikes_and_smash(values, clubs, names, add, unusual) -> None:

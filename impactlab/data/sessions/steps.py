@@ -275,9 +275,9 @@ def read_columns(reading: _Reading, plan: list, repeated: list):
         used.append((cell, field, unit or "", sign))
     bar.close()
     if reading.problems:
-        shown = "; ".join(reading.problems[:40]) + (f" (and {len(reading.problems) - 40} more)"
-                                                    if len(reading.problems) > 40 else "")
-        raise StudyError(f"{file}: {len(reading.problems)} bad cell(s) or row(s): {shown}")
+        listed = "; ".join(reading.problems[:40]) + (f" (and {len(reading.problems) - 40} more)"
+                                                     if len(reading.problems) > 40 else "")
+        raise StudyError(f"{file}: {len(reading.problems)} bad cell(s) or row(s): {listed}")
     return columns, values, text_values, flags, used
 
 

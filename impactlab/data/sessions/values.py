@@ -43,8 +43,8 @@ def _read_bytes(path: Path) -> tuple[str, str]:
         try:
             return data.decode(encoding).lstrip("\ufeff"), named
         except UnicodeDecodeError:
-            raise StudyError(f"{path}: is not {named} text (it starts like it, then holds bytes that are "
-                             f"not)") from None
+            raise StudyError(f"{path}: is not {named or encoding.upper()} text (it starts like it, then holds bytes "
+                             f"that are not)") from None
     if b"\0" in data:
         raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a shot table")
     return utf8_text(data, path, "shot table"), ""
@@ -74,9 +74,9 @@ _MARKS = ((b"\xff\xfe\x00\x00", "utf-32", "UTF-32 (little-endian)"),
 def _wide_encoding(data: bytes) -> tuple[str, str]:
     """(codec, name) of UTF-16 or UTF-32 text, with its byte-order mark or without one (text of Latin letters and
     digits then has a NUL in the same places of every 2 or 4 bytes); ('', '') for any other bytes."""
-    for mark, codec, name in _MARKS:
+    for mark, codec, name in _MARKS:  # a byte-order mark names its encoding: read, not said
         if data.startswith(mark):
-            return codec, name
+            return codec, ""
     sample = data[:4096]
     if len(sample) < 8 or b"\0" not in sample:
         return "", ""
