@@ -66,15 +66,15 @@ def _gunzip(data: bytes, path: Path) -> bytes:
 
 
 #: byte-order marks, longest first (UTF-32 LE's mark begins with UTF-16 LE's)
-_MARKS = ((b"\xff\xfe\x00\x00", "utf-32", "UTF-32 (little-endian)"),
-          (b"\x00\x00\xfe\xff", "utf-32", "UTF-32 (big-endian)"),
-          (b"\xff\xfe", "utf-16", "UTF-16 (little-endian)"), (b"\xfe\xff", "utf-16", "UTF-16 (big-endian)"))
+_MARKS = ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"), (b"\xff\xfe", "utf-16"),
+          (b"\xfe\xff", "utf-16"))
 
 
 def _wide_encoding(data: bytes) -> tuple[str, str]:
-    """(codec, name) of UTF-16 or UTF-32 text, with its byte-order mark or without one (text of Latin letters and
-    digits then has a NUL in the same places of every 2 or 4 bytes); ('', '') for any other bytes."""
-    for mark, codec, name in _MARKS:  # a byte-order mark names its encoding: read, not said
+    """(codec, name) of UTF-16 or UTF-32 text, with its byte-order mark (name '': the mark says it) or without one
+    (text of Latin letters and digits then has a NUL in the same places of every 2 or 4 bytes); ('', '') for any
+    other bytes."""
+    for mark, codec in _MARKS:  # a byte-order mark names its encoding: read, not said
         if data.startswith(mark):
             return codec, ""
     sample = data[:4096]
