@@ -268,11 +268,13 @@ def _monitor_statistics(result: xr.Dataset) -> list[str]:
     (TrackMan's tracked time), else over every shot with a carry (and said so)."""
     monitor_carry = np.asarray(result[MONITOR + "carry_distance"].values, dtype=float)
     usable = np.isfinite(monitor_carry) & (monitor_carry > 0) & np.isfinite(result.carry_distance.values)
-    if MONITOR + "measured" in result:
+    if MONITOR + "measured" in result and (usable & result[MONITOR + "measured"].values).any():
         measured = np.asarray(result[MONITOR + "measured"].values, dtype=bool)
         words = (f"the flights the monitor measured ({int((usable & measured).sum())} of {int(usable.sum())} with a "
                  f"carry; the others are its model output, left out)")
         usable &= measured
+    elif MONITOR + "measured" in result:
+        words = "the monitor's model output: none of these flights was tracked long enough to be measured"
     else:
         words = ("every shot with a carry (the export does not say which flights the monitor tracked: measured where "
                  "a radar tracked the flight, its own model indoors or when normalised)")
