@@ -1,6 +1,6 @@
-"""Launch-monitor exports read as exported (impactlab.data.sessions.reader): each vendor's layout on a fixture made from a
-real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and units
-converted by their definitions, not values computed by the reader."""
+"""Launch-monitor exports read as exported (impactlab.data.sessions.reader): each vendor's layout on a fixture made
+from a real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and
+units converted by their definitions, not values computed by the reader."""
 
 import math
 from pathlib import Path

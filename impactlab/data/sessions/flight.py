@@ -1,9 +1,9 @@
 """A launch-monitor session flown: each shot's measured launch through the air, beside what the monitor reported.
 
-``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as :func:`impactlab.data.sessions.reader.read_session`
-reads it, flies every shot that has a ball speed, a launch angle and a spin rate with
-:func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and flight time
-beside each prediction where the export has them. Nothing is guessed for a shot:
+``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as
+:func:`impactlab.data.sessions.reader.read_session` reads it, flies every shot that has a ball speed, a launch angle and
+a spin rate with :func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and
+flight time beside each prediction where the export has them. Nothing is guessed for a shot:
 
 - a shot without ball speed, launch angle or spin is not flown, and the result says why (``skipped``);
 - a shot whose spin (or ball speed, or launch) the monitor marks estimated, clamped or inconsistent is not flown

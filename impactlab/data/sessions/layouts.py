@@ -1,9 +1,9 @@
 """Launch-monitor layouts as data: the session vocabulary, each vendor's column map, and how a header is read.
 
-:data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML
-column maps of ``impactlab/data/sessions/vendors/`` (the module docstring of :mod:`impactlab.data.sessions.reader` says what a
-map holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and
-:func:`_recognise` turn a header row into fields, units and the layout that wrote it.
+:data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML column maps
+of ``impactlab/data/sessions/vendors/`` (the module docstring of :mod:`impactlab.data.sessions.reader` says what a map
+holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and :func:`_recognise`
+turn a header row into fields, units and the layout that wrote it.
 """
 
 from __future__ import annotations
@@ -351,7 +351,8 @@ def vendor_maps() -> dict[str, VendorMap]:
     documents = {}
     for entry in sorted(resources.files("impactlab.data.sessions.vendors").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".yaml"):
-            documents[f"impactlab/data/sessions/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
+            where = f"impactlab/data/sessions/vendors/{entry.name}"
+            documents[where] = yaml.safe_load(entry.read_text(encoding="utf-8"))
     by_id = {document.get("id"): document for document in documents.values() if isinstance(document, dict)}
     maps = {}
     for where, document in documents.items():

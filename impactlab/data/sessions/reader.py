@@ -1,17 +1,15 @@
 """Launch-monitor sessions read as exported: vendor layouts as data, one normalised table out.
 
-A session file is a table a launch monitor's software wrote (TrackMan, Garmin Golf, Foresight FSX, Rapsodo,
-FlightScope, Square Golf), JSON shot records (GSPro Open Connect messages, Uneekor's report; read as rows by
+A session file is a table a launch monitor's software wrote (TrackMan, Garmin Golf, Foresight FSX, Rapsodo, FlightScope,
+Square Golf), JSON shot records (GSPro Open Connect messages, Uneekor's report; read as rows by
 :mod:`impactlab.data.sessions.json_records`) or a table in impactlab's own vocabulary (``Club Speed [mph]``,
-``ball_speed (m/s)``). Each vendor's
-layout is a YAML column map in ``impactlab/data/sessions/vendors/`` (:func:`vendor_maps`): the header names that recognise
-it, where its units are (a units row under the header, inside the header names, or implied by the layout), its
-column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data sentinels, estimated-value flags,
-clamped values, placeholders (values that stand for "not measured"), rows that are no shot, values a layout
-requires, the point of the club head its club data describe, and for an export in another language the layout it
-translates (``base``, ``headers``). A map key ``Name [unit]``
-matches the column ``Name`` only when the header gives it a unit (FlightScope's ``Club`` is the club's name,
-``Club (mph)`` its speed).
+``ball_speed (m/s)``). Each vendor's layout is a YAML column map in ``impactlab/data/sessions/vendors/``
+(:func:`vendor_maps`): the header names that recognise it, where its units are (a units row under the header, inside the
+header names, or implied by the layout), its column names in the vocabulary of :data:`FIELDS`, per-column signs, no-data
+sentinels, estimated-value flags, clamped values, placeholders (values that stand for "not measured"), rows that are no
+shot, values a layout requires, the point of the club head its club data describe, and for an export in another language
+the layout it translates (``base``, ``headers``). A map key ``Name [unit]`` matches the column ``Name`` only when the
+header gives it a unit (FlightScope's ``Club`` is the club's name, ``Club (mph)`` its speed).
 
 The reader (:func:`read_session`) never guesses: the separator comes from a ``sep=`` line or the header; decimal
 commas are recognised per file (a quoted ``"-0,9"`` is -0.9) and a file that mixes decimal marks is refused; a
@@ -39,7 +37,8 @@ from impactlab.scene.plausibility import GOLF_LIMITS, wrong_sign
 from impactlab.data.sessions.rows import row_verdict
 from impactlab.errors import FieldError, StudyError
 from impactlab.scene.catalogue import club_key
-from impactlab.data.sessions.shot_table import DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable, _resolve_spin_loft
+from impactlab.data.sessions.shot_table import (DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable,
+                                               _resolve_spin_loft)
 from impactlab.data.sessions.columns import _column_plan
 from impactlab.data.sessions.layouts import (DESCRIPTIONS, GENERIC, VendorMap, _header_index,
                                             _norm, _recognise, split_header)
@@ -182,14 +181,13 @@ class Session:
         """The :class:`~impactlab.data.sessions.shots.ShotTable` of the rows the impact models can use.
 
         The one assembly of a shot table: launch-monitor exports and impactlab's YAML tables
-        (:func:`impactlab.data.sessions.shots.read_yaml`) both come here as a session. Flagged values (estimated, clamped)
-        are left out of the comparison unless ``include_flagged``; a row without face angle or club path keeps its
-        ball speed, launch angle and spin but not its launch direction and spin axis (a square face would be a
-        guess). A row the models cannot use (:meth:`usable`, the row rules, a spin loft or face to path that
-        disagrees with the row's angles, a magnitude below zero, an uncertainty that is not positive) is skipped
-        with its reason, or, with ``every_row`` (a table written by hand, where such a row is the author's slip),
-        refused. Raises StudyError, listing every problem at its file:line, when no row is usable (or a hand-written
-        row is bad).
+        (:func:`impactlab.data.sessions.shots.read_yaml`) both come here as a session. Flagged values (estimated,
+        clamped) are left out of the comparison unless ``include_flagged``; a row without face angle or club path keeps
+        its ball speed, launch angle and spin but not its launch direction and spin axis (a square face would be a
+        guess). A row the models cannot use (:meth:`usable`, the row rules, a spin loft or face to path that disagrees
+        with the row's angles, a magnitude below zero, an uncertainty that is not positive) is skipped with its reason,
+        or, with ``every_row`` (a table written by hand, where such a row is the author's slip), refused. Raises
+        StudyError, listing every problem at its file:line, when no row is usable (or a hand-written row is bad).
         """
         keep, skipped = self.usable(include_flagged, rules=not every_row)
         if every_row:

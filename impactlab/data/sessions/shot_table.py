@@ -1,9 +1,9 @@
 """The shot table: its fields, their units and aliases, and :class:`ShotTable` (rows of measured shots in SI).
 
-The definitions the readers share: :mod:`impactlab.data.sessions.shots` (impactlab's YAML and CSV tables, predictions and
-their errors) and :mod:`impactlab.data.sessions.reader` (launch-monitor exports as exported) read their files into these
-fields; :meth:`impactlab.data.sessions.reader.Session.shot_table` is the one place a :class:`ShotTable` is assembled from
-them (a YAML table's rows become a session first).
+The definitions the readers share: :mod:`impactlab.data.sessions.shots` (impactlab's YAML and CSV tables, predictions
+and their errors) and :mod:`impactlab.data.sessions.reader` (launch-monitor exports as exported) read their files into
+these fields; :meth:`impactlab.data.sessions.reader.Session.shot_table` is the one place a :class:`ShotTable` is
+assembled from them (a YAML table's rows become a session first).
 """
 
 from __future__ import annotations

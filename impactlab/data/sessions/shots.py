@@ -38,8 +38,8 @@ from impactlab.data.sessions.reader import DATASETS, GENERIC, Session, read_sess
 from impactlab.data.sessions.json_records import JSON_SESSIONS
 from impactlab.data.sessions.layouts import FIELDS
 # the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
-from impactlab.data.sessions.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
-                                       ShotTable, _field_of)
+from impactlab.data.sessions.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS,
+                                               TEXT_FIELDS, ShotTable, _field_of)
 
 def _convert(value, field: str, unit: str | None, where: str) -> float:
     base = field[:-6] if field.endswith("_sigma") else field
