@@ -1,6 +1,7 @@
 """Benchmark: a large launch-monitor session read, checked and turned into model inputs (issue 23, item 3).
 
 Run:  python benchmarks/bench_sessions.py [--rows 100000]
+      python benchmarks/bench_sessions.py --dataset   (the shipped trackman_driver_sessions, issue 32)
 
 Writes a TrackMan TPS export of ROWS shots (the layout of tests/data/vendors/trackman_tps.csv: BOM, sep= line,
 units row, every value quoted, CRLF; clubs cycled through the catalogue's names; every 50th spin estimated, every
@@ -8,6 +9,11 @@ units row, every value quoted, CRLF; clubs cycled through the catalogue's names;
 1. read_session (parse, units, flags), 2. describe (the `impactlab shots` report), 3. shot_table (rows usable by
 the impact models, with the reasons for the others), 4. write_normalised (--csv), 5. table_inputs (the
 models' SI input arrays, one scene per row). The target is "well under a minute" for 1-3.
+
+``--dataset`` reads the shipped dataset trackman_driver_sessions (10,169 TrackMan driver shots as published) and
+prints the CPU time of read_session and of the row rules (goal: reading < 5 s of CPU, issue 32) and the peak of
+Python's allocations while reading a quarter, a half and all of its rows (tracemalloc: numpy's arrays included),
+whose ratios say whether memory grows linearly in rows.
 """
 
 import argparse
@@ -51,13 +57,47 @@ def session_text(rows: int, seed: int = 1) -> str:
     return "\ufeff" + "\r\n".join(lines) + "\r\n"
 
 
+def dataset_line() -> None:
+    """CPU time and peak memory of reading the shipped 10,169-shot TrackMan dataset, in one run."""
+    import gzip
+    import tracemalloc
+
+    from impactlab.data.sessions import dataset_path, read_session, read_session_text
+
+    read_session("trackman_driver_sessions")  # imports and caches (pandas, the layouts) out of the timing
+    start = time.process_time()
+    session = read_session("trackman_driver_sessions")
+    read = time.process_time() - start
+    start = time.process_time()
+    keep, skipped = session.usable()
+    rules = time.process_time() - start
+    print(f"trackman_driver_sessions: {session.size} shots read (of 10169 rows) in {read:.2f} s of CPU (goal < 5 s); "
+          f"row rules and usable rows {rules:.2f} s of CPU ({int(keep.sum())} usable, {len(skipped)} skipped)")
+    lines = gzip.decompress(dataset_path("trackman_driver_sessions").read_bytes()).decode().splitlines(keepends=True)
+    peaks = []
+    for fraction in (4, 2, 1):
+        rows = (len(lines) - 2) // fraction
+        text = "".join(lines[:2 + rows])
+        tracemalloc.start()
+        read_session_text(text, "part.csv")
+        peaks.append((rows, tracemalloc.get_traced_memory()[1] / 2**20))
+        tracemalloc.stop()
+    print("peak memory of reading (tracemalloc): " + ", ".join(f"{rows} rows {peak:.1f} MiB" for rows, peak in peaks)
+          + f"; ratio all / half {peaks[2][1] / peaks[1][1]:.2f}, half / quarter {peaks[1][1] / peaks[0][1]:.2f} "
+            "(2.00: linear in rows)")
+
+
 def main():
     from impactlab.data.sessions.reader import describe, read_session, write_normalised
     from impactlab.data.sessions.shots import table_inputs
 
     parser = argparse.ArgumentParser()
     parser.add_argument("--rows", type=int, default=100_000)
+    parser.add_argument("--dataset", action="store_true", help="time the shipped trackman_driver_sessions instead")
     args = parser.parse_args()
+    if args.dataset:
+        dataset_line()
+        return
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "big.csv"
         path.write_text(session_text(args.rows), encoding="utf-8", newline="")

@@ -65,7 +65,7 @@ def test_the_air_moves_the_carry_the_way_physics_says(tmp_path):
 def test_a_session_is_flown_beside_the_monitors_own_carry(tmp_path, capsys):
     path = DATA / "garmin_r10.csv"
     out = tmp_path / "session.csv"
-    assert main(["fly", str(path), "--csv", str(out)]) == 0
+    assert main(["fly", str(path), "--csv", str(out), "--show-rows"]) == 0
     printed = capsys.readouterr().out
     # the file, read here: line 6 is the only row with a measured spin ('Measured') whose spin axis is not at the
     # R10's +-30 deg clamp (line 5's is 30.0): the only one flown by default
@@ -78,7 +78,8 @@ def test_a_session_is_flown_beside_the_monitors_own_carry(tmp_path, capsys):
     assert float(rows[0]["monitor_carry_distance [m]"]) == pytest.approx(float(shot["Carry Distance"]) * YARD)
     assert float(rows[0]["ball_speed [m/s]"]) == pytest.approx(float(shot["Ball Speed"]) * MPH)
     assert float(rows[0]["spin_rate [rpm]"]) == pytest.approx(float(shot["Spin Rate"]))
-    assert "line 3: launch values flagged by the monitor" in printed and "line 5: launch values flagged" in printed
+    assert "spin rate estimated by the monitor (--include-flagged flies it): 2 row(s) (line(s) 3, 4)" in printed
+    assert "spin axis clamped by the monitor (--include-flagged flies it): 1 row(s) (line(s) 5)" in printed
     assert "model against the monitor's carry, 1 shot(s)" in printed
     # the flagged shots fly when asked
     assert main(["fly", str(path), "--include-flagged", "--csv", str(out)]) == 0
@@ -194,17 +195,19 @@ def test_a_topped_shot_and_a_topspin_shot_are_not_flown(tmp_path, capsys):
     cells = lines[9].split(",")  # file line 10
     assert float(cells[header.index("Launch Angle")]) < 0 and float(cells[header.index("Back Spin")]) < 0
     out = tmp_path / "sq.csv"
-    assert main(["fly", str(path), "--csv", str(out)]) == 0
+    assert main(["fly", str(path), "--csv", str(out), "--show-rows"]) == 0
     printed = capsys.readouterr().out
     assert "10" not in [row["line"] for row in _csv(out)]
-    assert "line 10: launch angle -0.2 deg, below the horizontal" in printed
+    assert "launched below the horizontal (it meets the ground at once: no carry to predict): 1 row(s) (line(s) 10)" \
+        in printed
     assert f"model against the monitor's carry, {len(_csv(out))} shot(s)" in printed
     table = tmp_path / "shots.csv"
     table.write_text("club,ball_speed [mph],vertical_launch_angle [deg],spin_rate [rpm],back_spin [rpm],"
                      "side_spin [rpm]\nDriver,150,8,1500,-1500,0\nDriver,150,12,2500,2500,0\n")
-    assert main(["fly", str(table), "--csv", str(out)]) == 0
+    assert main(["fly", str(table), "--csv", str(out), "--show-rows"]) == 0
     assert [row["line"] for row in _csv(out)] == ["3"]
-    assert "line 2: back spin -1500 rpm, below 0 (topspin)" in capsys.readouterr().out
+    assert "back spin below 0 (topspin, which a spin rate and axis do not carry): 1 row(s) (line(s) 2)" in \
+        capsys.readouterr().out
 
 
 def test_a_spin_rate_derived_from_measured_back_and_side_spin_is_flown(tmp_path, capsys):
@@ -258,7 +261,8 @@ def test_the_printed_mean_and_rms_are_those_of_the_table(tmp_path, capsys):
                       for row in _csv(out)])
     assert error.std() > 0.01  # the mean and the RMS differ here
     summary = next(text for text in printed.splitlines() if text.startswith("model against the monitor's carry"))
-    assert f"mean {100 * error.mean():+.1f} %, RMS {100 * np.sqrt(np.mean(error ** 2)):.1f} %" in summary
+    assert f"mean {100 * error.mean():+.1f} %, median {100 * np.median(error):+.1f} %, " \
+           f"RMS {100 * np.sqrt(np.mean(error ** 2)):.1f} %" in summary
 
 
 @pytest.mark.parametrize("option, given, says", [

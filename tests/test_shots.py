@@ -13,6 +13,7 @@ from impactlab.errors import StudyError
 from impactlab.physics.contact import contact_state
 from impactlab.model.registry import get_model
 from impactlab.data.shot_report import shot_table
+from impactlab.data.sessions.reader import read_session_text
 from impactlab.data.sessions.shots import ERROR_KEYS, predict, read_csv, read_yaml, shot_errors, summary, table_inputs
 
 RATCHET = Path(__file__).parent / "data" / "validation_budgets.json"
@@ -38,14 +39,23 @@ def test_csv_units_in_the_header_are_converted_to_si():
     assert np.isnan(table.measured["horizontal_launch_angle"][0]) and np.isnan(table.measured["spin_axis"][0])
 
 
-def test_every_bad_cell_is_reported_with_line_and_column_and_nothing_is_dropped():
-    bad = CSV.replace("115,-0.9", "115,minus one").replace("130,14.0", "130 furlongs,14.0") + "C,putter,80\n"
+def test_a_bad_cell_or_a_ragged_row_skips_that_row_with_its_reason_and_the_file_is_refused_only_if_none_is_left():
+    # an instrument's bad row never sinks the file (issue 32): each is skipped with its column, the rest are used
+    bad = CSV.replace("115,-0.9", "115,minus one") + "C,putter,80\n"
+    table = read_csv(bad, "shots.csv")
+    assert table.labels == ("B",)
+    assert dict(table.skipped) == {2: "Attack Angle [deg]: a cell that is not a number"}
+    session = read_session_text(bad, "shots.csv")
+    assert dict(session.skipped)[4].startswith("a row of 3 cells under a header of 12 columns")
+    assert session.bad_rows() == [(2, "Attack Angle [deg]: a cell that is not a number"),
+                                  (4, dict(session.skipped)[4])]
+    # no row left: refused, each reason at its file:line
+    worse = bad.replace("130,14.0", "130 furlongs,14.0")
     with pytest.raises(StudyError) as caught:
-        read_csv(bad, "shots.csv")
+        read_csv(worse, "shots.csv")
     message = str(caught.value)
-    assert "shots.csv:2:4 (Attack Angle [deg])" in message  # line 2, column 4
-    assert "shots.csv:3:8 (Ball Speed [mph])" in message
-    assert "shots.csv:4: expected 12 columns, got 3" in message
+    assert "shots.csv:2: Attack Angle [deg]: a cell that is not a number (1 row(s))" in message
+    assert "shots.csv:3: Ball Speed [mph]: a cell that is not a number (1 row(s))" in message
 
 
 def test_a_row_without_a_delivery_or_a_measurement_is_skipped_with_its_reason_and_the_rest_used():
@@ -55,7 +65,7 @@ def test_a_row_without_a_delivery_or_a_measurement_is_skipped_with_its_reason_an
     (line, reason), = table.skipped
     assert line == 2 and "no dynamic loft" in reason and "no measured launch quantity" in reason
     only_bad = CSV.splitlines()[0] + "\nA,driver,115,-0.9,,0,0,,,,,\n"
-    with pytest.raises(StudyError, match=r"no row the impact models can use .*shots.csv:2: no dynamic loft"):
+    with pytest.raises(StudyError, match=r"no row the impact models can use .*shots.csv:2: no dynamic loft \(1 row"):
         read_csv(only_bad, "shots.csv")
 
 
@@ -196,12 +206,18 @@ def test_validate_and_fit_take_a_users_csv(tmp_path, capsys):
     assert "leave-one-out" in capsys.readouterr().out
 
 
-def test_a_bad_csv_ends_in_one_message_and_exit_2(tmp_path, capsys):
+def test_a_bad_row_is_skipped_by_validate_and_strict_refuses_it_in_one_message_and_exit_2(tmp_path, capsys):
     path = tmp_path / "session.csv"
     path.write_text(CSV.replace("171", "fast"))
-    assert main(["validate", "--dataset", str(path)]) == 2
+    assert main(["validate", "--dataset", str(path), "--model", "rigid_coulomb"]) == 0
+    out = capsys.readouterr().out
+    assert "1 of 2 row(s) not used" in out
+    assert "Ball Speed [mph]: a cell that is not a number: 1 row(s) (first line 2)" in out
+    assert main(["validate", "--dataset", str(path), "--model", "rigid_coulomb", "--strict"]) == 2
     err = capsys.readouterr().err
-    assert "session.csv:2:8" in err and "Traceback" not in err
+    assert "session.csv: --strict: 1 bad row(s): " in err and "session.csv:2: Ball Speed [mph]: a cell that is not a " \
+        "number" in err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
 def test_the_validation_figure_draws_the_measured_values_and_every_model():

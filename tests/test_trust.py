@@ -312,5 +312,6 @@ def test_measured_magnitudes_below_zero_are_refused(tmp_path):
     with pytest.raises(StudyError) as info:
         read_csv(text, file="t.csv")
     message = str(info.value)
-    assert "ball_speed: expected a value >= 0 (a ball speed is a magnitude" in message
-    assert "spin_rate: expected a value >= 0 (the total spin is a magnitude" in message
+    # a session's rows are skipped with the reason (issue 32), and with no row left the file is refused naming both
+    assert "t.csv:2: Ball Speed [mph] below 0 (a magnitude)" in message
+    assert "t.csv:3: Spin Rate [rpm] below 0 (a magnitude)" in message

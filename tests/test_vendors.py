@@ -1,6 +1,6 @@
-"""Launch-monitor exports read as exported (impactlab.data.sessions.reader): each vendor's layout on a fixture made from a
-real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and units
-converted by their definitions, not values computed by the reader."""
+"""Launch-monitor exports read as exported (impactlab.data.sessions.reader): each vendor's layout on a fixture made
+from a real public file (tests/data/vendors/README.md cites them). The oracles are numbers typed from those files and
+units converted by their definitions, not values computed by the reader."""
 
 import math
 from pathlib import Path
@@ -185,12 +185,18 @@ def test_shots_command_reports_and_writes_the_normalised_table(tmp_path, capsys)
     assert out.read_text().startswith("line,label,club,club_speed [m/s]")
 
 
-def test_a_bad_session_ends_in_one_message_with_its_line_and_exit_2(tmp_path, capsys):
+def test_a_bad_session_row_is_skipped_and_strict_ends_in_one_message_with_its_line_and_exit_2(tmp_path, capsys):
     path = tmp_path / "bad.csv"
     path.write_text(SEMICOLON.replace("\"123,8\"", "fast"))
-    assert main(["shots", str(path)]) == 2
+    assert main(["shots", str(path)]) == 0
+    assert "Ball Speed [mph]: a cell that is not a number: 1 row(s) (first line 2)" in capsys.readouterr().out
+    assert main(["shots", str(path), "--strict"]) == 2
     err = capsys.readouterr().err
-    assert "bad.csv:2:5 (Ball Speed [mph]): expected a number, got 'fast'" in err and "Traceback" not in err
+    assert "bad.csv:2: Ball Speed [mph]: a cell that is not a number" in err and "Traceback" not in err
+    # a column no cell of which is a number: the header does not describe the rows, refused at the first cell
+    path.write_text(SEMICOLON.replace("\"123,8\"", "fast").replace("148,2", "slow"))
+    assert main(["shots", str(path)]) == 2
+    assert "bad.csv:2:5 (Ball Speed [mph]): expected a number, got 'fast'" in capsys.readouterr().err
 
 
 def test_validate_writes_each_shot_measured_beside_each_models_prediction(tmp_path, capsys):
@@ -437,12 +443,14 @@ def test_gspro_open_connect_messages_back_to_back_placeholders_and_heartbeats():
     assert np.isnan(v["face_angle"][2]) and np.isnan(v["attack_angle"][2])
     assert v["carry_distance"][2] == pytest.approx(255 * YD)
     # the vendor's own example: SpinAxis -13.2 with SideSpin -800 (one sign: positive tilted right); its TotalSpin
-    # 3250 is kept as given though hypot(2500, 800) = 2625, and the report says they differ
+    # 3250 is kept as given though hypot(2500, 800) = 2625: the report says they differ, and the total is flagged
+    # inconsistent (issue 35: not flown or compared unless asked), the only flag of its kind
     assert v["spin_axis"][4] == pytest.approx(-13.2 * DEG) and v["side_spin"][4] == pytest.approx(-800 * RPM)
     assert v["spin_rate"][4] == pytest.approx(3250 * RPM)
     assert v["horizontal_launch_angle"][4] == pytest.approx(2.3 * DEG)
     assert any("differs from hypot(back spin, side spin)" in note for note in session.notes)
-    assert not any(kind == "inconsistent" for _, kind in session.flags)
+    assert [(key, rows.tolist()) for key, rows in session.flags.items() if key[1] == "inconsistent"] == [
+        (("spin_rate", "inconsistent"), [False, False, False, False, True])]
     assert session.text["label"][3] == "GSPRO-R10"
 
 
@@ -500,7 +508,8 @@ def test_uneekor_report_json_sessions_sentinels_units_and_one_sign_convention():
 
 
 @pytest.mark.parametrize("name, vendor, says", [
-    ("square_golf.csv", "square_golf", ["line 6 skipped: a summary row ('Average')", "no club speed",
+    ("square_golf.csv", "square_golf", ["a summary row ('Average'), not a shot: 1 row(s) (first line 6)",
+                                        "no club speed",
                                         "units not in the file for Launch Direction [deg]"]),
     ("gspro_open_connect.json", "gspro_open_connect", ["a heartbeat or status message, not a shot",
                                                        "spin rate = hypot(back spin, side spin) in 1 row(s)"]),
@@ -583,6 +592,7 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
         assert "empty file" not in str(refused.value)
 
 
+@pytest.mark.slow
 def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
     """20,000 GSPro messages, one a line (a long simulator session, 3 MB): each row keeps its line, and the reader
     does not count line breaks from the file's start for every shot (that took 17 s on the indented capture)."""
@@ -592,13 +602,21 @@ def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
 
     message = ('{"DeviceID": "X", "Units": "Yards", "ShotNumber": %d, "BallData": {"Speed": 140.0, "HLA": 1.5, '
                '"VLA": 12.0, "TotalSpin": 2500.0}, "ShotDataOptions": {"ContainsBallData": true}}')
-    text = "\n".join(message % index for index in range(20000))
-    start = time.perf_counter()
-    rows, lines, _ = json_rows(text, "capture.json")
-    elapsed = time.perf_counter() - start
+    def cpu(count):  # CPU time of reading ``count`` messages (the best of two: a loaded machine adds, never removes)
+        text = "\n".join(message % index for index in range(count))
+        best = []
+        for _ in range(2):
+            start = time.process_time()
+            rows, lines, _ = json_rows(text, "capture.json")
+            best.append(time.process_time() - start)
+        return min(best), rows, lines
+
+    small, _, _ = cpu(2000)
+    large, rows, lines = cpu(20000)
     assert len(rows) == 20001 and lines[1:6] == [1, 2, 3, 4, 5] and lines[-1] == 20000
     assert rows[-1][rows[0].index("ShotNumber")] == "19999"
-    assert elapsed < 4.0, elapsed  # linear: about 0.5 s on one shared core; quadratic: over 10 s
+    # ten times the messages: ~10x the CPU when linear, ~100x when quadratic (issue 31: a ratio, not the clock)
+    assert large / small < 30, (small, large)
 
 
 def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):
@@ -614,21 +632,22 @@ def test_validate_takes_a_json_session_like_a_csv(tmp_path, capsys):
 
 
 def test_shots_does_not_count_a_negative_speed_or_spin_as_ball_data(tmp_path, capsys):
-    """A ball speed of -123.8 mph or a spin of -5492 rpm is no measurement: the shot table refuses it, so the shots
-    report must not count it as ball data, and must say which line and why."""
+    """A ball speed of -123.8 mph or a spin of -5492 rpm is no measurement: the row is skipped with that reason by
+    every command (the rest used), the shots report does not count it as ball data and says which line and why."""
     path = tmp_path / "signs.csv"
     path.write_text("Club,Club Speed [mph],Attack Angle [deg],Dyn. Loft [deg],Ball Speed [mph],Launch Angle [deg],"
                     "Spin Rate [rpm]\n"
                     "7 Iron,85.4,-0.9,19.7,123.8,15.4,5492\n"
                     "7 Iron,85.4,-0.9,19.7,-123.8,15.4,5492\n"
                     "7 Iron,85.4,-0.9,19.7,123.8,15.4,-5492\n")
-    assert main(["shots", str(path)]) == 0
+    assert main(["shots", str(path), "--show-rows"]) == 0
     report = capsys.readouterr().out
     assert "ball data (ball speed, launch angle, spin): 1 row(s), 1 with a spin" in report
-    assert "not ball data, line 3: ball_speed: expected a value >= 0" in report
-    assert "not ball data, line 4: spin_rate: expected a value >= 0" in report
-    with pytest.raises(StudyError, match=r"signs.csv:3: ball_speed: expected a value >= 0"):
-        read_session(path).shot_table()
+    assert "line 3: Ball Speed [mph] below 0 (a magnitude): -123.8" in report
+    assert "line 4: Spin Rate [rpm] below 0 (a magnitude): -5492" in report
+    table = read_session(path).shot_table()
+    assert table.size == 1 and dict(table.skipped) == {3: "Ball Speed [mph] below 0 (a magnitude)",
+                                                        4: "Spin Rate [rpm] below 0 (a magnitude)"}
 
 
 def test_an_unbracketed_units_row_is_refused_with_the_bracketed_form_shown():

@@ -21,6 +21,7 @@ from typing import NoReturn
 from impactlab._version import __version__
 from impactlab.cli.data_commands import _cmd_fit, _cmd_shots, _cmd_validate
 from impactlab.cli.fly_command import add_parser as add_fly_parser
+from impactlab.data.sessions.summary import showing_rows
 from impactlab.cli.study_commands import (_cmd_convergence, _cmd_export, _cmd_models, _cmd_paper, _cmd_plot,
                                           _cmd_run, _cmd_show)
 from impactlab.run.faults import EXIT_BAD_INPUT, EXIT_ENVIRONMENT, EXIT_INTERRUPTED  # noqa: F401  (the exit statuses)
@@ -103,6 +104,16 @@ class _Parser(argparse.ArgumentParser):
 
 
 FORCE_HELP = "--csv: replace an existing file that is not a table impactlab wrote (refused by default)"
+def _row_options(command, prefix: str = "") -> None:
+    """--strict and --show-rows of every command that reads a session's rows (one set of row rules)."""
+    command.add_argument("--strict", action="store_true",
+                         help=prefix + "refuse the file (exit 2) if any row is bad (a value beyond any golf shot, not "
+                                       "a number, off the face...); by default bad rows are skipped with their reason")
+    command.add_argument("--show-rows", action="store_true",
+                         help=prefix + "list the file line of every row skipped or unusual (default: counts per "
+                                       "reason)")
+
+
 CLUB_HELP = "a club from its spec sheet (YAML: loft, lie, mass, moi, cg and the names launch monitors give it)"
 
 
@@ -179,6 +190,7 @@ def build_parser() -> argparse.ArgumentParser:
                              "club speed mph, attack angle, path, face, dynamic loft in deg)")
     export.add_argument("--model", help="only this model's shots (default: every model)")
     export.add_argument("--device-id", default="impactlab", help="DeviceID of the messages")
+    _row_options(export, "a session file (CSV or JSON export, or a shipped session dataset): ")
     export.set_defaults(handler=_cmd_export)
 
     validate = commands.add_parser("validate", help="every model against the measured data the project cites")
@@ -195,6 +207,7 @@ def build_parser() -> argparse.ArgumentParser:
                           help="shot tables: compare estimated and clamped values too (left out by default)")
     validate.add_argument("--club", action="append", help=CLUB_HELP)
     validate.add_argument("--force", action="store_true", help=FORCE_HELP)
+    _row_options(validate, "shot tables: ")
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
@@ -207,6 +220,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="count estimated and clamped values as usable (left out of fits by default)")
     shots.add_argument("--club", action="append", help=CLUB_HELP)
     shots.add_argument("--force", action="store_true", help=FORCE_HELP)
+    _row_options(shots)
     shots.set_defaults(handler=_cmd_shots)
 
     add_fly_parser(commands)
@@ -226,6 +240,7 @@ def build_parser() -> argparse.ArgumentParser:
     fitting.add_argument("--include-flagged", action="store_true",
                          help="shot tables: fit estimated and clamped values too (left out by default)")
     fitting.add_argument("--club", action="append", help=CLUB_HELP)
+    _row_options(fitting, "shot tables: ")
     fitting.set_defaults(handler=_cmd_fit)
 
     paper = commands.add_parser("paper", help="write the Henrikson et al. (2020) reproduction report")
@@ -244,5 +259,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     # the limits and the warning hook (run_command) are the command's own: both are put back on return
     with limits.configured(max_cases=getattr(args, "max_cases", None), max_memory=getattr(args, "max_memory", None)):
-        return run_command(lambda: args.handler(args), debug=args.debug)
+        with showing_rows(getattr(args, "show_rows", False)):  # summaries of skipped rows: every line, or counts
+            return run_command(lambda: args.handler(args), debug=args.debug)
 

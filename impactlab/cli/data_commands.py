@@ -14,7 +14,9 @@ import sys
 import numpy as np
 
 from impactlab.data.sessions.reader import describe as describe_session
+from impactlab.data.sessions.export import session_messages
 from impactlab.data.sessions.reader import read_session, write_normalised
+from impactlab.data.sessions.summary import show_rows_setting, skip_lines
 from impactlab.data.validation import DATASETS, get_dataset, load_dataset_study
 from impactlab.data.validation import errors as dataset_errors
 from impactlab.data.validation.benchmark_report import describe as describe_benchmark
@@ -22,6 +24,7 @@ from impactlab.data.validation.benchmark_report import format_table, over_budget
 from impactlab.data.validation.benchmarks import BENCHMARKS, benchmark_errors
 from impactlab.cli.club_options import refuse_unmatched, unmatched
 from impactlab.errors import FieldError, StudyError
+from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.safe_output import (JSON_SUFFIXES, TABLE_SUFFIXES, check_output, refuse_replacing_foreign,
                                       write_atomically)
 from impactlab.model.registry import available
@@ -75,7 +78,7 @@ def _cmd_validate(args) -> int:
             print_observations(args.model or SHOT_MODELS)
             continue
         with user_clubs(specs) as clubs:
-            table = shot_table(name, args.include_flagged)
+            table = _strict(name, shot_table(name, args.include_flagged), args.strict)
             if table is not None:
                 matched.update(set(args.club or ()) - set(unmatched(args.club or (), specs, clubs.added,
                                                                      table.clubs)))
@@ -154,7 +157,7 @@ def _cmd_fit(args) -> int:
                          "--by out)")
     specs = [read_club_spec(path) for path in args.club or ()]
     with user_clubs(specs) as clubs:
-        table = shot_table(args.dataset, args.include_flagged)
+        table = _strict(args.dataset, shot_table(args.dataset, args.include_flagged), args.strict)
         if table is not None:
             refuse_unmatched(args.club or (), specs, clubs.added, table.clubs, args.dataset)
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
@@ -185,6 +188,44 @@ def _cmd_fit(args) -> int:
     return 0
 
 
+def _strict(name: str, table, strict: bool):
+    """``table``, after ``--strict``: a session's bad rows refuse it (a table written by hand is refused whole
+    anyway)."""
+    if strict and table is not None and table.unusual is not None:  # a session's rows were judged by the row rules
+        read_session(name).refuse_bad_rows()
+    return table
+
+
+def export_session(args) -> int:
+    """``impactlab export SESSION -o shots.json`` (or ``--gspro HOST:PORT``): the session's measured shots as GSPro
+    Open Connect messages (:func:`impactlab.data.sessions.export.session_messages`), rows not sent said by reason."""
+    if args.model is not None:
+        raise StudyError(f"--model {args.model}: chooses a model's shots in a result file; {args.file} is a session "
+                         "of measured shots (leave --model out)")
+    if args.output is not None:
+        check_output(args.output, what="shot file", suffix=".json", reads=[args.file], formats=JSON_SUFFIXES)
+    address = parse_address(args.gspro) if args.gspro is not None else None  # said before the file is read
+    session = read_session(args.file)
+    if args.strict:
+        session.refuse_bad_rows()
+    shots, skipped, zeroed = session_messages(session, device_id=args.device_id)
+    for line in skip_lines(skipped, session.size, (), show_rows_setting(), indent="", used="exported"):
+        print(line, file=sys.stderr)
+    if zeroed:
+        print(f"{zeroed} shot(s) without a spin axis or launch direction: sent with 0 (GSPro needs both)",
+              file=sys.stderr)
+    if not shots:
+        raise StudyError(f"{args.file}: no shot to export (each needs a ball speed, a launch angle and a spin rate)")
+    if address is not None:
+        replies = send_shots(shots, *address, timeout=args.timeout, progress=lambda text: print(text, file=sys.stderr))
+        print(f"sent {len(shots)} shot(s) to GSPro Connect at {args.gspro} (the last: {replies[-1].describe()})",
+              file=sys.stderr)
+        return 0
+    write_atomically(args.output, json.dumps(shots, indent=1).encode())
+    print(f"wrote {len(shots)} GSPro Open Connect shots of {session.file} to {args.output}", file=sys.stderr)
+    return 0
+
+
 def _cmd_shots(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[args.file, *(args.club or ())],
@@ -192,6 +233,8 @@ def _cmd_shots(args) -> int:
         refuse_replacing_foreign(args.csv, "--csv file", args.force)
 
     session = read_session(args.file, args.vendor)
+    if args.strict:
+        session.refuse_bad_rows()
     specs = [read_club_spec(path) for path in args.club or ()]
     with user_clubs(specs) as clubs:
         refuse_unmatched(args.club or (), specs, clubs.added, session.text.get("club", ()), args.file)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import csv
 import io
+import json
 import warnings
 
 import numpy as np
@@ -27,6 +28,7 @@ import xarray as xr
 
 from impactlab.data.sessions.reader import read_session
 from impactlab.data.sessions.flight import MONITOR, PREDICTED, fly_session
+from impactlab.data.sessions.summary import skip_lines
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.foreign import shown
 from impactlab.io.safe_output import (TABLE_SUFFIXES, check_output, refuse_overwriting, refuse_replacing_foreign,
@@ -86,6 +88,12 @@ def add_parser(commands) -> None:
     fly.add_argument("--csv", help="also write the table (every value in the units its header names)")
     fly.add_argument("--force", action="store_true",
                      help="--csv: replace an existing file that is not a table impactlab wrote (refused by default)")
+    fly.add_argument("--strict", action="store_true",
+                     help="a session: refuse the file (exit 2) if any row is bad (a value beyond any golf shot, not a "
+                          "number...); by default bad rows are not flown, with their reason")
+    fly.add_argument("--show-rows", action="store_true",
+                     help="a session: list the file line of every row not flown or unusual (default: counts per "
+                          "reason)")
     fly.set_defaults(handler=_cmd_fly)
 
 
@@ -113,7 +121,8 @@ def _cmd_fly(args) -> int:
                          "--spin-rate), not both")
     session_only = [option for option, given_ in (("--vendor", args.vendor), ("--include-flagged",
                                                                                  args.include_flagged),
-                                                   ("--standard-air", args.standard_air)) if given_]
+                                                   ("--standard-air", args.standard_air), ("--strict", args.strict),
+                                                   ("--show-rows", args.show_rows)) if given_]
     if not args.file and session_only:
         raise StudyError(f"impactlab fly: {session_only[0]} applies to a session file, and none is given (a launch "
                          "typed in has no vendor, no flags and no air of its own)")
@@ -123,13 +132,16 @@ def _cmd_fly(args) -> int:
             "one (the options alone already replace the export's air)")
     try:
         if args.file:
-            result = fly_session(read_session(args.file, args.vendor), model=args.model, conditions=conditions,
+            session = read_session(args.file, args.vendor)
+            if args.strict:
+                session.refuse_bad_rows()
+            result = fly_session(session, model=args.model, conditions=conditions,
                                  include_flagged=args.include_flagged, session_air=not args.standard_air)
         else:
             result = _fly_launch(given, conditions, args.model)
     except FieldError as exc:  # a value's path in the command's words: conditions.temperature -> --temperature
         raise _as_option(exc) from None
-    print(describe(result, args.model))
+    print(describe(result, args.model, args.show_rows))
     if args.csv:
         write_atomically(args.csv, table_csv(result).encode())
         print(f"wrote {args.csv} ({result.sizes['shot']} shot(s))")
@@ -192,7 +204,7 @@ _PLAIN = {"ball_speed": ("a ball speed", "mph"), "launch_angle": ("a launch angl
           "crosswind": ("a wind speed", "mph")}
 
 
-def describe(result: xr.Dataset, model: str) -> str:
+def describe(result: xr.Dataset, model: str, show_rows: bool = False) -> str:
     """The printed table: one row per shot, the launch flown, the predictions in yards and degrees, and for a
     session the monitor's carry beside each with the error summary."""
     a = result.attrs
@@ -214,8 +226,10 @@ def describe(result: xr.Dataset, model: str) -> str:
         out.insert(0, f"{shown(result.attrs['file'])}: {shown(result.attrs['vendor'])}, {result.sizes['shot']} shot(s) "
                       "flown")
     monitor = MONITOR + "carry_distance" in result
+    tracked = MONITOR + "measured" in result
     titles = (["line", "club"] if session else ["shot"]) + ["ball mph", "launch deg", "spin rpm", "axis deg"] + [
-        title for title, *_ in COLUMNS] + (["monitor carry yd", "model - monitor"] if monitor else [])
+        title for title, *_ in COLUMNS] + (["monitor carry yd", "model - monitor"] if monitor else []) + (
+        ["monitor's flight"] if tracked else [])
     out += ["", "| " + " | ".join(titles) + " |", "|" + "---|" * len(titles)]
     count = result.sizes["shot"]
     # a terminal table of a few hundred thousand rows is no table (a file of repeated rows printed 134 MB): the
@@ -238,16 +252,11 @@ def describe(result: xr.Dataset, model: str) -> str:
             cells += [_cell(reported / YARD, "{:.1f}"),
                       _cell(100 * (float(result.carry_distance[index]) / reported - 1), "{:+.1f} %")
                       if np.isfinite(reported) and reported > 0 else "-"]
+        if tracked:
+            cells.append("measured" if bool(result[MONITOR + "measured"][index]) else "model")
         out.append("| " + " | ".join(cells) + " |")
     if monitor:
-        monitor_carry = np.asarray(result[MONITOR + "carry_distance"].values, dtype=float)
-        usable = np.isfinite(monitor_carry) & (monitor_carry > 0) & np.isfinite(result.carry_distance.values)
-        if usable.any():
-            error = result.carry_distance.values[usable] / monitor_carry[usable] - 1
-            rms = 100 * np.sqrt(np.mean(error ** 2))
-            out += ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean "
-                        f"{100 * error.mean():+.1f} %, RMS {rms:.1f} % (the monitor's carry is what it exported: "
-                        "measured where a radar tracked the flight, its own model indoors or when normalised)"]
+        out += _monitor_statistics(result)
     repeated = _repeated_launches(result)
     if repeated:
         out.append(f"{repeated:,} of {count:,} shot(s) repeat an earlier shot's launch exactly (ball speed, launch "
@@ -268,8 +277,12 @@ def describe(result: xr.Dataset, model: str) -> str:
                    "the ground it meets the ground at once (carry 0; the landing angle is the launch's)")
     if session and np.isnan(result.offline_distance.values).any():
         out.append("offline not given for shots without a spin axis or launch direction (flown as 0)")
-    if session and result.attrs.get("skipped"):
-        out += ["", "not flown: " + shown(result.attrs["skipped"])]
+    if session and ("skipped_rows" in result.attrs or "unusual_rows" in result.attrs):
+        skipped = [tuple(pair) for pair in json.loads(result.attrs.get("skipped_rows", "[]"))]
+        unusual = [tuple(pair) for pair in json.loads(result.attrs.get("unusual_rows", "[]"))]
+        lines = skip_lines(skipped, result.sizes["shot"] + len(skipped), unusual, show_rows, indent="",
+                           used="flown")
+        out += [""] + lines if lines else []
     return "\n".join(out)
 
 
@@ -287,6 +300,28 @@ def _repeated_launches(result: xr.Dataset) -> int:
     launch = launch[np.isfinite(launch).all(axis=1)]
     return int(len(launch) - len(np.unique(launch, axis=0))) if len(launch) else 0
 
+
+def _monitor_statistics(result: xr.Dataset) -> list[str]:
+    """The model's carry against the monitor's, over the flights the monitor measured where the export says which
+    (TrackMan's tracked time), else over every shot with a carry (and said so)."""
+    monitor_carry = np.asarray(result[MONITOR + "carry_distance"].values, dtype=float)
+    usable = np.isfinite(monitor_carry) & (monitor_carry > 0) & np.isfinite(result.carry_distance.values)
+    if MONITOR + "measured" in result and (usable & result[MONITOR + "measured"].values).any():
+        measured = np.asarray(result[MONITOR + "measured"].values, dtype=bool)
+        words = (f"the flights the monitor measured ({int((usable & measured).sum())} of {int(usable.sum())} with a "
+                 f"carry; the others are its model output, left out)")
+        usable &= measured
+    elif MONITOR + "measured" in result:
+        words = "the monitor's model output: none of these flights was tracked long enough to be measured"
+    else:
+        words = ("every shot with a carry (the export does not say which flights the monitor tracked: measured where "
+                 "a radar tracked the flight, its own model indoors or when normalised)")
+    if not usable.any():
+        return ["", f"model against the monitor's carry: no shot to compare over {words}"]
+    error = result.carry_distance.values[usable] / monitor_carry[usable] - 1
+    rms = 100 * np.sqrt(np.mean(error ** 2))
+    return ["", f"model against the monitor's carry, {int(usable.sum())} shot(s): mean {100 * error.mean():+.1f} %, "
+                f"median {100 * np.median(error):+.1f} %, RMS {rms:.1f} %, over {words}"]
 
 
 def _cell(value, form: str) -> str:

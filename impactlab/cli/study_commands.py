@@ -19,7 +19,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from impactlab.cli.data_commands import export_session
 from impactlab.data.convergence import LADDER, work_precision
+from impactlab.data.sessions.export import is_session
 from impactlab.errors import FieldError, StudyError, shown
 from impactlab.io.gspro_connect import parse_address, send_shots
 from impactlab.io.interchange import checked_shots, write_gspro
@@ -344,6 +346,10 @@ def _checked_result(path) -> xr.Dataset:
 
 
 def _cmd_export(args) -> int:
+    if is_session(args.file):  # measured shots of a launch-monitor export, not a result's
+        return export_session(args)
+    if args.strict or args.show_rows:
+        raise StudyError("--strict and --show-rows apply to a session file's rows; a result file has none")
     if args.gspro is not None:
         host, port = parse_address(args.gspro)  # a bad address is said before the file is read
         shots = checked_shots(_checked_result(args.file), model=args.model, device_id=args.device_id)

@@ -191,6 +191,8 @@ def session_carry(path, model: str = DEFAULT_MODEL, conditions=None, include_fla
     problems = [f"{session.file}:{line}: carry_distance: expected a carry > 0, got {carry:.6g} m"
                 for line, carry, launch in zip(session.lines, v["carry_distance"], launched)
                 if launch and np.isfinite(carry) and not carry > 0.0]
+    # a comparison table of the docs, not a user's session: a bad row (a spin below zero...) refuses it, named
+    problems = [f"{session.file}:{line}: {why}" for line, why in session.bad_rows()] + problems
     try:
         flown = fly_session(session, model=model, conditions=conditions, include_flagged=include_flagged,
                             session_air=session_air)

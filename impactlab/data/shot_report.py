@@ -31,6 +31,8 @@ from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.sessions.json_records import JSON_SESSIONS
+from impactlab.data.sessions.reader import DATASETS as SESSION_DATASETS
+from impactlab.data.sessions.summary import skip_lines, show_rows_setting
 from impactlab.data.fit.calibration import cross_validate as leave_one_out
 from impactlab.data.fit.least_squares import usable_rows
 
@@ -74,6 +76,8 @@ def shot_table(name: str, include_flagged: bool = False) -> ShotTable | None:
     if suffix == ".csv" or (suffix in (".yaml", ".yml") and _is_shot_yaml(path)) or (
             suffix in JSON_SESSIONS and _is_shot_json(path)):
         return read_shots(path, include_flagged)
+    if name in SESSION_DATASETS and not path.exists():  # a launch-monitor export shipped with impactlab
+        return read_shots(name, include_flagged)
     if name in SHOT_TABLES:
         text = resources.files("impactlab.data.validation").joinpath(f"{name}.yaml").read_text()
         return read_yaml(text, f"impactlab/data/validation/{name}.yaml")
@@ -147,19 +151,9 @@ def labels_text(labels, most: int = 8) -> str:
 
 
 def skipped_text(table: ShotTable) -> list[str]:
-    """Lines saying which rows of the file were skipped and why (counted by reason; ``impactlab shots`` has all)."""
-    from collections import Counter
-
-    if not table.skipped:
-        return []
-    reasons = Counter(why for _, why in table.skipped)
-    out = [f"  {len(table.skipped)} row(s) of the file skipped (impactlab shots FILE says more):"]
-    for why, count in reasons.most_common(5):
-        lines = [str(line) for line, reason in table.skipped if reason == why]
-        out.append(f"    {why}: {count} row(s), line(s) {', '.join(lines[:5])}{' ...' if count > 5 else ''}")
-    if len(reasons) > 5:
-        out.append(f"    and {len(reasons) - 5} other reason(s)")
-    return out
+    """Lines saying how many rows of the file were not used and why, one per reason (every line with
+    ``--show-rows``), and the unusual values used, one line per column and reason."""
+    return skip_lines(table.skipped, table.size + len(table.skipped), table.unusual or (), show_rows_setting())
 
 
 def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None = None,

@@ -4,3 +4,7 @@ The public entry is :func:`read_session` (and :class:`Session`, what it returns)
 shots beside what the monitor reported. The modules below are this subpackage's own: names with a leading underscore
 are private to it and are never imported from outside ``impactlab.data.sessions``.
 """
+
+from impactlab.data.sessions.reader import DATASETS, Session, dataset_path, read_session, read_session_text
+
+__all__ = ["DATASETS", "Session", "dataset_path", "read_session", "read_session_text"]

@@ -1,9 +1,9 @@
 """A launch-monitor session flown: each shot's measured launch through the air, beside what the monitor reported.
 
-``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as :func:`impactlab.data.sessions.reader.read_session`
-reads it, flies every shot that has a ball speed, a launch angle and a spin rate with
-:func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and flight time
-beside each prediction where the export has them. Nothing is guessed for a shot:
+``impactlab fly SESSION`` (and :func:`fly_session`) takes an export as
+:func:`impactlab.data.sessions.reader.read_session` reads it, flies every shot that has a ball speed, a launch angle and
+a spin rate with :func:`impactlab.scene.flight.fly`, and puts the monitor's own carry, offline, apex, landing angle and
+flight time beside each prediction where the export has them. Nothing is guessed for a shot:
 
 - a shot without ball speed, launch angle or spin is not flown, and the result says why (``skipped``);
 - a shot whose spin (or ball speed, or launch) the monitor marks estimated, clamped or inconsistent is not flown
@@ -31,6 +31,7 @@ state that their rows are normalised to a standard air (docs/vendors.md, docs/fl
 
 from __future__ import annotations
 
+import json
 import warnings
 from collections.abc import Mapping
 from typing import Any
@@ -38,12 +39,13 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from impactlab.data.sessions.layouts import DESCRIPTIONS
 from impactlab.data.sessions.reader import Session
 from impactlab.data.sessions.air import AIR_IN_WORDS
+from impactlab.data.sessions.summary import reason_counts
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.physics.aerodynamics import DEFAULT_MODEL
 from impactlab.scene import flight
-from impactlab.scene.plausibility import wrong_sign
 
 #: the launch a shot needs to be flown
 LAUNCH = ("ball_speed", "vertical_launch_angle", "spin_rate")
@@ -86,79 +88,28 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         ``spin_axis`` [degree], NaN where the export has none); the predictions of :data:`PREDICTED` in the units
         of :data:`impactlab.vocabulary.OUTPUTS` (``offline_distance`` NaN where the spin axis or launch direction
         is missing); ``monitor_<name>`` for each predicted quantity the export has (NaN in the rows without
-        it); ``flagged`` (bool: a launch value flown though the monitor flags it); ``air_density`` [kg/m^3], the
-        air each shot was flown in. Attributes: ``file``, ``vendor``, ``aerodynamic_model``, ``skipped`` (one
-        "line N: reason" per shot not flown, ``; ``-joined), ``air_source`` (whose air, in words); where every shot
-        flew in one air, its ``air_*`` attributes as :func:`impactlab.fly` gives them.
+        it); ``monitor_measured`` (bool, where the layout says which flights its monitor tracked: TrackMan's
+        tracked time against the hang time); ``flagged`` (bool: a launch value flown though the monitor flags it);
+        ``air_density`` [kg/m^3], the air each shot was flown in. Attributes: ``file``, ``vendor``,
+        ``aerodynamic_model``, ``skipped`` (one "line N: reasons" per shot not flown, ``; ``-joined),
+        ``skipped_rows`` and ``unusual_rows`` (JSON: [line, reasons] pairs; [reason, lines] of the unusual values
+        flown), ``air_source`` (whose air, in words); where every shot flew in one air, its ``air_*`` attributes as
+        :func:`impactlab.fly` gives them.
 
     Raises
     ------
     StudyError
-        A shot with a negative ball speed or spin (a sign or column error, never a shot to fly), or air the
-        flight cannot take (e.g. a temperature above 77 degC), at its file:line; or a session with no shot to fly,
-        saying why each was left out.
+        Air the flight cannot take (e.g. a temperature above 77 degC), at its file:line; or a session with no shot
+        to fly, saying why the rows were left out (counted by reason). A row that breaks the row rules (a negative
+        ball speed, a value beyond any shot) is not flown, with its reason in ``skipped``.
     """
     v = session.values
-    with np.errstate(invalid="ignore"):
-        downward = v["vertical_launch_angle"] < 0.0
-        topspin = v["back_spin"] < 0.0
-        # angles no golf shot has (a column in other units or conventions): an axis tilted past the vertical is
-        # topspin, a launch at or beyond 90 deg goes straight up or backwards; flown, each would be a number
-        impossible = {name: np.abs(v[name]) >= limit for name, limit in (
-            ("vertical_launch_angle", np.pi / 2), ("spin_axis", np.nextafter(np.pi / 2, 4.0)),
-            ("horizontal_launch_angle", np.pi / 2))}
-        beyond = {name: v[name] > limit for name, (limit, _) in flight.IMPOSSIBLE_LAUNCH.items()}
-    present = (np.all([np.isfinite(v[name]) for name in LAUNCH], axis=0) & ~(v["ball_speed"] == 0.0) & ~downward
-               & ~topspin & ~np.any(list(impossible.values()), axis=0) & ~np.any(list(beyond.values()), axis=0))
-    flagged = np.zeros(session.size, dtype=bool)
-    why: dict[int, list[str]] = {}
-    for (field, kind), rows in session.flags.items():
-        # a 'no data' flag marks a value the export lacks: it is NaN (missing, said below) unless the reader derived
-        # it from measured values (a spin rate from back and side spin), which is no estimate
-        if field in LAUNCH + ("spin_axis",) and kind != "no data":
-            flagged |= rows
-            for row in np.flatnonzero(rows).tolist():
-                why.setdefault(row, []).append(f"{field} {kind}")
-    fly_rows = present & (include_flagged | ~flagged)
-    skipped = []
-    for row in np.flatnonzero(~fly_rows).tolist():
-        missing = [name for name in LAUNCH if not np.isfinite(v[name][row])] + (
-            ["ball speed above 0 (the row's is 0: no shot)"] if v["ball_speed"][row] == 0.0 else [])
-        if missing:
-            reason = "no " + ", no ".join(missing)
-        elif downward[row]:
-            reason = (f"launch angle {np.degrees(v['vertical_launch_angle'][row]):.1f} deg, below the horizontal: the "
-                      "ball meets the ground at once, there is no carry to predict")
-        elif topspin[row]:
-            reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
-                      "and a tilt of the axis do not carry: flown, it would be backspin")
-        elif any(refused[row] for refused in impossible.values()):
-            name = next(name for name, refused in impossible.items() if refused[row])
-            reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
-                      "(a column in other units or another convention?)")
-        elif any(refused[row] for refused in beyond.values()):
-            name = next(name for name, refused in beyond.items() if refused[row])
-            unit, factor = flight.UNUSUAL_LAUNCH[name][:2]
-            reason = (f"{name.replace('_', ' ')} {v[name][row] * factor:.6g} {unit}, beyond "
-                      f"{flight.IMPOSSIBLE_LAUNCH[name][1].split(' (')[0].split(' up to ')[1]}: no golf shot (a column "
-                      "in other units?)")
-        else:
-            reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
-                      "them)")
-        skipped.append(f"line {session.lines[row]}: {reason}")
+    fly_rows, flagged, skipped = flight_rows(session, include_flagged)
     rows = np.flatnonzero(fly_rows)
     if rows.size == 0:
         raise StudyError(f"{session.file}: no shot to fly (each needs a ball speed, a launch angle and a spin "
-                         f"rate): " + "; ".join(skipped or ["the file has no shots"]))
-    problems = [problem for row in rows.tolist() for problem in wrong_sign(
-        {"ball_speed": v["ball_speed"], "spin_rate": v["spin_rate"]}, row, f"{session.file}:{session.lines[row]}")]
-    if problems:
-        raise StudyError("; ".join(problems))
-    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    for name, (unit, factor, limit, because) in flight.UNUSUAL_LAUNCH.items():
-        for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
-            warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
-                          f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
+                         f"rate): " + (reason_counts(skipped, file=str(session.file)) or "the file has no shots"))
+    axis = v["spin_axis"][rows]
     air, air_source = _airs(session, rows, conditions, session_air)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PlausibilityWarning)
@@ -173,6 +124,24 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         "flagged": ("shot", flagged[rows], {"long_name": "a launch value the monitor flags (estimated or clamped)"}),
         "air_density": ("shot", air_density, {"units": "kg/m^3", "long_name": "density of the air flown in"}),
     }
+    _predictions_and_monitor(session, rows, flown, data)
+    coords = {"line": ("shot", np.asarray(session.lines)[rows]),
+              "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
+    unusual = [(reason, [int(line) for line in session.lines[mask & fly_rows]])
+               for reason, mask in session.verdict().unusual if (mask & fly_rows).any()]
+    attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
+                  "skipped": "; ".join(f"line {line}: {reason}" for line, reason in skipped),
+                  "skipped_rows": json.dumps(skipped), "unusual_rows": json.dumps(unusual),
+                  "air_source": air_source}
+    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
+    return xr.Dataset(data, coords=coords, attrs=attributes)
+
+
+def _predictions_and_monitor(session: Session, rows: np.ndarray, flown: xr.Dataset, data: dict) -> None:
+    """Add to ``data`` the predictions of :data:`PREDICTED`, the monitor's own value of each (``monitor_<name>``)
+    and, where the layout says which flights its monitor tracked, ``monitor_measured`` per shot."""
+    v = session.values
+    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
     for name in PREDICTED:
         values = np.array(flown[name].values, dtype=float)
         if name == "offline_distance":
@@ -182,12 +151,14 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
             reported = v[name][rows] if name != "landing_angle" else np.degrees(v[name][rows])
             data[MONITOR + name] = ("shot", reported, {"units": flown[name].attrs["units"],
                                                        "long_name": f"{name.replace('_', ' ')} the monitor reports"})
-    coords = {"line": ("shot", np.asarray(session.lines)[rows]),
-              "club": ("shot", [session.text["club"][row] for row in rows.tolist()])}
-    attributes = {"file": str(session.file), "vendor": session.vendor.name, "aerodynamic_model": model,
-                  "skipped": "; ".join(skipped), "air_source": air_source}
-    attributes.update({key: value for key, value in flown.attrs.items() if key not in attributes})
-    return xr.Dataset(data, coords=coords, attrs=attributes)
+    if session.vendor.tracked and MONITOR + "carry_distance" in data:
+        # per value: whether the monitor measured the flight (tracked it long enough) or flew it with its own model
+        modelled = session.flags.get(("carry_distance", "modelled"), np.zeros(session.size, bool))[rows]
+        rule = session.vendor.tracked
+        known = np.isfinite(v[rule["time"]][rows]) & np.isfinite(v[rule["of"]][rows])
+        data[MONITOR + "measured"] = ("shot", known & ~modelled, {
+            "long_name": "the monitor's carry is measured (its flight tracked for at least "
+                         f"{100 * session.vendor.tracked['at_least']:g} % of the hang time), not its model output"})
 
 
 def _airs(session: Session, rows: np.ndarray, conditions: Mapping | None, session_air: bool):
@@ -261,3 +232,38 @@ def _fly_in(air, v: dict, rows: np.ndarray, model: str):
     else:
         density = np.full(rows.size, flown.attrs["air_density_kg_m3"])
     return flown, density
+
+
+def flight_rows(session: Session, include_flagged: bool = False) -> tuple[np.ndarray, np.ndarray, list]:
+    """(rows to fly, rows whose launch the monitor flags, ``(line, reason)`` of each row not flown): the row rules
+    of every command (:meth:`Session.verdict`) and what a flight needs (see the module docstring). Reasons carry no
+    values (``impactlab shots --show-rows`` gives them), so rows are counted by reason."""
+    v = session.values
+    reasons: list[list[str]] = [[] for _ in range(session.size)]
+    no_data = {field for (field, kind) in session.flags if kind == "no data"}
+    for name in LAUNCH:
+        marker = session.flags.get((name, "no data"), np.zeros(session.size, bool)) if name in no_data else None
+        for row in np.flatnonzero(~np.isfinite(v[name])).tolist():
+            reasons[row].append(f"no {DESCRIPTIONS[name]}" + (" (a no-value marker in the file)"
+                                                                  if marker is not None and marker[row] else ""))
+    with np.errstate(invalid="ignore"):
+        rules = [(v["ball_speed"] == 0.0, "ball speed 0 (no shot)"),
+                 (v["vertical_launch_angle"] < 0.0, "launched below the horizontal (it meets the ground at once: no "
+                                                    "carry to predict)"),
+                 (v["back_spin"] < 0.0, "back spin below 0 (topspin, which a spin rate and axis do not carry)")]
+    for mask, reason in rules + [(mask, reason) for reason, mask, _ in session.verdict().reasons]:
+        for row in np.flatnonzero(mask).tolist():
+            reasons[row].append(reason)
+    flagged = np.zeros(session.size, dtype=bool)
+    for (field, kind), marked in session.flags.items():
+        # a 'no data' flag marks a value the export lacks: it is NaN (missing, said above) unless the reader derived
+        # it from measured values (a spin rate from back and side spin), which is no estimate
+        if field in LAUNCH + ("spin_axis",) and kind not in ("no data", "unreadable"):
+            flagged |= marked
+            if not include_flagged:
+                for row in np.flatnonzero(marked).tolist():
+                    reasons[row].append(f"{field.replace('_', ' ')} {kind} by the monitor (--include-flagged flies "
+                                        f"it)")
+    fly = np.array([not why for why in reasons], dtype=bool)
+    skipped = [(int(session.lines[row]), "; ".join(why)) for row, why in enumerate(reasons) if why]
+    return fly, flagged, skipped

@@ -1,9 +1,9 @@
 """Launch-monitor layouts as data: the session vocabulary, each vendor's column map, and how a header is read.
 
-:data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML
-column maps of ``impactlab/data/sessions/vendors/`` (the module docstring of :mod:`impactlab.data.sessions.reader` says what a
-map holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and
-:func:`_recognise` turn a header row into fields, units and the layout that wrote it.
+:data:`FIELDS` is what a session can hold (field -> physical dimension); :func:`vendor_maps` reads the YAML column maps
+of ``impactlab/data/sessions/vendors/`` (the module docstring of :mod:`impactlab.data.sessions.reader` says what a map
+holds) and :data:`GENERIC` is impactlab's own layout. :func:`split_header`, :func:`_unit_factor` and :func:`_recognise`
+turn a header row into fields, units and the layout that wrote it.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import attrs
 
 from impactlab.errors import FieldError, StudyError
 from impactlab.units import DIMENSIONS, ZERO_DEPENDS_ON_UNIT, to_si, unit_affine
-from impactlab.data.sessions.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS, _field_of
+from impactlab.data.sessions.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS
 
 #: the session vocabulary: field -> physical dimension (impactlab.units.DIMENSIONS); names follow
 #: impactlab.vocabulary (inputs: club_speed is the delivery's speed; outputs: ball_speed, back_spin...) and the ball
@@ -26,6 +26,9 @@ FIELDS = {
     "back_spin": "angular_speed", "side_spin": "angular_speed", "smash_factor": "dimensionless",
     "carry_distance": "length", "total_distance": "length", "apex_height": "length", "offline_distance": "length",
     "landing_angle": "angle", "flight_time": "time",
+    # the monitor's flight beyond the carry, and how much of it was tracked (TrackMan's older layout: Carry Flat - Ball
+    # Speed, Side Total, Last data Point - Time)
+    "landing_ball_speed": "speed", "total_offline_distance": "length", "tracked_time": "time",
     # the air the monitor states for a shot (Garmin: Temperature [deg F], Air Pressure [kPa], Relative Humidity [%],
     # Air Density [g/L]); `impactlab fly SESSION` flies each shot in it
     "air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "dimensionless",
@@ -45,7 +48,9 @@ DESCRIPTIONS = {
     "spin_rate": "spin rate", "spin_axis": "spin axis", "back_spin": "back spin", "side_spin": "side spin",
     "smash_factor": "smash factor", "carry_distance": "carry", "total_distance": "total distance",
     "apex_height": "apex height", "offline_distance": "offline distance", "landing_angle": "landing angle",
-    "flight_time": "flight time", "air_temperature": "air temperature", "air_pressure": "air pressure",
+    "flight_time": "flight time", "landing_ball_speed": "ball speed at landing",
+    "total_offline_distance": "offline distance after the roll", "tracked_time": "time the monitor tracked the ball",
+    "air_temperature": "air temperature", "air_pressure": "air pressure",
     "relative_humidity": "relative humidity (a fraction; '[%]' in a units row)",
     "air_density": "air density (checked against the temperature, pressure and humidity)",
     "altitude": "altitude of the air (the ISA pressure there, where no pressure is given)",
@@ -96,6 +101,15 @@ class VendorMap:
     signs: str = ""
     missing: tuple[str, ...] = ("",)
     sentinel_at_least: float | None = None
+    #: [{value, scaled, why}]: numbers that mean "no value" (TrackMan's -2^31); ``scaled``: also the value times a
+    #: power of ten (the instrument's integer written in another unit); read as missing, flagged ``no data``
+    sentinels: tuple = ()
+    #: columns whose presence says the header is another layout's (the older TrackMan layout is the newer one's
+    #: columns without ``Spin Rate Type``)
+    unless: tuple[str, ...] = ()
+    #: {time, of, at_least, fields, why}: a flight tracked for less than ``at_least`` of its hang time (the field
+    #: ``time`` over the field ``of``) is the monitor's model output: its ``fields`` are flagged ``modelled``
+    tracked: dict | None = attrs.field(default=None, eq=False)
     estimated: dict | None = attrs.field(default=None, eq=False)
     clamped: dict = attrs.field(factory=dict, eq=False)
     #: field -> SI floor: values at or below it are the monitor's floor, flagged ``clamped`` (the R10 writes a launch
@@ -175,7 +189,8 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
             "summary_rows", "left_right_suffix",
             "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
             "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
-            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text"}
+            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text",
+            "sentinels", "tracked", "unless"}
     unknown = set(document) - keys
     if unknown:
         raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
@@ -195,17 +210,7 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         for field in fields:
             if field not in FIELDS:
                 raise StudyError(f"{where}: {key}: {field!r} is not a numeric session field")
-    without = []
-    for rule in document.get("no_data_without") or ():
-        if not isinstance(rule, dict) or not {"field", "without"} <= set(rule) or \
-                set(rule) - {"field", "without", "only_zero", "why"}:
-            raise StudyError(f"{where}: no_data_without: {rule!r}: expected {{field, without, only_zero, why}}")
-        for field in (rule["field"], *rule["without"]):
-            if field not in FIELDS:
-                raise StudyError(f"{where}: no_data_without: {field!r} is not a numeric session field")
-        without.append({"field": rule["field"], "without": tuple(rule["without"]),
-                        "only_zero": bool(rule.get("only_zero", False)),
-                        "why": str(rule.get("why", ""))})
+    without = _without(document.get("no_data_without"), where)
     summary = document.get("summary_rows")
     summary = [] if summary is None else (summary if isinstance(summary, list) else [summary])
     estimated = document.get("estimated")
@@ -234,7 +239,10 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         if not groups or set(groups) - {"air_temperature", "air_pressure", "relative_humidity", "altitude"}:
             raise StudyError(f"{where}: air_text.pattern: its named groups must be air fields (air_temperature, "
                              f"air_pressure, relative_humidity, altitude), got {sorted(groups)}")
+    sentinels = _sentinels(document.get("sentinels"), where)
+    tracked = _tracked(document.get("tracked"), where)
     return VendorMap(
+        sentinels=sentinels, tracked=tracked, unless=tuple(_norm(name) for name in document.get("unless") or ()),
         id=document["id"], name=document["name"], source=document["source"],
         recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
         implied_units={_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
@@ -254,6 +262,45 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
         merge_repeated_columns=bool(document.get("merge_repeated_columns", False)), air_text=air_text,
         spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+
+
+def _without(rules, where: str) -> list:
+    """A layout's ``no_data_without`` rules, checked."""
+    without = []
+    for rule in rules or ():
+        if not isinstance(rule, dict) or not {"field", "without"} <= set(rule) or \
+                set(rule) - {"field", "without", "only_zero", "why"}:
+            raise StudyError(f"{where}: no_data_without: {rule!r}: expected {{field, without, only_zero, why}}")
+        for field in (rule["field"], *rule["without"]):
+            if field not in FIELDS:
+                raise StudyError(f"{where}: no_data_without: {field!r} is not a numeric session field")
+        without.append({"field": rule["field"], "without": tuple(rule["without"]),
+                        "only_zero": bool(rule.get("only_zero", False)), "why": str(rule.get("why", ""))})
+    return without
+
+
+def _sentinels(rules, where: str) -> tuple:
+    """A layout's numeric no-value markers, checked: ``[{value, scaled, why}]``."""
+    for rule in rules or ():
+        if not isinstance(rule, dict) or "value" not in rule or set(rule) - {"value", "scaled", "why"} or \
+                isinstance(rule["value"], bool) or not isinstance(rule["value"], (int, float)):
+            raise StudyError(f"{where}: sentinels: {rule!r}: expected {{value (a number), scaled, why}}")
+    return tuple({"value": float(rule["value"]), "scaled": bool(rule.get("scaled", False)),
+                  "why": str(rule.get("why", "a no-value marker"))} for rule in rules or ())
+
+
+def _tracked(rule, where: str) -> dict | None:
+    """A layout's rule of what its monitor tracked (``tracked``), checked."""
+    if rule is None:
+        return None
+    if not isinstance(rule, dict) or set(rule) != {"time", "of", "at_least", "fields", "why"}:
+        raise StudyError(f"{where}: tracked: {rule!r}: expected {{time, of, at_least, fields, why}}")
+    for field in (rule["time"], rule["of"], *rule["fields"]):
+        if field not in FIELDS:
+            raise StudyError(f"{where}: tracked: {field!r} is not a numeric session field")
+    if not 0 < float(rule["at_least"]) <= 1:
+        raise StudyError(f"{where}: tracked.at_least: expected a fraction of the hang time in (0, 1]")
+    return {**rule, "at_least": float(rule["at_least"]), "fields": tuple(rule["fields"])}
 
 
 #: rules of a layout that name a column and the words written in it: a translated layout restates them
@@ -304,7 +351,8 @@ def vendor_maps() -> dict[str, VendorMap]:
     documents = {}
     for entry in sorted(resources.files("impactlab.data.sessions.vendors").iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".yaml"):
-            documents[f"impactlab/data/sessions/vendors/{entry.name}"] = yaml.safe_load(entry.read_text(encoding="utf-8"))
+            where = f"impactlab/data/sessions/vendors/{entry.name}"
+            documents[where] = yaml.safe_load(entry.read_text(encoding="utf-8"))
     by_id = {document.get("id"): document for document in documents.values() if isinstance(document, dict)}
     maps = {}
     for where, document in documents.items():
@@ -347,7 +395,7 @@ def _unit_factor(unit: str, dimension: str, where: str) -> tuple[float, float]:
 def _recognise(header: list[str], forced: str | None, file: str) -> VendorMap:
     maps = vendor_maps()
     names = {_norm(split_header(cell)[0]) for cell in header}
-    found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names]
+    found = [vendor for vendor in maps.values() if set(vendor.recognise) <= names and not set(vendor.unless) & names]
     found.sort(key=lambda vendor: -len(vendor.recognise))
     if forced is not None:
         if forced != GENERIC.id and forced not in maps:
@@ -378,81 +426,3 @@ def _header_index(rows: list[list[str]], forced: str | None) -> int:
         if any(set(vendor.recognise) <= names for vendor in maps.values()):
             return index
     return 0 if first is None else first
-
-
-def _generic_field(header: str) -> tuple[str | None, str | None]:
-    """(field, unit) of a column of impactlab's own layout (vocabulary names and the usual aliases)."""
-    field, unit = _field_of(header)
-    if field is None:
-        name, unit = split_header(header)
-        key = _norm(name).replace(" ", "_")
-        key = {"carry": "carry_distance", "total": "total_distance", "apex": "apex_height",
-               "backspin": "back_spin", "sidespin": "side_spin", "back_spin": "back_spin",
-               "offline": "offline_distance", "smash": "smash_factor", "face_to_path": "face_to_path",
-               "club_path": "path", "club_face": "face_angle",
-               # impactlab.fly's and `impactlab fly`'s names of the launch (one vocabulary in and out)
-               "launch_angle": "vertical_launch_angle", "launch_direction": "horizontal_launch_angle"}.get(key, key)
-        if key in FIELDS or key in TEXT_FIELDS:
-            return key, unit
-        return None, unit
-    return field, unit
-
-
-def _column_plan(header: list[str], layout: VendorMap, units_row: list[str] | None, file: str,
-                 header_line: int) -> tuple[list, list, list]:
-    """(plan, unused, repeated) of a header: for each column read, (column, cell, field, unit, sign, (scale,
-    offset) or None for a text field); the header cells no rule reads; the (first, repeat) columns of a field a
-    layout writes twice. Every problem (two columns for one field, two units for one column, a quantity without its
-    unit, a unit of the wrong kind) is collected and refused at once, with the file, line and column."""
-    problems = []
-    plan, unused, repeated = [], [], []
-    by_field: dict[str, int] = {}
-    for column, cell in enumerate(header):
-        if not cell:
-            continue
-        if layout is GENERIC:
-            field, unit = _generic_field(cell)
-            rule = None if field is None else ColumnRule(field)
-        else:
-            rule = layout.rule(cell, units_row[column] if units_row and column < len(units_row) else None)
-            unit = split_header(cell)[1]
-        if rule is None:
-            unused.append(cell)
-            continue
-        field = rule.field
-        if field in by_field and layout.merge_repeated_columns and _norm(cell) == _norm(header[by_field[field]]):
-            repeated.append((by_field[field], column))  # FlightScope writes some columns twice: merged, said
-            continue
-        if field in by_field:
-            problems.append(f"{file}:{header_line}: columns {header[by_field[field]]!r} and {cell!r} both give "
-                            f"the {DESCRIPTIONS[field]} ({field}); keep one")
-            continue
-        by_field[field] = column
-        if field in FIELDS:
-            if units_row is not None and column < len(units_row) and units_row[column]:
-                if unit is not None and _norm(unit) != _norm(units_row[column]):
-                    problems.append(f"{file}:{header_line}: column {cell!r} states two units ({unit!r} in its "
-                                    f"name, {units_row[column]!r} in the units row)")
-                unit = units_row[column]
-            if unit is None and layout.units == "implied":
-                unit = layout.implied_units.get(_norm(split_header(cell)[0]))
-            where = f"{file}:{header_line}:{column + 1} ({cell})"
-            if unit is None and FIELDS[field] != "dimensionless":
-                problems.append(f"{where}: expected a unit for the {DESCRIPTIONS[field]}: in brackets, in the "
-                                f"header ('{split_header(cell)[0]} [mph]'-style: '{split_header(cell)[0]} [unit]') or "
-                                f"in a units row right under it ('[mph]', '[deg]', '[rpm]': every unit in brackets, "
-                                f"else the row is read as a shot); a number without its unit is not read (115 could "
-                                f"be mph or m/s)")
-                continue
-            unit = layout.unit_spellings.get(_norm(unit), unit) if unit else unit  # the layout's own spellings
-            try:
-                factor = _unit_factor(unit or "", FIELDS[field], where)
-            except FieldError as exc:
-                problems.append(str(exc))
-                continue
-        else:
-            factor = None
-        plan.append((column, cell, field, unit, rule.sign, factor))
-    if problems:
-        raise StudyError(f"{file}: " + "; ".join(problems))
-    return plan, unused, repeated

@@ -15,7 +15,7 @@ import numpy as np
 from impactlab.io.safe_output import write_atomically
 from impactlab.units import DIMENSIONS, unit_affine
 from impactlab.data.sessions.layouts import DISPLAY_UNITS, FIELDS, TEXT_FIELDS
-from impactlab.scene.plausibility import MAGNITUDES, wrong_sign
+from impactlab.data.sessions.summary import show_rows_setting, skip_lines
 
 if TYPE_CHECKING:  # annotations only: impactlab.data.sessions.reader imports this module to re-export its functions
     from impactlab.data.sessions.reader import Session
@@ -82,41 +82,40 @@ def describe(session: Session, include_flagged: bool = False) -> str:
         for (field, kind), rows in sorted(session.flags.items()):
             what = {"excluded": "marked not to use in the file",
                     "no data": "no-data marker (a sentinel, placeholder or flag), read as missing",
-                    "inconsistent": "whose sign disagrees with the other spin column's",
+                    "inconsistent": "that disagree with another column of the row (the notes say which)",
                     "estimated": "estimated by the monitor, not measured",
-                    "clamped": "at the monitor's limit (clamped)"}[kind]
+                    "clamped": "at the monitor's limit (clamped)",
+                    "modelled": "the monitor's model output (its flight not tracked long enough), not measured",
+                    "unreadable": "a cell that is not a number (the row is skipped)"}[kind]
             out.append(f"    {field}: {int(rows.sum())} row(s) {what}")
-        if not include_flagged and any(kind in ("estimated", "clamped", "inconsistent")
+        if not include_flagged and any(kind in ("estimated", "clamped", "inconsistent", "modelled")
                                        for _, kind in session.flags):
             out.append("    (estimated and clamped values are left out of fits and comparisons; "
                        "--include-flagged uses them)")
-    for line, why in session.skipped:
-        out.append(f"  line {line} skipped: {why}")
+    show_rows = show_rows_setting()
+    if session.skipped:  # rows that are no shot at all (summary rows, repeated headers and shots, ragged rows)
+        out += skip_lines(session.skipped, session.size + len(session.skipped), (), show_rows, used="read as shots")
     keep, skipped = session.usable(include_flagged)
     out.append(f"  impact models: {int(keep.sum())} of {session.size} row(s) usable")
-    reasons = Counter(why for _, why in skipped)
-    for why, count in reasons.most_common(8):
-        lines = [str(line) for line, w in skipped if w == why]
-        shown = ", ".join(lines[:6]) + (f" ... ({count} rows)" if count > 6 else "")
-        out.append(f"    skipped, {why}: line(s) {shown}")
-    if len(reasons) > 8:
-        out.append(f"    ... and {len(reasons) - 8} other reasons")
+    out += skip_lines(skipped, session.size, (), show_rows, indent="    ")
+    verdict = session.verdict()
+    out += skip_lines([], session.size, [(reason, [int(line) for line in session.lines[mask]])
+                                         for reason, mask in verdict.unusual], show_rows)
+    if show_rows:
+        for reason, mask, value in verdict.reasons:
+            out += [f"    line {session.lines[row]}: {reason}" + (f": {value[row]:.6g}" if np.isfinite(value[row])
+                                                                   else "") for row in np.flatnonzero(mask)]
     ball = np.isfinite(session.values["ball_speed"]) & np.isfinite(session.values["vertical_launch_angle"]) & \
-        np.isfinite(session.values["spin_rate"])
-    # a ball speed or spin below zero is no measurement (the shot table refuses it): not ball data, said why
-    signs = {key: session.values[key] for key in MAGNITUDES}
-    wrong = [(row, problems) for row in range(session.size)
-             if (problems := wrong_sign(signs, row, f"line {session.lines[row]}"))]
-    for row, _ in wrong:
-        ball[row] = False
+        np.isfinite(session.values["spin_rate"]) & ~verdict.bad
     measured_spin = ball & ~session.flagged("spin_rate")
     out.append(f"  ball data (ball speed, launch angle, spin): {int(ball.sum())} row(s), {int(measured_spin.sum())} "
-               f"with a spin that is not flagged")
-    for _, problems in wrong[:10]:
-        out.append(f"    not ball data, {'; '.join(problems)}")
-    if wrong:
-        out.append(f"    ({len(wrong)} row(s) with a magnitude below zero: the shot table of validate and fit refuses "
-                   f"the file until they are fixed or removed)")
+               f"with a spin that is not flagged (rows that break the row rules are not ball data)")
+    flown = np.isfinite(session.values["carry_distance"])
+    if flown.any():
+        modelled = session.flags.get(("carry_distance", "modelled"), np.zeros(session.size, bool))
+        out.append(f"  the monitor's flight (carry): {int(flown.sum())} row(s)" + (
+            f", {int((flown & ~modelled).sum())} measured (tracked), {int((flown & modelled).sum())} the monitor's "
+            f"model output" if session.vendor.tracked else ", whether measured or modelled not stated by the export"))
     square = keep & ~(np.isfinite(session.values["face_angle"]) & np.isfinite(session.values["path"]))
     if square.any():
         out.append(f"  {int(square.sum())} usable row(s) without face angle or club path: compared on ball speed, "

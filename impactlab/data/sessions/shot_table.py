@@ -1,9 +1,9 @@
 """The shot table: its fields, their units and aliases, and :class:`ShotTable` (rows of measured shots in SI).
 
-The definitions the readers share: :mod:`impactlab.data.sessions.shots` (impactlab's YAML and CSV tables, predictions and
-their errors) and :mod:`impactlab.data.sessions.reader` (launch-monitor exports as exported) read their files into these
-fields; :meth:`impactlab.data.sessions.reader.Session.shot_table` is the one place a :class:`ShotTable` is assembled from
-them (a YAML table's rows become a session first).
+The definitions the readers share: :mod:`impactlab.data.sessions.shots` (impactlab's YAML and CSV tables, predictions
+and their errors) and :mod:`impactlab.data.sessions.reader` (launch-monitor exports as exported) read their files into
+these fields; :meth:`impactlab.data.sessions.reader.Session.shot_table` is the one place a :class:`ShotTable` is
+assembled from them (a YAML table's rows become a session first).
 """
 
 from __future__ import annotations
@@ -87,6 +87,9 @@ class ShotTable:
     budgets: dict = attrs.field(factory=dict, eq=False)
     #: (file line, reason) of every row of the file the impact models could not use (a session's other rows are)
     skipped: tuple = attrs.field(default=(), eq=False)
+    #: (reason, file lines) of values beyond measured shots but within a golf shot, counted per column and reason
+    #: (a session's rows); None: not counted (a table written by hand, whose scenes warn as a study's do)
+    unusual: tuple | None = attrs.field(default=None, eq=False)
     #: where each row comes from (a row's ``source:``; empty: every row is the table's own ``name``): the unit of
     #: the per-source errors of ``impactlab validate`` and of leave-one-source-out cross-validation
     row_sources: tuple = attrs.field(default=(), eq=False)
@@ -130,7 +133,7 @@ def _field_of(header: str) -> tuple[str | None, str | None]:
     return (f"{key}_sigma" if sigma else key), unit
 
 
-def _resolve_spin_loft(delivery: dict, lines: Sequence | np.ndarray, file: str) -> list[str]:
+def _resolve_spin_loft(delivery: dict, lines: Sequence | np.ndarray, file: str) -> list[tuple[int, str, str]]:
     """Rows that give the face to path instead of the face angle, or the 3-D spin loft instead of the dynamic loft
     (TrackMan exports both, "Face To Path" and "Spin Loft"): the missing angle follows, in place; where both are
     given they must agree (:data:`impactlab.scene.core.SPIN_LOFT_TOLERANCE`). ``lines``: each row's file line, for
@@ -140,8 +143,10 @@ def _resolve_spin_loft(delivery: dict, lines: Sequence | np.ndarray, file: str) 
     f2p, face = delivery["face_to_path"], delivery["face_angle"]
     disagree = np.isfinite(f2p) & np.isfinite(face) & (np.abs(face - path - f2p) > SPIN_LOFT_TOLERANCE)
     for index in np.flatnonzero(disagree).tolist():
-        problems.append(f"{file}:{lines[index]}: face_to_path: expected face_angle - path "
-                        f"({math.degrees(face[index] - path[index]):.2f} deg), got {math.degrees(f2p[index]):.2f} deg")
+        problems.append((index, "face to path disagrees with face angle - club path",
+                         f"{file}:{lines[index]}: face_to_path: expected face_angle - path "
+                         f"({math.degrees(face[index] - path[index]):.2f} deg), got "
+                         f"{math.degrees(f2p[index]):.2f} deg"))
     delivery["face_angle"] = np.where(np.isnan(face) & np.isfinite(f2p), path + f2p, face)
     given = delivery["spin_loft"]
     face, attack, loft = np.nan_to_num(delivery["face_angle"]), delivery["attack_angle"], delivery["dynamic_loft"]
@@ -151,11 +156,13 @@ def _resolve_spin_loft(delivery: dict, lines: Sequence | np.ndarray, file: str) 
     for index in np.flatnonzero(np.isfinite(given)).tolist():
         where = f"{file}:{lines[index]}: spin_loft"
         if np.isnan(loft[index]) and np.isnan(implied[index]) and np.isfinite(attack[index]):
-            problems.append(f"{where}: expected a spin loft at least the angle between face and path, got "
-                            f"{math.degrees(given[index]):.2f} deg")
+            problems.append((index, "spin loft below the angle between face and path",
+                             f"{where}: expected a spin loft at least the angle between face and path, got "
+                             f"{math.degrees(given[index]):.2f} deg"))
         elif np.isfinite(loft[index]) and abs(made[index] - given[index]) > SPIN_LOFT_TOLERANCE:
-            problems.append(f"{where}: expected the spin loft the row's angles make ({math.degrees(made[index]):.2f} "
-                            f"deg, within {math.degrees(SPIN_LOFT_TOLERANCE):.1f}), got "
-                            f"{math.degrees(given[index]):.2f} deg")
+            problems.append((index, "spin loft disagrees with the row's angles",
+                             f"{where}: expected the spin loft the row's angles make ({math.degrees(made[index]):.2f} "
+                             f"deg, within {math.degrees(SPIN_LOFT_TOLERANCE):.1f}), got "
+                             f"{math.degrees(given[index]):.2f} deg"))
     delivery["dynamic_loft"] = np.where(np.isnan(loft), implied, loft)
     return problems

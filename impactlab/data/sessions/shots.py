@@ -25,7 +25,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from impactlab.errors import FieldError, StudyError
+from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.units import to_si
 from impactlab.model.base import ImpactModel
 from impactlab.scene.clubs import Strike
@@ -34,12 +34,12 @@ from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, com
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 from impactlab.data.documents import ShotTableBlock, structure_document
-from impactlab.data.sessions.reader import GENERIC, Session, read_session, read_session_text
+from impactlab.data.sessions.reader import DATASETS, GENERIC, Session, read_session, read_session_text
 from impactlab.data.sessions.json_records import JSON_SESSIONS
 from impactlab.data.sessions.layouts import FIELDS
 # the shared definitions live in shot_table (session builds tables too); re-exported: users import them from here
-from impactlab.data.sessions.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS, TEXT_FIELDS,
-                                       ShotTable, _field_of)
+from impactlab.data.sessions.shot_table import (ALIASES as ALIASES, DELIVERY_FIELDS, ERROR_KEYS, MEASURED_FIELDS,
+                                               TEXT_FIELDS, ShotTable, _field_of)
 
 def _convert(value, field: str, unit: str | None, where: str) -> float:
     base = field[:-6] if field.endswith("_sigma") else field
@@ -201,10 +201,12 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
 def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:
     """A shot table from a .csv file (a launch-monitor export as exported, or impactlab's layout) or a .yaml/.yml
     file; ``include_flagged`` keeps estimated and clamped values in the comparison."""
+    if str(path) in DATASETS and not Path(path).exists():  # a session dataset shipped with impactlab, by name
+        return read_session(str(path)).shot_table(include_flagged)
     path = Path(path)
     if not path.exists():
         raise StudyError(f"{path}: no such shot table (a .csv, .yaml or JSON session file)")
-    if path.suffix.lower() in (".csv", *JSON_SESSIONS):
+    if path.suffix.lower() in (".csv", ".gz", *JSON_SESSIONS):
         return read_session(path).shot_table(include_flagged)
     text = read_text_file(path, "shot table")  # folders, devices, binary and UTF-16 files said as such
     if path.suffix.lower() in (".yaml", ".yml"):
@@ -227,21 +229,29 @@ def table_inputs(table: ShotTable, ball_block: dict | None = None, contact: dict
     # the ball's restitution law is evaluated once for all rows below (at the centred delivery), not per scene
     scene_ball = attrs.evolve(ball, restitution=None) if contact_law.restitution is None else ball
     scenes = []
-    for index in range(table.size):
-        club = club_preset(table.clubs[index])
-        d = {key: float(value[index]) for key, value in table.delivery.items()}
-        delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
-                            attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
-                            handedness=table.handedness[index], loft_at=table.loft_at,
-                            club_reference=club_reference)
-        scenes.append(Scene.from_delivery(scene_ball, Scene.face_of(club), contact_law, delivery, 0.0, club,
-                                          Strike(d["strike_toe"], d["strike_high"])))
+    with warnings.catch_warnings():
+        if table.unusual is not None:  # a session's unusual values are counted per column by its reader, not
+            warnings.simplefilter("ignore", PlausibilityWarning)  # warned row by row
+        for index in range(table.size):
+            scenes.append(_scene(table, index, scene_ball, contact_law, club_reference))
     per_scene = [scene.inputs() for scene in scenes]  # once each: inputs() evaluates the ball's law
     keys = set.intersection(*(set(values) for values in per_scene))
     inputs = complete_inputs({key: np.array([values[key] for values in per_scene]) for key in sorted(keys)})
     if contact_law.restitution is None and ball.restitution is not None:
         inputs["restitution"] = ball_restitution(ball, inputs)  # at the normal speed of the contact
     return inputs
+
+
+def _scene(table: ShotTable, index: int, scene_ball, contact_law, club_reference: str) -> Scene:
+    """The scene of one row: its club preset, delivery and strike."""
+    club = club_preset(table.clubs[index])
+    d = {key: float(value[index]) for key, value in table.delivery.items()}
+    delivery = Delivery(d["club_speed"], path=d["path"], face_angle=d["face_angle"],
+                        attack_angle=d["attack_angle"], dynamic_loft=d["dynamic_loft"],
+                        handedness=table.handedness[index], loft_at=table.loft_at,
+                        club_reference=club_reference)
+    return Scene.from_delivery(scene_ball, Scene.face_of(club), contact_law, delivery, 0.0, club,
+                               Strike(d["strike_toe"], d["strike_high"]))
 
 
 def predict(model: ImpactModel, inputs: dict) -> dict:

@@ -28,20 +28,70 @@ MAX_SESSION_BYTES = MAX_INPUT_BYTES
 PROGRESS_ROWS = 20_000
 
 
-def _read_bytes(path: Path) -> str:
+def _read_bytes(path: Path) -> tuple[str, str]:
+    """The text of a session file: UTF-8, or UTF-16 / UTF-32 with or without a byte-order mark (named as they are),
+    gzip-compressed or not; never a binary file or a workbook. Returns (text, the encoding's name when not
+    UTF-8)."""
     data = checked_bytes(path, "shot table", MAX_SESSION_BYTES, missing=" (a launch-monitor export, .csv or .yaml)")
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
-        try:
-            return data.decode("utf-16")
-        except UnicodeDecodeError:
-            raise StudyError(f"{path}: is not UTF-16 text after its UTF-16 byte-order mark") from None
+    if data.startswith(b"\x1f\x8b"):  # gzip (the shipped datasets): at most the size limit, uncompressed
+        data = _gunzip(data, path)
     workbook = _workbook_kind(data)
     if workbook:
         raise StudyError(f"{path}: is {workbook}, not a text export; save the sheet as CSV (UTF-8) from the "
                          f"spreadsheet program, or export CSV from the launch monitor's software, and read that file")
+    encoding, named = _wide_encoding(data)
+    if encoding:
+        try:
+            return data.decode(encoding).lstrip("\ufeff"), named
+        except UnicodeDecodeError:
+            raise StudyError(f"{path}: is not {named or encoding.upper()} text (it starts like it, then holds bytes "
+                             f"that are not)") from None
     if b"\0" in data:
         raise StudyError(f"{path}: is a binary file (it holds NUL bytes), not a shot table")
-    return utf8_text(data, path, "shot table")
+    return utf8_text(data, path, "shot table"), ""
+
+
+def _gunzip(data: bytes, path: Path) -> bytes:
+    import gzip
+    import zlib
+
+    try:
+        with gzip.GzipFile(fileobj=io.BytesIO(data)) as stream:
+            plain = stream.read(MAX_SESSION_BYTES + 1)
+    except (OSError, EOFError, zlib.error) as exc:
+        raise StudyError(f"{path}: is not a readable gzip file ({exc})") from None
+    if len(plain) > MAX_SESSION_BYTES:
+        raise StudyError(f"{path}: holds more than {MAX_SESSION_BYTES:,} bytes uncompressed, too large for a shot "
+                         f"table")
+    return plain
+
+
+#: byte-order marks, longest first (UTF-32 LE's mark begins with UTF-16 LE's)
+_MARKS = ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"), (b"\xff\xfe", "utf-16"),
+          (b"\xfe\xff", "utf-16"))
+
+
+def _wide_encoding(data: bytes) -> tuple[str, str]:
+    """(codec, name) of UTF-16 or UTF-32 text, with its byte-order mark (name '': the mark says it) or without one
+    (text of Latin letters and digits then has a NUL in the same places of every 2 or 4 bytes); ('', '') for any
+    other bytes."""
+    for mark, codec in _MARKS:  # a byte-order mark names its encoding: read, not said
+        if data.startswith(mark):
+            return codec, ""
+    sample = data[:4096]
+    if len(sample) < 8 or b"\0" not in sample:
+        return "", ""
+    sample = sample[:len(sample) // 4 * 4]
+    for codec, name, nul in (("utf-32-le", "UTF-32 (little-endian, no byte-order mark)", (1, 2, 3)),
+                             ("utf-32-be", "UTF-32 (big-endian, no byte-order mark)", (0, 1, 2)),
+                             ("utf-16-le", "UTF-16 (little-endian, no byte-order mark)", (1, 3)),
+                             ("utf-16-be", "UTF-16 (big-endian, no byte-order mark)", (0, 2))):
+        text = [sample[k::4] for k in range(4) if k not in nul]  # the bytes of the characters: printable text
+        printable = sum(sum(32 <= byte < 127 or byte in (9, 10, 13) for byte in part) for part in text)
+        if all(sample[k::4].count(0) >= 0.9 * len(sample[k::4]) for k in nul) and \
+                printable >= 0.9 * sum(len(part) for part in text):
+            return codec, name
+    return "", ""
 
 
 def _workbook_kind(data: bytes) -> str:
@@ -289,7 +339,7 @@ def _read_flags(header, columns, flags, used, unused, file, lines) -> None:
             field, _, kind = item.partition(":")
             if (field, kind) != ("row", "excluded") and (field not in FIELDS
                                                           or kind not in ("estimated", "clamped", "no data",
-                                                                          "inconsistent")):
+                                                                          "inconsistent", "modelled", "unreadable")):
                 raise StudyError(f"{file}:{lines[index]}: flags: expected field:estimated, field:clamped or "
                                  f"field:no data with a field of the vocabulary, got {item!r}")
             flags.setdefault((field, kind), np.zeros(len(lines), bool))[index] = True
@@ -312,12 +362,7 @@ def _derive(values: dict, used: list, notes: list, flags: dict) -> None:
         values["spin_axis"] = np.arctan2(side, back)
         notes.append("spin axis = atan(side spin / back spin) (no spin-axis column; both positive curving right)")
         _inherit(flags, "spin_axis", ("back_spin", "side_spin"))
-    elif {"spin_rate", "back_spin", "side_spin"} <= given:
-        with np.errstate(invalid="ignore"):
-            off = np.abs(values["spin_rate"] / np.hypot(back, side) - 1) > 0.02
-        if off.any():
-            notes.append(f"spin rate differs from hypot(back spin, side spin) by more than 2 % in {int(off.sum())} "
-                         f"row(s) (kept as given)")
+    # a spin rate given beside back and side spin is checked against them in consistency.check_consistency
     if "face_angle" not in given and "face_to_path" in given and "path" in given:
         values["face_angle"] = values["path"] + values["face_to_path"]
         notes.append("face angle = club path + face to path (no face-angle column)")
@@ -371,7 +416,7 @@ def _flag_all_zero(layout, values: dict, flags: dict, notes: list) -> None:
     for field in fields:
         values[field] = np.where(zero, np.nan, values[field])
         flags[(field, "no data")] = flags.get((field, "no data"), np.zeros_like(zero)) | zero
-    notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-club-data "
+    notes.append(f"{int(zero.sum())} row(s) give {', '.join(fields)} all exactly 0 (the {layout.name}'s no-data "
                  f"marker): read as missing")
 
 
