@@ -261,8 +261,8 @@ def test_a_malformed_carry_table_is_one_clear_message(tmp_path, monkeypatch, cha
     ("validation.flight.flight_fit", ["measured_fit"], "unrecognized arguments: measured_fit"),
 ])
 def test_the_flight_commands_refuse_a_wrong_argument_with_exit_code_2(module, argv, fragment, capsys):
-    """python -m impactlab.data.carry / validation.flight.flight_fit: before, an unknown model was a ValueError traceback (exit 1)
-    and flight_fit ignored any argument and ran its 6-second report."""
+    """python -m impactlab.data.carry / validation.flight.flight_fit: before, an unknown model was a ValueError
+    traceback (exit 1) and flight_fit ignored any argument and ran its 6-second report."""
     import importlib
 
     with pytest.raises(SystemExit) as caught:
