@@ -47,6 +47,7 @@ def _cmd_validate(args) -> int:
     from impactlab.data.shot_report import (
         OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
     )
+    from impactlab.data.validation.scorecard import MIN_ROWS
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
     known = sorted(available())
@@ -59,9 +60,19 @@ def _cmd_validate(args) -> int:
     if args.csv:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
                      formats=TABLE_SUFFIXES)
+    if args.report:
+        check_output(args.report, what="--report file", suffix=".html", reads=[*read, *(args.fit or ())],
+                     formats=(".html", ".htm"))
+    fits = []
+    if args.fit:  # a bad fit file is refused before the models run
+        from impactlab.data.validation.fits import load_fits
+
+        for path in args.fit:
+            fits += load_fits(path)
     over: list[str] = []
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
     drawn = False  # a shot table validated, whose figure --plot draws
+    scored = False  # a session scored (a scorecard on held-out rows)
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
@@ -69,6 +80,19 @@ def _cmd_validate(args) -> int:
             continue
         with user_clubs(read_club_spec(path) for path in args.club or ()):
             table = shot_table(name, args.include_flagged)
+            if table is not None and (table.size >= MIN_ROWS or fits or args.report):
+                # a session: every model, the fits and the baselines on held-out rows (a scorecard)
+                from impactlab.data.validation.fits import in_sample
+                from impactlab.data.validation.scorecard import HOLDOUT, print_scorecard
+
+                if args.plot:
+                    raise StudyError(f"--plot draws a few shots row by row, and {name} has {table.size}: give "
+                                     "--report report.html (density plots of every shot held out)")
+                print_scorecard(table, args.model or SHOT_MODELS, fits,
+                                HOLDOUT if args.holdout is None else args.holdout, args.report, rows,
+                                in_sample(fits, name))
+                scored = True
+                continue
             if table is not None:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 drawn = True
@@ -103,7 +127,11 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
-    if args.model and not drawn:
+    for option, given in (("--fit", args.fit), ("--report", args.report), ("--holdout", args.holdout is not None)):
+        if given and not scored:
+            raise StudyError(f"{option}: for sessions (a shot table file with --dataset FILE), and no session was "
+                             "scored; give --dataset FILE.csv")
+    if args.model and not drawn and not scored:
         raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
                          "validated (a dataset's table shows every model of its study); leave --model out")
     if args.plot and not drawn:

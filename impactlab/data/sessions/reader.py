@@ -174,6 +174,7 @@ class Session:
                     for key in DELIVERY_FIELDS}
         problems += _resolve_spin_loft(delivery, self.lines[index], self.file)
         square = ~(np.isfinite(delivery["face_angle"]) & np.isfinite(delivery["path"]))
+        strike_known = np.isfinite(delivery["strike_toe"]) & np.isfinite(delivery["strike_high"])
         for key in ("path", "face_angle", "strike_toe", "strike_high"):
             delivery[key] = np.nan_to_num(delivery[key])
         measured = {}
@@ -210,7 +211,7 @@ class Session:
                          labels=labels, clubs=tuple(keys[self.text["club"][i]] for i in index),
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
-                         skipped=tuple(skipped),
+                         skipped=tuple(skipped), strike_known=strike_known,
                          row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
 
 
