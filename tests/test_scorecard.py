@@ -35,7 +35,7 @@ def session(n: int, *, club_speed=None, sources=(), seed: int = 3) -> ShotTable:
     columns = baselines.regressors(table)
     table.measured.update(ball_speed=1.45 * v, vertical_launch_angle=columns["vertical_launch_angle"] @ [0.8, 0.2],
                           horizontal_launch_angle=columns["horizontal_launch_angle"] @ [0.8, 0.2],
-                          spin_rate=2.2 * columns["spin_rate"][:, 0], spin_axis=2.0 * columns["spin_axis"][:, 0])
+                          spin_rate=30.0 * columns["spin_rate"][:, 0], spin_axis=2.0 * columns["spin_axis"][:, 0])
     return table
 
 
@@ -93,7 +93,7 @@ def test_baselines_never_see_held_out_rows():
     leaky = baselines.PhysicsRegression.fitted(table.subset(np.concatenate([split.train, [planted]])))
     honest = baselines.PhysicsRegression.fitted(table.subset(split.train))
     assert leaky.coefficients["spin_rate"][0] > 1.5 * honest.coefficients["spin_rate"][0]
-    assert honest.coefficients["spin_rate"][0] == pytest.approx(2.2)
+    assert honest.coefficients["spin_rate"][0] == pytest.approx(30.0)
 
 
 def test_a_missing_scikit_learn_is_said(monkeypatch):
@@ -181,3 +181,72 @@ def test_validate_prints_the_scorecard_of_a_session(tmp_path, capsys):
         assert name in out, name
     assert main(["validate", "--dataset", str(path), "--holdout", "1.5"]) == 2
     assert "--holdout" in capsys.readouterr().err
+
+
+def test_closed_form_leave_one_out_matches_explicit_refits():
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_shots import synthetic_table
+
+    from impactlab.data.fit.calibration import calibrate, cross_validate, leave_one_row_out
+    from impactlab.data.sessions.shots import shot_errors
+    from impactlab.model.registry import get_model
+
+    model = get_model("rigid_coulomb")()
+    names = ["restitution", "face_restitution_gain"]
+    table = synthetic_table(model, {"restitution": 0.76, "face_restitution_gain": 0.04})
+    rng = np.random.default_rng(0)  # measurement noise: each row pulls the fit its own way
+    table.measured["ball_speed"][:] *= 1 + 0.02 * rng.standard_normal(table.size)
+    table.measured["spin_rate"][:] *= 1 + 0.05 * rng.standard_normal(table.size)
+    full = calibrate(model, table, names)
+    closed = leave_one_row_out(model, table, full)
+    explicit = cross_validate(model, table, names, folds=[[i] for i in range(table.size)])
+    for key in ("ball_speed [%]", "launch angle [deg]", "spin [%]"):
+        np.testing.assert_allclose(closed["errors"][key], explicit["errors"][key], atol=2e-3, err_msg=key)
+    for mine, theirs in zip(closed["fits"], explicit["fits"]):
+        for name in names:
+            assert mine[name] == pytest.approx(theirs[name], abs=2e-5), name
+    # and it is not the full fit's in-sample residual: leaving a row out makes its error larger
+    from impactlab.data.fit.calibration import predict_with
+
+    in_sample = shot_errors(predict_with(model, table, full), table)["ball_speed [%]"]
+    assert np.all(np.abs(closed["errors"]["ball_speed [%]"]) > np.abs(in_sample))
+
+
+def test_a_fit_written_on_one_file_is_applied_to_another(tmp_path, capsys):
+    import json
+
+    from impactlab.cli import main
+
+    table = session(60)
+    train, test = tmp_path / "train.csv", tmp_path / "test.csv"
+    write_csv(table.subset(np.arange(30)), train)
+    write_csv(table.subset(np.arange(30, 60)), test)
+    fit = tmp_path / "fit.json"
+    assert main(["fit", str(train), "--model", "restitution", "--parameter", "restitution", "--json", str(fit),
+                 "--cross-validate"]) == 0
+    out = capsys.readouterr().out
+    assert "5-fold cross-validation by contiguous blocks of rows" in out and "held out line 2 to line 7" in out
+    written = json.loads(fit.read_text())[0]
+    assert written["model"] == "restitution" and written["bounds"] == {"restitution": [0.5, 0.95]}
+    assert written["provenance"]["rows"] == 30 and len(written["provenance"]["sha256"]) == 64
+    assert written["cross_validation"]["by"] == "block" and len(written["cross_validation"]["folds"]) == 5
+    assert main(["validate", "--dataset", str(test), "--fit", str(fit), "--model", "restitution"]) == 0
+    out = capsys.readouterr().out
+    assert "restitution (fit on train.csv)" in out and "in-sample" not in out
+    assert main(["validate", "--dataset", str(train), "--fit", str(fit), "--model", "restitution"]) == 0
+    assert "was fitted on this very file: its errors here are in-sample" in capsys.readouterr().out
+    assert main(["fit", str(train), "--model", "restitution", "--parameter", "restitution", "--cross-validate",
+                 "--by", "row"]) == 0
+    assert "leave-one-out by row, in closed form" in capsys.readouterr().out
+    # a damaged fit file: one message, exit 2, nothing run
+    written["values"] = [7.0]
+    fit.write_text(json.dumps([written]))
+    assert main(["validate", "--dataset", str(test), "--fit", str(fit)]) == 2
+    err = capsys.readouterr().err
+    assert "outside its bounds" in err and "Traceback" not in err
+    fit.write_text("{not json")
+    assert main(["validate", "--dataset", str(test), "--fit", str(fit)]) == 2
+    assert "cannot be read as JSON" in capsys.readouterr().err

@@ -166,7 +166,8 @@ def _cmd_fit(args) -> int:
     with user_clubs(read_club_spec(path) for path in args.club or ()):
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
-            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by,
+                             args.folds, args.dataset)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
                                             ("--include-flagged", args.include_flagged)) if given]
     if ignored:

@@ -299,16 +299,25 @@ def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
 
 def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
               cross_validate: bool = False,
-              json_path: str | None = None, by: str | None = None) -> int:
+              json_path: str | None = None, by: str | None = None, folds: int = 5,
+              path: str | None = None) -> int:
     """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON.
 
-    ``by`` is the unit the cross-validation leaves out: ``source`` (every row of one source; the default when the
-    table's rows name several sources) or ``row``. Each fold starts from the full fit's values (a warm start)."""
+    ``by`` is what a cross-validation fold holds out: ``source`` (whole sources; the default when the table's rows
+    name several), ``block`` (contiguous blocks of rows; the default otherwise), both in ``folds`` folds refitted
+    from the full fit's values (a warm start), or ``row``: leave-one-row-out in closed form from the full fit
+    (:func:`impactlab.data.fit.calibration.leave_one_row_out`, no refits). The JSON file holds each fit's model,
+    parameters, values, bounds and provenance (``path``'s SHA-256): ``impactlab validate --fit`` applies it."""
+    from impactlab.data.fit.calibration import leave_one_row_out
+    from impactlab.data.validation.fits import bounds_of, provenance
+    from impactlab.data.validation.scorecard import folds as make_folds
+
+    sources = len(set(table.sources))
     if by is None:
-        by = "source" if len(set(table.sources)) > 1 else "row"
-    if cross_validate and by == "source" and len(set(table.sources)) < 2:
+        by = "source" if sources > 1 else "block"
+    if cross_validate and by == "source" and sources < 2:
         raise FieldError("--by", "several sources among the table's rows (a row's source:) to leave one out",
-                         f"source ({len(set(table.sources))} source in {table.name})")
+                         f"source ({sources} source in {table.name})")
     results = []
     for name in models or FIT_MODELS:
         model = get_model(name)()
@@ -320,7 +329,7 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
             for line in skipped_text(table):
                 print(line)
         if result.unused_rows:
-            print(f"  rows not used (the model cannot predict them): {', '.join(result.unused_rows)}")
+            print(f"  rows not used (the model cannot predict them): {labels_text(result.unused_rows)}")
         keys = [key for key in ERROR_KEYS if math.isfinite(result.errors_after[key])]
         print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
         print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))
@@ -328,29 +337,43 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
                                            for i, a in enumerate(result.parameters)
                                            for j, b in enumerate(result.parameters) if j > i))
         entry = result.as_dict()
-        if cross_validate and table.size > 1:
-            held = leave_one_out(model, table, names, by=by, start=dict(zip(result.parameters, result.values)))
-            unit = "source" if by == "source" else "row"
-            print(f"  leave-one-out by {unit} (errors on the {unit} not fitted; warm starts from the full fit): "
-                  + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
-            if by == "source":
-                for fold, calibration in zip(held["folds"], held["calibrations"]):
-                    source = table.sources[fold[0]]
-                    errors = held["by_source"][source]
-                    print(f"    held out {source} ({len(fold)} rows): "
-                          + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
-                    print(f"      fitted on the others: {calibration.describe()}")
-            else:
+        entry["bounds"] = bounds_of(result.parameters)
+        entry["provenance"] = provenance(path, table)
+        if cross_validate and table.size > 1 and by == "row":
+            held = leave_one_row_out(model, table, result)
+            print("  leave-one-out by row, in closed form (one Gauss-Newton step per row from the full fit, no "
+                  "refits; errors on the row left out): " + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
+            if len(held["labels"]) <= 20:
                 for index, label in enumerate(held["labels"]):
                     print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
                                                          for k in keys))
+            entry["cross_validation"] = {"by": "row", "method": held["method"], "summary": held["summary"],
+                                         "fits": held["fits"], "by_source": held["by_source"],
+                                         "errors": {k: v.tolist() for k, v in held["errors"].items()}}
+        elif cross_validate and table.size > 1:
+            kind, parts = make_folds(table, folds, by="group" if by == "source" else "block")
+            held = leave_one_out(model, table, names, folds=parts, start=dict(zip(result.parameters, result.values)))
+            units = [sorted(set(table.sources[i] for i in part)) if kind == "group" else part for part in parts]
+            single = all(len(unit) == 1 for unit in units)
+            unit_name = "whole sources" if kind == "group" else "contiguous blocks of rows"
+            what = ("leave-one-out by " + ("source" if kind == "group" else "row") if single
+                    else f"{len(parts)}-fold cross-validation by {unit_name}")
+            print(f"  {what} (errors on the rows not fitted; each fold refitted from the full fit's values): "
+                  + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
+            for part, unit, calibration in zip(parts, units, held["calibrations"]):
+                errors = summary({key: values[part] for key, values in held["errors"].items()})
+                named = (", ".join(unit) if kind == "group" else
+                         f"{table.labels[part[0]]}" + (f" to {table.labels[part[-1]]}" if len(part) > 1 else ""))
+                print(f"    held out {named} ({len(part)} rows): " + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
+                print(f"      fitted on the others: {calibration.describe()}")
             entry["cross_validation"] = {"by": by, "summary": held["summary"], "fits": held["fits"],
                                          "by_source": held["by_source"], "folds": held["folds"],
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
         write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
-        print(f"wrote {json_path}", file=sys.stderr)
+        print(f"wrote {json_path} (apply it to other shots: impactlab validate --dataset OTHER.csv --fit "
+              f"{json_path})", file=sys.stderr)
     return 0
 
 

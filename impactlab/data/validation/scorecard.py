@@ -166,15 +166,19 @@ def holdout_split(table: ShotTable, fraction: float = HOLDOUT, groups: Sequence 
                  held_out=tuple(f"rows {edges[j] + 1}-{edges[j + 1]}" for j in chosen))
 
 
-def folds(table: ShotTable, k: int = 5, groups: Sequence | None = None) -> tuple[str, list[np.ndarray]]:
+def folds(table: ShotTable, k: int = 5, groups: Sequence | None = None,
+          by: str = "auto") -> tuple[str, list[np.ndarray]]:
     """K folds of a cross-validation, never shuffled rows: ``(by, folds)``, each fold the row indices it holds out.
 
-    With groups (``groups`` or the table's several sources) every group is in exactly one fold (groups in their
-    order of first appearance, cut into ``k`` runs of about equal rows; ``k`` is at most the number of groups);
-    without, ``k`` contiguous blocks of rows."""
+    With groups (``groups`` or the table's several sources; ``by="auto"`` or ``"group"``) every group is in
+    exactly one fold (groups in their order of first appearance, cut into ``k`` runs of about equal rows; ``k`` is
+    at most the number of groups); without groups or with ``by="block"``, ``k`` contiguous blocks of rows."""
     if k < 2:
         raise FieldError("--folds", "at least 2 folds", k)
-    labels = _groups_of(table, groups)
+    labels = None if by == "block" else _groups_of(table, groups)
+    if by == "group" and labels is None:
+        raise FieldError("--by", "groups among the table's rows (several sources) to fold by group",
+                         f"one source in {table.name}")
     if labels is None:
         k = min(k, table.size)
         edges = np.linspace(0, table.size, k + 1).round().astype(int)
