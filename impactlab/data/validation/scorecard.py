@@ -421,20 +421,21 @@ def format_scorecard(card: xr.Dataset, breakdowns: bool = True) -> str:
     return "\n".join(lines)
 
 
-def losers(card: xr.Dataset, statistic: str = "median_abs") -> list[str]:
-    """Sentences naming each model (or fit) whose ``statistic`` on an output is worse than a baseline's."""
-    out = []
-    kinds = dict(zip(card["model"].values, card["kind"].values))
+def losers(card: xr.Dataset, statistic: str = "median_abs") -> dict[str, list[str]]:
+    """Per model (or fit): the outputs on which its ``statistic`` is worse than the best baseline's, each with
+    the baseline that beats it most (``"spin [%] (regression)"``)."""
+    out: dict[str, list[str]] = {}
+    kinds = dict(zip((str(m) for m in card["model"].values), card["kind"].values))
     base = [m for m, k in kinds.items() if k == "baseline"]
     for model, kind in kinds.items():
         if kind == "baseline":
             continue
         for output in card["output"].values:
             value = float(card["error"].sel(model=model, output=output, statistic=statistic))
-            better = [b for b in base if float(card["error"].sel(model=b, output=output, statistic=statistic))
-                      < value]
+            scores = {b: float(card["error"].sel(model=b, output=output, statistic=statistic)) for b in base}
+            better = [b for b, v in scores.items() if v < value]
             if better:
-                out.append(f"{model} loses to {', '.join(better)} on {output}")
+                out.setdefault(model, []).append(f"{output} ({min(better, key=scores.__getitem__)})")
     return out
 
 
@@ -466,7 +467,9 @@ def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence
         print(f"  NOTE: {label} was fitted on this very file: its errors here are in-sample, not a test")
     lost = losers(card)
     if lost:
-        print("  median |error| worse than a baseline fitted on the training rows: " + "; ".join(lost))
+        print("  median |error| worse than a baseline's (the best baseline in brackets):")
+        for model, outputs in lost.items():
+            print(f"    {model}: {', '.join(outputs)}")
     print()
     if rows is not None:
         rows.extend(prediction_rows(table.subset(split.test), predicted))
