@@ -19,8 +19,8 @@ RPM = 2 * math.pi / 60
 
 def session(n: int, *, club_speed=None, sources=(), seed: int = 3) -> ShotTable:
     """A driver session of ``n`` plausible shots whose launch follows the physics-shaped laws exactly:
-    ball speed 1.45 V, launch 0.8 loft + 0.2 attack, direction 0.8 face + 0.2 path, spin 2.2 rad/s per (m/s sin)
-    x V sin(spin loft), axis 2 x face to path."""
+    ball speed 1.45 V, launch 0.8 loft + 0.2 attack, direction 0.8 face + 0.2 path, spin 30 rad/s per (m/s)
+    (about 131 rpm per mph) x V sin(spin loft), axis 2 x face to path."""
     rng = np.random.default_rng(seed)
     v = np.asarray(club_speed, float) if club_speed is not None else rng.uniform(35.0, 50.0, n)
     d = {key: np.zeros(n) for key in DELIVERY_FIELDS}
@@ -175,7 +175,7 @@ def test_validate_prints_the_scorecard_of_a_session(tmp_path, capsys):
     write_csv(session(30), path)
     assert main(["validate", "--dataset", str(path), "--model", "restitution", "--model", "rigid_coulomb"]) == 0
     out = capsys.readouterr().out
-    assert "scorecard of session: held out 9 of 30 rows by contiguous blocks" in out
+    assert "scorecard of session: held out 9 of 30 rows by contiguous blocks of the usable rows" in out
     for name in ("restitution", "rigid_coulomb", "regression (baseline)", "instrument floor", "spin axis [deg]",
                  "median |error| by club-speed band", "VENDOR CLAIM"):
         assert name in out, name

@@ -62,8 +62,8 @@ MIN_ROWS = 20
 #: impact parameters obtained using commercially available radar and stereoscopic optical launch monitors?",
 #: Measurement 112:125-136) but its limits of agreement were not retrieved (/work/notes/lit33.md section 5).
 INSTRUMENT_FLOOR: dict[str, tuple[float, str]] = {
-    "ball_speed [%]": (0.5, "VENDOR-SIDE CLAIM, unsourced: two TrackMan units side by side agree to about +-0.5 % "
-                            "in ball speed (golflaunchlab.com guide, secondary; lit33 section 5)"),
+    "ball_speed [%]": (0.5, "CLAIM, secondary and unsourced (no TrackMan statement found): two TrackMan units side "
+                            "by side agree to about +-0.5 % in ball speed (golflaunchlab.com guide; lit33 section 5)"),
     "launch angle [deg]": (math.nan, "not found: no published TrackMan accuracy for launch angle (Leach et al. "
                                      "2017, Measurement 112:125, has limits of agreement; not retrieved)"),
     "launch direction [deg]": (math.nan, "not found: no published TrackMan accuracy for launch direction (Leach et "
@@ -93,7 +93,8 @@ class Split:
 
     def describe(self) -> str:
         """One line: how the rows were split and how many are on each side."""
-        what = "whole groups" if self.by == "group" else f"contiguous blocks of rows (of {BLOCKS}, in file order)"
+        what = ("whole groups" if self.by == "group" else
+                f"contiguous blocks of the usable rows (of {BLOCKS}, in file order)")
         return (f"held out {self.test.size} of {self.train.size + self.test.size} rows by {what}: "
                 f"{', '.join(self.held_out)}; baselines fitted on the other {self.train.size} rows")
 
@@ -163,7 +164,7 @@ def holdout_split(table: ShotTable, fraction: float = HOLDOUT, groups: Sequence 
     for j in chosen:
         test[edges[j]:edges[j + 1]] = True
     return Split(train=index[~test], test=index[test], by="block",
-                 held_out=tuple(f"rows {edges[j] + 1}-{edges[j + 1]}" for j in chosen))
+                 held_out=tuple(f"{table.labels[edges[j]]} to {table.labels[edges[j + 1] - 1]}" for j in chosen))
 
 
 def folds(table: ShotTable, k: int = 5, groups: Sequence | None = None,
