@@ -179,6 +179,8 @@ def test_validate_prints_the_scorecard_of_a_session(tmp_path, capsys):
     for name in ("restitution", "rigid_coulomb", "regression (baseline)", "instrument floor", "spin axis [deg]",
                  "median |error| by club-speed band", "VENDOR CLAIM"):
         assert name in out, name
+    # the fixture's launches follow the regressions' laws exactly: the models lose to the regression, and it says so
+    assert "restitution: regression beats it on ball_speed, launch angle" in out
     assert main(["validate", "--dataset", str(path), "--holdout", "1.5"]) == 2
     assert "--holdout" in capsys.readouterr().err
 

@@ -422,10 +422,9 @@ def format_scorecard(card: xr.Dataset, breakdowns: bool = True) -> str:
     return "\n".join(lines)
 
 
-def losers(card: xr.Dataset, statistic: str = "median_abs") -> dict[str, list[str]]:
-    """Per model (or fit): the outputs on which its ``statistic`` is worse than the best baseline's, each with
-    the baseline that beats it most (``"spin [%] (regression)"``)."""
-    out: dict[str, list[str]] = {}
+def losers(card: xr.Dataset, statistic: str = "median_abs") -> dict[str, dict[str, list[str]]]:
+    """Per model (or fit), per baseline: the outputs on which the baseline's ``statistic`` is smaller (better)."""
+    out: dict[str, dict[str, list[str]]] = {}
     kinds = dict(zip((str(m) for m in card["model"].values), card["kind"].values))
     base = [m for m, k in kinds.items() if k == "baseline"]
     for model, kind in kinds.items():
@@ -433,10 +432,9 @@ def losers(card: xr.Dataset, statistic: str = "median_abs") -> dict[str, list[st
             continue
         for output in card["output"].values:
             value = float(card["error"].sel(model=model, output=output, statistic=statistic))
-            scores = {b: float(card["error"].sel(model=b, output=output, statistic=statistic)) for b in base}
-            better = [b for b, v in scores.items() if v < value]
-            if better:
-                out.setdefault(model, []).append(f"{output} ({min(better, key=scores.__getitem__)})")
+            for b in base:
+                if float(card["error"].sel(model=b, output=output, statistic=statistic)) < value:
+                    out.setdefault(model, {}).setdefault(b, []).append(str(output).split(" [")[0])
     return out
 
 
@@ -468,9 +466,10 @@ def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence
         print(f"  NOTE: {label} was fitted on this very file: its errors here are in-sample, not a test")
     lost = losers(card)
     if lost:
-        print("  median |error| worse than a baseline's (the best baseline in brackets):")
-        for model, outputs in lost.items():
-            print(f"    {model}: {', '.join(outputs)}")
+        print("  models whose median |error| is worse than a baseline's (fitted on the training rows only):")
+        for model, beaten in lost.items():
+            print(f"    {model}: " + "; ".join(f"{b} beats it on {', '.join(outputs)}"
+                                           for b, outputs in beaten.items()))
     print()
     if rows is not None:
         rows.extend(prediction_rows(table.subset(split.test), predicted))
