@@ -129,7 +129,7 @@ def flexible_baseline(train: ShotTable, seed: int = 0) -> FlexibleBaseline | str
     from threadpoolctl import threadpool_limits  # a dependency of scikit-learn
 
     x = features(train)
-    fitted = {}
+    fitted: dict = {}
     # one OpenMP thread: on a shared machine the threads of a small fit wait for each other (5 s instead of 0.1 s)
     with threadpool_limits(limits=1):
         for field in MEASURED_FIELDS:

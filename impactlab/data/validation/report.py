@@ -252,9 +252,9 @@ def _table_html(card: xr.Dataset) -> str:
                    + "".join(f"<th>{html.escape(b)} ({c})</th>" for b, c in present) + "</tr>")
         for output in card["output"].values:
             for model in models:
-                cells = card[variable].sel(model=model, output=output, statistic="median_abs")
+                medians = card[variable].sel(model=model, output=output, statistic="median_abs")
                 out.append(f"<tr><td>{html.escape(str(output))}</td><td>{html.escape(model)}</td>" + "".join(
-                    f"<td>{'-' if not math.isfinite(v := float(cells.sel({dimension: b}))) else f'{v:.2f}'}</td>"
+                    f"<td>{'-' if not math.isfinite(v := float(medians.sel({dimension: b}))) else f'{v:.2f}'}</td>"
                     for b, _ in present) + "</tr>")
         out.append("</table>")
     return "\n".join(out)
