@@ -24,7 +24,8 @@ from pathlib import Path
 from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
 from impactlab.data.sessions.reader import read_session
 from impactlab.data.shot_report import SHOT_MODELS
-from impactlab.data.validation.scorecard import folds, format_scorecard, scorecard
+from impactlab.data.validation.scorecard import format_scorecard, scorecard
+from impactlab.data.validation.splits import folds
 from impactlab.model.registry import get_model
 
 SHARED = Path(__file__).resolve().parents[2] / "shared/data/trackman-driver-sessions/data.csv"

@@ -45,9 +45,9 @@ def _print_benchmarks(keys) -> list[str]:
 def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
     from impactlab.data.shot_report import (
-        OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
+        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, print_observations,
+        print_scorecard, print_shot_errors, shot_table,
     )
-    from impactlab.data.validation.scorecard import MIN_ROWS
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
     known = sorted(available())
@@ -65,8 +65,6 @@ def _cmd_validate(args) -> int:
                      formats=(".html", ".htm"))
     fits = []
     if args.fit:  # a bad fit file is refused before the models run
-        from impactlab.data.validation.fits import load_fits
-
         for path in args.fit:
             fits += load_fits(path)
     over: list[str] = []
@@ -82,9 +80,6 @@ def _cmd_validate(args) -> int:
             table = shot_table(name, args.include_flagged)
             if table is not None and (table.size >= MIN_ROWS or fits or args.report):
                 # a session: every model, the fits and the baselines on held-out rows (a scorecard)
-                from impactlab.data.validation.fits import in_sample
-                from impactlab.data.validation.scorecard import HOLDOUT, print_scorecard
-
                 if args.plot:
                     raise StudyError(f"--plot draws a few shots row by row, and {name} has {table.size}: give "
                                      "--report report.html (density plots of every shot held out)")

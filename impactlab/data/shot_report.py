@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
+import xarray as xr
 
 from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
@@ -32,6 +33,12 @@ from impactlab.model.registry import get_model
 from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.sessions.json_records import JSON_SESSIONS
 from impactlab.data.fit.calibration import cross_validate as leave_one_out
+from impactlab.data.fit.calibration import leave_one_row_out
+from impactlab.data.validation.fits import bounds_of, in_sample as in_sample, load_fits as load_fits, provenance
+from impactlab.data.validation.report import write_report
+from impactlab.data.validation.scorecard import format_scorecard, losers, scorecard
+from impactlab.data.validation.splits import HOLDOUT, MIN_ROWS as MIN_ROWS, holdout_split
+from impactlab.data.validation.splits import folds as make_folds
 from impactlab.data.fit.least_squares import usable_rows
 
 if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
@@ -308,10 +315,6 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
     from the full fit's values (a warm start), or ``row``: leave-one-row-out in closed form from the full fit
     (:func:`impactlab.data.fit.calibration.leave_one_row_out`, no refits). The JSON file holds each fit's model,
     parameters, values, bounds and provenance (``path``'s SHA-256): ``impactlab validate --fit`` applies it."""
-    from impactlab.data.fit.calibration import leave_one_row_out
-    from impactlab.data.validation.fits import bounds_of, provenance
-    from impactlab.data.validation.scorecard import folds as make_folds
-
     sources = len(set(table.sources))
     if by is None:
         by = "source" if sources > 1 else "block"
@@ -401,3 +404,34 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
             cells = [compute(get_model(m)(**(options or {}).get(m, {})), observation)[key] for m in models]
             print(f"  {observation.name + ' ' + what:<50}" + "".join(f"{c:16.3f}" for c in cells))
     print()
+
+
+def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence | None = None,
+                    holdout: float = HOLDOUT, report: str | None = None, rows: list | None = None,
+                    in_sample: Sequence[str] = ()) -> xr.Dataset:
+    """Print :func:`scorecard` of ``table`` (and write the HTML report ``report``); return the Dataset.
+
+    ``rows``, when given a list, receives the per-shot table of the held-out rows
+    (:func:`impactlab.data.shot_report.prediction_rows`); ``in_sample`` names fits made on this very file."""
+    print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
+    print(f"  source: {table.source}")
+    for line in skipped_text(table):
+        print(line)
+    split = holdout_split(table, holdout)
+    predicted: dict = {}
+    card = scorecard(table, models, fits, split, predictions=predicted)
+    print(format_scorecard(card))
+    for label in in_sample:
+        print(f"  NOTE: {label} was fitted on this very file: its errors here are in-sample, not a test")
+    lost = losers(card)
+    if lost:
+        print("  models whose median |error| is worse than a baseline's (fitted on the training rows only):")
+        for model, beaten in lost.items():
+            print(f"    {model}: " + "; ".join(f"{b} beats it on {', '.join(outputs)}"
+                                           for b, outputs in beaten.items()))
+    print()
+    if rows is not None:
+        rows.extend(prediction_rows(table.subset(split.test), predicted))
+    if report:
+        print(f"wrote {write_report(report, table, split, card, predicted)}", file=sys.stderr)
+    return card

@@ -19,7 +19,9 @@ import attrs
 
 from impactlab.data.fit.calibration import PARAMETERS, apply, model_with
 from impactlab.data.sessions.shots import ShotTable, predict
+from impactlab._version import __version__
 from impactlab.errors import StudyError
+from impactlab.model.registry import available, get_model
 from impactlab.study.scene_blocks import build_ball
 
 
@@ -34,8 +36,6 @@ def file_digest(path: str | os.PathLike[str]) -> str:
 
 def provenance(path: str | os.PathLike[str] | None, table: ShotTable) -> dict:
     """Where a fit comes from: the training file, its SHA-256, the rows fitted and impactlab's version."""
-    from impactlab import __version__
-
     out = {"table": table.name, "rows": table.size, "impactlab": __version__}
     if path is not None and Path(path).is_file():
         out.update(file=str(path), sha256=file_digest(path))
@@ -62,8 +62,6 @@ class FittedModel:
     def predict(self, table: ShotTable, inputs: dict) -> dict:
         """``table``'s outputs (SI arrays) with the fitted values; ``inputs`` are
         :func:`impactlab.data.sessions.shots.table_inputs` of ``table``."""
-        from impactlab.model.registry import get_model
-
         ball = build_ball(table.ball or {"preset": "urethane_tour"})
         return predict(model_with(get_model(self.model)(), self.parameters, self.values),
                        apply(inputs, self.parameters, self.values, ball))
@@ -80,8 +78,6 @@ def load_fits(path: str | os.PathLike[str]) -> list[FittedModel]:
     A file that is not one, a model not registered, a parameter the calibration does not know or a value outside
     its bounds is refused with one message (:class:`~impactlab.errors.StudyError`, exit 2), never half-applied.
     """
-    from impactlab.model.registry import available
-
     path = Path(path)
     try:
         document = json.loads(path.read_text(encoding="utf-8"))

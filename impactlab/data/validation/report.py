@@ -24,8 +24,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactlab.data.sessions.shots import ShotTable
+from impactlab.data.sessions.shots import ShotTable, shot_errors
 from impactlab.io.safe_output import write_atomically
+from impactlab.scene.flight import fly
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
 
 #: (field, label, factor from SI) of the outputs drawn
@@ -105,8 +106,6 @@ def _binned(x: np.ndarray, y: np.ndarray, edges: np.ndarray, least: int | None =
 
 def residual_vs_speed(test: ShotTable, predicted: dict):
     """Per output: each model's median residual (predicted - measured) against club speed, with its IQR band."""
-    from impactlab.data.sessions.shots import shot_errors
-
     speed = test.delivery["club_speed"] / MPH
     edges = np.arange(math.floor(np.nanmin(speed) / 5) * 5, np.nanmax(speed) + 5.0, 5.0)
     keys = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
@@ -182,8 +181,6 @@ def _ellipse(x: np.ndarray, y: np.ndarray):
 def dispersion(test: ShotTable, predicted: dict):
     """Per club: carry against side of the monitor's launch and of each model's launch, flown in standard air
     (15 degC, 1013.25 hPa, 50 %, still), with 95 % ellipses. Up to :data:`FLOWN` shots per club."""
-    from impactlab.scene.flight import fly
-
     clubs = list(dict.fromkeys(test.clubs))
     figure = _figure(max(9.0, 7.5 * len(clubs)), 6.5)
     axes = np.atleast_1d(figure.subplots(1, len(clubs)))
