@@ -252,3 +252,16 @@ def test_a_fit_written_on_one_file_is_applied_to_another(tmp_path, capsys):
     fit.write_text("{not json")
     assert main(["validate", "--dataset", str(test), "--fit", str(fit)]) == 2
     assert "cannot be read as JSON" in capsys.readouterr().err
+
+
+def test_a_folds_inputs_sliced_from_the_tables_are_the_ones_built_from_its_rows():
+    from impactlab.data.fit.calibration import rows_of
+    from impactlab.data.sessions.shots import table_inputs
+
+    table = session(30)
+    table.delivery["strike_toe"][:] = np.linspace(-0.02, 0.02, table.size)  # rows differ in every input
+    rows = np.arange(5, 17)
+    built, sliced = table_inputs(table.subset(rows)), rows_of(table_inputs(table), rows)
+    assert set(built) == set(sliced)
+    for key in built:
+        np.testing.assert_array_equal(np.asarray(built[key]), np.asarray(sliced[key]), err_msg=key)

@@ -155,9 +155,18 @@ def _table_ball(table: ShotTable, ball_block: dict | None):
     return build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
 
 
+def rows_of(inputs: dict, rows) -> dict:
+    """The model inputs (:func:`impactlab.data.sessions.shots.table_inputs`) of some rows (an index or a mask):
+    every per-row array sliced, the rest as it is. The inputs of a row depend on that row alone, so a fold's
+    inputs are sliced from the whole table's instead of rebuilt from its scenes."""
+    size = len(inputs["speed"])
+    return {key: (value[rows] if isinstance(value, np.ndarray) and value.ndim and len(value) == size else value)
+            for key, value in inputs.items()}
+
+
 def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
               ball: dict | None = None,
-              start: dict | None = None) -> Calibration:
+              start: dict | None = None, inputs: dict | None = None) -> Calibration:
     """Fit ``parameters`` of ``model`` (an ImpactModel instance) to every measured value of ``table``.
 
     Parameters
@@ -170,6 +179,9 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         A study ``ball:`` block (default: the table's, else the ``urethane_tour`` preset).
     start : dict, optional
         Start values by parameter name (default: :data:`PARAMETERS`).
+    inputs : dict, optional
+        The table's model inputs, when the caller has them (:func:`impactlab.data.sessions.shots.table_inputs`
+        of ``table`` with ``ball``): a cross-validation builds them once for every fold.
     """
     names = tuple(parameters)
     for name in names:
@@ -199,7 +211,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
     low = np.array([PARAMETERS[name][0][0] for name in names])
     high = np.array([PARAMETERS[name][0][1] for name in names])
     x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
-    inputs = table_inputs(table, ball)
+    inputs = table_inputs(table, ball) if inputs is None else inputs
     first = predict(model_with(model, names, x0), apply(inputs, names, x0, ball_object))
     usable = least_squares.usable_rows(np.stack([first[key] for key in MEASURED_FIELDS], axis=1),
                                        np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
@@ -208,7 +220,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         raise FieldError("shot table", "rows the model can predict", f"none of {table.size} ({model.name!r})")
     if unused:
         table = table.subset(usable)
-        inputs = table_inputs(table, ball)
+        inputs = rows_of(inputs, usable)
 
     def predicted(x):
         return predict(model_with(model, names, x), apply(inputs, names, x, ball_object))
@@ -250,9 +262,11 @@ def _limits(ball) -> tuple:
                                         driver_cor, DRIVER_COR_LIMIT, "USGA/R&A Equipment Rules, Part 2, 5a"),)
 
 
-def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
-    """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
-    inputs = table_inputs(table, ball)
+def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None,
+                 inputs: dict | None = None) -> dict:
+    """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays);
+    ``inputs``: the table's model inputs when the caller has them."""
+    inputs = table_inputs(table, ball) if inputs is None else inputs
     return predict(model_with(model, calibration.parameters, calibration.values),
                    apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
 
@@ -296,17 +310,18 @@ def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[st
         folds = source_folds(table) if by == "source" else [[i] for i in range(table.size)]
     held = {key: np.full(table.size, np.nan) for key in ERROR_KEYS}
     fits, calibrations = [], []
+    inputs = table_inputs(table, ball)  # once: each fold's are sliced from them (rows_of)
     for rows in folds:
         rows = np.asarray(rows)
         train = np.setdiff1d(np.arange(table.size), rows)
         if train.size == 0:
             raise FieldError("folds", "folds that leave rows to fit on (a table of one source cannot be "
                              "cross-validated by source)", rows.tolist())
-        result = calibrate(model, table.subset(train), parameters, ball, start=start)
+        result = calibrate(model, table.subset(train), parameters, ball, start=start, inputs=rows_of(inputs, train))
         fits.append(dict(zip(result.parameters, result.values)))
         calibrations.append(result)
         test = table.subset(rows)
-        for key, values in shot_errors(predict_with(model, test, result, ball), test).items():
+        for key, values in shot_errors(predict_with(model, test, result, ball, rows_of(inputs, rows)), test).items():
             held[key][rows] = values
     return {"errors": held, "summary": summary(held), "by_source": errors_by_source(held, table), "fits": fits,
             "calibrations": calibrations, "folds": [list(map(int, f)) for f in folds], "labels": table.labels}
