@@ -265,3 +265,42 @@ def test_a_folds_inputs_sliced_from_the_tables_are_the_ones_built_from_its_rows(
     assert set(built) == set(sliced)
     for key in built:
         np.testing.assert_array_equal(np.asarray(built[key]), np.asarray(sliced[key]), err_msg=key)
+
+
+def test_carry_on_tracked_shots_only():
+    from impactlab.scene.flight import fly
+
+    table = session(40)
+    m = table.measured
+    flown = fly(m["ball_speed"], m["vertical_launch_angle"], m["spin_rate"], m["spin_axis"],
+                m["horizontal_launch_angle"])["carry_distance"].values
+    tracked = np.arange(table.size) % 2 == 0  # every other shot tracked by the radar
+    measured = np.where(tracked, flown + 5.0, flown - 50.0)  # the untracked carries are absurd: never used
+    split = Split(train=np.arange(28), test=np.arange(28, 40), by="block", held_out=("rows 29-40",))
+    card = scorecard(table, ["restitution"], holdout=split, carry={"measured": measured, "tracked": tracked})
+    flight = named(card, "launch flown")["carry [m]"]
+    # the monitor's own launch flown: 5 m short of the 'measured' carry on each of the 6 tracked held-out shots
+    assert flight["n"] == 6 and flight["median_abs"] == pytest.approx(5.0) and flight["bias"] == pytest.approx(-5.0)
+    assert math.isnan(named(card, "launch flown")["spin [%]"]["median_abs"])
+    assert named(card, "regression")["carry [m]"]["n"] == 6
+    assert "carry" in card.attrs and "standard air" in card.attrs["carry"]
+
+
+def test_validate_scores_the_carry_a_session_gives(tmp_path, capsys):
+    from impactlab.cli import main
+    from impactlab.scene.flight import fly
+
+    table = session(30)
+    m = table.measured
+    flown = fly(m["ball_speed"], m["vertical_launch_angle"], m["spin_rate"], m["spin_axis"],
+                m["horizontal_launch_angle"])["carry_distance"].values
+    path = tmp_path / "carry.csv"
+    write_csv(table, path)
+    lines = path.read_text().splitlines()
+    lines = [lines[0] + ",Carry [m]"] + [f"{line},{c + 3.0:.4f}" for line, c in zip(lines[1:], flown)]
+    path.write_text("\n".join(lines) + "\n")
+    assert main(["validate", "--dataset", str(path), "--model", "restitution"]) == 0
+    out = capsys.readouterr().out
+    block = out[out.index("  carry [m]"):]
+    flight = next(line for line in block.splitlines() if line.strip().startswith("launch flown")).split()
+    assert flight[2:5] == ["9", "3.00", "3.00"]  # n, median |e|, p90 |e|: every held-out carry 3 m beyond

@@ -45,8 +45,8 @@ def _print_benchmarks(keys) -> list[str]:
 def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
     from impactlab.data.shot_report import (
-        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, print_observations,
-        print_scorecard, print_shot_errors, shot_table,
+        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, measured_carry,
+        print_observations, print_scorecard, print_shot_errors, shot_table,
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
@@ -85,7 +85,7 @@ def _cmd_validate(args) -> int:
                                      "--report report.html (density plots of every shot held out)")
                 print_scorecard(table, args.model or SHOT_MODELS, fits,
                                 HOLDOUT if args.holdout is None else args.holdout, args.report, rows,
-                                in_sample(fits, name))
+                                in_sample(fits, name), measured_carry(name, table))
                 scored = True
                 continue
             if table is not None:

@@ -32,6 +32,7 @@ from impactlab.io.safe_output import write_atomically
 from impactlab.model.registry import get_model
 from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.sessions.json_records import JSON_SESSIONS
+from impactlab.data.sessions.reader import read_session
 from impactlab.data.fit.calibration import cross_validate as leave_one_out
 from impactlab.data.fit.calibration import leave_one_row_out
 from impactlab.data.validation.fits import bounds_of, in_sample as in_sample, load_fits as load_fits, provenance
@@ -408,18 +409,19 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
 
 def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence | None = None,
                     holdout: float = HOLDOUT, report: str | None = None, rows: list | None = None,
-                    in_sample: Sequence[str] = ()) -> xr.Dataset:
+                    in_sample: Sequence[str] = (), carry: dict | None = None) -> xr.Dataset:
     """Print :func:`scorecard` of ``table`` (and write the HTML report ``report``); return the Dataset.
 
     ``rows``, when given a list, receives the per-shot table of the held-out rows
-    (:func:`impactlab.data.shot_report.prediction_rows`); ``in_sample`` names fits made on this very file."""
+    (:func:`impactlab.data.shot_report.prediction_rows`); ``in_sample`` names fits made on this very file;
+    ``carry`` is the monitor's carry of each row (:func:`measured_carry`)."""
     print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
     print(f"  source: {table.source}")
     for line in skipped_text(table):
         print(line)
     split = holdout_split(table, holdout)
     predicted: dict = {}
-    card = scorecard(table, models, fits, split, predictions=predicted)
+    card = scorecard(table, models, fits, split, predictions=predicted, carry=carry)
     print(format_scorecard(card))
     for label in in_sample:
         print(f"  NOTE: {label} was fitted on this very file: its errors here are in-sample, not a test")
@@ -435,3 +437,23 @@ def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence
     if report:
         print(f"wrote {write_report(report, table, split, card, predicted)}", file=sys.stderr)
     return card
+
+
+def measured_carry(path: str, table: ShotTable) -> dict | None:
+    """The monitor's carry of each row of ``table`` read from the session file ``path`` [m], and whether it was
+    measured: a carry the export flags estimated or clamped (a monitor's own flight model) is not.
+
+    None when the file gives no carry, is no session export, or its rows cannot be matched to the table's (a label
+    column replaces the ``line N`` labels)."""
+    if Path(path).suffix.lower() not in (".csv", *JSON_SESSIONS):
+        return None
+    session = read_session(path)
+    values = session.values.get("carry_distance")
+    if values is None or not np.isfinite(values).any():
+        return None
+    row_of = {f"line {line}": index for index, line in enumerate(session.lines.tolist())}
+    index = [row_of.get(label) for label in table.labels]
+    if any(i is None for i in index):
+        return None
+    rows = np.array(index)
+    return {"measured": values[rows], "tracked": ~session.flagged("carry_distance")[rows]}

@@ -21,6 +21,7 @@ repeatability allows, with its source, so that a reader sees when a model is as 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -32,6 +33,7 @@ from impactlab.data.validation.splits import (  # noqa: F401 (the splits are the
     BLOCKS, HOLDOUT, MIN_ROWS, Split, folds, holdout_split,
 )
 from impactlab.model.registry import available, get_model
+from impactlab.scene.flight import fly
 from impactlab.units import MPH
 
 #: the statistics of each output's error (coordinate ``statistic``)
@@ -44,6 +46,8 @@ STATISTIC_MEANING = {
     "bias": "median of (predicted - measured): a median, not a mean",
     "rms": "root mean square of (predicted - measured)",
 }
+#: the scorecard's row of the monitor's own launch flown (with a measured carry)
+FLOWN = "launch flown"
 #: club-speed bands [mph] (TrackMan's unit of club speed; the lower edge included)
 SPEED_BANDS = ((0.0, 80.0), (80.0, 90.0), (90.0, 100.0), (100.0, 110.0), (110.0, math.inf))
 #: a strike within this distance of the face centre along both axes is "centre" [m]
@@ -133,9 +137,31 @@ def strike_zones(strike_toe, strike_high) -> np.ndarray:
 
 
 # -- the scorecard ---------------------------------------------------------------------------------------------
-def _floor(table: ShotTable) -> tuple[np.ndarray, list[str]]:
+#: the carry's error key (an output of the scorecard when a measured carry is given)
+CARRY = "carry [m]"
+INSTRUMENT_FLOOR[CARRY] = (math.nan, "not found: no published TrackMan accuracy for a tracked carry (Leach et al. "
+                                     "2017 not retrieved)")
+
+
+def carry_errors(test: ShotTable, predicted: dict, measured: np.ndarray, tracked: np.ndarray) -> np.ndarray:
+    """Per held-out row: the carry of the predicted launch, flown by impactlab's flight model in standard air
+    (:func:`impactlab.scene.flight.fly`), minus the monitor's measured carry [m]; NaN where the carry was not
+    tracked or the launch cannot be flown (no speed, launch or spin above zero)."""
+    out = np.full(test.size, math.nan)
+    speed, launch, spin = (predicted[k] for k in ("ball_speed", "vertical_launch_angle", "spin_rate"))
+    rows = np.flatnonzero(tracked & np.isfinite(measured) & np.isfinite(speed) & (launch > 0) & (spin > 0))
+    if rows.size:
+        with warnings.catch_warnings():  # mishits' unusual launches are flown as given
+            warnings.simplefilter("ignore")
+            flown = fly(speed[rows], launch[rows], spin[rows], np.nan_to_num(predicted["spin_axis"][rows]),
+                        np.nan_to_num(predicted["horizontal_launch_angle"][rows]))
+        out[rows] = flown["carry_distance"].values - measured[rows]
+    return out
+
+
+def _floor(table: ShotTable, outputs: Sequence[str]) -> tuple[np.ndarray, list[str]]:
     values, sources = [], []
-    for key in ERROR_KEYS:
+    for key in outputs:
         value, source = INSTRUMENT_FLOOR[key]
         if key == "spin [%]":
             spin = table.measured["spin_rate"][np.isfinite(table.measured["spin_rate"])] * 60.0 / (2 * math.pi)
@@ -147,7 +173,7 @@ def _floor(table: ShotTable) -> tuple[np.ndarray, list[str]]:
 
 def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None = None,
               holdout: float | Split = HOLDOUT, groups: Sequence | None = None,
-              baselines: bool = True, predictions: dict | None = None) -> xr.Dataset:
+              baselines: bool = True, predictions: dict | None = None, carry: Mapping | None = None) -> xr.Dataset:
     """Every model, applied fit and baseline against the same held-out rows of ``table``.
 
     Parameters
@@ -166,6 +192,11 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
         Fit and evaluate the baselines (:mod:`impactlab.data.validation.baselines`).
     predictions : dict, optional
         Filled with name -> predicted arrays (SI) of the held-out rows, for a report.
+    carry : mapping, optional
+        The monitor's carry per row of ``table``: ``measured`` [m] (NaN: none) and ``tracked`` (bool: the radar
+        followed the flight; default every measured carry). Adds the output ``carry [m]``: each launch flown in
+        standard air minus the measured carry, on the tracked held-out rows only, and a row ``launch flown``: the
+        monitor's own launch flown, the flight model's share of the carry error.
 
     Returns
     -------
@@ -204,20 +235,33 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
             predicted[baseline_models.FLEXIBLE] = flexible.predict(test)
             names.append(baseline_models.FLEXIBLE)
             kinds.append("baseline")
-    if predictions is not None:
-        predictions.update(predicted)
+    outputs = list(ERROR_KEYS)
+    measured_carry = tracked = None
+    if carry is not None:
+        measured_carry = np.asarray(carry["measured"], dtype=float)[split.test]
+        tracked = np.asarray(carry.get("tracked", np.ones(table.size, bool)), dtype=bool)[split.test]
+        outputs.append(CARRY)
+        predicted[FLOWN] = {key: test.measured[key] for key in test.measured}
+        names.append(FLOWN)
+        kinds.append("flight")
+    if predictions is not None:  # the models' launches (the monitor's own is the table's)
+        predictions.update({name: values for name, values in predicted.items() if name != FLOWN})
     bands = speed_bands(test.delivery["club_speed"])
     zones = strike_zones(test.delivery["strike_toe"], test.delivery["strike_high"])
     if test.strike_known is not None:  # a strike the file did not give is the face centre in the table: unknown
         zones[~test.strike_known] = -1
     band_labels = speed_band_labels()
-    shape = (len(names), len(ERROR_KEYS), len(STATISTICS))
+    shape = (len(names), len(outputs), len(STATISTICS))
     overall = np.full(shape, np.nan)
     by_speed = np.full((*shape, len(SPEED_BANDS)), np.nan)
     by_strike = np.full((*shape, len(STRIKE_ZONES)), np.nan)
     for i, name in enumerate(names):
         errors = shot_errors(predicted[name], test)
-        for j, key in enumerate(ERROR_KEYS):
+        if measured_carry is not None and tracked is not None:
+            errors[CARRY] = carry_errors(test, predicted[name], measured_carry, tracked)
+            if name == FLOWN:  # the monitor's launch against itself: no launch error, only the flight's
+                errors.update({key: np.full(test.size, np.nan) for key in ERROR_KEYS})
+        for j, key in enumerate(outputs):
             values = np.asarray(errors[key], dtype=float)
             if key in ("launch direction [deg]", "spin axis [deg]"):  # angles: the short way round
                 values = (values + 180.0) % 360.0 - 180.0
@@ -226,7 +270,7 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
                 by_speed[i, j, :, b] = error_statistics(values[bands == b])
             for z in range(len(STRIKE_ZONES)):
                 by_strike[i, j, :, z] = error_statistics(values[zones == z])
-    floor, sources = _floor(test)
+    floor, sources = _floor(test, outputs)
     statistic_attrs = {"meaning": "; ".join(f"{k}: {v}" for k, v in STATISTIC_MEANING.items())}
     return xr.Dataset(
         {"error": (("model", "output", "statistic"), overall),
@@ -238,7 +282,7 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
          "kind": (("model",), np.array(kinds, dtype=object)),
          "rows_in_speed_band": (("speed_band",), np.bincount(bands[bands >= 0], minlength=len(SPEED_BANDS))),
          "rows_in_strike_zone": (("strike_zone",), np.bincount(zones[zones >= 0], minlength=len(STRIKE_ZONES)))},
-        coords={"model": names, "output": list(ERROR_KEYS), "statistic": (("statistic",), list(STATISTICS),
+        coords={"model": names, "output": outputs, "statistic": (("statistic",), list(STATISTICS),
                                                                           statistic_attrs),
                 "speed_band": band_labels, "strike_zone": list(STRIKE_ZONES)},
         attrs={"table": table.name, "source": table.source, "split": split.describe(), "split_by": split.by,
@@ -246,7 +290,11 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
                "bias": "median of the signed error (predicted - measured)",
                "errors": "ball speed and spin: 100 (predicted / measured - 1) [%]; angles: predicted - measured "
                          "[deg], launch direction and spin axis the short way round",
-               "baseline_coefficients": coefficients, "notes": "; ".join(notes)})
+               "baseline_coefficients": coefficients, "notes": "; ".join(notes),
+               "carry": "" if carry is None else (
+                   "each launch flown by impactlab's flight model in standard air (15 degC, 1013.25 hPa, 50 %, no "
+                   "wind) against the monitor's carry on the held-out shots it tracked; the monitor flew in its own "
+                   "air, not stated in the file: 'launch flown' is the monitor's launch flown, the flight's share")})
 
 
 # -- printing ----------------------------------------------------------------------------------------------------
@@ -263,6 +311,8 @@ def format_scorecard(card: xr.Dataset, breakdowns: bool = True) -> str:
         lines.append(f"  baselines fitted on the training rows: {card.attrs['baseline_coefficients']}")
     if card.attrs.get("notes"):
         lines.append(f"  NOTE: {card.attrs['notes']}")
+    if card.attrs.get("carry"):
+        lines.append(f"  carry: {card.attrs['carry']}")
     models = [str(m) for m in card["model"].values]
     kinds = dict(zip(models, card["kind"].values))
     width = max(22, *(len(m) + 13 for m in models))
@@ -304,7 +354,7 @@ def losers(card: xr.Dataset, statistic: str = "median_abs") -> dict[str, dict[st
     kinds = dict(zip((str(m) for m in card["model"].values), card["kind"].values))
     base = [m for m, k in kinds.items() if k == "baseline"]
     for model, kind in kinds.items():
-        if kind == "baseline":
+        if kind in ("baseline", "flight"):
             continue
         for output in card["output"].values:
             value = float(card["error"].sel(model=model, output=output, statistic=statistic))
