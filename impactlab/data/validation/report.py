@@ -64,12 +64,13 @@ def predicted_measured(test: ShotTable, predicted: dict, field: str, label: str,
     low, high = (np.percentile(finite, [0.5, 99.5]) if finite.size else (0.0, 1.0))
     pad = 0.05 * (high - low or 1.0)
     low, high = low - pad, high + pad
+    images = []
     for axis, name in zip(axes, names):
         values = predicted[name][field] * factor
         keep = np.isfinite(values) & np.isfinite(measured)
         if keep.any():
-            axis.hexbin(measured[keep], values[keep], gridsize=40, extent=(low, high, low, high), mincnt=1,
-                        bins="log", cmap="viridis")
+            images.append(axis.hexbin(measured[keep], values[keep], gridsize=40, extent=(low, high, low, high),
+                                      mincnt=1, bins="log", cmap="viridis"))
         axis.plot([low, high], [low, high], "r-", lw=0.8, label="predicted = measured")
         axis.set_xlim(low, high)
         axis.set_ylim(low, high)
@@ -79,6 +80,11 @@ def predicted_measured(test: ShotTable, predicted: dict, field: str, label: str,
         axis.tick_params(labelsize=7)
     for axis in axes[len(names):]:
         axis.set_visible(False)
+    if images:  # one colour scale for every panel, so that one colour bar reads them all
+        most = max(float(np.max(image.get_array())) for image in images)
+        for image in images:
+            image.set_clim(1.0, max(most, 2.0))
+        figure.colorbar(images[0], ax=list(axes[:len(names)]), label="shots per hexagon", shrink=0.6)
     axes[0].legend(fontsize=7, loc="upper left")
     figure.suptitle(f"{test.name}: predicted against measured {label}, held-out shots (colour: shots per hexagon, "
                     "log scale)", fontsize=10)
