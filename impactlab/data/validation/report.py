@@ -242,8 +242,9 @@ def _table_html(card: xr.Dataset) -> str:
         floor = float(card["floor"].sel(output=output))
         source = str(card["floor_source"].sel(output=output).values)
         out.append(f"<tr class='floor'><td>instrument floor</td><td>floor</td><td></td>"
-                   f"<td>{'-' if not math.isfinite(floor) else f'{floor:.2f}'}</td>"
-                   f"<td colspan='3'>{html.escape(source)}</td></tr></table>")
+                   f"<td>{'-' if not math.isfinite(floor) else f'{floor:.2f}'}</td><td></td><td></td><td></td></tr>"
+                   "</table>"
+                   f"<p class='source'>Instrument floor: {html.escape(source)}</p>")
     for variable, dimension, counts, title in (
             ("error_by_speed", "speed_band", "rows_in_speed_band", "median |error| by club-speed band"),
             ("error_by_strike", "strike_zone", "rows_in_strike_zone", "median |error| by strike zone")):
@@ -266,6 +267,7 @@ def _table_html(card: xr.Dataset) -> str:
 STYLE = ("body{font-family:sans-serif;margin:2em;max-width:1600px} table{border-collapse:collapse;margin:0.5em 0 1.5em}"
          " td,th{border:1px solid #bbb;padding:2px 8px;text-align:right} td:first-child,th:first-child{text-align:left}"
          " tr.baseline{background:#eef} tr.fit{background:#efe} tr.floor{background:#fee} img{max-width:100%}"
+         " p.source{font-size:85%;max-width:60em;margin-top:-1em}"
          " figure{margin:1.5em 0} figcaption{font-size:90%;color:#333}")
 
 
