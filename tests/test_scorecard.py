@@ -243,6 +243,8 @@ def test_a_fit_written_on_one_file_is_applied_to_another(tmp_path, capsys):
     assert main(["fit", str(train), "--model", "restitution", "--parameter", "restitution", "--cross-validate",
                  "--by", "row"]) == 0
     assert "leave-one-out by row, in closed form" in capsys.readouterr().out
+    assert main(["fit", str(train), "--model", "restitution", "--folds", "3"]) == 2
+    assert "add --cross-validate" in capsys.readouterr().err
     # a damaged fit file: one message, exit 2, nothing run
     written["values"] = [7.0]
     fit.write_text(json.dumps([written]))

@@ -223,7 +223,7 @@ def build_parser() -> argparse.ArgumentParser:
                          help="shot tables: folds of whole sources (default when the rows name several), of "
                               "contiguous blocks of rows (default otherwise), or one row at a time (leave-one-out "
                               "in closed form from the full fit: one Gauss-Newton step per row, no refits)")
-    fitting.add_argument("--folds", type=_count, default=5, metavar="K",
+    fitting.add_argument("--folds", type=_count, default=None, metavar="K",
                          help="shot tables: number of cross-validation folds (default 5)")
     fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
     fitting.add_argument("--parameter", action="append",

@@ -155,6 +155,12 @@ def _cmd_fit(args) -> int:
         check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())],
                      formats=JSON_SUFFIXES)
 
+    if args.folds is not None and not args.cross_validate:
+        raise StudyError(f"--folds {args.folds} says how many folds the cross-validation makes; add --cross-validate "
+                         "(or leave --folds out)")
+    if args.folds is not None and args.by == "row":
+        raise StudyError("--folds: --by row leaves out one row at a time (in closed form), it has no folds; leave "
+                         "--folds out or fold --by block or source")
     if args.by and not args.cross_validate:
         raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
                          "--by out)")
@@ -162,7 +168,7 @@ def _cmd_fit(args) -> int:
         table = shot_table(args.dataset, args.include_flagged)
         if table is not None:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by,
-                             args.folds, args.dataset)
+                             5 if args.folds is None else args.folds, args.dataset)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
                                             ("--include-flagged", args.include_flagged)) if given]
     if ignored:
