@@ -208,6 +208,14 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--club", action="append", help=CLUB_HELP)
     validate.add_argument("--force", action="store_true", help=FORCE_HELP)
     _row_options(validate, "shot tables: ")
+    validate.add_argument("--fit", action="append", metavar="JSON",
+                          help="shot tables: apply the fits of this file (impactlab fit TRAIN --json) to the held-out "
+                               "shots beside the models (repeatable)")
+    validate.add_argument("--report", metavar="HTML",
+                          help="shot tables: write the scorecard and its figures as one self-contained HTML page")
+    validate.add_argument("--holdout", type=float, default=None, metavar="FRACTION",
+                          help="sessions: share of the groups (or contiguous blocks of rows) held out for the "
+                               "scorecard (default 0.3)")
     validate.set_defaults(handler=_cmd_validate)
 
     shots = commands.add_parser("shots", help="read a launch-monitor export as exported and say what was read")
@@ -229,10 +237,13 @@ def build_parser() -> argparse.ArgumentParser:
     fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them), or a shot table "
                                          "(.csv, .yaml, or trackman_tour)")
     fitting.add_argument("--cross-validate", action="store_true",
-                         help="shot tables: also fit on all rows but one and report the error on the one left out")
-    fitting.add_argument("--by", choices=("source", "row"),
-                         help="shot tables: leave out one source's rows at a time (default when the rows name "
-                              "several sources) or one row")
+                         help="shot tables: also fit on all folds but one and report the errors on the fold left out")
+    fitting.add_argument("--by", choices=("source", "block", "row"),
+                         help="shot tables: folds of whole sources (default when the rows name several), of "
+                              "contiguous blocks of rows (default otherwise), or one row at a time (leave-one-out "
+                              "in closed form from the full fit: one Gauss-Newton step per row, no refits)")
+    fitting.add_argument("--folds", type=_count, default=None, metavar="K",
+                         help="shot tables: number of cross-validation folds (default 5)")
     fitting.add_argument("--model", action="append", help="a model id of the dataset's study (default: every one)")
     fitting.add_argument("--parameter", action="append",
                          help="parameter to fit (repeatable; default: friction, and beta for restitution)")

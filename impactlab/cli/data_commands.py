@@ -50,7 +50,8 @@ def _print_benchmarks(keys) -> list[str]:
 def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
     from impactlab.data.shot_report import (
-        OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, print_observations, print_shot_errors, shot_table,
+        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, measured_carry,
+        print_observations, print_scorecard, print_shot_errors, shot_table,
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
@@ -65,6 +66,13 @@ def _cmd_validate(args) -> int:
         check_output(args.csv, what="--csv file", suffix=".csv", reads=[*read, *([args.plot] if args.plot else [])],
                      formats=TABLE_SUFFIXES)
         refuse_replacing_foreign(args.csv, "--csv file", args.force)
+    if args.report:
+        check_output(args.report, what="--report file", suffix=".html", reads=[*read, *(args.fit or ())],
+                     formats=(".html", ".htm"))
+    fits = []
+    if args.fit:  # a bad fit file is refused before the models run
+        for path in args.fit:
+            fits += load_fits(path)
     over: list[str] = []
     specs = [read_club_spec(path) for path in args.club or ()]
     matched: set[str] = set()  # the --club sheets some row of a table validated names
@@ -72,6 +80,7 @@ def _cmd_validate(args) -> int:
     seen: list[str] = []  # the clubs the tables' rows name
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
     drawn = False  # a shot table validated, whose figure --plot draws
+    scored = False  # a session scored (a scorecard on held-out rows)
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
@@ -79,6 +88,20 @@ def _cmd_validate(args) -> int:
             continue
         with user_clubs(specs) as clubs:
             table = _strict(name, shot_table(name, args.include_flagged), args.strict)
+            if table is not None and (table.size >= MIN_ROWS or fits or args.report):
+                # a session: every model, the fits and the baselines on held-out rows (a scorecard)
+                if args.plot:
+                    raise StudyError(f"--plot draws a few shots row by row, and {name} has {table.size}: give "
+                                     "--report report.html (density plots of every shot held out)")
+                matched.update(set(args.club or ()) - set(unmatched(args.club or (), specs, clubs.added,
+                                                                     table.clubs)))
+                tables.append(name)
+                seen.extend(table.clubs)
+                print_scorecard(table, args.model or SHOT_MODELS, fits,
+                                HOLDOUT if args.holdout is None else args.holdout, args.report, rows,
+                                in_sample(fits, name), measured_carry(name, table))
+                scored = True
+                continue
             if table is not None:
                 matched.update(set(args.club or ()) - set(unmatched(args.club or (), specs, clubs.added,
                                                                      table.clubs)))
@@ -117,7 +140,11 @@ def _cmd_validate(args) -> int:
         print()
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
-    if args.model and not drawn:
+    for option, given in (("--fit", args.fit), ("--report", args.report), ("--holdout", args.holdout is not None)):
+        if given and not scored:
+            raise StudyError(f"{option}: for sessions (a shot table file with --dataset FILE), and no session was "
+                             "scored; give --dataset FILE.csv")
+    if args.model and not drawn and not scored:
         raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
                          "validated (a dataset's table shows every model of its study); leave --model out")
     unused = [path for path in args.club or () if path not in matched]
@@ -152,6 +179,12 @@ def _cmd_fit(args) -> int:
         check_output(args.json, what="--json file", suffix=".json", reads=[args.dataset, *(args.club or ())],
                      formats=JSON_SUFFIXES)
 
+    if args.folds is not None and not args.cross_validate:
+        raise StudyError(f"--folds {args.folds} says how many folds the cross-validation makes; add --cross-validate "
+                         "(or leave --folds out)")
+    if args.folds is not None and args.by == "row":
+        raise StudyError("--folds: --by row leaves out one row at a time (in closed form), it has no folds; leave "
+                         "--folds out or fold --by block or source")
     if args.by and not args.cross_validate:
         raise StudyError(f"--by {args.by} says what the cross-validation leaves out; add --cross-validate (or leave "
                          "--by out)")
@@ -160,7 +193,8 @@ def _cmd_fit(args) -> int:
         table = _strict(args.dataset, shot_table(args.dataset, args.include_flagged), args.strict)
         if table is not None:
             refuse_unmatched(args.club or (), specs, clubs.added, table.clubs, args.dataset)
-            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by)
+            return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by,
+                             5 if args.folds is None else args.folds, args.dataset)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
                                             ("--include-flagged", args.include_flagged)) if given]
     if ignored:

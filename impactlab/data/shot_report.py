@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
+import xarray as xr
 
 from impactlab.errors import FieldError
 from impactlab.units import MPH, RAD_TO_DEG, RADS_TO_RPM
@@ -33,7 +34,14 @@ from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate
 from impactlab.data.sessions.json_records import JSON_SESSIONS
 from impactlab.data.sessions.reader import DATASETS as SESSION_DATASETS
 from impactlab.data.sessions.summary import skip_lines, show_rows_setting
+from impactlab.data.sessions.reader import read_session
 from impactlab.data.fit.calibration import cross_validate as leave_one_out
+from impactlab.data.fit.calibration import leave_one_row_out
+from impactlab.data.validation.fits import bounds_of, in_sample as in_sample, load_fits as load_fits, provenance
+from impactlab.data.validation.report import write_report
+from impactlab.data.validation.scorecard import format_scorecard, losers, scorecard
+from impactlab.data.validation.splits import HOLDOUT, MIN_ROWS as MIN_ROWS, holdout_split
+from impactlab.data.validation.splits import folds as make_folds
 from impactlab.data.fit.least_squares import usable_rows
 
 if TYPE_CHECKING:  # matplotlib is imported where a figure is drawn
@@ -293,16 +301,21 @@ def _unpredicted(predicted: dict, table: ShotTable) -> list[str]:
 
 def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters: Sequence[str] | None = None,
               cross_validate: bool = False,
-              json_path: str | None = None, by: str | None = None) -> int:
+              json_path: str | None = None, by: str | None = None, folds: int = 5,
+              path: str | None = None) -> int:
     """Calibrate ``models`` on ``table`` (and cross-validate); print the fits; optionally write them as JSON.
 
-    ``by`` is the unit the cross-validation leaves out: ``source`` (every row of one source; the default when the
-    table's rows name several sources) or ``row``. Each fold starts from the full fit's values (a warm start)."""
+    ``by`` is what a cross-validation fold holds out: ``source`` (whole sources; the default when the table's rows
+    name several), ``block`` (contiguous blocks of rows; the default otherwise), both in ``folds`` folds refitted
+    from the full fit's values (a warm start), or ``row``: leave-one-row-out in closed form from the full fit
+    (:func:`impactlab.data.fit.calibration.leave_one_row_out`, no refits). The JSON file holds each fit's model,
+    parameters, values, bounds and provenance (``path``'s SHA-256): ``impactlab validate --fit`` applies it."""
+    sources = len(set(table.sources))
     if by is None:
-        by = "source" if len(set(table.sources)) > 1 else "row"
-    if cross_validate and by == "source" and len(set(table.sources)) < 2:
+        by = "source" if sources > 1 else "block"
+    if cross_validate and by == "source" and sources < 2:
         raise FieldError("--by", "several sources among the table's rows (a row's source:) to leave one out",
-                         f"source ({len(set(table.sources))} source in {table.name})")
+                         f"source ({sources} source in {table.name})")
     results = []
     for name in models or FIT_MODELS:
         model = get_model(name)()
@@ -314,7 +327,7 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
             for line in skipped_text(table):
                 print(line)
         if result.unused_rows:
-            print(f"  rows not used (the model cannot predict them): {', '.join(result.unused_rows)}")
+            print(f"  rows not used (the model cannot predict them): {labels_text(result.unused_rows)}")
         keys = [key for key in ERROR_KEYS if math.isfinite(result.errors_after[key])]
         print("  RMS errors before: " + ", ".join(f"{k} {result.errors_before[k]:.2f}" for k in keys))
         print("  RMS errors after:  " + ", ".join(f"{k} {result.errors_after[k]:.2f}" for k in keys))
@@ -322,29 +335,43 @@ def fit_shots(table: ShotTable, models: Sequence[str] | None = None, parameters:
                                            for i, a in enumerate(result.parameters)
                                            for j, b in enumerate(result.parameters) if j > i))
         entry = result.as_dict()
-        if cross_validate and table.size > 1:
-            held = leave_one_out(model, table, names, by=by, start=dict(zip(result.parameters, result.values)))
-            unit = "source" if by == "source" else "row"
-            print(f"  leave-one-out by {unit} (errors on the {unit} not fitted; warm starts from the full fit): "
-                  + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
-            if by == "source":
-                for fold, calibration in zip(held["folds"], held["calibrations"]):
-                    source = table.sources[fold[0]]
-                    errors = held["by_source"][source]
-                    print(f"    held out {source} ({len(fold)} rows): "
-                          + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
-                    print(f"      fitted on the others: {calibration.describe()}")
-            else:
+        entry["bounds"] = bounds_of(result.parameters)
+        entry["provenance"] = provenance(path, table)
+        if cross_validate and table.size > 1 and by == "row":
+            held = leave_one_row_out(model, table, result)
+            print("  leave-one-out by row, in closed form (one Gauss-Newton step per row from the full fit, no "
+                  "refits; errors on the row left out): " + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
+            if len(held["labels"]) <= 20:
                 for index, label in enumerate(held["labels"]):
                     print(f"    {label:<20}" + "  ".join(f"{k.split(' [')[0]} {held['errors'][k][index]:+.2f}"
                                                          for k in keys))
+            entry["cross_validation"] = {"by": "row", "method": held["method"], "summary": held["summary"],
+                                         "fits": held["fits"], "by_source": held["by_source"],
+                                         "errors": {k: v.tolist() for k, v in held["errors"].items()}}
+        elif cross_validate and table.size > 1:
+            kind, parts = make_folds(table, folds, by="group" if by == "source" else "block")
+            held = leave_one_out(model, table, names, folds=parts, start=dict(zip(result.parameters, result.values)))
+            units = [sorted(set(table.sources[i] for i in part)) if kind == "group" else part for part in parts]
+            single = all(len(unit) == 1 for unit in units)
+            unit_name = "whole sources" if kind == "group" else "contiguous blocks of rows"
+            what = ("leave-one-out by " + ("source" if kind == "group" else "row") if single
+                    else f"{len(parts)}-fold cross-validation by {unit_name}")
+            print(f"  {what} (errors on the rows not fitted; each fold refitted from the full fit's values): "
+                  + ", ".join(f"{k} {held['summary'][k]:.2f}" for k in keys))
+            for part, unit, calibration in zip(parts, units, held["calibrations"]):
+                errors = summary({key: values[part] for key, values in held["errors"].items()})
+                named = (", ".join(unit) if kind == "group" else
+                         f"{table.labels[part[0]]}" + (f" to {table.labels[part[-1]]}" if len(part) > 1 else ""))
+                print(f"    held out {named} ({len(part)} rows): " + ", ".join(f"{k} {errors[k]:.2f}" for k in keys))
+                print(f"      fitted on the others: {calibration.describe()}")
             entry["cross_validation"] = {"by": by, "summary": held["summary"], "fits": held["fits"],
                                          "by_source": held["by_source"], "folds": held["folds"],
                                          "errors": {k: v.tolist() for k, v in held["errors"].items()}}
         results.append(entry)
     if json_path:
         write_atomically(json_path, json.dumps(results, indent=1, default=float).encode())
-        print(f"wrote {json_path}", file=sys.stderr)
+        print(f"wrote {json_path} (apply it to other shots: impactlab validate --dataset OTHER.csv --fit "
+              f"{json_path})", file=sys.stderr)
     return 0
 
 
@@ -372,3 +399,59 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
             cells = [compute(get_model(m)(**(options or {}).get(m, {})), observation)[key] for m in models]
             print(f"  {observation.name + ' ' + what:<50}" + "".join(f"{c:16.3f}" for c in cells))
     print()
+
+
+def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence | None = None,
+                    holdout: float = HOLDOUT, report: str | None = None, rows: list | None = None,
+                    in_sample: Sequence[str] = (), carry: dict | None = None) -> xr.Dataset:
+    """Print :func:`scorecard` of ``table`` (and write the HTML report ``report``); return the Dataset.
+
+    ``rows``, when given a list, receives the per-shot table of the held-out rows
+    (:func:`impactlab.data.shot_report.prediction_rows`); ``in_sample`` names fits made on this very file;
+    ``carry`` is the monitor's carry of each row (:func:`measured_carry`)."""
+    print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
+    print(f"  source: {table.source}")
+    for line in skipped_text(table):
+        print(line)
+    split = holdout_split(table, holdout)
+    predicted: dict = {}
+    card = scorecard(table, models, fits, split, predictions=predicted, carry=carry)
+    print(format_scorecard(card))
+    for label in in_sample:
+        print(f"  NOTE: {label} was fitted on this very file: its errors here are in-sample, not a test")
+    lost = losers(card)
+    if lost:
+        print("  models whose median |error| is worse than a baseline's (fitted on the training rows only):")
+        for model, beaten in lost.items():
+            print(f"    {model}: " + "; ".join(f"{b} beats it on {', '.join(outputs)}"
+                                           for b, outputs in beaten.items()))
+    print()
+    if rows is not None:
+        rows.extend(prediction_rows(table.subset(split.test), predicted))
+    if report:
+        print(f"wrote {write_report(report, table, split, card, predicted)}", file=sys.stderr)
+    return card
+
+
+def measured_carry(path: str, table: ShotTable) -> dict | None:
+    """The monitor's carry of each row of ``table`` read from the session file ``path`` [m], and whether it was
+    measured: a carry the export flags estimated, clamped or modelled (a monitor's own flight model: TrackMan's
+    flights tracked for less than 90 % of their hang time) is not.
+
+    None when the file gives no carry, is no session export, or its rows cannot be matched to the table's (a label
+    column replaces the ``line N`` labels)."""
+    shipped = path in SESSION_DATASETS and not Path(path).exists()
+    if not shipped and Path(path).suffix.lower() not in (".csv", ".gz", *JSON_SESSIONS):
+        return None
+    session = read_session(path)
+    values = session.values.get("carry_distance")
+    if values is None or not np.isfinite(values).any():
+        return None
+    row_of = {f"line {line}": index for index, line in enumerate(session.lines.tolist())}
+    index = [row_of.get(label) for label in table.labels]
+    if any(i is None for i in index):
+        return None
+    rows = np.array(index)
+    # not tracked: flagged estimated or clamped, or the monitor's model output (a flight it tracked too briefly)
+    modelled = session.flags.get(("carry_distance", "modelled"), np.zeros(session.size, bool))
+    return {"measured": values[rows], "tracked": ~(session.flagged("carry_distance") | modelled)[rows]}

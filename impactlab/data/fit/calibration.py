@@ -155,9 +155,18 @@ def _table_ball(table: ShotTable, ball_block: dict | None):
     return build_ball(ball_block or table.ball or {"preset": "urethane_tour"})
 
 
+def rows_of(inputs: dict, rows) -> dict:
+    """The model inputs (:func:`impactlab.data.sessions.shots.table_inputs`) of some rows (an index or a mask):
+    every per-row array sliced, the rest as it is. The inputs of a row depend on that row alone, so a fold's
+    inputs are sliced from the whole table's instead of rebuilt from its scenes."""
+    size = len(inputs["speed"])
+    return {key: (value[rows] if isinstance(value, np.ndarray) and value.ndim and len(value) == size else value)
+            for key, value in inputs.items()}
+
+
 def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = DEFAULT_PARAMETERS,
               ball: dict | None = None,
-              start: dict | None = None) -> Calibration:
+              start: dict | None = None, inputs: dict | None = None) -> Calibration:
     """Fit ``parameters`` of ``model`` (an ImpactModel instance) to every measured value of ``table``.
 
     Parameters
@@ -170,6 +179,9 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         A study ``ball:`` block (default: the table's, else the ``urethane_tour`` preset).
     start : dict, optional
         Start values by parameter name (default: :data:`PARAMETERS`).
+    inputs : dict, optional
+        The table's model inputs, when the caller has them (:func:`impactlab.data.sessions.shots.table_inputs`
+        of ``table`` with ``ball``): a cross-validation builds them once for every fold.
     """
     names = tuple(parameters)
     for name in names:
@@ -199,7 +211,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
     low = np.array([PARAMETERS[name][0][0] for name in names])
     high = np.array([PARAMETERS[name][0][1] for name in names])
     x0 = np.clip(np.array([(start or {}).get(name, PARAMETERS[name][1]) for name in names], dtype=float), low, high)
-    inputs = table_inputs(table, ball)
+    inputs = table_inputs(table, ball) if inputs is None else inputs
     first = predict(model_with(model, names, x0), apply(inputs, names, x0, ball_object))
     usable = least_squares.usable_rows(np.stack([first[key] for key in MEASURED_FIELDS], axis=1),
                                        np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1))
@@ -208,7 +220,7 @@ def calibrate(model: ImpactModel, table: ShotTable, parameters: Sequence[str] = 
         raise FieldError("shot table", "rows the model can predict", f"none of {table.size} ({model.name!r})")
     if unused:
         table = table.subset(usable)
-        inputs = table_inputs(table, ball)
+        inputs = rows_of(inputs, usable)
 
     def predicted(x):
         return predict(model_with(model, names, x), apply(inputs, names, x, ball_object))
@@ -250,9 +262,11 @@ def _limits(ball) -> tuple:
                                         driver_cor, DRIVER_COR_LIMIT, "USGA/R&A Equipment Rules, Part 2, 5a"),)
 
 
-def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None) -> dict:
-    """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays)."""
-    inputs = table_inputs(table, ball)
+def predict_with(model: ImpactModel, table: ShotTable, calibration: Calibration, ball: dict | None = None,
+                 inputs: dict | None = None) -> dict:
+    """The model's predictions of ``table``'s rows with the fitted values of ``calibration`` (SI arrays);
+    ``inputs``: the table's model inputs when the caller has them."""
+    inputs = table_inputs(table, ball) if inputs is None else inputs
     return predict(model_with(model, calibration.parameters, calibration.values),
                    apply(inputs, calibration.parameters, calibration.values, _table_ball(table, ball)))
 
@@ -296,17 +310,99 @@ def cross_validate(model: ImpactModel, table: ShotTable, parameters: Sequence[st
         folds = source_folds(table) if by == "source" else [[i] for i in range(table.size)]
     held = {key: np.full(table.size, np.nan) for key in ERROR_KEYS}
     fits, calibrations = [], []
+    inputs = table_inputs(table, ball)  # once: each fold's are sliced from them (rows_of)
     for rows in folds:
         rows = np.asarray(rows)
         train = np.setdiff1d(np.arange(table.size), rows)
         if train.size == 0:
             raise FieldError("folds", "folds that leave rows to fit on (a table of one source cannot be "
                              "cross-validated by source)", rows.tolist())
-        result = calibrate(model, table.subset(train), parameters, ball, start=start)
+        result = calibrate(model, table.subset(train), parameters, ball, start=start, inputs=rows_of(inputs, train))
         fits.append(dict(zip(result.parameters, result.values)))
         calibrations.append(result)
         test = table.subset(rows)
-        for key, values in shot_errors(predict_with(model, test, result, ball), test).items():
+        for key, values in shot_errors(predict_with(model, test, result, ball, rows_of(inputs, rows)), test).items():
             held[key][rows] = values
     return {"errors": held, "summary": summary(held), "by_source": errors_by_source(held, table), "fits": fits,
             "calibrations": calibrations, "folds": [list(map(int, f)) for f in folds], "labels": table.labels}
+
+
+def leave_one_row_out(model: ImpactModel, table: ShotTable, calibration: Calibration,
+                      ball: dict | None = None) -> dict:
+    """Leave-one-row-out cross-validation in closed form from the full fit: one Gauss-Newton step per row.
+
+    With ``r_i`` (the row's sigma-weighted residuals, up to five) and ``J_i`` (their derivatives in the fitted
+    parameters, forward differences of :data:`impactlab.data.fit.least_squares.DIFF_STEP` of each range) at the
+    full optimum ``x``, ``A = sum_j J_j^T J_j`` and ``g = sum_j J_j^T r_j`` (zero at an interior optimum), the fit
+    without row ``i`` is one Gauss-Newton step away,
+
+        x_(-i) = x - (A - J_i^T J_i)^-1 (g - J_i^T r_i),
+
+    clipped into the bounds, and row ``i`` is predicted there to first order, ``p_i + dp_i/dx (x_(-i) - x)``. For
+    a model linear in its parameters this is the exact leave-one-out (the hat-matrix identity
+    ``e_(-i) = (I - H_ii)^-1 e_i`` of least squares [1]_); for the impact models it is exact to the second order
+    of the change one row makes (tests/test_scorecard.py checks it against explicit refits). Its cost is that of
+    ``p + 1`` predictions, not ``N`` fits. Parameters the full fit did not identify or left at a bound stay where
+    they are.
+
+    Returns
+    -------
+    dict
+        As :func:`cross_validate`: ``errors`` per row (keys of :data:`ERROR_KEYS`), ``summary``, ``by_source``,
+        ``fits`` (each row's parameter values), ``labels``; and ``method``.
+
+    References
+    ----------
+    .. [1] Cook, R. D. & Weisberg, S. (1982). *Residuals and Influence in Regression*, Chapman & Hall, section
+       2.2 (deleted residuals from the hat matrix); the one-step approximation for nonlinear least squares:
+       Pregibon, D. (1981), Ann. Statist. 9:705 (one-step influence).
+    """
+    names = tuple(calibration.parameters)
+    x = np.array(calibration.values, dtype=float)
+    low = np.array([PARAMETERS[name][0][0] for name in names])
+    high = np.array([PARAMETERS[name][0][1] for name in names])
+    span = high - low
+    free = (np.array(calibration.identified, bool)
+            & ~np.array(calibration.at_bound or (False,) * len(names), bool))
+    if calibration.unused_rows:
+        keep = np.array([label not in set(calibration.unused_rows) for label in table.labels])
+        table = table.subset(keep)
+    ball_object = _table_ball(table, ball)
+    inputs = table_inputs(table, ball)
+
+    def predicted(values):
+        return predict(model_with(model, names, values), apply(inputs, names, values, ball_object))
+
+    def stacked(prediction):
+        return np.stack([prediction[key] for key in MEASURED_FIELDS], axis=1)  # rows x 5
+
+    base = stacked(predicted(x))
+    measured = np.stack([table.measured[key] for key in MEASURED_FIELDS], axis=1)
+    sigma = np.stack([table.sigma[key] for key in MEASURED_FIELDS], axis=1)
+    given = np.isfinite(measured)
+    difference = np.where(given, base - np.nan_to_num(measured), 0.0)
+    angles = [i for i, key in enumerate(MEASURED_FIELDS) if key in ("horizontal_launch_angle", "spin_axis")]
+    difference[:, angles] = (difference[:, angles] + math.pi) % (2 * math.pi) - math.pi
+    residual = difference / sigma  # rows x 5, 0 where not measured
+    derivative = np.zeros((*base.shape, len(names)))  # d prediction / d parameter: rows x 5 x p
+    for p in np.flatnonzero(free):
+        step = least_squares.DIFF_STEP * span[p] * (1.0 if x[p] + least_squares.DIFF_STEP * span[p] <= high[p]
+                                                    else -1.0)
+        moved = x.copy()
+        moved[p] += step
+        derivative[:, :, p] = (stacked(predicted(moved)) - base) / step
+    jacobian = np.where(given[:, :, None], derivative / sigma[:, :, None], 0.0)[:, :, free]  # rows x 5 x q
+    row_normal = np.einsum("rkp,rkq->rpq", jacobian, jacobian)
+    row_gradient = np.einsum("rkp,rk->rp", jacobian, residual)
+    without = row_normal.sum(axis=0)[None] - row_normal
+    gradient = row_gradient.sum(axis=0)[None] - row_gradient
+    change = np.zeros((table.size, len(names)))
+    if free.any():
+        change[:, free] = -np.einsum("rpq,rq->rp", np.linalg.pinv(without), gradient)
+    change = np.clip(x[None] + change, low, high) - x[None]
+    held_out = base + np.einsum("rkp,rp->rk", derivative, change)
+    prediction = {key: held_out[:, i] for i, key in enumerate(MEASURED_FIELDS)}
+    errors = shot_errors(prediction, table)
+    return {"errors": errors, "summary": summary(errors), "by_source": errors_by_source(errors, table),
+            "fits": [dict(zip(names, (float(v) for v in x + c))) for c in change], "labels": table.labels,
+            "method": "closed form: one Gauss-Newton step per row from the full fit"}

@@ -267,6 +267,10 @@ class Session:
         return delivery, measured, sigma, found
 
     def _assemble(self, index, delivery, measured, sigma, skipped: tuple, unusual):
+        # where the file gave the strike (the delivery fills a missing one with the face's centre, 0)
+        strike_known = np.ones(index.size, dtype=bool)
+        for key in ("strike_toe", "strike_high"):
+            strike_known &= np.isfinite(self.values[key][index]) if key in self.values else False
         labels = tuple(self.text["label"][i] or f"line {self.lines[i]}" for i in index)
         # every kept row's club is in the catalogue (usable() refuses the others)
         keys = {name: known for name in {self.text["club"][i] for i in index} if (known := club_key(name)) is not None}
@@ -279,7 +283,7 @@ class Session:
                          labels=labels, clubs=tuple(keys[self.text["club"][i]] for i in index),
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
-                         skipped=skipped, unusual=unusual,
+                         skipped=skipped, unusual=unusual, strike_known=strike_known,
                          row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
 
 

@@ -93,6 +93,9 @@ class ShotTable:
     #: where each row comes from (a row's ``source:``; empty: every row is the table's own ``name``): the unit of
     #: the per-source errors of ``impactlab validate`` and of leave-one-source-out cross-validation
     row_sources: tuple = attrs.field(default=(), eq=False)
+    #: per row, whether the file gave the strike location (where it did not, the strike fields hold the face
+    #: centre, 0); None: not recorded, every strike taken as given (the scorecard's strike zones use it)
+    strike_known: np.ndarray | None = attrs.field(default=None, eq=False)
 
     @property
     def sources(self) -> tuple[str, ...]:
@@ -114,6 +117,7 @@ class ShotTable:
                             delivery={k: v[index] for k, v in self.delivery.items()},
                             measured={k: v[index] for k, v in self.measured.items()},
                             sigma={k: v[index] for k, v in self.sigma.items()}, skipped=(),
+                            strike_known=None if self.strike_known is None else self.strike_known[index],
                             row_sources=tuple(self.sources[i] for i in index))
 
 

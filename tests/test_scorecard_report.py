@@ -1,0 +1,65 @@
+"""The scorecard's HTML report: one self-contained page whose every figure renders in a real (headless) browser."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))
+from test_scorecard import session  # noqa: E402
+
+from impactlab.data.validation.report import write_report  # noqa: E402
+from impactlab.data.validation.scorecard import holdout_split, scorecard  # noqa: E402
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+#: flags of a headless run that touches nothing outside the page (no GPU, no network, no profile sync)
+HEADLESS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+            "--disable-component-update", "--disable-sync", "--no-first-run")
+#: appended to a copy of the page only: after loading, count the images the browser decoded
+PROBE = ("<script>window.addEventListener('load', function () {var images = Array.from(document.images);"
+         "document.body.setAttribute('data-decoded', images.filter(function (i) {return i.complete && "
+         "i.naturalWidth > 0;}).length + '/' + images.length);});</script>")
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    table = session(80)
+    table.delivery["strike_toe"][:] = np.linspace(-0.02, 0.02, table.size)  # some strikes off the centre
+    split = holdout_split(table, 0.3)
+    predicted: dict = {}
+    card = scorecard(table, ["restitution", "rigid_coulomb"], holdout=split, predictions=predicted)
+    path = tmp_path_factory.mktemp("report") / "report.html"
+    write_report(path, table, split, card, predicted)
+    return path
+
+
+@pytest.mark.slow
+def test_the_report_is_one_self_contained_page(report):
+    text = report.read_text()
+    images = re.findall(r"<img [^>]*src='([^']*)'", text)
+    # five predicted-against-measured pages, residual against club speed, spin axis, dispersion
+    assert len(images) == 8 and all(src.startswith("data:image/png;base64,") for src in images)
+    assert not re.search(r"(src|href)=['\"](https?:|//)", text) and "<script" not in text
+    for heading in ("ball_speed [%]", "spin axis [deg]", "instrument floor", "median |error| by strike zone",
+                    "regression", "VENDOR CLAIM"):
+        assert heading in text, heading
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(CHROMIUM is None, reason="no headless browser: install Debian's chromium (apt-get install -y "
+                                             "chromium) to check that the report's figures render")
+def test_every_figure_renders_in_headless_chromium(report, tmp_path):
+    probe = tmp_path / "probe.html"
+    probe.write_text(report.read_text().replace("</body>", PROBE + "</body>"))
+    done = subprocess.run([CHROMIUM, *HEADLESS, "--virtual-time-budget=10000", "--dump-dom", probe.as_uri()],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    decoded = re.search(r'data-decoded="(\d+)/(\d+)"', done.stdout)
+    assert decoded is not None, done.stdout[:2000]
+    assert decoded.group(1) == decoded.group(2) == "8"
