@@ -14,8 +14,9 @@ from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_
 
 from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, RIGID_BODY_INPUTS,
                       RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE,
-                      FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs, law_friction,
-                      rolling_on)
+                      FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs,
+                      law_friction, lever_field, pressure_exponent_field, rate_law_state, reference_speed_field,
+                      relaxation_time_field, relaxed_fraction_field, rolling_on)
 
 
 @attrs.frozen
@@ -39,12 +40,21 @@ class RigidCoulombOptions:
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the coefficient of the ball-face pair's
         friction law (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent, compression_lever
+        Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`; models._common.RATE_LAWS_DOC), each off
+        by default; they read the ball's and face's elastic constants. The lever's couple is the rolling couple's,
+        with the impulse-weighted mean arm of the elastic Hertz history.
     """
 
     steps: int = attrs.field(default=STRONGE_STEPS, validator=attrs.validators.and_(
         attrs.validators.instance_of(int), attrs.validators.ge(10), attrs.validators.le(10**6)))
     rolling_hysteresis: float | str = attrs.field(default=0.0, validator=ROLLING_HYSTERESIS)
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    relaxation_time: float = relaxation_time_field("relaxation_time", 0.01)
+    relaxed_fraction: float = relaxed_fraction_field()
+    relaxation_reference_speed: float = reference_speed_field()
+    friction_pressure_exponent: float = pressure_exponent_field()
+    compression_lever: float = lever_field()
 
 
 class RigidCoulombModel(ImpactModel):
@@ -83,6 +93,8 @@ class RigidCoulombModel(ImpactModel):
         n = state["normal_speed"].size
         restitution = np.broadcast_to(inputs["restitution"], (n,))
         friction = law_friction(self.options, inputs, state, restitution)
+        # the laws with a scale (rate_laws; RATE_LAWS_DOC): each off returns its input (today's model exactly)
+        restitution, friction, lever_arm = rate_law_state(self.options, inputs, state, restitution, friction)
         impulse = np.zeros((n, 3))
         diagnostics = closed_form_diagnostics(n)
         zero = np.zeros(n)
@@ -90,10 +102,10 @@ class RigidCoulombModel(ImpactModel):
         todo = np.ones(n, dtype=bool)
         # a subclass's Options may leave the law out (getattr): then the model is today's
         hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
-        if rolling_on(hysteresis):
+        if rolling_on(hysteresis) or lever_arm is not None:
             # cases with a positive offset take the integrator with the couple; the others (alpha = 0, no
             # friction to roll the ball) stay exactly today's model
-            todo = self._rolling(inputs, state, friction, restitution, impulse, diagnostics, rolling)
+            todo = self._rolling(inputs, state, friction, restitution, impulse, diagnostics, rolling, lever_arm)
         line = state["one_dimensional"] & todo
         if np.any(line):
             w = state["mobility"][line]
@@ -109,24 +121,31 @@ class RigidCoulombModel(ImpactModel):
             diagnostics["validity"][coupled] = np.where(flags & 1, 4.0, 0.0)
         return {**impulse_outputs(impulse), **diagnostics, **rolling}
 
-    def _rolling(self, inputs, state, friction, restitution, impulse, diagnostics, rolling):
+    def _rolling(self, inputs, state, friction, restitution, impulse, diagnostics, rolling, lever_arm=None):
         """Cases with a rolling offset d > 0 and friction: in closed form on one line, else the integrator (ball_laws).
 
-        Fills their rows of ``impulse``, ``diagnostics`` and ``rolling``; returns the cases left to solve.
+        The offset is the cover's hysteresis arm (option rolling_hysteresis) plus the deformed ball's lever arm
+        ``lever_arm`` [m] (option compression_lever; rate_laws), both opposing the relative rolling. Fills their rows
+        of ``impulse``, ``diagnostics`` and ``rolling``; returns the cases left to solve.
         """
         missing = sorted(MATERIAL_OPTIONAL - set(inputs))
         if missing:
             raise ModelInputError(
-                f"rigid_coulomb with rolling_hysteresis needs the Hertz contact radius, hence the ball's and face's "
+                f"rigid_coulomb with rolling_hysteresis or compression_lever needs the Hertz contact radius, hence the "
+                f"ball's and face's "
                 f"elastic constants; missing: {', '.join(missing)} (give ball and face materials)")
         moduli = [inputs[name] for name in ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
                                             "face_poisson_ratio")]
         modulus = hertz.effective_modulus(*moduli)
         mobility = state["mobility"]
-        alpha = ball_laws.hysteresis_fraction(self.options.rolling_hysteresis, restitution,
-                                              inputs.get("club_restitution_gain", 0.0))
-        arm = ball_laws.mean_rolling_arm(alpha, state["contact_radius"], 1.0 / mobility[:, 2, 2], modulus,
-                                         state["normal_speed"])
+        hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
+        arm = np.zeros(state["normal_speed"].size)
+        if rolling_on(hysteresis):
+            alpha = ball_laws.hysteresis_fraction(hysteresis, restitution, inputs.get("club_restitution_gain", 0.0))
+            arm = arm + ball_laws.mean_rolling_arm(alpha, state["contact_radius"], 1.0 / mobility[:, 2, 2], modulus,
+                                                   state["normal_speed"])
+        if lever_arm is not None:
+            arm = arm + lever_arm
         # a couple needs friction to roll the ball, or a ball already rolling relative to the face
         coupling, rotation, rates = couple_mobility(state, inputs["ball_mass"], inputs["ball_radius"],
                                                     inputs["ball_inertia_factor"])
