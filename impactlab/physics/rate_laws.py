@@ -71,6 +71,8 @@ import numpy as np
 
 from . import hertz
 
+#: the Rules' limit of a club head's COR: 0.822 + 0.008 tolerance (USGA/R&A, since 2004)
+HEAD_COR_LIMIT = 0.830
 #: the pressure at which a pressure-dependent friction coefficient equals its input mu_0 [Pa]
 REFERENCE_PRESSURE = 10e6
 #: default reference normal speed of the viscoelastic restitution's shape [m/s] (a driver's normal speed)
@@ -79,6 +81,23 @@ REFERENCE_SPEED = 40.0
 SLS_STEPS = 3000
 #: the scaled relaxation times of the tabulated laws (log-spaced); beyond them the closed-form limits
 THETA_GRID = np.geomspace(1e-3, 1e3, 121)
+
+
+def check_head_cor(restitution, limit: float = HEAD_COR_LIMIT) -> None:
+    """Refuse a club-ball restitution beyond the Rules' head COR limit (ValueError): a fit reaching the data only
+    with such a head is unphysical and is never reported as a result.
+
+    Parameters
+    ----------
+    restitution : array_like
+        The club-ball pair's e at the driver (the head's COR as the pendulum/cannon test measures it) [1].
+    limit : float
+        0.830 (USGA/R&A: 0.822 plus the test's tolerance 0.008).
+    """
+    e = np.asarray(restitution, float)
+    if np.any(e > limit + 1e-9):
+        raise ValueError(f"head COR {float(np.max(e)):.4f} beyond the Rules' limit {limit:.3f}: an unphysical "
+                         f"club, refused (fit within the bound, or say the data cannot be reached inside it)")
 
 
 def sls_scaled(fraction, theta, steps: int = SLS_STEPS):
@@ -177,7 +196,8 @@ def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, rad
 
     Notes
     -----
-    Interpolated (monotone cubic in log theta) on :func:`sls_table`; outside the table's range the closed-form
+    A few cases (up to 30) are integrated directly (:func:`sls_scaled`); more are interpolated (monotone cubic in
+    log theta) on :func:`sls_table`; outside the table's range the closed-form
     limit of that side (theta = tau V / delta_0 below 1e-3 or above 1e3, where e differs from 1 by less than
     3e-3 and 1e-3 for g <= 0.9).
     """
@@ -189,6 +209,9 @@ def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, rad
     t0 = approach / speed
     theta = np.asarray(relaxation_time, float) / t0
     theta, t0 = np.broadcast_arrays(theta, t0)
+    if theta.size <= THETA_GRID.size // 4:  # a few cases: integrated directly, cheaper than a table
+        e, tau = sls_scaled(np.full(theta.size, g), theta.ravel())
+        return e.reshape(theta.shape), tau.reshape(theta.shape) * t0
     e_table, tau_table = sls_table(g)
     x = np.log(np.clip(theta, THETA_GRID[0], THETA_GRID[-1]))
     e = PchipInterpolator(np.log(THETA_GRID), e_table)(x)
