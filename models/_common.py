@@ -307,15 +307,15 @@ def _si_time(value):
     return to_si(value, "time", bare="si") if isinstance(value, str) else value
 
 
-def relaxation_time_field(name: str, high: float):
+def relaxation_time_field(name: str, high: float, default: float = 0.0):
     """A relaxation time option [s] (0, the default: the law off, the plain model exactly)."""
-    return attrs.field(default=0.0, converter=_named(_si_time, name), metadata=TIME, validator=in_range(
+    return attrs.field(default=default, converter=_named(_si_time, name), metadata=TIME, validator=in_range(
         0.0, high, f"a relaxation time in s between 0 (off) and {high:g} s (e.g. '30 us')"))
 
 
-def relaxed_fraction_field():
+def relaxed_fraction_field(default: float = 0.5):
     """Option ``relaxed_fraction`` g = E_1 / E_0 of the SLS normal law [1]."""
-    return attrs.field(default=0.5, converter=to_float, validator=in_range(0.0, 0.95, "a relaxed fraction "
+    return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 0.95, "a relaxed fraction "
                                                                                 "0 <= g <= 0.95"))
 
 
@@ -332,9 +332,9 @@ def pressure_exponent_field():
                                                                                "(1: constant shear strength)"))
 
 
-def lever_field():
+def lever_field(default: float = 0.0):
     """Option ``compression_lever`` lambda = d / delta of the normal force's offset [1] (0: none)."""
-    return attrs.field(default=0.0, converter=to_float, validator=in_range(0.0, 0.5, "a lever 0 <= lambda <= 0.5 "
+    return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 0.5, "a lever 0 <= lambda <= 0.5 "
                                                                                "(d = lambda delta)"))
 
 
