@@ -397,10 +397,6 @@ class BallLawOptions:
     core_specific_gravity: float | None = core_specific_gravity_field()
     core_loss: float = core_loss_field()
     core_modes: int = core_modes_field()
-    #: the face flexing behind the contact (FACE_FLEX_DOC); 0: a rigid face
-    face_frequency: float = face_frequency_field()
-    face_modal_mass: float = face_modal_mass_field()
-    face_loss: float = face_loss_field()
     #: laws with a scale (RATE_LAWS_DOC); each 0: off
     relaxation_time: float = relaxation_time_field("relaxation_time", 0.01)
     relaxed_fraction: float = relaxed_fraction_field()
@@ -408,6 +404,10 @@ class BallLawOptions:
     friction_pressure_exponent: float = pressure_exponent_field()
     compression_lever: float = lever_field()
     tangential_relaxation_time: float = relaxation_time_field("tangential_relaxation_time", 0.001)
+    #: the face flexing behind the contact (FACE_FLEX_DOC); 0: a rigid face
+    face_frequency: float = face_frequency_field()
+    face_modal_mass: float = face_modal_mass_field()
+    face_loss: float = face_loss_field()
 
 def face_on(options) -> bool:
     """Whether a model's options switch the face law on; one of frequency and modal mass without the other is

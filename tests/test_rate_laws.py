@@ -51,9 +51,9 @@ def test_sls_never_creates_energy_and_dissipates_most_near_theta_one():
 
 
 def test_sls_table_agrees_with_the_direct_integration():
-    speed = np.linspace(15.0, 65.0, 40)  # more than the direct limit: the table
+    speed = np.linspace(15.0, 65.0, 40)
     e_table, tc_table = rate_laws.sls_restitution(0.5, 40e-6, speed, M, R, E_STAR)
-    e_direct, tc_direct = rate_laws.sls_restitution(0.5, 40e-6, speed[::4], M, R, E_STAR)
+    e_direct, tc_direct = rate_laws.sls_restitution(0.5, 40e-6, speed[::4], M, R, E_STAR, direct=True)
     np.testing.assert_allclose(e_table[::4], e_direct, atol=2e-4)
     np.testing.assert_allclose(tc_table[::4], tc_direct, rtol=2e-4)
 
@@ -210,3 +210,18 @@ def test_laws_keep_left_right_mirror_symmetry(name):
     np.testing.assert_allclose(flipped["lateral_impulse"][rows], -out["lateral_impulse"][rows], atol=1e-9)
     np.testing.assert_allclose(flipped["horizontal_launch_angle"][rows], -out["horizontal_launch_angle"][rows],
                                atol=1e-9)
+
+
+def test_the_registered_form_is_rigid_coulomb_with_its_fitted_laws():
+    from impactlab_models.rigid_coulomb import FITTED_LEVER, FITTED_RELAXATION
+
+    registered = get_model("rigid_coulomb_lever")
+    for cases in (CASES_1D, CASES_3D):
+        same = get_model("rigid_coulomb")(compression_lever=FITTED_LEVER, relaxation_time=FITTED_RELAXATION[0],
+                                          relaxed_fraction=FITTED_RELAXATION[1]).compute_arrays(cases, OUT)
+        out = registered().compute_arrays(cases, OUT)
+        off = registered(compression_lever=0.0, relaxation_time=0.0).compute_arrays(cases, OUT)
+        plain = get_model("rigid_coulomb")().compute_arrays(cases, OUT)
+        for key in OUT:
+            np.testing.assert_array_equal(out[key], same[key])
+            np.testing.assert_array_equal(off[key], plain[key])

@@ -175,7 +175,7 @@ def sls_table(fraction: float) -> tuple[np.ndarray, np.ndarray]:
     return e, tau
 
 
-def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, radius, modulus):
+def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, radius, modulus, direct: bool = False):
     """Restitution and contact time of a Hertz standard-linear-solid impact at each case (module docstring, (a)).
 
     Parameters
@@ -196,8 +196,8 @@ def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, rad
 
     Notes
     -----
-    A few cases (up to 30) are integrated directly (:func:`sls_scaled`); more are interpolated (monotone cubic in
-    log theta) on :func:`sls_table`; outside the table's range the closed-form
+    ``direct``: integrated case by case (:func:`sls_scaled`), else interpolated (monotone cubic in log theta) on
+    :func:`sls_table`, agreeing within 2e-4 (tests/test_rate_laws.py); outside the table's range the closed-form
     limit of that side (theta = tau V / delta_0 below 1e-3 or above 1e3, where e differs from 1 by less than
     3e-3 and 1e-3 for g <= 0.9).
     """
@@ -209,7 +209,8 @@ def sls_restitution(fraction, relaxation_time, normal_speed, effective_mass, rad
     t0 = approach / speed
     theta = np.asarray(relaxation_time, float) / t0
     theta, t0 = np.broadcast_arrays(theta, t0)
-    if theta.size <= THETA_GRID.size // 4:  # a few cases: integrated directly, cheaper than a table
+    if direct:  # integrated case by case (a fit over few cases); the models take the table, so that a case's
+        # result never depends on the batch around it
         e, tau = sls_scaled(np.full(theta.size, g), theta.ravel())
         return e.reshape(theta.shape), tau.reshape(theta.shape) * t0
     e_table, tau_table = sls_table(g)
