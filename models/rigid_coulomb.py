@@ -171,7 +171,7 @@ class RigidCoulombModel(ImpactModel):
 
 #: the compression lever lambda fitted on the shared TrackMan driver file (validation/impact/rate_laws.py, section 4;
 #: bounded by a mean offset <= 1.0 mm at the PGA driver delivery): a fitted model parameter, not a measurement
-FITTED_LEVER = 0.0334
+FITTED_LEVER = 0.0540
 #: the SLS normal law fitted to Chou & Yang's measured ball COR at 20 and 45 m/s and a 475 us contact at 45 m/s
 #: (validation/impact/rate_laws.py, section 2): a fitted model parameter
 FITTED_RELAXATION = (43.2e-6, 0.376)
