@@ -322,7 +322,7 @@ def gear_and_face(rl):
     print(f"\n- the model's vertical gear effect (hertz_mindlin, e_ball 0.742, the PGA driver delivery, the measured "
           f"dynamic loft held at the contact point): spin {spins[0] * rl.RPM:.0f} / {spins[1] * rl.RPM:.0f} / "
           f"{spins[2] * rl.RPM:.0f} rpm at strike height -10 / 0 / +10 mm, d log spin / dh = {slope:+.4f} per mm; "
-          "the file's within-block slope c at fixed measured loft is -0.001 to -0.002 per mm (section 1).")
+          "the file's within-block slope c at fixed measured loft is -0.0001 to -0.0024 per mm (section 1).")
     print("\n| flexing face (hertz_mindlin, e_ball 0.742, PGA driver delivery) | ball speed [m/s] | spin [rpm] |")
     print("|---|---|---|")
     inputs = table_inputs(table)
