@@ -4,7 +4,7 @@ import attrs
 import numpy as np
 
 from impactlab.errors import FieldError, ModelInputError
-from impactlab.units import si_angular_speed, si_length, si_mass, si_pressure
+from impactlab.units import si_angular_speed, si_length, si_mass, si_pressure, si_speed, to_si
 from impactlab.validators import check, in_range, to_float
 
 from impactlab.physics import core_torsion, face_flex
@@ -292,6 +292,102 @@ FACE_FLEX_DOC = """face_frequency, face_modal_mass, face_loss
 
 
 
+# -- laws with a speed, time or pressure scale of their own (impactlab.physics.rate_laws; issue 33) ------------------
+
+TIME = {"dimension": "time", "expected": "a time with its unit, e.g. 30 us (a bare number's unit is never guessed)"}
+SPEED = {"dimension": "speed"}
+
+
+def _si_time(value):
+    """A time as an SI float [s] (a bare number is SI; text with a unit converted), as the units' converters do."""
+    if isinstance(value, bool) or value is None:
+        return value
+    if isinstance(value, int):
+        return float(value)
+    return to_si(value, "time", bare="si") if isinstance(value, str) else value
+
+
+def relaxation_time_field(name: str, high: float, default: float = 0.0):
+    """A relaxation time option [s] (0, the default: the law off, the plain model exactly)."""
+    return attrs.field(default=default, converter=_named(_si_time, name), metadata=TIME, validator=in_range(
+        0.0, high, f"a relaxation time in s between 0 (off) and {high:g} s (e.g. '30 us')"))
+
+
+def relaxed_fraction_field(default: float = 0.5):
+    """Option ``relaxed_fraction`` g = E_1 / E_0 of the SLS normal law [1]."""
+    return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 0.95, "a relaxed fraction "
+                                                                                "0 <= g <= 0.95"))
+
+
+def reference_speed_field():
+    """Option ``relaxation_reference_speed`` [m/s]: the normal speed at which e(v) equals the restitution input."""
+    return attrs.field(default=40.0, converter=_named(si_speed, "relaxation_reference_speed"),
+                       metadata=SPEED, validator=in_range(1.0, 100.0, "a normal speed in m/s between 1 and 100 "
+                                                          "(e.g. '40 m/s')"))
+
+
+def pressure_exponent_field():
+    """Option ``friction_pressure_exponent`` n of mu = mu_0 (p / 10 MPa)^(-n) [1] (0: Coulomb)."""
+    return attrs.field(default=0.0, converter=to_float, validator=in_range(0.0, 1.0, "an exponent 0 <= n <= 1 "
+                                                                               "(1: constant shear strength)"))
+
+
+def lever_field(default: float = 0.0):
+    """Option ``compression_lever`` lambda = d / delta of the normal force's offset [1] (0: none)."""
+    return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 0.5, "a lever 0 <= lambda <= 0.5 "
+                                                                               "(d = lambda delta)"))
+
+
+RATE_LAWS_DOC = """relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent,
+    compression_lever
+        Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`, issue 33), each off by default.
+        ``relaxation_time`` tau [s] (with its unit, '30 us') and ``relaxed_fraction`` g: the ball's normal contact a
+        standard linear solid under Hertz (Lee & Radok), whose restitution falls or rises with the normal speed;
+        the restitution input is e at ``relaxation_reference_speed`` (40 m/s) and e(v) = e_in e_sls(v) /
+        e_sls(v_ref). ``friction_pressure_exponent`` n: mu = mu_0 (p_mean / 10 MPa)^(-n). ``compression_lever``
+        lambda: the normal force's line offset d = lambda delta by the ball's deformation, a couple opposing the
+        relative rolling (the rolling couple of impactlab.physics.ball_laws with this arm)."""
+
+
+def rate_law_state(options, inputs, state, restitution, friction):
+    """(restitution, friction, lever arm [m] or None, modulus E*) of each case under the rate-law options.
+
+    Each law off returns its input unchanged (the plain model exactly). The laws read the ball's and face's elastic
+    constants (the Hertz scale): refused with a clear message where they are missing.
+    """
+    from impactlab.physics import hertz, rate_laws
+
+    tau = float(getattr(options, "relaxation_time", 0.0) or 0.0)
+    exponent = float(getattr(options, "friction_pressure_exponent", 0.0) or 0.0)
+    lever = float(getattr(options, "compression_lever", 0.0) or 0.0)
+    if not (tau or exponent or lever):
+        return restitution, friction, None
+    missing = sorted(MATERIAL_OPTIONAL - set(inputs))
+    if missing:
+        raise ModelInputError(f"relaxation_time, friction_pressure_exponent, compression_lever need the Hertz "
+                              f"contact, hence the ball's and face's elastic constants; missing: {', '.join(missing)} "
+                              f"(give ball and face materials)")
+    moduli = [inputs[name] for name in ("ball_youngs_modulus", "ball_poisson_ratio", "face_youngs_modulus",
+                                        "face_poisson_ratio")]
+    n = state["normal_speed"].size
+    modulus = np.broadcast_to(hertz.effective_modulus(*moduli), (n,))
+    mass, radius, speed = 1.0 / state["mobility"][:, 2, 2], state["contact_radius"], state["normal_speed"]
+    if tau:
+        restitution = rate_laws.restitution_shape(restitution, options.relaxed_fraction, tau, speed, mass, radius,
+                                                  modulus, options.relaxation_reference_speed)
+    if exponent:
+        friction = rate_laws.pressure_friction(friction, exponent, rate_laws.mean_pressure(mass, radius, modulus,
+                                                                                           speed))
+    arm = rate_laws.compression_arm(lever, mass, radius, modulus, speed) if lever else None
+    return restitution, friction, arm
+
+
+#: the option of each ball and face law of BallLawOptions with the value that switches the law off (the plain ball:
+#: ImpactModel.ball_law_options); a law's other options (a core's modulus, the face's loss...) act only when it is on
+PLAIN_BALL = {"rolling_hysteresis": 0.0, "friction_law": "coulomb", "core_radius": 0.0, "face_frequency": 0.0,
+              "relaxation_time": 0.0, "friction_pressure_exponent": 0.0, "compression_lever": 0.0}
+
+
 @attrs.frozen(kw_only=True)
 class BallLawOptions:
     """The ball and face laws every compliant model takes, declared once (``maw``'s and the DEM models' Options
@@ -307,6 +403,13 @@ class BallLawOptions:
     core_specific_gravity: float | None = core_specific_gravity_field()
     core_loss: float = core_loss_field()
     core_modes: int = core_modes_field()
+    #: laws with a scale (RATE_LAWS_DOC); each 0: off
+    relaxation_time: float = relaxation_time_field("relaxation_time", 0.01)
+    relaxed_fraction: float = relaxed_fraction_field()
+    relaxation_reference_speed: float = reference_speed_field()
+    friction_pressure_exponent: float = pressure_exponent_field()
+    compression_lever: float = lever_field()
+    tangential_relaxation_time: float = relaxation_time_field("tangential_relaxation_time", 0.001)
     #: the face flexing behind the contact (FACE_FLEX_DOC); 0: a rigid face
     face_frequency: float = face_frequency_field()
     face_modal_mass: float = face_modal_mass_field()

@@ -5,7 +5,6 @@ from __future__ import annotations
 import functools
 from typing import Protocol, runtime_checkable
 
-import attrs
 import numpy as np
 
 from impactlab.validators import check
@@ -19,7 +18,9 @@ from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rolling_line import planar_couple
 
 from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      BallLawOptions, core_inputs, face_inputs, face_restitution, law_friction, rolling_on)
+                      PLAIN_BALL, core_inputs, face_inputs, face_restitution, law_friction, rate_law_state,
+                      rolling_on)
+from impactlab.physics import rate_laws
 
 #: distinct restitutions above which the hysteretic law is tabulated per case and solved by the 3-D kernel
 MAX_DAMPED_LAWS = 8
@@ -94,7 +95,7 @@ class HertzTangentialModel(ImpactModel):
     _3d_depends_on_kappa = False
     has_tolerance = True
     #: every ball and face law of BallLawOptions (the reference-value checks hold with all of them off)
-    ball_law_options = tuple(field.name for field in attrs.fields(BallLawOptions))
+    ball_law_options = PLAIN_BALL
 
     def __init__(self, options=None, **option_values):
         super().__init__(options, **option_values)
@@ -123,6 +124,8 @@ class HertzTangentialModel(ImpactModel):
         restitution = p.get("restitution", np.ones_like(normal_speed))
         # the friction law's coefficient per case (option friction_law; "coulomb": the friction input)
         friction = law_friction(self.options, p, state, restitution)
+        # the laws with a scale (rate_laws; RATE_LAWS_DOC): each off returns its input (today's model exactly)
+        restitution, friction, lever_arm = rate_law_state(self.options, p, state, restitution, friction)
         # the face flexing behind the contact (options face_frequency & co.; impactlab.physics.face_flex): on a
         # spring-like face the normal law takes the ball's own e, the face's mode giving what the gain stood for
         face = face_inputs(self.options, p, normal_speed.size)
@@ -148,6 +151,10 @@ class HertzTangentialModel(ImpactModel):
         # slip stays on one line, the normal problem is uncoupled) or there is no friction to couple them; the
         # 3-D solver elsewhere, and wherever the head's rotation during contact is asked for
         loss = np.broadcast_to(p.get("tangential_loss", 0.0), slip.shape)
+        relaxation = float(getattr(self.options, "tangential_relaxation_time", 0.0) or 0.0)
+        if relaxation:  # a dashpot of a physical time: its loss factor at the contact's frequency, pi tau_t / t_c
+            loss = loss + rate_laws.tangential_loss_of_time(relaxation, hertz.contact_time(
+                m_normal, radius, modulus, scale_speed))
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
         three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
@@ -168,9 +175,14 @@ class HertzTangentialModel(ImpactModel):
         hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
         arm_factor = np.zeros(slip.size)
         rolling, planar = None, np.zeros(slip.size, dtype=bool)
-        if rolling_on(hysteresis):
-            arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
-                hysteresis, restitution, p.get("club_restitution_gain", 0.0))
+        if rolling_on(hysteresis) or lever_arm is not None:
+            if rolling_on(hysteresis):
+                arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
+                    hysteresis, restitution, p.get("club_restitution_gain", 0.0))
+            if lever_arm is not None:  # the deformed ball's lever as an arm factor d / a of the same mean offset
+                arm_factor = arm_factor + rate_laws.arm_factor_of_lever(
+                    self.options.compression_lever, radius, hertz.max_approach(m_normal, radius, modulus,
+                                                                               scale_speed))
             rolls = (arm_factor > 0.0) & (friction > 0.0)
             rolling = self._rolling_inputs(p, state, arm_factor)
             if self._planar_rolling and rolling is not None and core is None:  # (the 1-D solver takes either)

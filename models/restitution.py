@@ -11,8 +11,9 @@ from impactlab.model import ImpactModel
 from impactlab.physics.rigid import restitution_impulses
 
 from ._common import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
-                      RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics,
-                      impulse_outputs, law_friction)
+                      PLAIN_BALL, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE,
+                      closed_form_diagnostics, impulse_outputs, law_friction, pressure_exponent_field, rate_law_state,
+                      reference_speed_field, relaxation_time_field, relaxed_fraction_field)
 
 
 @attrs.frozen
@@ -28,12 +29,20 @@ class RestitutionOptions:
     friction_law : str
         The Coulomb cap's coefficient: ``"coulomb"`` (default), the ``friction`` input (none given: no cap);
         ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (models._common.FRICTION_LAW_DOC).
+    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent
+        The SLS normal law and the pressure-dependent friction cap of :mod:`impactlab.physics.rate_laws`
+        (models._common.RATE_LAWS_DOC), each off by default; they read the ball's and face's elastic constants. (The
+        lever has no place here: this model has no rolling couple, beta sets the tangential exit.)
     """
 
     tangential_restitution: float = attrs.field(
         default=0.0, converter=to_float,
         validator=in_range(-1.0, 1.0, "a tangential restitution with -1 <= beta <= 1"))
     friction_law: str = attrs.field(default="coulomb", validator=FRICTION_LAW)
+    relaxation_time: float = relaxation_time_field("relaxation_time", 0.01)
+    relaxed_fraction: float = relaxed_fraction_field()
+    relaxation_reference_speed: float = reference_speed_field()
+    friction_pressure_exponent: float = pressure_exponent_field()
 
 
 class RestitutionModel(ImpactModel):
@@ -74,15 +83,17 @@ class RestitutionModel(ImpactModel):
     provides = IMPULSES_3D | CLOSED_FORM_DIAGNOSTICS
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
-    ball_law_options = ("friction_law",)
+    ball_law_options = {name: PLAIN_BALL[name] for name in ("friction_law", "relaxation_time",
+                                                            "friction_pressure_exponent")}
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()
         cap = (inputs.get("friction", np.inf) if self.options.friction_law == "coulomb"
                else law_friction(self.options, inputs, state, inputs["restitution"]))
+        # the laws with a scale (rate_laws; RATE_LAWS_DOC): each off returns its input (today's model exactly)
+        restitution, cap, _ = rate_law_state(self.options, inputs, state, inputs["restitution"], cap)
         impulse, _, energy_capped = restitution_impulses(
-            state["initial_velocity"], state["mobility"], inputs["restitution"], self.options.tangential_restitution,
-            cap)
+            state["initial_velocity"], state["mobility"], restitution, self.options.tangential_restitution, cap)
         diagnostics = closed_form_diagnostics(impulse.shape[0])
         diagnostics["validity"] = np.where(energy_capped, 32.0, 0.0)
         return {**impulse_outputs(impulse), **diagnostics}

@@ -183,6 +183,10 @@ def test_reference_checks_apply_to_the_plain_ball_and_only_a_declared_law_lifts_
     assert get_model("rigid_coulomb")(rolling_hysteresis="restitution").ball_laws_on() == ("rolling_hysteresis",)
     assert get_model("rigid_coulomb")().ball_laws_on() == ()
     assert get_model("restitution")(friction_law="adhesion").ball_laws_on() == ("friction_law",)
+    # a parameter of a law that is off does not switch it on; a registered model whose law is on by default is on
+    assert get_model("maw")(core_loss=0.2).ball_laws_on() == ()
+    assert "compression_lever" in get_model("rigid_coulomb_lever")().ball_laws_on()
+    assert get_model("rigid_coulomb_lever")(compression_lever=0.0, relaxation_time=0.0).ball_laws_on() == ()
     plain = get_model("rigid_coulomb")()
     check_rigid_limit(plain)
 

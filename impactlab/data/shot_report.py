@@ -213,7 +213,8 @@ SOURCE_COLUMNS = {"ball_speed [%]": "speed %", "launch angle [deg]": "launch deg
 
 
 def source_table(table: ShotTable, predictions: dict) -> dict:
-    """source -> model -> {error key -> RMS over the source's rows} (:func:`impactlab.data.sessions.shots.errors_by_source`)."""
+    """source -> model -> {error key -> RMS over the source's rows}
+    (:func:`impactlab.data.sessions.shots.errors_by_source`)."""
     out: dict = {}
     for model, predicted in predictions.items():
         for source, rms in errors_by_source(shot_errors(predicted, table), table).items():
@@ -251,8 +252,8 @@ _CSV_QUANTITIES = (("ball_speed", "m/s", 1.0), ("vertical_launch_angle", "deg", 
 def prediction_rows(table: ShotTable, predictions: dict) -> list[dict]:
     """One row per shot and model: the shot's delivery, each measured quantity beside the model's prediction.
 
-    ``predictions`` maps a model id to :func:`impactlab.data.sessions.shots.predict`'s arrays (SI). Keys carry their unit
-    (``ball_speed measured [m/s]``); a quantity the table does not measure is an empty cell.
+    ``predictions`` maps a model id to :func:`impactlab.data.sessions.shots.predict`'s arrays (SI). Keys carry their
+    unit (``ball_speed measured [m/s]``); a quantity the table does not measure is an empty cell.
     """
     out = []
     for model, predicted in predictions.items():

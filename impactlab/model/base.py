@@ -135,9 +135,10 @@ class ImpactModel:
     #: rule 9: the hook reads the contact geometry only through ``inputs.contact_state()``, which then is the
     #: state of the whole scene whatever the model declared (otherwise it must declare the contact-state inputs)
     takes_contact_state: ClassVar[bool] = False
-    #: names of the ``Options`` fields that switch on a law of the ball or face (rolling resistance, a friction law,
-    #: a turning core, a flexing face...): the reference-value checks hold for the plain ball (:meth:`ball_laws_on`)
-    ball_law_options: ClassVar[tuple[str, ...]] = ()
+    #: the ``Options`` fields that switch on a law of the ball or face (rolling resistance, a friction law, a turning
+    #: core, a flexing face...), each with the value that switches it off: the reference-value checks hold for the
+    #: plain ball (:meth:`ball_laws_on`)
+    ball_law_options: ClassVar[Mapping[str, Any]] = {}
 
     def __init_subclass__(cls, **kwargs: Any):
         super().__init_subclass__(**kwargs)
@@ -203,17 +204,14 @@ class ImpactModel:
 
     def ball_laws_on(self) -> tuple[str, ...]:
         """The ball and face laws this configuration switches on: the options named in :attr:`ball_law_options`
-        whose values differ from their defaults (``()``: the plain ball).
+        whose values differ from the value that switches each off (``()``: the plain ball).
 
         The conformance suite's reference-value checks (``full_sliding``, ``rigid_limit``, ``arriving_rolling``,
-        ``3d_sideways_impulse``:
-        closed forms of a rigid sphere under Coulomb friction) hold for the plain ball only; a law such as the
-        cover's rolling resistance or a friction law changes the impulses on purpose, so those checks are not
-        applied to a configuration with a law on (the other checks are).
+        ``3d_sideways_impulse``: closed forms of a rigid sphere under Coulomb friction) hold for the plain ball only;
+        a law such as the cover's rolling resistance or a friction law changes the impulses on purpose, so those
+        checks are not applied to a configuration with a law on (the other checks are).
         """
-        defaults = self.Options()
-        return tuple(name for name in self.ball_law_options
-                     if getattr(self.options, name) != getattr(defaults, name))
+        return tuple(name for name, off in self.ball_law_options.items() if getattr(self.options, name) != off)
 
     def solves_3d(self) -> bool:
         """Whether this configuration solves 3-D contacts (a free head struck off-centre, a curved face).

@@ -1,0 +1,55 @@
+"""Cost of the laws with a scale (impactlab.physics.rate_laws, issue 33) per impact against the same model's
+elastic law, measured in one run (goal: within 3x on the 1-D and 3-D batches of impactlab.testing's conformance suite).
+
+The batches: :func:`impactlab.testing.reference_inputs` (plate cases, 1-D) and
+:func:`impactlab.testing.reference_inputs_3d` (golf deliveries on free heads, 3-D). "Elastic law" is the same model
+with every law off. Time: the process's CPU time (the models run on one thread), best of 5 repeats, after a warm-up
+run that compiles the kernels and builds the SLS table (cached per relaxed fraction, as in use).
+
+Run: .venv/bin/python benchmarks/bench_rate_laws.py  (about a minute on one core)
+"""
+
+import time
+
+from impactlab.model.registry import get_model
+from impactlab.testing import _complete, reference_inputs, reference_inputs_3d
+
+LAWS = [
+    ("SLS normal (a)", {"relaxation_time": 43e-6, "relaxed_fraction": 0.376}),
+    ("pressure friction (b)", {"friction_pressure_exponent": 0.3}),
+    ("tangential dashpot time (b)", {"tangential_relaxation_time": 20e-6}),
+    ("compression lever (c)", {"compression_lever": 0.05}),
+    ("all of them", {"relaxation_time": 43e-6, "relaxed_fraction": 0.376, "friction_pressure_exponent": 0.3,
+                     "compression_lever": 0.05}),
+]
+MODELS = ("rigid_coulomb", "hertz_mindlin", "maw")
+OUTPUTS = ["spin_rate", "ball_speed"]
+
+
+def cost(model, inputs, repeats=5):
+    model.compute_arrays(inputs, OUTPUTS)  # warm-up: kernels, tables
+    best = float("inf")
+    for _ in range(repeats):
+        start = time.process_time()
+        model.compute_arrays(inputs, OUTPUTS)
+        best = min(best, time.process_time() - start)
+    return best / inputs["speed"].size
+
+
+def main():
+    batches = {"1-D": _complete(reference_inputs()), "3-D": _complete(reference_inputs_3d())}
+    print("| model | law | batch | cases | elastic law [us/impact] | with the law [us/impact] | ratio (goal <= 3) |")
+    print("|---|---|---|---|---|---|---|")
+    for name in MODELS:
+        for batch, inputs in batches.items():
+            base = cost(get_model(name)(), inputs)
+            for law, options in LAWS:
+                if name == "rigid_coulomb" and "tangential_relaxation_time" in options:
+                    continue
+                with_law = cost(get_model(name)(**options), inputs)
+                print(f"| {name} | {law} | {batch} | {inputs['speed'].size} | {base * 1e6:.1f} | "
+                      f"{with_law * 1e6:.1f} | {with_law / base:.2f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
