@@ -668,10 +668,11 @@ def main(argv=None) -> int:
             print(f"{ident:34s} {file:32s} {what}")
         return 0
     started = time.perf_counter()
-    results = run(selected, args.timeout, sys.executable)
+    # the tree the mutants run on is copied now: its commit, and whether the sources differ from it
     commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     dirty = bool(subprocess.run(["git", "status", "--porcelain", "--", "impactlab", "models", "tests"], cwd=ROOT,
                                 capture_output=True, text=True).stdout.strip())
+    results = run(selected, args.timeout, sys.executable)
     record = {"commit": commit, "uncommitted_changes": dirty, "date": time.strftime("%Y-%m-%d", time.gmtime()),
               "command": " ".join(["benchmarks/mutation.py", *(argv if argv is not None else sys.argv[1:])]),
               "full_run": not args.k and not args.tests, "minutes": round((time.perf_counter() - started) / 60, 1),
