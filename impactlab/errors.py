@@ -125,3 +125,9 @@ def closest(word: str, choices: Iterable[str]) -> str | None:
     """The choice closest to ``word``, or None when nothing is close."""
     match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
     return match[0] if match else None
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["ImpactLabError", "EnvironmentFault", "ResourceLimitError", "FieldError", "StudyError",
+           "ModelNotFoundError", "ModelInputError", "ModelContractError", "PlausibilityWarning", "PluginWarning",
+           "closest"]

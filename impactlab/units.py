@@ -318,3 +318,9 @@ RADS_TO_RPM = 60.0 / (2.0 * math.pi)
 #: metres per second in a mile per hour (exact: the international mile)
 MPH = 0.44704
 
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["DIMENSIONS", "EXAMPLE_UNITS", "ZERO_DEPENDS_ON_UNIT", "UNIT_NOTES", "unit_factor", "unit_affine",
+           "unit_missing", "registry", "to_si", "si_length", "si_angle", "si_mass", "si_speed", "si_angular_speed",
+           "si_pressure", "si_inverse_speed", "AMBIGUOUS_SYMBOLS", "RAD_TO_DEG", "RADS_TO_RPM", "MPH"]

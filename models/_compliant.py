@@ -8,9 +8,8 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from impactlab.validators import check
-from impactlab.model.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.errors import ModelContractError
-from impactlab.model import ImpactModel
+from impactlab.model import LARGE_CONTACT_RATIO, ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz, mdr
 
 from impactlab.physics import ball_laws

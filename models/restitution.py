@@ -10,7 +10,7 @@ import numpy as np
 from impactlab.model import ImpactModel
 from impactlab.physics.rigid import restitution_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
+from .shared import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
                       RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE, closed_form_diagnostics,
                       impulse_outputs, law_friction)
 
@@ -27,7 +27,7 @@ class RestitutionOptions:
         point reverses). Default 0.
     friction_law : str
         The Coulomb cap's coefficient: ``"coulomb"`` (default), the ``friction`` input (none given: no cap);
-        ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (models._common.FRICTION_LAW_DOC).
+        ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (shared.FRICTION_LAW_DOC).
     """
 
     tangential_restitution: float = attrs.field(

@@ -12,7 +12,7 @@ from impactlab.physics import ball_laws, hertz, rolling_line
 from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, RIGID_BODY_INPUTS,
+from .shared import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, RIGID_BODY_INPUTS,
                       RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE,
                       FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs, law_friction,
                       rolling_on)
@@ -38,7 +38,7 @@ class RigidCoulombOptions:
         Default 0: no couple, the model unchanged.
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the coefficient of the ball-face pair's
-        friction law (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+        friction law (:mod:`impactlab.physics.friction_laws`; shared.FRICTION_LAW_DOC).
     """
 
     steps: int = attrs.field(default=STRONGE_STEPS, validator=attrs.validators.and_(

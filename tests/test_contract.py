@@ -17,7 +17,7 @@ from impactlab.physics import hertz
 from impactlab.model.registry import available
 from impactlab.testing import check_capabilities, check_model
 from impactlab.vocabulary import HISTORY_OUTPUTS, OUTPUTS, SCALAR_OUTPUTS, is_history, is_scalar
-from impactlab_models._compliant import CompliantOptions
+from impactlab_models.shared import CompliantOptions
 from impactlab_models.rigid_coulomb import RigidCoulombModel
 
 

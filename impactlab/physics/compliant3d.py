@@ -348,3 +348,8 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         for name in ("normal_force", "tangential_force", "stick_radius"):
             solution[name][beyond] = np.nan
     return Contact3DSolution(**solution)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["LAWS", "MAX_STEPS", "CORE_STEP", "resolution", "STEP_ALLOWANCE", "Contact3DSolution", "solve",
+           "core_steps", "face_steps", "on_line", "solve_once"]

@@ -497,3 +497,10 @@ def ground_outputs(state, after, *, dynamic_loft=None, attack_angle=None, path=N
         out["vertical_launch_ratio"] = np.where(np.abs(dynamic_loft - attack_angle) > 1e-12, vertical_ratio, np.nan)
         out["horizontal_launch_ratio"] = np.where(np.abs(face_abs - path_abs) > 1e-12, horizontal_ratio, np.nan)
     return out
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["INERTIA_INPUTS", "CENTER_INPUTS", "FACE_SHAPE_INPUTS", "STRIKE_INPUTS", "HEAD_ROTATION_INPUTS",
+           "CLUB_REFERENCES", "GEOMETRY_INPUTS", "CONTACT_STATE_INPUTS", "DIAGONAL_TOLERANCE", "face_axes",
+           "approach_state", "contact_state", "impulse_vector", "AFTER_IMPACT_OUTPUTS", "LAUNCH_PLANE_OUTPUTS",
+           "launch_plane", "couple_mobility", "after_impact", "ground_outputs"]
