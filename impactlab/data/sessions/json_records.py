@@ -17,6 +17,7 @@ import re
 from typing import Any
 
 from impactlab.errors import StudyError
+from impactlab.io.json_stream import json_values
 
 
 #: file suffixes read as JSON shot records by ``validate --dataset`` and ``fit`` (``shots`` reads any file)
@@ -31,20 +32,10 @@ def looks_like_json(text: str) -> bool:
 
 def _values(text: str, file: str) -> list[tuple[int, Any]]:
     """(start offset, value) of every top-level JSON value of a stream (objects back to back)."""
-    decoder = json.JSONDecoder()
-    out: list[tuple[int, Any]] = []
-    position = 0
-    while True:
-        while position < len(text) and text[position] in "\ufeff \t\r\n":
-            position += 1
-        if position >= len(text):
-            return out
-        try:
-            value, end = decoder.raw_decode(text, position)
-        except json.JSONDecodeError as exc:
-            raise StudyError(f"{file}:{exc.lineno}: not readable as JSON: {exc.msg} (column {exc.colno})") from None
-        out.append((position, value))
-        position = end
+    try:
+        return [(start, value) for start, value, _ in json_values(text)]
+    except json.JSONDecodeError as exc:
+        raise StudyError(f"{file}:{exc.lineno}: not readable as JSON: {exc.msg} (column {exc.colno})") from None
 
 
 def _object_starts(text: str, start: int) -> list[tuple[int, int, str]]:
