@@ -72,7 +72,6 @@ NOT_YET_SPLIT = {
     ("impactlab.physics.contact", "after_impact"),
     ("impactlab.physics.contact", "contact_state"),
     ("impactlab.plot.analysis", "plot_sensitivity"),
-    ("impactlab.plot.trajectories", "plot_trajectories"),
 }
 
 

@@ -61,33 +61,9 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     from matplotlib import rcParams
     from matplotlib.figure import Figure
 
-    absent = [name for name in TRAJECTORY_LAUNCH if name not in dataset.data_vars]
-    if absent:
-        raise FieldError("--trajectories", "a golf result holding the launch (add these to the study's outputs: "
-                         + ", ".join(absent) + ")", "a result without them")
-    scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
-    swept_air = [name for name in FLIGHT_INPUTS
-                 if name in dataset.coords or INPUT_COORDS.get(name, name) in dataset.coords]
-    if swept_air:
-        raise FieldError("--trajectories", "a result whose air is not swept (the paths are flown in one air); "
-                         "select one value first", ", ".join(swept_air))
-    if MODEL_DIM not in dataset.dims:
-        dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
+    dataset, scene = _checked(dataset)
     air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
-    # the air model the result's flight outputs were computed with (they record it); flight outputs that record
-    # none come from a file written before they did, when every flight was Smits & Smith's; a result holding only
-    # the launch is flown with today's default. The title says which.
-    flown = [name for name in FLIGHT_OUTPUTS if name in dataset.data_vars]
-    recorded = [dataset[name].attrs["aerodynamic_model"] for name in flown
-                if "aerodynamic_model" in dataset[name].attrs]
-    aerodynamics = recorded[0] if recorded else UNRECORDED_AIR_MODEL if flown else DEFAULT_MODEL
-    # the constants the stored flight was computed with (a refit keeps the model's name): the paths are flown with
-    # today's, and the title says so when they differ (results written before fingerprints were recorded say nothing)
-    stored = {str(dataset[name].attrs["aerodynamic_fingerprint"]) for name in flown
-              if "aerodynamic_fingerprint" in dataset[name].attrs}
-    today = model_fingerprint(aerodynamics)
-    changed = (f" (today's constants, {today}; the stored carries were computed with {', '.join(sorted(stored))})"
-               if stored - {today} else "")
+    aerodynamics, changed = _air_model(dataset)
     mass = float(scene.get("ball_mass", BALL_MASS))
     radius = float(scene.get("ball_radius", BALL_RADIUS))
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
@@ -100,49 +76,11 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
     figure = Figure(figsize=(10.5, 7.5))
     side, top = figure.subplots(2, 1, sharex=True)
-    colours = rcParams["axes.prop_cycle"].by_key()["color"]
-    drawn: list = []  # (x, height, offline, label) of each path drawn
-    for m, model in enumerate(stacked[MODEL_DIM].values):
-        row = stacked.sel({MODEL_DIM: model}).isel(case=shown)
-        spin = np.hypot(row["back_spin"].values, row["side_spin"].values) * np.pi / 30.0
-        finite = np.isfinite(row["ball_speed"].values) & np.isfinite(spin) & (row["ball_speed"].values > 0)
-        if not finite.any():
-            continue
-        result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
-                            spin[finite], np.radians(row["spin_axis"].values[finite]),
-                            np.radians(row["horizontal_launch_angle"].values[finite]), ball_mass=mass,
-                            ball_radius=radius, model=aerodynamics, return_trajectories=True, **air)
-        labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
-        for k in range(result["x"].shape[0]):
-            style = _STYLES[k % len(_STYLES)]
-            label = f"{model}" + (f", {labels[k]}" if labels[k] else "")
-            flown = _flown_part(result["x"][k], result["z"][k], result["y"][k])
-            below = _lies_on(drawn, *flown)
-            drawn.append((*flown, (str(model), labels[k])))
-            # a marker per model at the landing point, so that a path lying on another model's stays visible; the
-            # legend names the model whose path of the same case this one covers
-            legend = label if below is None else \
-                f"{label} (on {below[0]}{'' if below[1] == labels[k] else ', ' + below[1]})"
-            marks = dict(color=colours[m % len(colours)], linestyle=style, marker=_MARKERS[m % len(_MARKERS)],
-                         markevery=[-1], markersize=5, markerfacecolor="none")
-            side.plot(result["x"][k], result["z"][k], label=legend, **marks)
-            top.plot(result["x"][k], result["y"][k], label=legend, **marks)
+    drawn = _draw_paths(side, top, stacked, shown, rcParams["axes.prop_cycle"].by_key()["color"],
+                        dict(ball_mass=mass, ball_radius=radius, model=aerodynamics, **air))
     if not drawn:
         raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
-    side.set_ylabel("height [m]")
-    side.set_ylim(bottom=0.0)
-    side.set_title("side view (heights not to scale with distances)")
-    top.set_ylabel("offline, right of the target\nline downwards [m]")
-    top.set_xlabel("along the target line [m]")
-    top.axhline(0.0, color="0.6", linewidth=0.8)
-    top.invert_yaxis()  # seen from above, with the target to the right, the golfer's right is down the page
-    top.set_title("top view (from above, target to the right)")
-    side.set_xlabel("along the target line [m]")
-    side.tick_params(labelbottom=True)
-    for axis in (side, top):
-        axis.grid(True, alpha=0.3)
-        yards = axis.secondary_xaxis("top", functions=(lambda v: v / YARD, lambda v: v * YARD))
-        yards.set_xlabel("[yd]", fontsize=8)
+    _dress(side, top)
     figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
                   title_fontsize=7)
     air_words = (f"air {air['temperature'] - 273.15:.0f} degC, {float(air['pressure']) / 100:.0f} hPa, "
@@ -159,6 +97,93 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     longest = max(len(text) for text in side.get_legend_handles_labels()[1])
     figure.tight_layout(rect=(0.0, 0.0, 0.80 if longest <= 28 else 0.72, 1.0))  # room for the legend's words
     return _save(figure, path)
+
+
+def _checked(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
+    """The result with a model dimension, and its base scene; FieldError when it lacks a launch output or sweeps
+    the air."""
+    absent = [name for name in TRAJECTORY_LAUNCH if name not in dataset.data_vars]
+    if absent:
+        raise FieldError("--trajectories", "a golf result holding the launch (add these to the study's outputs: "
+                         + ", ".join(absent) + ")", "a result without them")
+    scene = json.loads(dataset.attrs.get("base_scene_si", "{}") or "{}")
+    swept_air = [name for name in FLIGHT_INPUTS
+                 if name in dataset.coords or INPUT_COORDS.get(name, name) in dataset.coords]
+    if swept_air:
+        raise FieldError("--trajectories", "a result whose air is not swept (the paths are flown in one air); "
+                         "select one value first", ", ".join(swept_air))
+    if MODEL_DIM not in dataset.dims:
+        dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
+    return dataset, scene
+
+
+def _air_model(dataset: xr.Dataset) -> tuple[str, str]:
+    """The air model to fly the paths with, and the words saying its constants changed since the result's."""
+    # the air model the result's flight outputs were computed with (they record it); flight outputs that record
+    # none come from a file written before they did, when every flight was Smits & Smith's; a result holding only
+    # the launch is flown with today's default. The title says which.
+    flown = [name for name in FLIGHT_OUTPUTS if name in dataset.data_vars]
+    recorded = [dataset[name].attrs["aerodynamic_model"] for name in flown
+                if "aerodynamic_model" in dataset[name].attrs]
+    aerodynamics = recorded[0] if recorded else UNRECORDED_AIR_MODEL if flown else DEFAULT_MODEL
+    # the constants the stored flight was computed with (a refit keeps the model's name): the paths are flown with
+    # today's, and the title says so when they differ (results written before fingerprints were recorded say nothing)
+    stored = {str(dataset[name].attrs["aerodynamic_fingerprint"]) for name in flown
+              if "aerodynamic_fingerprint" in dataset[name].attrs}
+    today = model_fingerprint(aerodynamics)
+    changed = (f" (today's constants, {today}; the stored carries were computed with {', '.join(sorted(stored))})"
+               if stored - {today} else "")
+    return aerodynamics, changed
+
+
+def _draw_paths(side, top, stacked: xr.Dataset, shown: np.ndarray, colours, flight: dict) -> list:
+    """Each model's paths of the cases ``shown``, flown with ``flight`` (ball, air model, air): side and top
+    views; the (x, height, offline, label) of each path drawn."""
+    drawn: list = []  # (x, height, offline, label) of each path drawn
+    for m, model in enumerate(stacked[MODEL_DIM].values):
+        row = stacked.sel({MODEL_DIM: model}).isel(case=shown)
+        spin = np.hypot(row["back_spin"].values, row["side_spin"].values) * np.pi / 30.0
+        finite = np.isfinite(row["ball_speed"].values) & np.isfinite(spin) & (row["ball_speed"].values > 0)
+        if not finite.any():
+            continue
+        result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
+                            spin[finite], np.radians(row["spin_axis"].values[finite]),
+                            np.radians(row["horizontal_launch_angle"].values[finite]), return_trajectories=True,
+                            **flight)
+        labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
+        for k in range(result["x"].shape[0]):
+            style = _STYLES[k % len(_STYLES)]
+            label = f"{model}" + (f", {labels[k]}" if labels[k] else "")
+            flown = _flown_part(result["x"][k], result["z"][k], result["y"][k])
+            below = _lies_on(drawn, *flown)
+            drawn.append((*flown, (str(model), labels[k])))
+            # a marker per model at the landing point, so that a path lying on another model's stays visible; the
+            # legend names the model whose path of the same case this one covers
+            legend = label if below is None else \
+                f"{label} (on {below[0]}{'' if below[1] == labels[k] else ', ' + below[1]})"
+            marks = dict(color=colours[m % len(colours)], linestyle=style, marker=_MARKERS[m % len(_MARKERS)],
+                         markevery=[-1], markersize=5, markerfacecolor="none")
+            side.plot(result["x"][k], result["z"][k], label=legend, **marks)
+            top.plot(result["x"][k], result["y"][k], label=legend, **marks)
+    return drawn
+
+
+def _dress(side, top) -> None:
+    """Axis labels, titles, grids and the yards axis of the two views."""
+    side.set_ylabel("height [m]")
+    side.set_ylim(bottom=0.0)
+    side.set_title("side view (heights not to scale with distances)")
+    top.set_ylabel("offline, right of the target\nline downwards [m]")
+    top.set_xlabel("along the target line [m]")
+    top.axhline(0.0, color="0.6", linewidth=0.8)
+    top.invert_yaxis()  # seen from above, with the target to the right, the golfer's right is down the page
+    top.set_title("top view (from above, target to the right)")
+    side.set_xlabel("along the target line [m]")
+    side.tick_params(labelbottom=True)
+    for axis in (side, top):
+        axis.grid(True, alpha=0.3)
+        yards = axis.secondary_xaxis("top", functions=(lambda v: v / YARD, lambda v: v * YARD))
+        yards.set_xlabel("[yd]", fontsize=8)
 
 
 #: coordinate names a swept air field takes in a result (its last path component)
