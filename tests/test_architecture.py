@@ -71,7 +71,6 @@ NOT_YET_SPLIT = {
     ("impactlab.physics.compliant3d", "solve_once"),
     ("impactlab.physics.contact", "after_impact"),
     ("impactlab.physics.contact", "contact_state"),
-    ("impactlab.plot.analysis", "plot_sensitivity"),
 }
 
 
