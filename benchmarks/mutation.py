@@ -655,10 +655,8 @@ def _verdict(python, tree, env, tests, timeout) -> tuple[str, str]:
     code, stdout = ran
     if code == 0:
         return "survived", stdout.strip().splitlines()[-1] if stdout.strip() else ""
-    node = _first_failure(stdout)
-    if node is None:
-        return "undecided", f"pytest exited {code} with no failing test named"
-    return "pending", node
+    # the first failing test, or (nothing named: the files did not even import, pytest exit 2 or 4) the files
+    return "pending", _first_failure(stdout) or " ".join(tests)
 
 
 def run(selected, timeout: float, python: str) -> list[dict]:
@@ -686,7 +684,7 @@ def run(selected, timeout: float, python: str) -> list[dict]:
             if status == "pending":  # the failing test, on the unmutated tree: a kill only if it passes there
                 node = detail
                 if node not in confirmed:
-                    confirmed[node] = _pytest(python, tree, env, [node], timeout)
+                    confirmed[node] = _pytest(python, tree, env, node.split(), timeout)
                 clean = confirmed[node]
                 if clean is not None and clean[0] == 0:
                     status, detail = "killed", f"{node} (passes unmutated)"
@@ -740,6 +738,9 @@ def main(argv=None) -> int:
     parser.add_argument("--tests", nargs="*", help="run these test files for every mutant instead of the mapped ones "
                         "(e.g. tests/test_mutation_oracles.py: does the oracle alone kill it?)")
     parser.add_argument("--output", default=str(ROOT / "benchmarks" / "mutation_results.json"))
+    parser.add_argument("--update", action="store_true",
+                        help="replace the selected mutants' entries in the output file (run again, e.g. the "
+                             "undecided ones) and recount, keeping the rest of its run")
     args = parser.parse_args(argv)
     selected = [m for m in MUTANTS if not args.k or any(word in m[0] for word in args.k)]
     if args.tests:
@@ -758,6 +759,12 @@ def main(argv=None) -> int:
               "command": " ".join(["benchmarks/mutation.py", *(argv if argv is not None else sys.argv[1:])]),
               "full_run": not args.k and not args.tests, "minutes": round((time.perf_counter() - started) / 60, 1),
               "counts": counts(results), "mutants": results}
+    if args.update:  # the earlier run's record, with these mutants' entries replaced and the runs listed
+        earlier = json.loads(Path(args.output).read_text())
+        again = {r["id"]: r for r in results}
+        results = [again.pop(r["id"], r) for r in earlier["mutants"]] + list(again.values())
+        earlier.setdefault("updates", []).append({key: record[key] for key in ("commit", "date", "command")})
+        record = {**earlier, "counts": counts(results), "mutants": results}
     Path(args.output).write_text(json.dumps(record, indent=1) + "\n")
     print(summary(results))
     return 1 if any(r["status"] in ("survived", "stale", "undecided") for r in results) else 0
