@@ -51,6 +51,8 @@ T_FRICTION = ["tests/test_friction_laws.py"]
 #: the JSON shot records (session_json) and the measured aerodynamic fit (aero_fit, measured_fit)
 T_JSON = ["tests/test_vendors.py", "tests/test_shots.py"]
 T_AERO = ["tests/test_flight.py"]
+#: the measured aerodynamic fit (a reproduction, moved out of the package with its tests: validation/flight)
+T_AERO_FIT = ["validation/flight/tests/test_aero_fit.py"]
 #: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)
 T_FACE_FLEX = ["tests/test_face_flex.py"]
 T_CORE_TORSION = ["tests/test_core_torsion.py"]
@@ -202,17 +204,19 @@ MUTANTS = [
      T_CLUB, "convex face normal tilted the wrong way"),
     # --- models/_compliant.py
     ("compliant-chi-ball-mass", "models/_compliant.py",
-     "chi = 0.5 * kappa * m_normal / m_tangential", "chi = 0.5 * kappa * ball_mass / m_tangential",
+     "c.chi = chi = 0.5 * c.kappa * c.m_normal / c.m_tangential",
+     "c.chi = chi = 0.5 * c.kappa * c.ball_mass / c.m_tangential",
      T_MAW + ["tests/test_clubs.py"], "chi with the ball mass instead of the effective mass"),
     ("compliant-history-sign", "models/_compliant.py",
-     '"tangential_force": peak * friction * np.sign(slip)', '"tangential_force": peak * friction',
+     '"tangential_force": peak * c.friction * np.sign(c.slip)', '"tangential_force": peak * c.friction',
      T_MAW + ["tests/test_paper.py"], "tangential-force history's sign dropped for negative slip"),
     ("compliant-adjusted-speed", "models/_compliant.py",
-     "scale_speed = 0.5 * (1.0 + normal_restitution) * normal_speed", "scale_speed = normal_restitution * normal_speed",
+     "c.scale_speed = 0.5 * (1.0 + c.normal_restitution) * c.normal_speed",
+     "c.scale_speed = c.normal_restitution * c.normal_speed",
      T_MAW, "adjusted speed e V instead of (1+e) V / 2"),
     ("compliant-impulse-sign", "models/_compliant.py",
-     '"tangential_impulse": -np.sign(slip) * m_tangential * slip_change',
-     '"tangential_impulse": np.sign(slip) * m_tangential * slip_change',
+     '"tangential_impulse": -np.sign(slip) * m_tangential * c.slip_change',
+     '"tangential_impulse": np.sign(slip) * m_tangential * c.slip_change',
      T_MAW, "tangential impulse along the slip instead of against it"),
     # --- models/maw.py, models/dem.py
     ("maw-block-slice", "models/maw.py",
@@ -308,9 +312,10 @@ MUTANTS = [
      T_GSPRO, "a left-hander's path and face sent in golfer's words, not right-positive"),
     ("gspro-carry-in-metres", "impactlab/io/interchange.py",
      "* metres / YARD", "* metres", T_GSPRO, "CarryDistance sent in metres under Units Yards"),
-    ("gspro-braces-in-strings", "impactlab/io/gspro_connect.py",
-     'elif char == b\'"\':\n                self._in_string = True', "elif False:\n                pass",
-     T_GSPRO, "GSPro replies split by braces without regard to string literals"),
+    ("json-stream-refuses-cut", "impactlab/io/json_stream.py",
+     'if error.pos >= len(text) or error.msg.startswith("Unterminated string"):',
+     'if error.pos >= len(text):',
+     T_GSPRO + ["tests/test_json_stream.py"], "a reply cut inside a string by a read refused as not JSON"),
     # --- physics/friction_laws.py: the friction law of the ball-face pair
     ("friction-cover-plane-strain", "impactlab/physics/friction_laws.py",
      "stiffness = column(cover_modulus) / (1.0 - column(cover_poisson) ** 2)",
@@ -371,25 +376,25 @@ MUTANTS = [
      'midpoint = MEASURED_FIT["re_d"] * np.exp(-MEASURED_FIT["m"] * s)',
      'midpoint = MEASURED_FIT["re_d"] * np.exp(MEASURED_FIT["m"] * s)',
      T_AERO, "the crisis moved to a higher Re with spin instead of a lower one"),
-    ("aero-fit-crisis-spin-advance", "impactlab/data/aero_fit.py",
+    ("aero-fit-crisis-spin-advance", "validation/flight/aero_fit.py",
      "midpoint = re_d * np.exp(-spin_advance * s)", "midpoint = re_d * np.exp(-spin_advance * 0.0 * s)",
-     T_AERO, "the fit's crisis midpoint not moving with spin (m fitted to nothing)"),
-    ("aero-fit-drag-groups", "impactlab/data/aero_fit.py",
+     T_AERO_FIT, "the fit's crisis midpoint not moving with spin (m fitted to nothing)"),
+    ("aero-fit-drag-groups", "validation/flight/aero_fit.py",
      "return p[slot[group[rows]]] + p[n] * re[rows] / 1e5", "return p[slot[0 * group[rows]]] + p[n] * re[rows] / 1e5",
-     T_AERO, "one drag offset for every ball instead of one per ball group"),
-    ("candidates-m0-refit", "impactlab/data/flight_candidates.py",
+     T_AERO_FIT, "one drag offset for every ball instead of one per ball group"),
+    ("candidates-m0-refit", "validation/flight/flight_candidates.py",
      'if p["crisis_spin_advance"] == 0.0:', 'if False:',
      ["validation/flight/tests/test_flight_candidates.py"], "the crisis without the spin advance flown with the advanced crisis' "
      "constants instead of its own refit"),
     ("aero-lift-loss-spin", "impactlab/physics/aerodynamics.py",
      '** 2 - s / c["s_l"])', '** 2 + s / c["s_l"])',
      T_AERO, "the reverse-Magnus lift loss growing with spin instead of fading"),
-    ("aero-fit-supercritical-rows", "impactlab/data/aero_fit.py",
+    ("aero-fit-supercritical-rows", "validation/flight/aero_fit.py",
      "data[:, 0] >= limit)", "data[:, 0] >= 0.5 * limit)",
-     T_AERO, "rows inside the drag crisis fitted as supercritical"),
-    ("aero-fit-model-group", "impactlab/data/aero_fit.py",
+     T_AERO_FIT, "rows inside the drag crisis fitted as supercritical"),
+    ("aero-fit-model-group", "validation/flight/aero_fit.py",
      'MODEL_GROUP = "modern"', 'MODEL_GROUP = "usga_1998"',
-     T_AERO, "the model's drag level taken from the 1998 ball, not the modern balls"),
+     T_AERO_FIT, "the model's drag level taken from the 1998 ball, not the modern balls"),
     ("gspro-201-answers", "impactlab/io/gspro_connect.py",
      "if reply.code in UNSOLICITED:\n                    self._note(reply)\n                    continue",
      "if False:\n                    continue",
@@ -411,8 +416,8 @@ MUTANTS = [
      "velocity += hm[j]", "velocity -= hm[j]",
      T_CORE_TORSION, "1-D solver: the mode's rate taken out of the slip"),
     ("core-line-gain", "models/_compliant.py",
-     "1.25 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0]",
-     "2.5 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0]",
+     "1.25 * c.kappa[:, None] * (c.m_normal * core[3] ** 2)[:, None] * core[0]",
+     "2.5 * c.kappa[:, None] * (c.m_normal * core[3] ** 2)[:, None] * core[0]",
      T_CORE_TORSION, "1-D solver: the modes' gain doubled"),
     ("core-default-density", "models/_common.py",
      "mass / (4.0 / 3.0 * np.pi * ball_radius**3)", "mass / (np.pi * ball_radius**3)",
@@ -428,22 +433,22 @@ MUTANTS = [
      "three_d |= (fastest * tau_end > compliant3d.CORE_STEP", "three_d |= (fastest * tau_end > 1e9 * compliant3d.CORE_STEP",
      T_CORE_TORSION, "1-D solver: a stiff core kept on a line whose steps cannot carry its modes"),
     # --- the drag level fitted on measured flights (impactlab/data/flight_fit.py, carry.py; review5)
-    ("flightfit-drag-sign", "impactlab/data/flight_fit.py",
+    ("flightfit-drag-sign", "validation/flight/flight_fit.py",
      'return cd + (c0 - MEASURED_FIT["c0"]), cl * lift_scale', 'return cd - (c0 - MEASURED_FIT["c0"]), cl * lift_scale',
      T_FLIGHT_FIT, "more c0 taken as less drag"),
-    ("flightfit-fold-not-left-out", "impactlab/data/flight_fit.py",
+    ("flightfit-fold-not-left-out", "validation/flight/flight_fit.py",
      "params = fit(sources, exclude=(group,), **shape, **options)", "params = fit(sources, **shape, **options)",
      T_FLIGHT_FIT, "leave-one-out fits every row: the 'held-out' season was fitted"),
-    ("flightfit-fold-wrong-rows", "impactlab/data/flight_fit.py",
+    ("flightfit-fold-wrong-rows", "validation/flight/flight_fit.py",
      "held = np.array([group in (name, label) for", "held = np.array([group not in (name, label) for",
      T_FLIGHT_FIT, "leave-one-out reports the fitted rows' errors as the held-out one's"),
-    ("flightfit-lift-rows", "impactlab/data/flight_fit.py",
+    ("flightfit-lift-rows", "validation/flight/flight_fit.py",
      '(m["s"] <= DRIVER_S) & (m["s"] > 0)', '(m["s"] >= DRIVER_S) & (m["s"] > 0)',
      T_FLIGHT_FIT, "the lift scale's bounds read from the high-spin rows, not the drivers'"),
-    ("flightfit-apex-ratio", "impactlab/data/flight_fit.py",
+    ("flightfit-apex-ratio", "validation/flight/flight_fit.py",
      'c["apex_height"] / c["table"].max_height - 1.0', 'c["table"].max_height / c["apex_height"] - 1.0',
      T_FLIGHT_FIT, "the apex residual inverted (measured over model)"),
-    ("flightfit-height-sign", "impactlab/data/flight_fit.py",
+    ("flightfit-height-sign", "validation/flight/flight_fit.py",
      '"height_error": check["apex_height"] - check["table"].max_height',
      '"height_error": check["table"].max_height - check["apex_height"]',
      T_FLIGHT_FIT, "held-out height error as table minus model, against the documented model minus table"),
@@ -522,7 +527,8 @@ MUTANTS = [
      "steps = face_steps(mobility, normal_speed, modulus, radius, normal, face, steps)", "pass",
      T_FACE_FLEX, "3-D kernel: a stiff face's mode integrated on the model's coarse steps (leapfrog diverges)"),
     ("face-limit-correction", "models/_compliant.py",
-     "correct = three_d & sliding & (loss == 0.0)  #", "correct = three_d & sliding & (loss == 0.0) & (face is None)  #",
+     "correct = c.three_d & c.sliding & (c.loss == 0.0)  #",
+     "correct = c.three_d & c.sliding & (c.loss == 0.0) & (c.face is None)  #",
      T_FACE_FLEX, "maw hysteretic: the annular strips' correction and flag 64 dropped on flexing-face cases"),
     ("face-calibration-gain", "impactlab/data/fit/calibration.py",
      'if "face_restitution_gain" in names and float(', 'if False and float(',
@@ -659,7 +665,8 @@ def _verdict(python, tree, env, tests, timeout) -> tuple[str, str]:
     return "pending", _first_failure(stdout) or " ".join(tests)
 
 
-def run(selected, timeout: float, python: str) -> list[dict]:
+def run(selected, timeout: float, python: str, on_result=None) -> list[dict]:
+    """Each mutant's verdict; ``on_result(results)`` after each (a long run's record kept as it goes)."""
     results = []
     confirmed: dict[str, tuple[int, str] | None] = {}  # node id -> its run on the unmutated tree
     with tempfile.TemporaryDirectory(prefix="impactlab-mutation-") as folder:
@@ -667,7 +674,7 @@ def run(selected, timeout: float, python: str) -> list[dict]:
         env = {**os.environ, "PYTHONPATH": str(tree), "PYTHONDONTWRITEBYTECODE": "1"}
         for ident, file, old, new, tests, what in selected:
             path = tree / file
-            original = path.read_text()
+            original = path.read_text() if path.exists() else ""
             if original.count(old) != 1:
                 results.append({"id": ident, "file": file, "what": what, "status": "stale",
                                 "detail": f"the original text occurs {original.count(old)} times"})
@@ -697,6 +704,8 @@ def run(selected, timeout: float, python: str) -> list[dict]:
             results.append({"id": ident, "file": file, "what": what, "status": status, "detail": detail,
                             "seconds": round(seconds, 1)})
             print(f"{ident:34s} {status.upper():9s} {seconds:6.1f} s  {detail[:110]}", flush=True)
+            if on_result is not None:
+                on_result(results)
     return results
 
 
@@ -754,9 +763,18 @@ def main(argv=None) -> int:
     commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     dirty = bool(subprocess.run(["git", "status", "--porcelain", "--", "impactlab", "models", "tests"], cwd=ROOT,
                                 capture_output=True, text=True).stdout.strip())
-    results = run(selected, args.timeout, sys.executable)
+    command = " ".join(["benchmarks/mutation.py", *(argv if argv is not None else sys.argv[1:])])
+
+    def partial(results):  # the record so far, so that a run stopped early still says what it decided
+        if not args.update:
+            Path(args.output).write_text(json.dumps(
+                {"commit": commit, "uncommitted_changes": dirty, "command": command, "complete": False,
+                 "run": f"{len(results)} of {len(selected)} mutants", "counts": counts(results),
+                 "mutants": results}, indent=1) + "\n")
+
+    results = run(selected, args.timeout, sys.executable, partial)
     record = {"commit": commit, "uncommitted_changes": dirty, "date": time.strftime("%Y-%m-%d", time.gmtime()),
-              "command": " ".join(["benchmarks/mutation.py", *(argv if argv is not None else sys.argv[1:])]),
+              "command": command, "complete": True,
               "full_run": not args.k and not args.tests, "minutes": round((time.perf_counter() - started) / 60, 1),
               "counts": counts(results), "mutants": results}
     if args.update:  # the earlier run's record, with these mutants' entries replaced and the runs listed

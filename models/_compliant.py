@@ -138,6 +138,7 @@ class HertzTangentialModel(ImpactModel):
     def _contact(self, p) -> SimpleNamespace:
         """Step 1: the contact of each case (moduli, masses, speeds, friction, the flexing face)."""
         c = SimpleNamespace()
+        c.ball_mass = p["ball_mass"]
         c.moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"],
                     p["face_poisson_ratio"])
         c.modulus = hertz.effective_modulus(*c.moduli)
@@ -279,7 +280,7 @@ class HertzTangentialModel(ImpactModel):
         # back from the scaled slip velocity (units mu V / kappa) to m/s, and the energy residual to joules
         c.velocity_unit = c.friction * c.scale_speed / c.kappa
         c.slip_change *= c.velocity_unit
-        ball_mass = p["ball_mass"]
+        ball_mass = c.ball_mass
         c.initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
             p["ball_radius"] * p.get("spin", 0.0)) ** 2
         duration = np.array([c.laws[index].tau_end for index in c.law_of_case]) * c.approach_scale / c.scale_speed \
