@@ -68,8 +68,6 @@ NOT_YET_SPLIT = {
     ("impactlab.data.sessions.flight", "fly_session"),
     ("impactlab.data.sessions.layouts", "_vendor_from_document"),
     ("impactlab.physics.compliant3d", "solve_once"),
-    ("impactlab.physics.contact", "after_impact"),
-    ("impactlab.physics.contact", "contact_state"),
 }
 
 
