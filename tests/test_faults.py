@@ -234,6 +234,7 @@ def test_study_names_cannot_leave_outdir_or_collide(tmp_path, capsys, monkeypatc
     assert not outdir.exists() or list(outdir.iterdir()) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mask, mode", [(0o022, 0o644), (0o027, 0o640)])
 def test_result_files_honour_the_umask(tmp_path, capsys, mask, mode):
     previous = os.umask(mask)
@@ -476,6 +477,7 @@ def test_kill_9_of_the_parent_leaves_no_orphan_worker(tmp_path):
         _stop_everything(process, workers)
 
 
+@pytest.mark.slow
 def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkeypatch):
     study = _annuli_study(tmp_path, 200)
     process = _start("run", study, "-o", "r.h5", "--executor", "serial", "--chunk-size", "30", cwd=tmp_path)

@@ -51,6 +51,7 @@ def test_claims_can_fail(fig6):
     assert not claims[2].holds or not claims[3].holds
 
 
+@pytest.mark.slow
 def test_report_is_written_from_result_files(tmp_path, fig6, fig7, table1):
     from impactlab.cli import main
     from impactlab.io.results import write_results

@@ -584,7 +584,7 @@ def test_json_shots_keep_their_lines_past_quotes_and_brackets_inside_strings():
 
 
 def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
-    """20,000 GSPro messages, one a line (a long simulator session, 3 MB): each row keeps its line, and the reader
+    """10,000 GSPro messages, one a line (a long simulator session, 1.5 MB): each row keeps its line, and the reader
     does not count line breaks from the file's start for every shot (that took 17 s on the indented capture).
 
     The complexity is measured as a ratio in one run, in CPU time (a loaded machine slows both sizes alike): ten
@@ -605,10 +605,10 @@ def test_a_long_json_capture_is_read_in_linear_time_with_each_messages_line():
             best = min(best, time.process_time() - start)
         return best, result
 
-    small, _ = cpu_seconds(2000, 5)
-    large, (rows, lines, _) = cpu_seconds(20000, 2)
-    assert len(rows) == 20001 and lines[1:6] == [1, 2, 3, 4, 5] and lines[-1] == 20000
-    assert rows[-1][rows[0].index("ShotNumber")] == "19999"
+    small, _ = cpu_seconds(1000, 3)
+    large, (rows, lines, _) = cpu_seconds(10000, 1)
+    assert len(rows) == 10001 and lines[1:6] == [1, 2, 3, 4, 5] and lines[-1] == 10000
+    assert rows[-1][rows[0].index("ShotNumber")] == "9999"
     # between linear (10) and quadratic (100), at their geometric mean
     assert large / small < 31.6, (small, large)
 
