@@ -67,7 +67,6 @@ LONG_FUNCTIONS_ALLOWED = {
 NOT_YET_SPLIT = {
     ("impactlab.data.sessions.flight", "fly_session"),
     ("impactlab.data.sessions.layouts", "_vendor_from_document"),
-    ("impactlab.physics.compliant3d", "solve_once"),
 }
 
 
