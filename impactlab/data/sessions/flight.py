@@ -99,6 +99,31 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
         saying why each was left out.
     """
     v = session.values
+    fly_rows, flagged, skipped = _rows_to_fly(session, include_flagged)
+    rows = np.flatnonzero(fly_rows)
+    if rows.size == 0:
+        raise StudyError(f"{session.file}: no shot to fly (each needs a ball speed, a launch angle and a spin "
+                         f"rate): " + "; ".join(skipped or ["the file has no shots"]))
+    problems = [problem for row in rows.tolist() for problem in wrong_sign(
+        {"ball_speed": v["ball_speed"], "spin_rate": v["spin_rate"]}, row, f"{session.file}:{session.lines[row]}")]
+    if problems:
+        raise StudyError("; ".join(problems))
+    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
+    for name, (unit, factor, limit, because) in flight.UNUSUAL_LAUNCH.items():
+        for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
+            warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
+                          f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
+    air, air_source = _airs(session, rows, conditions, session_air)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        flown, air_density = _fly_in(air, v, rows, model)
+    return _flight_dataset(session, rows, flagged, skipped, flown, air_density, axis, direction, model,
+                           air_source)
+
+
+def _rows_to_fly(session, include_flagged: bool) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """The rows that can be flown, the rows whose launch the monitor flags, and why each other row is not flown."""
+    v = session.values
     with np.errstate(invalid="ignore"):
         downward = v["vertical_launch_angle"] < 0.0
         topspin = v["back_spin"] < 0.0
@@ -120,49 +145,43 @@ def fly_session(session: Session, *, model: str = DEFAULT_MODEL, conditions: Map
             for row in np.flatnonzero(rows).tolist():
                 why.setdefault(row, []).append(f"{field} {kind}")
     fly_rows = present & (include_flagged | ~flagged)
-    skipped = []
-    for row in np.flatnonzero(~fly_rows).tolist():
-        missing = [name for name in LAUNCH if not np.isfinite(v[name][row])] + (
-            ["ball speed above 0 (the row's is 0: no shot)"] if v["ball_speed"][row] == 0.0 else [])
-        if missing:
-            reason = "no " + ", no ".join(missing)
-        elif downward[row]:
-            reason = (f"launch angle {np.degrees(v['vertical_launch_angle'][row]):.1f} deg, below the horizontal: the "
-                      "ball meets the ground at once, there is no carry to predict")
-        elif topspin[row]:
-            reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
-                      "and a tilt of the axis do not carry: flown, it would be backspin")
-        elif any(refused[row] for refused in impossible.values()):
-            name = next(name for name, refused in impossible.items() if refused[row])
-            reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
-                      "(a column in other units or another convention?)")
-        elif any(refused[row] for refused in beyond.values()):
-            name = next(name for name, refused in beyond.items() if refused[row])
-            unit, factor = flight.UNUSUAL_LAUNCH[name][:2]
-            reason = (f"{name.replace('_', ' ')} {v[name][row] * factor:.6g} {unit}, beyond "
-                      f"{flight.IMPOSSIBLE_LAUNCH[name][1].split(' (')[0].split(' up to ')[1]}: no golf shot (a column "
-                      "in other units?)")
-        else:
-            reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
-                      "them)")
-        skipped.append(f"line {session.lines[row]}: {reason}")
-    rows = np.flatnonzero(fly_rows)
-    if rows.size == 0:
-        raise StudyError(f"{session.file}: no shot to fly (each needs a ball speed, a launch angle and a spin "
-                         f"rate): " + "; ".join(skipped or ["the file has no shots"]))
-    problems = [problem for row in rows.tolist() for problem in wrong_sign(
-        {"ball_speed": v["ball_speed"], "spin_rate": v["spin_rate"]}, row, f"{session.file}:{session.lines[row]}")]
-    if problems:
-        raise StudyError("; ".join(problems))
-    axis, direction = v["spin_axis"][rows], v["horizontal_launch_angle"][rows]
-    for name, (unit, factor, limit, because) in flight.UNUSUAL_LAUNCH.items():
-        for row in rows[v[name][rows] > limit].tolist():  # said at the file's line, not at an index of the flight
-            warnings.warn(f"{session.file}:{session.lines[row]}: {name.replace('_', ' ')} {v[name][row] * factor:.6g} "
-                          f"{unit} is unusual for golf ({because}); flown as given", PlausibilityWarning, stacklevel=2)
-    air, air_source = _airs(session, rows, conditions, session_air)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", PlausibilityWarning)
-        flown, air_density = _fly_in(air, v, rows, model)
+    skipped = [f"line {session.lines[row]}: {_reason(v, row, downward, topspin, impossible, beyond, why)}"
+               for row in np.flatnonzero(~fly_rows).tolist()]
+    return fly_rows, flagged, skipped
+
+
+def _reason(v: dict, row: int, downward, topspin, impossible: dict, beyond: dict, why: dict) -> str:
+    """Why a row is not flown, in words."""
+    missing = [name for name in LAUNCH if not np.isfinite(v[name][row])] + (
+        ["ball speed above 0 (the row's is 0: no shot)"] if v["ball_speed"][row] == 0.0 else [])
+    if missing:
+        reason = "no " + ", no ".join(missing)
+    elif downward[row]:
+        reason = (f"launch angle {np.degrees(v['vertical_launch_angle'][row]):.1f} deg, below the horizontal: the "
+                  "ball meets the ground at once, there is no carry to predict")
+    elif topspin[row]:
+        reason = (f"back spin {v['back_spin'][row] * 30.0 / np.pi:.0f} rpm, below 0 (topspin), which a spin rate "
+                  "and a tilt of the axis do not carry: flown, it would be backspin")
+    elif any(refused[row] for refused in impossible.values()):
+        name = next(name for name, refused in impossible.items() if refused[row])
+        reason = (f"{name.replace('_', ' ')} {np.degrees(v[name][row]):.1f} deg, beyond +-90 deg: no golf shot "
+                  "(a column in other units or another convention?)")
+    elif any(refused[row] for refused in beyond.values()):
+        name = next(name for name, refused in beyond.items() if refused[row])
+        unit, factor = flight.UNUSUAL_LAUNCH[name][:2]
+        reason = (f"{name.replace('_', ' ')} {v[name][row] * factor:.6g} {unit}, beyond "
+                  f"{flight.IMPOSSIBLE_LAUNCH[name][1].split(' (')[0].split(' up to ')[1]}: no golf shot (a column "
+                  "in other units?)")
+    else:
+        reason = (f"launch values flagged by the monitor ({', '.join(why[row])}; --include-flagged flies "
+                  "them)")
+    return reason
+
+
+def _flight_dataset(session, rows, flagged, skipped, flown, air_density, axis, direction, model: str,
+                    air_source: str) -> xr.Dataset:
+    """The flown shots beside what the monitor reported, one ``shot`` per row flown."""
+    v = session.values
     data = {
         "ball_speed": ("shot", v["ball_speed"][rows], {"units": "m/s", "long_name": "ball speed flown"}),
         "vertical_launch_angle": ("shot", np.degrees(v["vertical_launch_angle"][rows]),
