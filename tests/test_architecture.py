@@ -65,8 +65,6 @@ LONG_FUNCTIONS_ALLOWED = {
 }
 #: functions over the cap not split yet (issue 31 item 3): each leaves this list with its split
 NOT_YET_SPLIT = {
-    ("impactlab.data.sessions.flight", "fly_session"),
-    ("impactlab.data.sessions.layouts", "_vendor_from_document"),
 }
 
 
