@@ -747,11 +747,31 @@ def main(argv=None) -> int:
     parser.add_argument("--tests", nargs="*", help="run these test files for every mutant instead of the mapped ones "
                         "(e.g. tests/test_mutation_oracles.py: does the oracle alone kill it?)")
     parser.add_argument("--output", default=str(ROOT / "benchmarks" / "mutation_results.json"))
+    parser.add_argument("--reverse", action="store_true",
+                        help="run the list from its end (a second run beside a first one shares the work; merge "
+                             "their records with --merge)")
+    parser.add_argument("--merge", nargs=2, metavar=("FIRST", "SECOND"),
+                        help="write to --output the record of two runs of the same list that met (the second run "
+                             "--reverse), each mutant's verdict from the run that decided it, then exit")
     parser.add_argument("--update", action="store_true",
                         help="replace the selected mutants' entries in the output file (run again, e.g. the "
                              "undecided ones) and recount, keeping the rest of its run")
     args = parser.parse_args(argv)
+    if args.merge:
+        first, second = (json.loads(Path(name).read_text()) for name in args.merge)
+        by_id = {r["id"]: r for r in second["mutants"]}
+        by_id.update({r["id"]: r for r in first["mutants"]})
+        results = [by_id[m[0]] for m in MUTANTS if m[0] in by_id]
+        record = {"commits": sorted({first["commit"], second["commit"]}), "command": "benchmarks/mutation.py and "
+                  "benchmarks/mutation.py --reverse beside it, merged", "complete": len(results) == len(MUTANTS),
+                  "run": f"{len(results)} of {len(MUTANTS)} mutants", "date": time.strftime("%Y-%m-%d", time.gmtime()),
+                  "counts": counts(results), "mutants": results}
+        Path(args.output).write_text(json.dumps(record, indent=1) + "\n")
+        print(summary(results))
+        return 0
     selected = [m for m in MUTANTS if not args.k or any(word in m[0] for word in args.k)]
+    if args.reverse:
+        selected = selected[::-1]
     if args.tests:
         selected = [(ident, file, old, new, list(args.tests), what) for ident, file, old, new, _, what in selected]
     if args.list:
