@@ -89,11 +89,11 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if np.any(wind):
         air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
     count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
-    scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
+    setting = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     # conditions() names the air model when the result records one; a launch-only result is flown with the default
-    air_model = "" if "aerodynamics" in scene and not changed else f"{aerodynamics} aerodynamics{changed}, "
+    air_model = "" if "aerodynamics" in setting and not changed else f"{aerodynamics} aerodynamics{changed}, "
     figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
-                    + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}", fontsize=9)
+                    + (f"{setting}\n" if setting else "") + f"{air_model}{air_words}{count}", fontsize=9)
     longest = max(len(text) for text in side.get_legend_handles_labels()[1])
     figure.tight_layout(rect=(0.0, 0.0, 0.80 if longest <= 28 else 0.72, 1.0))  # room for the legend's words
     return _save(figure, path)

@@ -26,7 +26,8 @@ Raw = NewType("Raw", object)
 
 #: a club spec sheet: one field per key of SPEC_KEYS
 ClubSpecSheet = attrs.make_class("ClubSpecSheet", {
-    key: attrs.field(default=None, type=Raw | None, metadata={"expected": f"the sheet's {key} ({what})"})
+    key: attrs.field(default=None, type=Raw | None,  # type: ignore[arg-type]
+                     metadata={"expected": f"the sheet's {key} ({what})"})
     for key, what in SPEC_KEYS.items()}, frozen=True)
 ClubSpecSheet.__doc__ = "A club spec sheet as written: one field per key of SPEC_KEYS, its value as the sheet gives it."
 ClubSpecSheet._what = "a club spec"  # type: ignore[attr-defined]
