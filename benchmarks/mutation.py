@@ -645,10 +645,11 @@ def _pytest(python: str, tree: Path, env: dict, tests: list[str], timeout: float
 
 
 def _first_failure(stdout: str) -> str | None:
-    """The node id of the first failed or erroring test in pytest's short summary (``FAILED tests/a.py::t - ...``)."""
+    """The node id of the first failed or erroring test in pytest's short summary (``FAILED tests/a.py::t - ...``;
+    a parametrised id may hold spaces: ``t[driver 3-D]``)."""
     for line in stdout.splitlines():
         if line.startswith(("FAILED ", "ERROR ")):
-            return line.split()[1]
+            return line.split(" ", 1)[1].split(" - ", 1)[0].strip()
     return None
 
 
@@ -662,7 +663,8 @@ def _verdict(python, tree, env, tests, timeout) -> tuple[str, str]:
     if code == 0:
         return "survived", stdout.strip().splitlines()[-1] if stdout.strip() else ""
     # the first failing test, or (nothing named: the files did not even import, pytest exit 2 or 4) the files
-    return "pending", _first_failure(stdout) or " ".join(tests)
+    node = _first_failure(stdout)
+    return "pending", node if node else "\n".join(tests)
 
 
 def run(selected, timeout: float, python: str, on_result=None) -> list[dict]:
@@ -691,8 +693,9 @@ def run(selected, timeout: float, python: str, on_result=None) -> list[dict]:
             if status == "pending":  # the failing test, on the unmutated tree: a kill only if it passes there
                 node = detail
                 if node not in confirmed:
-                    confirmed[node] = _pytest(python, tree, env, node.split(), timeout)
+                    confirmed[node] = _pytest(python, tree, env, node.split("\n"), timeout)
                 clean = confirmed[node]
+                node = node.replace("\n", " ")
                 if clean is not None and clean[0] == 0:
                     status, detail = "killed", f"{node} (passes unmutated)"
                 else:
@@ -720,6 +723,20 @@ def counts(results: list[dict]) -> dict:
                 for status in ("killed", "survived", "undecided", "equivalent", "stale")}
     return {"all": tally(results),
             **{area: tally([r for r in results if _area(r["file"]) == area]) for area in ("physics", "models", "other")}}
+
+
+def describe(record: dict, name: str) -> str:
+    """The sentence of docs/testing.md quoting a result file (``name``): tests/test_mutation_record.py checks it."""
+    tally = record["counts"]
+    areas = ", ".join(f"{area} {t['killed']}/{t['killed'] + t['survived']}" for area, t in tally.items()
+                      if area != "all" and t["killed"] + t["survived"])
+    everything = tally["all"]
+    commits = ", ".join(record.get("commits") or [record.get("commit", "")])
+    run = record.get("run") or f"{len(record['mutants'])} mutants"
+    return (f"`{name}` (commit {commits}; {run}, {'complete' if record.get('complete') else 'incomplete'}): "
+            f"**{everything['killed']} of {everything['killed'] + everything['survived']} decided mutants killed** "
+            f"({areas}); {everything['undecided']} undecided, {everything['equivalent']} equivalent, "
+            f"{everything['stale']} stale")
 
 
 def summary(results: list[dict]) -> str:
