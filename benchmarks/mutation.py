@@ -50,7 +50,7 @@ T_3D = T_CLUB + ["tests/test_oracles_3d.py"]
 T_FRICTION = ["tests/test_friction_laws.py"]
 #: the JSON shot records (session_json) and the measured aerodynamic fit (aero_fit, measured_fit)
 T_JSON = ["tests/test_vendors.py", "tests/test_shots.py"]
-T_AERO = ["tests/test_flight.py"]
+T_AERO = ["tests/test_flight.py", "tests/test_pinned_values.py"]
 #: the measured aerodynamic fit (a reproduction, moved out of the package with its tests: validation/flight)
 T_AERO_FIT = ["validation/flight/tests/test_aero_fit.py"]
 #: the core turning behind the shell (impactlab.physics.core_torsion and its modes in the kernels)

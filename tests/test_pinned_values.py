@@ -184,3 +184,23 @@ def test_every_catalogue_club_has_the_moments_its_source_states():
         assert got == pytest.approx(want, rel=1e-9, abs=1e-9), key
         tensor = np.asarray(head.inertia)
         assert np.allclose(tensor, tensor.T), key  # one tensor, symmetric
+
+
+# -- the drag crisis of measured_fit, from its documented formula ------------------------------------------------
+def test_the_drag_crisis_is_the_documented_logistic_step_in_re_moved_by_spin():
+    """``measured_fit``'s drag: c0 + c_re Re/1e5 + k CL_sc^2 + d / (1 + exp((Re - Re_d exp(-m S)) / w_d)), with
+    CL_sc = a S / (1 + b S) (the formula as aerodynamics.py and docs/flight.md write it; evaluated here with exp,
+    the code uses tanh). Through the crisis (Re_d -+ 3 w_d) at S 0 and 0.1. Kills: the step twice as steep (tanh
+    without its 1/2), the spin advance's sign, the width or the midpoint taken from the wrong constant."""
+    from impactlab.physics import aerodynamics
+
+    c = aerodynamics.MEASURED_FIT
+    for s in (0.0, 0.1):
+        midpoint = c["re_d"] * math.exp(-c["m"] * s)
+        for re in (midpoint - 3 * c["w_d"], midpoint - c["w_d"], midpoint, midpoint + c["w_d"],
+                   midpoint + 3 * c["w_d"]):
+            lift = c["a"] * s / (1 + c["b"] * s)
+            expected = (c["c0"] + c["c_re"] * re / 1e5 + c["k"] * lift**2
+                        + c["d"] / (1 + math.exp((re - midpoint) / c["w_d"])))
+            cd, _ = aerodynamics.aero_coefficients(s, re, model="measured_fit")
+            assert float(cd) == pytest.approx(expected, rel=1e-9), (s, re)
