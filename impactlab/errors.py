@@ -181,3 +181,9 @@ def terminal_safe(text: str) -> str:
 def has_control(text: str) -> bool:
     """Whether ``text`` holds a character :func:`shown` escapes."""
     return text.translate(_SHOWN) != text
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["ImpactLabError", "EnvironmentFault", "ResourceLimitError", "FieldError", "StudyError",
+           "ModelNotFoundError", "ModelInputError", "ModelContractError", "PlausibilityWarning", "PluginWarning",
+           "closest"]

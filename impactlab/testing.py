@@ -442,3 +442,13 @@ def check_model(model: ModelLike) -> None:
     if failures:
         raise AssertionError(f"model {_model(model).name!r} fails conformance:\n  " + "\n  ".join(failures))
 
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["RTOL", "reference_inputs", "reference_inputs_3d", "ModelLike", "check_declarations",
+           "check_capabilities", "check_runs_finite", "check_energy_never_increases", "check_normal_impulse_bounds",
+           "check_tangential_restitution_bounds", "check_frictionless", "check_head_on", "check_mirror_symmetry",
+           "check_batch_independence", "check_3d_energy_never_increases", "check_3d_heel_toe_mirror",
+           "check_3d_batch_independence", "check_inputs_untouched", "NEUTRAL_WHEN_ABSENT",
+           "check_optional_inputs_absent", "check_full_sliding", "check_rigid_limit",
+           "check_arriving_rolling", "check_3d_sideways_impulse", "rigid_coulomb_closed_form", "flat_head_mobility",
+           "sliding_impulse_3d", "CHECKS", "iter_checks", "parametrize_with_checks", "check_model"]

@@ -356,4 +356,15 @@ RAD_TO_DEG = 180.0 / math.pi
 RADS_TO_RPM = 60.0 / (2.0 * math.pi)
 #: metres per second in a mile per hour (exact: the international mile)
 MPH = 0.44704
+#: metres in a yard, a foot and an inch (exact: the international yard of 1959)
+YARD = 0.9144
+FOOT = 0.3048
+INCH = 0.0254
 
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["DIMENSIONS", "EXAMPLE_UNITS", "ZERO_DEPENDS_ON_UNIT", "UNIT_NOTES", "unit_factor", "unit_affine",
+           "unit_missing", "registry", "to_si", "si_length", "si_angle", "si_mass", "si_speed", "si_angular_speed",
+           "si_pressure", "si_inverse_speed", "AMBIGUOUS_SYMBOLS", "RAD_TO_DEG", "RADS_TO_RPM", "MPH", "YARD", "FOOT",
+           "INCH"]

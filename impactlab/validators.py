@@ -139,3 +139,8 @@ def in_range_each(low: float, high: float, expected: str, low_open: bool = False
                              float(value[index]))
 
     return validator
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["Validator", "check", "positive", "positive_or_inf", "inside", "in_range", "finite", "to_float",
+           "number_or_array", "in_range_each"]

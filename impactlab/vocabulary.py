@@ -468,3 +468,10 @@ DEFAULT_OUTPUTS = ("launch_angle", "launch_ratio", "rebound_angle", "ball_speed"
 TIME_DIM = "time"
 CASE_DIM = "case"
 MODEL_DIM = "model"
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["SCALAR", "HISTORY", "InputSpec", "INPUTS", "INPUT_BY_PATH", "OutputSpec", "OUTPUTS", "SCALAR_OUTPUTS",
+           "DIAGNOSTIC_OUTPUTS", "HISTORY_OUTPUTS", "EVERY_SCALAR_OUTPUT", "FLIGHT_OUTPUTS", "is_scalar",
+           "is_history", "output_unit_factor", "check_output_names", "DEFAULT_OUTPUTS", "TIME_DIM", "CASE_DIM",
+           "MODEL_DIM"]

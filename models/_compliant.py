@@ -3,22 +3,22 @@
 from __future__ import annotations
 
 import functools
+from types import SimpleNamespace
 from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from impactlab.validators import check
-from impactlab.model.diagnostics import LARGE_CONTACT_RATIO
 from impactlab.errors import ModelContractError
-from impactlab.model import ImpactModel
+from impactlab.model import LARGE_CONTACT_RATIO, ImpactModel
 from impactlab.physics import compliant3d, coupling, hertz, mdr
 
 from impactlab.physics import ball_laws
 from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rolling_line import planar_couple
 
-from ._common import (FRICTION_INPUTS, IMPULSES_3D, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, ROLLING_OUTPUTS,
-                      PLAIN_BALL, core_inputs, face_inputs, face_restitution, law_friction, rate_law_state,
+from ._common import (FRICTION_INPUTS, IMPULSES_3D, PLAIN_BALL, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL,
+                      ROLLING_OUTPUTS, core_inputs, face_inputs, face_restitution, law_friction, rate_law_state,
                       rolling_on)
 from impactlab.physics import rate_laws
 
@@ -110,161 +110,214 @@ class HertzTangentialModel(ImpactModel):
         return self.options.expert_resolution()
 
     def _compute(self, inputs, outputs):
-        p = inputs
-        ball_mass = p["ball_mass"]
-        moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"], p["face_poisson_ratio"])
-        modulus = hertz.effective_modulus(*moduli)
-        kappa = hertz.tangential_modulus(*moduli) / modulus
-        state = p.contact_state()
-        kappa = self._construction_kappa(kappa, moduli, modulus, state)
-        mobility = state["mobility"]
-        # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
-        m_normal, m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
-        normal_speed, slip, radius = state["normal_speed"], state["slip_speed"], state["contact_radius"]
-        restitution = p.get("restitution", np.ones_like(normal_speed))
-        # the friction law's coefficient per case (option friction_law; "coulomb": the friction input)
-        friction = law_friction(self.options, p, state, restitution)
-        # the laws with a scale (rate_laws; RATE_LAWS_DOC): each off returns its input (today's model exactly)
-        restitution, friction, lever_arm = rate_law_state(self.options, p, state, restitution, friction)
-        # the face flexing behind the contact (options face_frequency & co.; impactlab.physics.face_flex): on a
-        # spring-like face the normal law takes the ball's own e, the face's mode giving what the gain stood for
-        face = face_inputs(self.options, p, normal_speed.size)
-        normal_restitution = face_restitution(face, p, restitution)
-        if self.options.inelastic == "adjusted_speed":
-            # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
-            scale_speed = 0.5 * (1.0 + normal_restitution) * normal_speed
-            law_of_case = np.zeros(slip.size, dtype=int)
-            laws = [hertz.ELASTIC]
-        else:
-            scale_speed = normal_speed
-            levels, law_of_case = np.unique(normal_restitution, return_inverse=True)
-            per_case = levels.size > MAX_DAMPED_LAWS
-            if per_case:  # a law per case (a restitution law of the speed): tabulated laws, the 3-D kernel
-                laws, law_of_case = [hertz.CaseNormals(normal_restitution)], np.zeros(slip.size, dtype=int)
-            else:
-                laws = [self._damped_law(level) for level in levels]
-
+        # the steps, each its own method: the contact and its laws, the plan of each case (1-D line or 3-D
+        # kernel), the 1-D solves, the scalar results and their validity, the 3-D solves, the histories
+        c = self._contact(inputs)
+        self._normal_laws(c)
         histories = {"normal_force", "tangential_force", "stick_radius"} & outputs
         record = bool(histories - {"normal_force"})
-        sliding = (friction > 0.0) & (slip != 0.0)
-        # the plan of each case: the scaled 1-D solver where the mobility is diagonal in the contact frame (the
-        # slip stays on one line, the normal problem is uncoupled) or there is no friction to couple them; the
-        # 3-D solver elsewhere, and wherever the head's rotation during contact is asked for
-        loss = np.broadcast_to(p.get("tangential_loss", 0.0), slip.shape)
+        self._plan(c, inputs, outputs)
+        self._solve_line(c, record)
+        result = self._scalar_results(c, inputs)
+        if np.any(c.three_d):
+            self._solve_3d(c.three_d, c.state, c.friction, c.laws, c.law_of_case, c.resolution, c.scale_speed,
+                           c.kappa, c.modulus, bool(histories), result, c.solution_of_case, c.initial_energy, c.loss,
+                           c.rolling, c.core, None if c.face is None else c.face[0])
+            self._correct_3d_limit(c, result)
+        if c.couple is not None:
+            # the friction's work on the slip [J] (the 1-D solvers' dissipation, TangentialSolution)
+            friction_work = -c.m_tangential * c.velocity_unit**2 * mdr.TANGENTIAL_GAIN * c.chi * c.dissipation
+            self._planar_results(result, c.rolling, c.planar, c.slip, c.moment, c.rolling_work, friction_work,
+                                 (c.m_normal, c.m_tangential), c.radius, c.modulus, c.approach_scale, c.scale_speed,
+                                 c.initial_energy)
+        result["validity"] = (result["validity"].astype(int) | np.where(c.limit_broken, 64, 0)).astype(float)
+        if histories:
+            peak = hertz.peak_force(c.m_normal, c.radius, c.modulus, c.scale_speed)
+            scales = {"normal_force": peak, "tangential_force": peak * c.friction * np.sign(c.slip),
+                      "stick_radius": np.sqrt(c.radius * c.approach_scale)}
+            result.update(self._histories(histories, result["contact_time"], c.approach_scale / c.scale_speed,
+                                          scales, c.laws, c.law_of_case, c.solution_of_case))
+        return {name: result[name] for name in outputs | ({"time"} if histories else set())}
+
+    def _contact(self, p) -> SimpleNamespace:
+        """Step 1: the contact of each case (moduli, masses, speeds, friction, the flexing face)."""
+        c = SimpleNamespace()
+        c.ball_mass = p["ball_mass"]
+        c.moduli = (p["ball_youngs_modulus"], p["ball_poisson_ratio"], p["face_youngs_modulus"],
+                    p["face_poisson_ratio"])
+        c.modulus = hertz.effective_modulus(*c.moduli)
+        kappa = hertz.tangential_modulus(*c.moduli) / c.modulus
+        c.state = p.contact_state()
+        c.kappa = self._construction_kappa(kappa, c.moduli, c.modulus, c.state)
+        mobility = c.state["mobility"]
+        # the contact's own masses: m* = 1/W_nn, m_t = 1/W_ss (a point mass or fixed face: the 1-D formulas)
+        c.m_normal, c.m_tangential = 1.0 / mobility[:, 2, 2], 1.0 / mobility[:, 0, 0]
+        c.normal_speed, c.slip, c.radius = c.state["normal_speed"], c.state["slip_speed"], c.state["contact_radius"]
+        c.restitution = p.get("restitution", np.ones_like(c.normal_speed))
+        # the friction law's coefficient per case (option friction_law; "coulomb": the friction input)
+        c.friction = law_friction(self.options, p, c.state, c.restitution)
+        # the laws with a scale (rate_laws; RATE_LAWS_DOC): each off returns its input (today's model exactly)
+        c.restitution, c.friction, c.lever_arm = rate_law_state(self.options, p, c.state, c.restitution, c.friction)
+        # the face flexing behind the contact (options face_frequency & co.; impactlab.physics.face_flex): on a
+        # spring-like face the normal law takes the ball's own e, the face's mode giving what the gain stood for
+        c.face = face_inputs(self.options, p, c.normal_speed.size)
+        c.normal_restitution = face_restitution(c.face, p, c.restitution)
+        return c
+
+    def _normal_laws(self, c) -> None:
+        """Step 2: the normal law of each case and the speed its scaled problem runs at."""
+        if self.options.inelastic == "adjusted_speed":
+            # Henrikson et al.: the elastic problem at an adjusted speed carries the inelastic normal impulse
+            c.scale_speed = 0.5 * (1.0 + c.normal_restitution) * c.normal_speed
+            c.law_of_case = np.zeros(c.slip.size, dtype=int)
+            c.laws = [hertz.ELASTIC]
+        else:
+            c.scale_speed = c.normal_speed
+            levels, c.law_of_case = np.unique(c.normal_restitution, return_inverse=True)
+            per_case = levels.size > MAX_DAMPED_LAWS
+            if per_case:  # a law per case (a restitution law of the speed): tabulated laws, the 3-D kernel
+                c.laws, c.law_of_case = [hertz.CaseNormals(c.normal_restitution)], np.zeros(c.slip.size, dtype=int)
+            else:
+                c.laws = [self._damped_law(level) for level in levels]
+
+    def _plan(self, c, p, outputs) -> None:
+        """Step 3: the plan of each case: the scaled 1-D solver where the mobility is diagonal in the contact frame
+        (the slip stays on one line, the normal problem is uncoupled) or there is no friction to couple them; the
+        3-D solver elsewhere, and wherever the head's rotation during contact is asked for."""
+        slip, friction = c.slip, c.friction
+        c.sliding = (friction > 0.0) & (slip != 0.0)
+        c.loss = np.broadcast_to(p.get("tangential_loss", 0.0), slip.shape)
         relaxation = float(getattr(self.options, "tangential_relaxation_time", 0.0) or 0.0)
         if relaxation:  # a dashpot of a physical time: its loss factor at the contact's frequency, pi tau_t / t_c
-            loss = loss + rate_laws.tangential_loss_of_time(relaxation, hertz.contact_time(
-                m_normal, radius, modulus, scale_speed))
+            c.loss = c.loss + rate_laws.tangential_loss_of_time(relaxation, hertz.contact_time(
+                c.m_normal, c.radius, c.modulus, c.scale_speed))
         # the 1-D solvers have elastic tangential springs: a lossy cover takes the 3-D kernel (which reduces to
         # the 1-D problem on one line)
-        three_d = (~state["one_dimensional"] | (loss > 0.0)) & (friction > 0.0)
+        three_d = (~c.state["one_dimensional"] | (c.loss > 0.0)) & (friction > 0.0)
         # the core turning behind the shell (option core_radius; impactlab.physics.core_torsion): its modes ride on
         # the 3-D kernel's slip and rolling rate
-        core = core_inputs(self.options, p, friction)
+        c.core = core = core_inputs(self.options, p, friction)
         if core is not None and not self._planar_core:
             three_d |= friction > 0.0
-        elif core is not None and not isinstance(laws[0], hertz.CaseNormals):
+        elif core is not None and not isinstance(c.laws[0], hertz.CaseNormals):
             # the 1-D solver's uniform steps carry the modes by leapfrog, which diverges for Omega_k dt > 2: a case
             # whose stiffest mode needs more takes the 3-D kernel, which raises its steps per case (core_steps)
-            fastest = core[1].max(axis=1) * hertz.max_approach(m_normal, radius, modulus, scale_speed) / scale_speed
-            tau_end = np.array([law.tau_end for law in laws])[law_of_case]
+            fastest = core[1].max(axis=1) * hertz.max_approach(c.m_normal, c.radius, c.modulus, c.scale_speed) \
+                / c.scale_speed
+            tau_end = np.array([law.tau_end for law in c.laws])[c.law_of_case]
             three_d |= (fastest * tau_end > compliant3d.CORE_STEP * self.options.resolution_steps(1)) & (friction > 0.0)
         # rolling resistance (ball_laws): a couple on the contact. A model whose 1-D solver carries it
         # (_planar_rolling) keeps the cases where it stays on the line there (couple and rolling about the lateral
         # axis alone, no normal coupling: :func:`planar_couple`); the others take the 3-D kernel
         hysteresis = getattr(self.options, "rolling_hysteresis", 0.0)
-        arm_factor = np.zeros(slip.size)
-        rolling, planar = None, np.zeros(slip.size, dtype=bool)
-        if rolling_on(hysteresis) or lever_arm is not None:
+        c.rolling, planar = None, np.zeros(slip.size, dtype=bool)
+        if rolling_on(hysteresis) or c.lever_arm is not None:
+            arm_factor = np.zeros(slip.size)
             if rolling_on(hysteresis):
                 arm_factor = ball_laws.SPHERE_FACTOR * ball_laws.hysteresis_fraction(
-                    hysteresis, restitution, p.get("club_restitution_gain", 0.0))
-            if lever_arm is not None:  # the deformed ball's lever as an arm factor d / a of the same mean offset
+                    hysteresis, c.restitution, p.get("club_restitution_gain", 0.0))
+            if c.lever_arm is not None:  # the deformed ball's lever as an arm factor d / a of the same mean offset
                 arm_factor = arm_factor + rate_laws.arm_factor_of_lever(
-                    self.options.compression_lever, radius, hertz.max_approach(m_normal, radius, modulus,
-                                                                               scale_speed))
+                    self.options.compression_lever, c.radius, hertz.max_approach(c.m_normal, c.radius, c.modulus,
+                                                                                 c.scale_speed))
             rolls = (arm_factor > 0.0) & (friction > 0.0)
-            rolling = self._rolling_inputs(p, state, arm_factor)
-            if self._planar_rolling and rolling is not None and core is None:  # (the 1-D solver takes either)
-                planar = rolls & ~three_d & (slip != 0.0) & planar_couple(*rolling[:3])
+            c.rolling = self._rolling_inputs(p, c.state, arm_factor)
+            if self._planar_rolling and c.rolling is not None and core is None:  # (the 1-D solver takes either)
+                planar = rolls & ~three_d & (slip != 0.0) & planar_couple(*c.rolling[:3])
             three_d |= rolls & ~planar
-        if isinstance(laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
+        if isinstance(c.laws[0], hertz.CaseNormals):  # the scaled 1-D solver needs one law per batch
             three_d = np.ones(slip.size, dtype=bool)
-        if face is not None:  # a flexing face changes the normal problem: the 3-D kernel integrates it per case
-            three_d |= face[1]
-        turning_head = state["head_inverse_inertia"] is not None
+        if c.face is not None:  # a flexing face changes the normal problem: the 3-D kernel integrates it per case
+            three_d |= c.face[1]
+        turning_head = c.state["head_inverse_inertia"] is not None
         if "face_rotation" in outputs and turning_head:
             three_d = np.ones(slip.size, dtype=bool)
         planar &= ~three_d
         self._check_dimensions(three_d)
-        line = ~three_d
-        chi = 0.5 * kappa * m_normal / m_tangential
-        psi1 = kappa * np.abs(slip) / np.where(sliding, friction * scale_speed, 1.0)
-        slip_change, residual, steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
+        c.three_d, c.planar = three_d, planar
+
+    def _solve_line(self, c, record: bool) -> None:
+        """Step 4: the cases of the line, by the scaled 1-D solver, batched by law and resolution."""
+        slip, line, sliding = c.slip, ~c.three_d, c.sliding
+        c.chi = chi = 0.5 * c.kappa * c.m_normal / c.m_tangential
+        c.psi1 = psi1 = c.kappa * np.abs(slip) / np.where(sliding, c.friction * c.scale_speed, 1.0)
+        c.slip_change, c.residual, c.steps = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
         # each case's resolution depends on its own chi and psi1 only: its result never depends on its batch
-        resolution = np.zeros(slip.size, dtype=int)
-        capped = np.zeros(slip.size, dtype=bool)
+        c.resolution = resolution = np.zeros(slip.size, dtype=int)
+        c.capped = capped = np.zeros(slip.size, dtype=bool)
         for value in np.unique(chi[sliding & line]):
             members = sliding & line & (chi == value)
             resolution[members], capped[members] = self.options.resolution(float(value), psi1[members])
         springs_3d, steps_3d, capped_3d = self.options.resolution_3d()
-        resolution[three_d], capped[three_d] = springs_3d, capped_3d
-        solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
-        limit_broken = np.zeros(slip.size, dtype=bool)  # MDR broke the 3-D Coulomb limit (a damped law)
-        approach_scale = hertz.max_approach(m_normal, radius, modulus, scale_speed)
-        couple = self._planar_couple(rolling, planar, slip, friction, kappa, m_normal, radius, approach_scale,
-                                     scale_speed) if np.any(planar) else None
+        resolution[c.three_d], capped[c.three_d] = springs_3d, capped_3d
+        c.solution_of_case = [None] * slip.size  # (solution, row) of each solved case, for its histories
+        c.limit_broken = np.zeros(slip.size, dtype=bool)  # MDR broke the 3-D Coulomb limit (a damped law)
+        c.approach_scale = hertz.max_approach(c.m_normal, c.radius, c.modulus, c.scale_speed)
+        c.couple = self._planar_couple(c.rolling, c.planar, slip, c.friction, c.kappa, c.m_normal, c.radius,
+                                       c.approach_scale, c.scale_speed) if np.any(c.planar) else None
         # the core's modes on the line, scaled as dem.solve_scaled's ``core``
+        core, time_scale = c.core, c.approach_scale / c.scale_speed
         core_line = None if core is None or not self._planar_core else (
-            1.25 * kappa[:, None] * (m_normal * core[3] ** 2)[:, None] * core[0],
-            (core[1] * (approach_scale / scale_speed)[:, None]) ** 2, core[2] * (approach_scale / scale_speed)[:, None])
-        moment, rolling_work, dissipation = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
-        for index, law in enumerate(laws):
-            for count in np.unique(resolution[line & sliding & (law_of_case == index)]):
-                members = line & sliding & (law_of_case == index) & (resolution == count)
-                steps_wanted = self.options.resolution_steps(int(count))
-                extra = {} if couple is None else {"rolling": [part[members] for part in couple]}
-                if core_line is not None:
-                    extra["core"] = [part[members] for part in core_line]
-                solved = self._solve(chi[members], psi1[members], record, law, int(count), steps_wanted,
-                                     kappa=kappa[members], **extra)
-                slip_change[members] = solved.slip_change
-                if couple is not None:  # the slip change of the friction alone, and the couple's own results
-                    moment[members], rolling_work[members] = solved.moment, solved.rolling_work
-                    dissipation[members] = solved.dissipation
-                    slip_change[members] -= couple[0][members] * solved.moment
-                if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
-                    capped[members] |= solved.capped
-                if getattr(solved, "breaks_3d_limit", None) is not None:
-                    limit_broken[members] |= solved.breaks_3d_limit
-                residual[members] = solved.energy_residual(chi[members], psi1[members])
-                steps[members] = solved.steps
-                for row, case in enumerate(np.nonzero(members)[0]):
-                    solution_of_case[case] = (solved, row)
+            1.25 * c.kappa[:, None] * (c.m_normal * core[3] ** 2)[:, None] * core[0],
+            (core[1] * time_scale[:, None]) ** 2, core[2] * time_scale[:, None])
+        c.moment, c.rolling_work, c.dissipation = np.zeros_like(slip), np.zeros_like(slip), np.zeros_like(slip)
+        for index, law in enumerate(c.laws):
+            for count in np.unique(resolution[line & sliding & (c.law_of_case == index)]):
+                members = line & sliding & (c.law_of_case == index) & (resolution == count)
+                self._solve_members(c, members, law, int(count), record, core_line)
+
+    def _solve_members(self, c, members, law, count: int, record: bool, core_line) -> None:
+        """One batch of the line: one law, one resolution."""
+        couple, chi, psi1 = c.couple, c.chi, c.psi1
+        steps_wanted = self.options.resolution_steps(count)
+        extra = {} if couple is None else {"rolling": [part[members] for part in couple]}
+        if core_line is not None:
+            extra["core"] = [part[members] for part in core_line]
+        solved = self._solve(chi[members], psi1[members], record, law, count, steps_wanted,
+                             kappa=c.kappa[members], **extra)
+        c.slip_change[members] = solved.slip_change
+        if couple is not None:  # the slip change of the friction alone, and the couple's own results
+            c.moment[members], c.rolling_work[members] = solved.moment, solved.rolling_work
+            c.dissipation[members] = solved.dissipation
+            c.slip_change[members] -= couple[0][members] * solved.moment
+        if solved.capped is not None:  # a part re-solved by a method whose resolution ran out
+            c.capped[members] |= solved.capped
+        if getattr(solved, "breaks_3d_limit", None) is not None:
+            c.limit_broken[members] |= solved.breaks_3d_limit
+        c.residual[members] = solved.energy_residual(chi[members], psi1[members])
+        c.steps[members] = solved.steps
+        for row, case in enumerate(np.nonzero(members)[0]):
+            c.solution_of_case[case] = (solved, row)
+
+    def _scalar_results(self, c, p) -> dict:
+        """Step 5: the impulses, contact time, coupling estimate and validity flags of every case (the 3-D cases'
+        impulses are overwritten by their solver)."""
+        slip, sliding, m_normal, m_tangential = c.slip, c.sliding, c.m_normal, c.m_tangential
         # back from the scaled slip velocity (units mu V / kappa) to m/s, and the energy residual to joules
-        velocity_unit = friction * scale_speed / kappa
-        slip_change *= velocity_unit
-        initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
+        c.velocity_unit = c.friction * c.scale_speed / c.kappa
+        c.slip_change *= c.velocity_unit
+        ball_mass = c.ball_mass
+        c.initial_energy = 0.5 * ball_mass * p["speed"] ** 2 + 0.5 * p["ball_inertia_factor"] * ball_mass * (
             p["ball_radius"] * p.get("spin", 0.0)) ** 2
-        duration = np.array([laws[index].tau_end for index in law_of_case]) * approach_scale / scale_speed \
-            if not isinstance(laws[0], hertz.CaseNormals) else laws[0].tau_end * approach_scale / scale_speed
-        contact_ratio = np.sqrt(approach_scale / radius)
+        duration = np.array([c.laws[index].tau_end for index in c.law_of_case]) * c.approach_scale / c.scale_speed \
+            if not isinstance(c.laws[0], hertz.CaseNormals) else c.laws[0].tau_end * c.approach_scale / c.scale_speed
+        contact_ratio = np.sqrt(c.approach_scale / c.radius)
         face_compliance = (1.0 - p["face_poisson_ratio"] ** 2) / p["face_youngs_modulus"]
         ball_compliance = (1.0 - p["ball_poisson_ratio"] ** 2) / p["ball_youngs_modulus"]
         # the neglected normal-tangential coupling (Dundurs' beta; impactlab.physics.coupling): its estimated
         # change of J_t against what the tolerance allows, tol * min(mu J_n, m_t |V_x|)
-        beta_d = coupling.dundurs_beta(*moduli)
-        coupled = coupling.coupling_estimate(beta_d, kappa, friction)
-        coulomb = friction * (1.0 + restitution) * m_normal * normal_speed
+        beta_d = coupling.dundurs_beta(*c.moduli)
+        coupled = coupling.coupling_estimate(beta_d, c.kappa, c.friction)
+        coulomb = c.friction * (1.0 + c.restitution) * m_normal * c.normal_speed
         allowed = self.options.tolerance * np.minimum(coulomb, m_tangential * np.abs(slip))
         validity = (np.where(contact_ratio > LARGE_CONTACT_RATIO, 1, 0)
                     | np.where(face_compliance > ball_compliance, 2, 0)
-                    | np.where((sliding | three_d) & capped, 4, 0)
+                    | np.where((sliding | c.three_d) & c.capped, 4, 0)
                     | np.where(sliding & (coupled * coulomb > allowed), 16, 0))
-        result = {
-            "normal_impulse": (1.0 + restitution) * m_normal * normal_speed,
+        return {
+            "normal_impulse": (1.0 + c.restitution) * m_normal * c.normal_speed,
             # the contact point's slip falls by |slip_change|; the impulse on the ball opposes the slip
-            "tangential_impulse": -np.sign(slip) * m_tangential * slip_change,
+            "tangential_impulse": -np.sign(slip) * m_tangential * c.slip_change,
             "lateral_impulse": np.zeros_like(slip),
             "face_rotation": np.zeros_like(slip),
             "rolling_moment": np.zeros_like(slip),
@@ -272,48 +325,34 @@ class HertzTangentialModel(ImpactModel):
             "contact_time": duration,
             "contact_radius_ratio": contact_ratio,
             "coupling_estimate": np.where(sliding, coupled, 0.0),
-            "steps": steps,
-            "energy_error": m_tangential * velocity_unit**2 * residual / initial_energy,
+            "steps": c.steps,
+            "energy_error": m_tangential * c.velocity_unit**2 * c.residual / c.initial_energy,
             "validity": validity.astype(float),
         }
-        if np.any(three_d):
-            self._solve_3d(three_d, state, friction, laws, law_of_case, resolution, scale_speed, kappa, modulus,
-                           bool(histories), result, solution_of_case, initial_energy, loss, rolling, core,
-                           None if face is None else face[0])
-            # the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it through the
-            # decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so that the
-            # answer is one continuous function of the strike position (issue 21, item 5); with a core, that of its
-            # rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff limit)
-            damped = [index for index, law in enumerate(laws) if not isinstance(law, hertz.ElasticNormal)]
-            if damped:
-                correct = three_d & sliding & (loss == 0.0)  # a flexing face's too: its rigid face's (exact when stiff)
-                if isinstance(laws[0], hertz.CaseNormals):
-                    levels, level_of_case = np.unique(normal_restitution, return_inverse=True)
-                    groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
-                              for k, level in enumerate(levels)]
-                else:
-                    groups = [(laws[index], correct & (law_of_case == index)) for index in damped]
-                for law, members in groups:
-                    if not np.any(members):
-                        continue
-                    change, broken = self._limit_correction(chi[members], psi1[members], law)
-                    result["tangential_impulse"][members] += -np.sign(slip[members]) * m_tangential[members] \
-                        * change * velocity_unit[members]
-                    limit_broken[members] |= broken
-        if couple is not None:
-            # the friction's work on the slip [J] (the 1-D solvers' dissipation, TangentialSolution)
-            friction_work = -m_tangential * velocity_unit**2 * mdr.TANGENTIAL_GAIN * chi * dissipation
-            self._planar_results(result, rolling, planar, slip, moment, rolling_work, friction_work,
-                                 (m_normal, m_tangential), radius, modulus, approach_scale, scale_speed,
-                                 initial_energy)
-        result["validity"] = (result["validity"].astype(int) | np.where(limit_broken, 64, 0)).astype(float)
-        if histories:
-            peak = hertz.peak_force(m_normal, radius, modulus, scale_speed)
-            scales = {"normal_force": peak, "tangential_force": peak * friction * np.sign(slip),
-                      "stick_radius": np.sqrt(radius * approach_scale)}
-            result.update(self._histories(histories, result["contact_time"], approach_scale / scale_speed, scales,
-                                          laws, law_of_case, solution_of_case))
-        return {name: result[name] for name in outputs | ({"time"} if histories else set())}
+
+    def _correct_3d_limit(self, c, result: dict) -> None:
+        """Step 6: the 3-D kernel's MDR springs face the same 3-D Coulomb limit as the 1-D solver's: check it
+        through the decoupled equivalent of each case (same chi and psi1) and carry the 1-D path's correction, so
+        that the answer is one continuous function of the strike position (issue 21, item 5); with a core, that of
+        its rigid ball (the core's effect on the correction neglected, as the coupling's: exact in the stiff
+        limit)."""
+        damped = [index for index, law in enumerate(c.laws) if not isinstance(law, hertz.ElasticNormal)]
+        if not damped:
+            return
+        correct = c.three_d & c.sliding & (c.loss == 0.0)  # a flexing face's too: its rigid face's (exact when stiff)
+        if isinstance(c.laws[0], hertz.CaseNormals):
+            levels, level_of_case = np.unique(c.normal_restitution, return_inverse=True)
+            groups = [(self._damped_law(float(level)), correct & (level_of_case == k))
+                      for k, level in enumerate(levels)]
+        else:
+            groups = [(c.laws[index], correct & (c.law_of_case == index)) for index in damped]
+        for law, members in groups:
+            if not np.any(members):
+                continue
+            change, broken = self._limit_correction(c.chi[members], c.psi1[members], law)
+            result["tangential_impulse"][members] += -np.sign(c.slip[members]) * c.m_tangential[members] \
+                * change * c.velocity_unit[members]
+            c.limit_broken[members] |= broken
 
     def _check_dimensions(self, three_d) -> None:
         """Refuse 3-D cases if the configured method solves only 1-D ones (a model may override)."""

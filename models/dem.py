@@ -9,8 +9,8 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from ._common import BallLawOptions, lever_field
-from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
+from .shared import BallLawOptions, lever_field
+from .shared import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
                   "Geotechnique 29 (1979) 47-65")
@@ -104,9 +104,9 @@ class HertzMindlinOptions(_SpringOptions):
         As for ``dem_linear``.
     core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
         The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
-        models._common.CORE_TORSION_DOC); core_radius 0 (the default): a rigid ball. Shared with ``dem_linear``.
+        shared.CORE_TORSION_DOC); core_radius 0 (the default): a rigid ball. Shared with ``dem_linear``.
     face_frequency, face_modal_mass, face_loss
-        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; models._common.FACE_FLEX_DOC):
+        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; shared.FACE_FLEX_DOC):
         one modal oscillator of a spring-like face (club_restitution_gain > 0) in series with the Hertz contact,
         the ball's own restitution on it; 0 (the default): a rigid face. Shared with ``dem_linear``.
     """

@@ -10,8 +10,8 @@ from impactlab.validators import check, in_range
 from impactlab.errors import ModelInputError
 from impactlab.physics import annuli, compliant3d, mdr
 
-from ._common import BallLawOptions, cover_modulus_field, cover_thickness_field
-from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
+from .shared import BallLawOptions, cover_modulus_field, cover_thickness_field
+from .shared import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 METHODS = ("mdr", "annuli")
 #: cases solved together; bounds the memory of the spring arrays
@@ -74,14 +74,14 @@ class MawOptions(BallLawOptions, CompliantOptions):
         grip. Default t = 0 (and E_c the ball's): the paper's homogeneous ball.
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the ball-face pair's friction law
-        (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+        (:mod:`impactlab.physics.friction_laws`; shared.FRICTION_LAW_DOC).
     core_radius, core_shear_modulus, core_specific_gravity, core_loss, core_modes
         The ball's core turning behind its shell (:mod:`impactlab.physics.core_torsion`;
-        models._common.CORE_TORSION_DOC): core radius [m] (0, the default: a rigid ball, the paper's model),
+        shared.CORE_TORSION_DOC): core radius [m] (0, the default: a rigid ball, the paper's model),
         shear modulus [Pa] (default the ball's), specific gravity (default the ball's mean density), loss factor
         (0) and the modes kept (default: up to 20 kHz). Cases with a core take the 3-D kernel.
     face_frequency, face_modal_mass, face_loss
-        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; models._common.FACE_FLEX_DOC):
+        The club face flexing behind the contact (:mod:`impactlab.physics.face_flex`; shared.FACE_FLEX_DOC):
         one modal oscillator of a spring-like face (club_restitution_gain > 0) in series with the Hertz contact,
         the ball's own restitution on it; 0 (the default): a rigid face. Those cases take the 3-D kernel.
     """

@@ -10,7 +10,7 @@ import numpy as np
 from impactlab.model import ImpactModel
 from impactlab.physics.rigid import restitution_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
+from .shared import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
                       PLAIN_BALL, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE,
                       closed_form_diagnostics, impulse_outputs, law_friction, pressure_exponent_field, rate_law_state,
                       reference_speed_field, relaxation_time_field, relaxed_fraction_field)
@@ -28,10 +28,10 @@ class RestitutionOptions:
         point reverses). Default 0.
     friction_law : str
         The Coulomb cap's coefficient: ``"coulomb"`` (default), the ``friction`` input (none given: no cap);
-        ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (models._common.FRICTION_LAW_DOC).
+        ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (shared.FRICTION_LAW_DOC).
     relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent
         The SLS normal law and the pressure-dependent friction cap of :mod:`impactlab.physics.rate_laws`
-        (models._common.RATE_LAWS_DOC), each off by default; they read the ball's and face's elastic constants. (The
+        (shared.RATE_LAWS_DOC), each off by default; they read the ball's and face's elastic constants. (The
         lever has no place here: this model has no rolling couple, beta sets the tangential exit.)
     """
 

@@ -12,7 +12,7 @@ from impactlab.physics import ball_laws, hertz, rolling_line
 from impactlab.physics.contact import couple_mobility
 from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_impulses
 
-from ._common import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, PLAIN_BALL, RIGID_BODY_INPUTS,
+from .shared import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, PLAIN_BALL, RIGID_BODY_INPUTS,
                       RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE,
                       FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs,
                       law_friction, lever_field, pressure_exponent_field, rate_law_state, reference_speed_field,
@@ -39,9 +39,9 @@ class RigidCoulombOptions:
         Default 0: no couple, the model unchanged.
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the coefficient of the ball-face pair's
-        friction law (:mod:`impactlab.physics.friction_laws`; models._common.FRICTION_LAW_DOC).
+        friction law (:mod:`impactlab.physics.friction_laws`; shared.FRICTION_LAW_DOC).
     relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent, compression_lever
-        Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`; models._common.RATE_LAWS_DOC), each off
+        Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`; shared.RATE_LAWS_DOC), each off
         by default; they read the ball's and face's elastic constants. The lever's couple is the rolling couple's,
         with the impulse-weighted mean arm of the elastic Hertz history.
     """

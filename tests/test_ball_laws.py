@@ -195,6 +195,7 @@ def test_rolling_integrator_matches_the_hand_solution_on_one_line():
     np.testing.assert_allclose(moment[:, 0], 0.0, atol=1e-15)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["maw", "hertz_mindlin"])
 def test_rolling_rigid_and_compliant_agree_in_gross_slip(name):
     """Independent implementations (rigid: over the normal impulse with the mean arm; maw: in time with a(t) on the

@@ -17,7 +17,7 @@ from impactlab.physics import hertz
 from impactlab.model.registry import available
 from impactlab.testing import check_capabilities, check_model
 from impactlab.vocabulary import HISTORY_OUTPUTS, OUTPUTS, SCALAR_OUTPUTS, is_history, is_scalar
-from impactlab_models._compliant import CompliantOptions
+from impactlab_models.shared import CompliantOptions
 from impactlab_models.rigid_coulomb import RigidCoulombModel
 
 
@@ -225,6 +225,8 @@ def test_unit_constants_are_pints():
     assert units.RAD_TO_DEG == ureg.Quantity(1.0, "rad").to("deg").magnitude
     assert units.RADS_TO_RPM == ureg.Quantity(1.0, "rad/s").to("rpm").magnitude
     assert units.MPH == ureg.Quantity(1.0, "mph").to("m/s").magnitude
+    for factor, unit in ((units.YARD, "yard"), (units.FOOT, "foot"), (units.INCH, "inch")):
+        assert factor == pytest.approx(ureg.Quantity(1.0, unit).to("m").magnitude, rel=1e-15), unit
 
 
 def test_table1_is_stored_once():

@@ -176,6 +176,7 @@ def _oracle(inputs, modes, steps=12_000, loss=0.0, alpha=0.0):
     (0.8, True, 0.5, 0.0), (0.25, False, 0.5, 0.0), (0.25, False, 0.0, 0.6), (0.8, False, 0.3, 0.6)],
     ids=["driver 1-D", "wedge 1-D", "driver 3-D", "wedge 3-D", "wedge 1-D lossy core", "driver 3-D lossy core",
          "driver 3-D rolling couple", "wedge 3-D lossy core and rolling couple"])
+@pytest.mark.slow
 def test_the_kernel_agrees_with_an_rk4_impact_of_a_ball_with_a_core(angle, line, loss, alpha, monkeypatch):
     """A driver-like and a wedge-like spin loft, two modes: the 1-D solver (where a plate case goes) and the 3-D
     kernel with the core against the oracle; a lossy core; the rolling couple on the shell (3-D kernel)."""

@@ -19,6 +19,7 @@ def deliveries(**sweep):
     return base
 
 
+@pytest.mark.slow
 def test_square_delivery_stays_on_the_target_line():
     ds = impactlab.run_study(deliveries(**{"delivery.dynamic_loft": [10, 20, 30]}))
     np.testing.assert_allclose(ds.horizontal_launch_angle, 0.0, atol=1e-9)

@@ -122,6 +122,7 @@ GOLF = {"name": "once", "ball": {"preset": "tour_urethane"}, "club": {"preset": 
         "models": ["rigid_coulomb", "restitution", "maw"], "outputs": ["ball_speed", "spin_rate", "spin_axis"]}
 
 
+@pytest.mark.slow
 def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_path, monkeypatch):
     """Limits once per study, each model planned once per study, the 3x3 mobility once per chunk (serial: shared
     by the models), and the ball's restitution from the approach speeds alone; results bit-identical to each

@@ -66,6 +66,7 @@ def test_the_pendulum_on_a_soft_face_and_on_a_rigid_one():
     assert rigid == pytest.approx(2.943 * approach / 0.3, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_the_ct_test_round_trips_and_the_kernel_simulates_it():
     """The stiffness derived from a CT of 239 us gives that CT back, and the 3-D kernel (the pendulum as the
     'ball', no friction) gives the same contact time: its separation and re-contact logic is the test's."""

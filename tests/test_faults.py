@@ -82,10 +82,10 @@ def test_alias_bomb_is_refused_quickly_even_under_an_unknown_key(tmp_path, capsy
     lines += [f"a{k}: &a{k} [" + ",".join([f"*a{k - 1}"] * 10) + "]" for k in range(1, 10)]
     study = tmp_path / "bomb.yaml"
     study.write_text(study_text() + "unknown:\n" + "\n".join("  " + line for line in lines) + "\n")
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time: a loaded machine does not inflate it as it does the clock's
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "expands (through its aliases) to more than 100,000 nodes" in err
-    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
+    assert time.process_time() - start < 20  # expanding 10^10 nodes takes hours of CPU
 
 
 @pytest.mark.parametrize("kind", ["txt", "upper", "folder", "devnull"])
@@ -150,10 +150,10 @@ def test_a_text_file_that_is_not_a_study_is_reported_by_its_name(tmp_path, capsy
 # -- size ------------------------------------------------------------------------------------------------------
 def test_a_billion_cases_are_refused_before_any_value_is_made(tmp_path, capsys):
     study = write_study(tmp_path, **{"num: 4": "num: 1000000000"})
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time: a loaded machine does not inflate it as it does the clock's
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "1,000,000,000 cases, above the limit of 10,000,000" in err and "--max-cases" in err
-    assert time.perf_counter() - start < 20  # generous for a loaded machine: expanding 10^10 nodes takes hours
+    assert time.process_time() - start < 20  # making 10^9 scenes takes hours of CPU
 
 
 def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, capsys):
@@ -161,11 +161,11 @@ def test_a_product_of_sweeps_is_refused_and_the_limit_can_be_raised(tmp_path, ca
     study = write_study(tmp_path, **{"num: 4": "num: 4000",
                                      "contact.friction: [0.15, 0.25, 0.35]":
                                          "contact.friction: {start: 0.1, stop: 0.9, num: 4000}"})
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time: a loaded machine does not inflate it as it does the clock's
     code, err = cli(capsys, "run", study, "--plan")
     assert code == 2 and "16,000,000 cases, above the limit" in err
-    # ranges are checked at their ends, not value by value (16 million scenes would take hours); generous for load
-    assert time.perf_counter() - start < 30
+    # ranges are checked at their ends, not value by value (16 million scenes would take hours of CPU)
+    assert time.process_time() - start < 30
     small = write_study(tmp_path, "small.yaml")
     code, err = cli(capsys, "run", small, "--plan", "--max-cases", "5")
     assert code == 2 and "12 cases, above the limit of 5" in err
@@ -234,6 +234,7 @@ def test_study_names_cannot_leave_outdir_or_collide(tmp_path, capsys, monkeypatc
     assert not outdir.exists() or list(outdir.iterdir()) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mask, mode", [(0o022, 0o644), (0o027, 0o640)])
 def test_result_files_honour_the_umask(tmp_path, capsys, mask, mode):
     previous = os.umask(mask)
@@ -476,6 +477,7 @@ def test_kill_9_of_the_parent_leaves_no_orphan_worker(tmp_path):
         _stop_everything(process, workers)
 
 
+@pytest.mark.slow
 def test_kill_9_then_resume_equals_an_uninterrupted_run(tmp_path, capsys, monkeypatch):
     study = _annuli_study(tmp_path, 200)
     process = _start("run", study, "-o", "r.h5", "--executor", "serial", "--chunk-size", "30", cwd=tmp_path)

@@ -611,6 +611,7 @@ def test_the_plan_names_the_air_model_the_run_flies_with():
     assert not any(other in text for other in aerodynamics.MODELS if other != flown and flown not in other), text
 
 
+@pytest.mark.slow
 def test_trajectories_fly_with_the_air_model_the_result_names(tmp_path, monkeypatch):
     """A result computed with another air model (an older file) is redrawn with that model, and says so."""
     import impactlab
@@ -711,6 +712,7 @@ def test_trajectory_figure_lands_where_the_result_says(tmp_path, monkeypatch):
     np.testing.assert_allclose(np.sort(heights), np.sort(result.apex_height.values.reshape(-1)), rtol=1e-3)
 
 
+@pytest.mark.slow
 def test_cli_draws_trajectories_and_refuses_a_result_without_launch(tmp_path, capsys):
     import impactlab
     from impactlab.cli import main
@@ -781,6 +783,7 @@ def test_a_flight_shorter_than_one_step_lands_where_the_projectile_does():
     np.testing.assert_allclose(shots.landing_angle.values, 45.0, atol=1e-6)
 
 
+@pytest.mark.slow
 def test_trajectories_read_a_launch_edited_into_other_units(tmp_path, monkeypatch):
     """A result whose ball speed was converted to mph and spins to rad/s with xarray (units attributes with them)
     flies the same launch as the file as written: the figure reads each value in the unit it states (trust7 left
@@ -838,6 +841,7 @@ def test_the_carry_command_says_why_a_retired_model_is_refused(capsys):
     assert exit_.value.code == 2 and "retired on 2026-11-24" in err and "use 'measured_fit'" in err
 
 
+@pytest.mark.slow
 def test_a_result_records_its_air_models_constants_and_the_figure_says_when_they_changed(tmp_path, monkeypatch):
     """A refit keeps the model's name (measured_fit, 2026-11-24): a result records a fingerprint of the coefficients
     its flight was computed with, and the trajectory figure, which flies the stored launches again with today's

@@ -277,6 +277,7 @@ def test_hysteretic_law_is_elastic_at_e_one_and_slides_at_mu_jn(golf_inputs):
     assert hysteretic["contact_time"].item() > adjusted["contact_time"].item()
 
 
+@pytest.mark.slow
 def test_hysteretic_maw_passes_conformance():
     from impactlab.testing import check_model
 

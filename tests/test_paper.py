@@ -56,6 +56,7 @@ def fig45():
     return impactlab.run_study(PAPER / "fig4_5_launch_vs_face_normal.yaml")
 
 
+@pytest.mark.slow
 def test_report_states_every_claim_with_a_verdict(tmp_path, fig45, fig6, fig7, table1):
     from impactlab.cli import main
     from impactlab.io.results import write_results

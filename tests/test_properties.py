@@ -54,6 +54,7 @@ def scene(cases):
     return {**{key: np.full(n, value) for key, value in fixed.items()}, **columns}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", MODELS)
 @given(cases=st.lists(case, min_size=1, max_size=4))
 def test_energy_never_increases_and_momentum_of_ball_and_club_is_conserved(name, cases):

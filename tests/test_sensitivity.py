@@ -40,6 +40,7 @@ def rolling(method="sobol"):
     return impactlab.run_study(ROLLING.replace("METHOD", method))
 
 
+@pytest.mark.slow
 def test_an_output_of_one_input_has_its_whole_variance_in_that_input():
     """Rolling regime: spin = (5/7) V sin(a) / R whatever mu and e, so speed carries all of its variance."""
     ds = rolling()
@@ -79,6 +80,7 @@ def test_model_form_range_and_numerical_error():
     assert float(ds.nominal.sel(model="rigid_coulomb", output="spin_rate")) == pytest.approx(expected, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_elastic_impact_makes_the_inelastic_laws_one_and_maw_reports_its_error(tmp_path):
     """At e = 1 the adjusted speed and the hysteretic law are the same elastic problem: no model-form range.
 
@@ -169,6 +171,7 @@ def test_shipped_study_parses_with_its_golf_deliveries():
     assert len(spec.parameters) == 6
 
 
+@pytest.mark.slow
 def test_command_line_writes_shows_and_draws_a_sensitivity_study(tmp_path, capsys):
     study = tmp_path / "rolling.yaml"
     study.write_text(ROLLING.replace("METHOD", "morris").replace("samples: 64", "samples: 6"))

@@ -63,6 +63,7 @@ def test_every_model_stays_physical_on_extreme_cases(name, extreme):
     assert np.all(np.isnan(beta) | ((beta >= -1 - 1e-9) & (beta <= 1 + 1e-9)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["mdr", "annuli"])
 @pytest.mark.parametrize("inelastic", ["adjusted_speed", "hysteretic"])
 def test_maw_methods_and_laws_stay_physical_on_extreme_cases(method, inelastic):

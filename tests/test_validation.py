@@ -86,6 +86,7 @@ def test_fit_lowers_the_error_and_reports_what_the_data_cannot_constrain():
     assert restitution.identified[1] and 0.0 < beta < 0.6 and restitution.rms < restitution.start_rms
 
 
+@pytest.mark.slow
 def test_cli_validate_prints_every_model_and_fit_names_bad_models(capsys):
     assert main(["validate"]) == 0
     out = capsys.readouterr().out

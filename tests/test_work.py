@@ -37,6 +37,7 @@ def test_no_time_series_unless_histories_are_asked(golf_inputs, solver_calls):
     assert solver_calls[-1]["record"] is True
 
 
+@pytest.mark.slow
 def test_one_normal_solution_serves_every_case_with_the_same_restitution(golf_inputs, solver_calls):
     model = get_model("maw")(inelastic="hysteretic")
     e = np.repeat([0.6, 0.8, 0.9], 10)

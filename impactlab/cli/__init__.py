@@ -123,7 +123,20 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"impactlab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     commands = parser.add_subparsers(dest="command", required=True)
+    # the sub-commands in the order ``impactlab --help`` lists them
+    _add_run(commands)
+    _add_result_commands(commands)
+    _add_data_commands(commands)
+    add_fly_parser(commands)
+    _add_fit_and_paper(commands)
+    for command in commands.choices.values():  # --debug after the command too; SUPPRESS keeps a global one
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                             help="show the Python traceback of an error")
+    return parser
 
+
+def _add_run(commands) -> None:
+    """``impactlab run``."""
     run = commands.add_parser("run", help="run a study file and write its results (HDF5)")
     run.add_argument("study", nargs="+", help="study YAML file(s)")
     run.add_argument("-o", "--output", help="result file (.h5) of a single study; default: STUDY_NAME.h5")
@@ -146,6 +159,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("-q", "--quiet", action="store_true")
     run.set_defaults(handler=_cmd_run)
 
+
+def _add_result_commands(commands) -> None:
+    """The commands that read or send a result file: models, show, plot, convergence, export."""
     models = commands.add_parser("models", help="list the registered models, what they need and provide")
     models.add_argument("--json", action="store_true")
     models.set_defaults(handler=_cmd_models)
@@ -193,6 +209,9 @@ def build_parser() -> argparse.ArgumentParser:
     _row_options(export, "a session file (CSV or JSON export, or a shipped session dataset): ")
     export.set_defaults(handler=_cmd_export)
 
+
+def _add_data_commands(commands) -> None:
+    """The commands of measured data: validate, shots."""
     validate = commands.add_parser("validate", help="every model against the measured data the project cites")
     validate.add_argument("--dataset", action="append",
                           help="only this dataset, or a shot table file (.csv, .yaml) (repeatable; default: all)")
@@ -231,8 +250,9 @@ def build_parser() -> argparse.ArgumentParser:
     _row_options(shots)
     shots.set_defaults(handler=_cmd_shots)
 
-    add_fly_parser(commands)
 
+def _add_fit_and_paper(commands) -> None:
+    """``impactlab fit`` and ``impactlab paper``."""
     fitting = commands.add_parser("fit", help="estimate model parameters (friction; beta for restitution) from data")
     fitting.add_argument("dataset", help="a validation dataset (impactlab validate lists them), or a shot table "
                                          "(.csv, .yaml, or trackman_tour)")
@@ -259,10 +279,6 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("-o", "--output", default="docs/paper.md", help="report file (markdown)")
     paper.add_argument("--figures", help="folder for the figures (default: figures/ beside the report)")
     paper.set_defaults(handler=_cmd_paper)
-    for command in commands.choices.values():  # --debug after the command too; SUPPRESS keeps a global one
-        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
-                             help="show the Python traceback of an error")
-    return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:

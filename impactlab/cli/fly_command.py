@@ -35,9 +35,8 @@ from impactlab.io.safe_output import (TABLE_SUFFIXES, check_output, refuse_overw
                                       write_atomically)
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, MODELS, retired_reason
 from impactlab.scene import flight
-from impactlab.units import DIMENSIONS, MPH, registry
+from impactlab.units import DIMENSIONS, MPH, YARD, registry
 
-YARD = 0.9144
 #: command-line option -> key of impactlab.fly's ``conditions``
 AIR_OPTIONS = {"temperature": "temperature", "pressure": "pressure", "altitude": "altitude",
                "humidity": "relative_humidity", "headwind": "headwind", "crosswind": "crosswind"}

@@ -21,9 +21,8 @@ from impactlab.data.sessions.flight import fly_session
 from impactlab.errors import StudyError
 from impactlab.physics import flight
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODELS, retired_reason
-from impactlab.units import MPH
+from impactlab.units import MPH, YARD
 
-YARD = 0.9144  #: m (exact, the international yard)
 #: the measured carry tables shipped (TrackMan PGA classic, PGA 2023 season, LPGA 2023 season)
 TABLES = ("trackman_carry", "trackman_carry_pga_2023", "trackman_carry_lpga_2023")
 RPM = np.pi / 30.0  #: rad/s per rpm

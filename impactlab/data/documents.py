@@ -13,17 +13,15 @@ from __future__ import annotations
 
 import functools
 import math
-import types
 from collections.abc import Mapping
-from typing import Any, NewType, Union, get_args, get_origin
+from typing import Any, NewType, get_args, get_origin
 
 import attrs
 from cattrs import Converter
 from cattrs.errors import BaseValidationError, ForbiddenExtraKeysError
-from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
-from impactlab.study.structuring import _field_error
+from impactlab.study.structuring import document_converter, field_error
 from impactlab.study.yaml_lines import format_path, line_of, parse_path
 
 #: a piece of text: a string (a number written where text belongs is taken as its text, as YAML reads ``7``)
@@ -152,46 +150,23 @@ def _list_hook(type_, converter: Converter):
             try:
                 out.append(item(entry, item_type))
             except (BaseValidationError, FieldError, ForbiddenExtraKeysError) as exc:
-                error = _field_error(exc, entry, "", (), item_type, None)
+                error = field_error(exc, entry, "", (), item_type, None)
                 raise FieldError(format_path((index,) + parse_path(error.path)), error.expected, error.given,
                                  error.choices) from None
         return out
     return structure
 
 
-def _block_hook(cls, converter: Converter):
-    generated = make_dict_structure_fn(cls, converter, _cattrs_forbid_extra_keys=True,
-                                       _cattrs_detailed_validation=True)
-
-    def structure(value, _):
-        if not isinstance(value, Mapping):
-            raise FieldError("", f"a mapping ({cls._what}) with keys from: "
-                                 f"{', '.join(field.name for field in attrs.fields(cls))}", value)
-        return generated(value, cls)
-    return structure
-
-
-def _is_optional(type_) -> bool:
-    return get_origin(type_) in (Union, types.UnionType) and type(None) in get_args(type_) \
-        and len(get_args(type_)) == 2
-
-
 @functools.cache
 def _converter() -> Converter:
-    converter = Converter()
+    """The study's converter (:func:`~impactlab.study.structuring.document_converter`: blocks and optional values)
+    with the kinds of value of measured data, and lists and mappings located item by item."""
+    converter = document_converter()
     for type_, hook in ((Text, _text), (Scalar, _scalar), (Finite, _number(False)), (Positive, _number(True)),
                         (Block, _block), (Row, lambda value, _: value)):
         converter.register_structure_hook(type_, hook)
-    converter.register_structure_hook_factory(lambda t: get_origin(t) is list, lambda t: _list_hook(t, converter))
-    converter.register_structure_hook_factory(lambda t: get_origin(t) is dict,
-                                              lambda t: _mapping_hook(t, converter))
-    converter.register_structure_hook_factory(lambda t: t in BLOCKS, lambda t: _block_hook(t, converter))
-
-    def optional(type_):
-        inner_type = next(arg for arg in get_args(type_) if arg is not type(None))
-        inner = converter.get_structure_hook(inner_type)
-        return lambda value, _: None if value is None else inner(value, inner_type)
-    converter.register_structure_hook_factory(_is_optional, optional)
+    converter.register_structure_hook_factory(lambda t: get_origin(t) is list, _list_hook)
+    converter.register_structure_hook_factory(lambda t: get_origin(t) is dict, _mapping_hook)
     return converter
 
 
@@ -217,7 +192,7 @@ def structure_document(document, cls, file: str, lines) -> Any:
     try:
         return _converter().get_structure_hook(cls)(document, cls)
     except (BaseValidationError, FieldError, ForbiddenExtraKeysError) as exc:
-        error = _field_error(exc, document, "", (), cls, None)
+        error = field_error(exc, document, "", (), cls, None)
     path = parse_path(error.path) if error.path else ()
     line = line_of(lines, path) if path else None
     raise FieldError(error.path, error.expected, error.given, error.choices, file=file, line=line)

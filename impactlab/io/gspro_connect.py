@@ -8,8 +8,8 @@ client implementations, and gathered in the project's notes on vendors):
   launch monitor connects and sends; no authentication, no handshake.
 - Messages are JSON objects with **no framing**: no delimiter, no length prefix. A read can hold
   part of a reply, one reply or several: GSPro itself sends ``{...200...}{...201...}`` in one
-  segment. Replies are therefore split from the byte stream by brace depth outside string
-  literals (:class:`JsonStreamSplitter`), never by newlines or by reads.
+  segment. Replies are therefore split from the byte stream where the JSON decoder ends each object
+  (:class:`JsonStreamSplitter`, on ``json.JSONDecoder.raw_decode``), never by newlines or by reads.
 - Each shot is answered with ``{"Code": 200, "Message": ...}``; ``201`` (player information:
   handedness and club), ``202`` ("GSPro ready") and ``203`` ("GSPro round ended") arrive on their
   own, not as answers, and are noted; ``501`` / ``5XX`` is a failure. Clients key on ``Code``,
@@ -24,7 +24,7 @@ sending 201s for 2 s printed 7,194 lines). Every text of the server's is shown e
 (:func:`impactlab.foreign.shown`).
 
 Why the standard library: no package on PyPI speaks this protocol (none is named for GSPro in
-PyPI's index), and a client is a socket, ``json`` and a brace counter.
+PyPI's index), and a client is a socket and ``json``.
 """
 
 from __future__ import annotations
@@ -42,6 +42,7 @@ import attrs
 from impactlab.errors import EnvironmentFault, FieldError
 from impactlab.foreign import MAX_NESTING, json_depth_exceeded, shown
 from impactlab.io.interchange import wire_message
+from impactlab.io.json_stream import JsonObjectStream, NotJsonError
 
 #: GSPro Connect's port (the vendor writes "0921")
 DEFAULT_PORT = 921
@@ -54,87 +55,19 @@ MAX_REPLY_BYTES = 64 * 1024
 #: a bare greeting one client's notes say GSPro may send at connection (samiur/gc2-connect-desktop,
 #: docs/GSPRO_TCP_PROTOCOL.md): tolerated, anything else outside a JSON object is not
 GREETING = b"GSPro ready"
-_WHITESPACE = b" \t\r\n"
 
 
 class GSProConnectError(EnvironmentFault):
     """GSPro Connect could not be reached, did not answer, or refused a shot (exit status 3)."""
 
 
-class NotJsonError(ValueError):
-    """Bytes in the reply stream that are not a JSON object; ``text`` holds them (shortened)."""
-
-    def __init__(self, data: bytes | bytearray, why: str):
-        self.text = _show(data)
-        super().__init__(f"{why}: {self.text}")
-
-
-def _show(data: bytes | bytearray, limit: int = 80) -> str:
-    text = repr(bytes(data[:limit]))
-    return text + (f" ... ({len(data)} bytes)" if len(data) > limit else "")
-
-
-class JsonStreamSplitter:
-    """Split a byte stream into JSON objects by brace depth, counting braces outside string literals only.
-
-    Bytes go in as they arrive (:meth:`feed`); each complete top-level object comes out as bytes, in
-    order, however the stream was cut into reads. Whitespace between objects is skipped, and so is
-    the bare greeting :data:`GREETING`. Anything else outside an object raises :class:`NotJsonError`,
-    and so does an object longer than ``limit`` bytes. Whether an object's text is valid JSON is the
-    caller's ``json.loads`` to decide.
-    """
+class JsonStreamSplitter(JsonObjectStream):
+    """GSPro's reply stream split into its JSON objects (:class:`~impactlab.io.json_stream.JsonObjectStream`:
+    ``json.JSONDecoder.raw_decode``), the bare greeting :data:`GREETING` skipped, a reply over ``limit`` bytes
+    refused. Whether a reply carries a Code is :func:`parse_reply`'s to decide."""
 
     def __init__(self, limit: int = MAX_REPLY_BYTES):
-        self.limit = limit
-        self._object = bytearray()  # the object being read
-        self._stray = bytearray()   # text outside any object (only a prefix of the greeting may wait here)
-        self._depth = 0
-        self._in_string = False
-        self._escaped = False
-
-    @property
-    def pending(self) -> bool:
-        """Whether part of an object (or of the greeting) has arrived and waits for the rest."""
-        return bool(self._object or self._stray)
-
-    def feed(self, data: bytes) -> list[bytes]:
-        """Take the next bytes of the stream; return the objects they complete (possibly none)."""
-        found = []
-        for position, byte in enumerate(data):
-            char = bytes((byte,))
-            if self._depth == 0:
-                if self._stray or (char not in _WHITESPACE and char != b"{"):
-                    self._stray += char
-                    if GREETING.startswith(self._stray):
-                        if self._stray == GREETING:
-                            self._stray.clear()
-                        continue
-                    raise NotJsonError(bytes(self._stray) + data[position + 1:], "text that is not a JSON object")
-                if char in _WHITESPACE:
-                    continue
-                self._depth = 1
-                self._object = bytearray(b"{")
-                continue
-            self._object += char
-            if len(self._object) > self.limit:
-                raise NotJsonError(self._object, f"an object longer than {self.limit} bytes")
-            if self._in_string:
-                if self._escaped:
-                    self._escaped = False
-                elif char == b"\\":
-                    self._escaped = True
-                elif char == b'"':
-                    self._in_string = False
-            elif char == b'"':
-                self._in_string = True
-            elif char == b"{":
-                self._depth += 1
-            elif char == b"}":
-                self._depth -= 1
-                if self._depth == 0:
-                    found.append(bytes(self._object))
-                    self._object = bytearray()
-        return found
+        super().__init__(limit, skip=GREETING)
 
 
 @attrs.frozen

@@ -56,13 +56,11 @@ import xarray as xr
 
 from impactlab.errors import FieldError, PlausibilityWarning, StudyError
 from impactlab.io.safe_output import write_atomically
-from impactlab.units import MPH, to_si
+from impactlab.units import MPH, YARD, to_si
 from impactlab.vocabulary import INPUT_BY_PATH, INPUTS, MODEL_DIM, TIME_DIM, output_unit_factor
 
 #: outputs a GSPro shot needs
 GSPRO_OUTPUTS = ("ball_speed", "vertical_launch_angle", "horizontal_launch_angle", "spin_rate", "spin_axis")
-#: metres per yard: the international yard of 1959, exact
-YARD = 0.9144
 #: ClubData key -> the delivery input it carries (module docstring: units and signs)
 GSPRO_CLUB_DATA = {"Speed": "speed", "AngleOfAttack": "attack_angle", "FaceToTarget": "face_angle",
                    "Loft": "dynamic_loft", "Path": "path"}

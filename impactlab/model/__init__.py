@@ -6,5 +6,7 @@ implementation.
 
 from impactlab.model.base import HISTORY_LENGTH, ImpactModel, ModelResult, NoOptions
 from impactlab.model.case_inputs import CaseInputs
+from impactlab.model.diagnostics import LARGE_CONTACT_RATIO, ValidityWarning
 
-__all__ = ["HISTORY_LENGTH", "CaseInputs", "ImpactModel", "ModelResult", "NoOptions"]
+__all__ = ["HISTORY_LENGTH", "CaseInputs", "ImpactModel", "ModelResult", "NoOptions", "LARGE_CONTACT_RATIO",
+           "ValidityWarning"]

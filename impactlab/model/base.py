@@ -425,3 +425,7 @@ def _jsonable(value: Any) -> Any:
     if isinstance(value, (str, int, float, bool)) or value is None:
         return value
     return str(value)
+
+
+#: the public names of this module (a plugin reaches them through impactlab.model: docs/writing-a-model.md)
+__all__ = ["HISTORY_LENGTH", "NoOptions", "ImpactModel", "ModelResult"]

@@ -135,3 +135,9 @@ def fly_launch(ball_speed, golf: dict, inputs) -> dict:
     return fly(ball_speed, golf["vertical_launch_angle"], spin, golf["spin_axis"], golf["horizontal_launch_angle"],
                ball_mass=inputs["ball_mass"], ball_radius=inputs["ball_radius"],
                **air_arrays({name: inputs[name] for name in FLIGHT_INPUTS if name in inputs}))
+
+
+#: the public names of this module (a plugin reaches them through impactlab.model: docs/writing-a-model.md)
+__all__ = ["IMPULSES", "FROM_IMPULSES", "FROM_DELIVERY", "FROM_FLIGHT", "FLIGHT_INPUTS", "FROM_MATERIALS",
+           "MATERIAL_INPUTS", "NEEDS", "DERIVATION_OPTIONAL", "NO_DELIVERY", "NO_MATERIALS", "NO_LATERAL",
+           "derivable", "derive", "normalised_slip", "fly_launch"]

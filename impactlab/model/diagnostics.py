@@ -123,3 +123,8 @@ def warn(dataset: xr.Dataset) -> None:
     """Issue one :class:`ValidityWarning` per sentence of :func:`messages`."""
     for text in messages(dataset):
         warnings.warn(text, ValidityWarning, stacklevel=3)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["FLAGS", "LARGE_CONTACT_RATIO", "paraboloid_error", "ValidityWarning", "flag_attributes", "messages",
+           "warn"]

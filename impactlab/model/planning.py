@@ -128,3 +128,7 @@ def plan_outputs(model_cls: type[ImpactModel], requested: Iterable[str],
         inputs |= NEEDS["materials"]
     return OutputPlan(model_cls.name, requested, frozenset(from_model), frozenset(derived), missing,
                       frozenset(inputs), tuple(kept))
+
+
+#: the public names of this module (a plugin reaches them through impactlab.model: docs/writing-a-model.md)
+__all__ = ["OutputPlan", "require_inputs", "plan_outputs"]

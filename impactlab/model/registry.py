@@ -78,3 +78,7 @@ def get_model(name: str) -> type[ImpactModel]:
         return models[name]
     except (KeyError, TypeError):
         raise ModelNotFoundError(str(name), models) from None
+
+
+#: the public names of this module (a plugin reaches them through impactlab.model: docs/writing-a-model.md)
+__all__ = ["ENTRY_POINT_GROUP", "available", "refresh", "get_model"]

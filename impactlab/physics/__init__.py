@@ -10,3 +10,5 @@ import numpy as np
 
 #: what a physics function takes and gives: one value, or an array of values one per case (SI)
 Values = float | np.ndarray
+
+__all__ = ["Values"]

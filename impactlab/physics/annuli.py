@@ -213,3 +213,7 @@ ANNULI_MIN_STEPS = 200
 
 #: beyond this a dense solve per step and iteration gets slow; a tighter tolerance is flagged as not met
 MAX_RINGS = 160
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["influence_matrices", "solve_scaled", "resolution", "STEPS_PER_ANNULUS", "ANNULI_MIN_STEPS", "MAX_RINGS"]

@@ -302,3 +302,8 @@ def layered_kappa(kappa, tangential_modulus, ball_shear_modulus, contact_radius,
     layer = np.asarray(thickness, float) / (np.pi * a**2) * (1.0 / np.asarray(cover_shear_modulus, float)
                                                             - 1.0 / np.asarray(ball_shear_modulus, float))
     return np.asarray(kappa, float) * base / np.maximum(base + layer, 0.05 * base)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["SPHERE_FACTOR", "ROLLING_STEPS", "SWEEPS", "hysteresis_fraction", "rolling_arm", "mean_radius_ratio",
+           "mean_rolling_arm", "rolling_impulses", "rolling_impulses_numpy", "layered_kappa"]

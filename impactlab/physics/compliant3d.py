@@ -285,6 +285,42 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
     kernel = _kernels.contact3d_cases if _kernels.HAVE_NUMBA else _kernels._contact3d_cases
     approach = hertz.max_approach(m_normal, radius, modulus, normal_speed)
     reach = np.sqrt(radius * approach)  # a_max
+    couple_n, couple_t, couple_rr, rolling0, arm = _scaled_rolling(rolling, n, m_normal, reach, normal_speed)
+    gain, frequency, damping_modes, arm_ratio, face_gain, face_frequency, face_damping = _scaled_modes(
+        core, face, n, m_normal, approach, reach, normal_speed)
+    out = np.zeros((n, 13))
+    # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
+    relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
+    damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
+    arguments = (ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping,
+                 np.ascontiguousarray(dtau), max_steps, LAWS[law], float(stiffness_factor), bool(store_force),
+                 bool(rescale), float(tangential_damping), np.ascontiguousarray(relaxation), xi2, 1.0 / springs,
+                 bool(record), history_normal, history_tangential, history_stick, out, couple_n, couple_t, couple_rr,
+                 rolling0, arm, gain, frequency, damping_modes, arm_ratio, face_gain, face_frequency, face_damping)
+    straight = on_line(ratio_tt, coupling, arm, couple_n, couple_t, couple_rr, rolling0) & line
+    if np.any(straight):
+        (_kernels.line_cases if _kernels.HAVE_NUMBA else _kernels._line_cases)(*arguments, np.flatnonzero(straight))
+    if not np.all(straight):
+        kernel(*arguments, np.flatnonzero(~straight))
+
+    solution = _solution(out, friction, modulus, radius, approach, reach, normal_speed, max_steps)
+    if record:
+        nodes = np.arange(max_steps + 1)
+        time_unit = approach / normal_speed
+        peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
+        solution.update(
+            time=nodes[None, :] * (dtau * time_unit)[:, None],
+            normal_force=history_normal * peak[:, None],
+            tangential_force=history_tangential * (friction * peak)[:, None],
+            stick_radius=history_stick * np.sqrt(radius * approach)[:, None])
+        beyond = nodes[None, :] > out[:, 8:9]
+        for name in ("normal_force", "tangential_force", "stick_radius"):
+            solution[name][beyond] = np.nan
+    return Contact3DSolution(**solution)
+
+
+def _scaled_rolling(rolling, n: int, m_normal, reach, normal_speed) -> tuple:
+    """The rolling couple's mobilities and rolling rate in the kernel's scaled units (none: zeros, identity)."""
     if rolling is None:
         couple_n, couple_t = np.zeros((n, 2)), np.zeros((n, 2, 2))
         couple_rr, rolling0, arm = np.broadcast_to(np.eye(2), (n, 2, 2)).copy(), np.zeros((n, 2)), np.zeros(n)
@@ -295,6 +331,11 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         couple_rr = np.ascontiguousarray(d * (m_normal * reach**2)[:, None, None])
         rolling0 = np.ascontiguousarray(rate * (reach / normal_speed)[:, None])
         arm = np.broadcast_to(np.asarray(factor, float), (n,)).copy()
+    return couple_n, couple_t, couple_rr, rolling0, arm
+
+
+def _scaled_modes(core, face, n: int, m_normal, approach, reach, normal_speed) -> tuple:
+    """The core's modes and the face's mode in the kernel's scaled units (none: empty, zeros)."""
     if core is None:
         gain, frequency, damping_modes, arm_ratio = np.zeros((n, 0)), np.zeros((n, 0)), np.zeros((n, 0)), np.zeros(n)
     else:  # scaled: g_k = m* R^2 / I_k, Omega_k = omega_k delta_max / V_z, d_k likewise, a_max / R
@@ -312,21 +353,11 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
         face_gain = np.ascontiguousarray(m_normal * inverse_mass)
         face_frequency = np.ascontiguousarray(np.where(face_gain > 0.0, omega_f * time_scale, 1.0))
         face_damping = np.ascontiguousarray(eta_omega_f * time_scale)
-    out = np.zeros((n, 13))
-    # Kelvin-Voigt relaxation eta / omega with omega = pi / t_c, in the scaled time of the uncoupled contact
-    relaxation = np.broadcast_to(np.asarray(tangential_loss, float), (n,)) * normal.tau_end / np.pi
-    damping = np.ascontiguousarray(np.broadcast_to(np.asarray(normal.damping, float), (n,)))
-    arguments = (ratio_tt, coupling, np.asarray(kappa, float).copy(), friction, psi, damping,
-                 np.ascontiguousarray(dtau), max_steps, LAWS[law], float(stiffness_factor), bool(store_force),
-                 bool(rescale), float(tangential_damping), np.ascontiguousarray(relaxation), xi2, 1.0 / springs,
-                 bool(record), history_normal, history_tangential, history_stick, out, couple_n, couple_t, couple_rr,
-                 rolling0, arm, gain, frequency, damping_modes, arm_ratio, face_gain, face_frequency, face_damping)
-    straight = on_line(ratio_tt, coupling, arm, couple_n, couple_t, couple_rr, rolling0) & line
-    if np.any(straight):
-        (_kernels.line_cases if _kernels.HAVE_NUMBA else _kernels._line_cases)(*arguments, np.flatnonzero(straight))
-    if not np.all(straight):
-        kernel(*arguments, np.flatnonzero(~straight))
+    return gain, frequency, damping_modes, arm_ratio, face_gain, face_frequency, face_damping
 
+
+def _solution(out, friction, modulus, radius, approach, reach, normal_speed, max_steps: int) -> dict:
+    """The kernel's scaled results back in SI (impulses, times, work, moments, energies)."""
     peak = 4.0 / 3.0 * modulus * np.sqrt(radius) * approach**1.5
     time_unit = approach / normal_speed
     impulse_unit = peak * time_unit
@@ -337,14 +368,9 @@ def solve_once(mobility, normal_speed, slip_speed, *, friction, kappa, modulus, 
                     work=out[:, 7] * peak * approach, steps=out[:, 8], unfinished=out[:, 8] >= max_steps,
                     moment=out[:, 9:11] * (peak * reach * time_unit)[:, None], core_energy=out[:, 11] * peak * approach,
                     face_energy=out[:, 12] * peak * approach)
-    if record:
-        nodes = np.arange(max_steps + 1)
-        solution.update(
-            time=nodes[None, :] * (dtau * time_unit)[:, None],
-            normal_force=history_normal * peak[:, None],
-            tangential_force=history_tangential * (friction * peak)[:, None],
-            stick_radius=history_stick * np.sqrt(radius * approach)[:, None])
-        beyond = nodes[None, :] > out[:, 8:9]
-        for name in ("normal_force", "tangential_force", "stick_radius"):
-            solution[name][beyond] = np.nan
-    return Contact3DSolution(**solution)
+    return solution
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["LAWS", "MAX_STEPS", "CORE_STEP", "resolution", "STEP_ALLOWANCE", "Contact3DSolution", "solve",
+           "core_steps", "face_steps", "on_line", "solve_once"]

@@ -170,22 +170,10 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     """
     speed = np.atleast_1d(np.asarray(inputs["speed"], float))
     n = speed.size
-
-    def value(name, default):
-        return np.broadcast_to(np.asarray(inputs.get(name, default), float), (n,))
-
+    value = _input_values(inputs, n)
     bulge, roll = value("face_bulge_radius", np.inf), value("face_roll_radius", np.inf)
     strike_toe, strike_high = value("strike_toe", 0.0), value("strike_high", 0.0)
-    if "dynamic_loft" in inputs:
-        loft, face = value("dynamic_loft", 0.0), value("face_angle", 0.0)
-        path, attack = value("path", 0.0), value("attack_angle", 0.0)
-        at_contact = value("loft_at_contact", 0.0) > 0.5
-        if np.any(at_contact):  # the loft and face angle of the face at the strike point: turn the head to them
-            centre_loft, centre_angle = centre_face(loft, face, strike_toe, strike_high, bulge, roll)
-            loft, face = np.where(at_contact, centre_loft, loft), np.where(at_contact, centre_angle, face)
-    else:  # a plate experiment: the club moves along X, the face normal is tilted up by the impact angle
-        loft, face = value("angle", 0.0), np.zeros(n)
-        path, attack = np.zeros(n), np.zeros(n)
+    loft, face, path, attack = _face_and_path(inputs, value, n, strike_toe, strike_high, bulge, roll)
     toe, up, flat_normal = face_axes(loft, face)
     club_direction = np.stack([np.cos(attack) * np.cos(path), -np.cos(attack) * np.sin(path), np.sin(attack)], -1)
 
@@ -198,6 +186,70 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     point = strike_toe[:, None] * toe + strike_high[:, None] * up - sag[:, None] * flat_normal
 
     axes = _head_axes(inputs, n, toe, up, flat_normal)
+    lever, club_velocity, rotation, contact_velocity = _head_motion(inputs, value, n, axes, (toe, up, flat_normal),
+                                                                    point, speed, club_direction)
+    turning = np.any(rotation != 0.0, axis=-1)
+    slip_direction, lateral_direction, frame = _slip_frame(turning, contact_velocity, speed, club_direction, normal,
+                                                           up)
+
+    spin = value("spin", 0.0)
+    ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
+    ball_point_velocity = -radius[:, None] * _cross(ball_spin, normal)
+
+    # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
+    # head's contact point by w x lever (nothing for a point mass or a fixed face, which have no lever)
+    head_spin = value("club_spin", 0.0)[:, None] * lateral_direction + rotation
+    head_point_velocity = _cross(head_spin, lever)
+    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - club_velocity - head_point_velocity)
+    if not mobility:
+        return {"slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
+                "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
+                "slip_speed": initial[:, 0], "initial_velocity": initial, "frame": frame}
+
+    matrix, inverse_inertia = _contact_mobility(inputs, value, n, axes, normal, k2, ball_mass, lever, frame)
+    off = np.abs(matrix[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
+    one_dimensional = off <= DIAGONAL_TOLERANCE * matrix[:, 2, 2]
+
+    # Hertz radius of the ball on the curved face: the geometric mean of the principal relative radii
+    # (Johnson, Contact Mechanics, 1985, section 4.2: good to a few per cent of the contact radius for the
+    # mild ellipticity of a bulged face)
+    contact_radius = np.sqrt(1.0 / ((1.0 / radius + 1.0 / bulge) * (1.0 / radius + 1.0 / roll)))
+    return {
+        "slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
+        "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
+        "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": matrix,
+        "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
+        "ball_spin": ball_spin, "head_spin": head_spin, "one_dimensional": one_dimensional, "frame": frame,
+        "club_velocity": club_velocity, "contact_velocity": contact_velocity,
+    }
+
+
+def _input_values(inputs: dict, n: int):
+    """``value(name, default)``: an input as n floats (its default where absent)."""
+    def value(name, default):
+        return np.broadcast_to(np.asarray(inputs.get(name, default), float), (n,))
+    return value
+
+
+def _face_and_path(inputs: dict, value, n: int, strike_toe, strike_high, bulge, roll) -> tuple:
+    """Loft and face angle of the face centre, path and attack angle [rad] of each case."""
+    if "dynamic_loft" in inputs:
+        loft, face = value("dynamic_loft", 0.0), value("face_angle", 0.0)
+        path, attack = value("path", 0.0), value("attack_angle", 0.0)
+        at_contact = value("loft_at_contact", 0.0) > 0.5
+        if np.any(at_contact):  # the loft and face angle of the face at the strike point: turn the head to them
+            centre_loft, centre_angle = centre_face(loft, face, strike_toe, strike_high, bulge, roll)
+            loft, face = np.where(at_contact, centre_loft, loft), np.where(at_contact, centre_angle, face)
+    else:  # a plate experiment: the club moves along X, the face normal is tilted up by the impact angle
+        loft, face = value("angle", 0.0), np.zeros(n)
+        path, attack = np.zeros(n), np.zeros(n)
+    return loft, face, path, attack
+
+
+def _head_motion(inputs: dict, value, n: int, axes, face_frame: tuple, point, speed, club_direction) -> tuple:
+    """The head's lever to the contact, its centre of mass's velocity, its angular velocity (n, 3 each) and the
+    velocity of its material point at the contact, before impact."""
+    toe, up, flat_normal = face_frame
     if axes is not None:
         center = (value("club_cg_toe", 0.0)[:, None] * toe + value("club_cg_high", 0.0)[:, None] * up
                   - value("club_cg_depth", 0.0)[:, None] * flat_normal)
@@ -219,7 +271,11 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     # the velocity of the head's material point at the contact, before impact (the striking sphere's own spin,
     # club_spin, enters below, counted about the slip frame it defines)
     contact_velocity = club_velocity + _cross(rotation, lever)
+    return lever, club_velocity, rotation, contact_velocity
 
+
+def _slip_frame(turning, contact_velocity, speed, club_direction, normal, up) -> tuple:
+    """The contact frame: slip and lateral directions (n, 3) and the frame (n, 3, 3), columns s, l, n."""
     # slip direction: the ball's contact point moves against the club's tangential velocity there
     relative = np.where(turning[:, None], -contact_velocity / speed[:, None], -club_direction)
     tangential = relative - np.sum(relative * normal, -1, keepdims=True) * normal
@@ -230,21 +286,12 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
     slip_direction *= np.where(np.sum(slip_direction * up, -1) < 0.0, -1.0, 1.0)[:, None]
     lateral_direction = _cross(normal, slip_direction)
     frame = np.stack([slip_direction, lateral_direction, normal], -1)  # columns s, l, n
+    return slip_direction, lateral_direction, frame
 
-    spin = value("spin", 0.0)
-    ball_spin = spin[:, None] * lateral_direction  # backspin counted as in the 1-D models: about n x s
-    ball_point_velocity = -radius[:, None] * _cross(ball_spin, normal)
 
-    # the striking body's own spin (a sphere striker), about the same axis n x s as the ball's; it moves the
-    # head's contact point by w x lever (nothing for a point mass or a fixed face, which have no lever)
-    head_spin = value("club_spin", 0.0)[:, None] * lateral_direction + rotation
-    head_point_velocity = _cross(head_spin, lever)
-    initial = np.einsum("nia,ni->na", frame, ball_point_velocity - club_velocity - head_point_velocity)
-    if not mobility:
-        return {"slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
-                "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
-                "slip_speed": initial[:, 0], "initial_velocity": initial, "frame": frame}
-
+def _contact_mobility(inputs: dict, value, n: int, axes, normal, k2, ball_mass, lever, frame) -> tuple:
+    """The mobility (n, 3, 3) [1/kg] of ball and head at the contact in the contact frame, symmetrised, and the
+    head's inverse inertia (None for a point mass or a fixed face)."""
     eye = np.eye(3)
     ball_mobility = (eye + (eye - normal[:, :, None] * normal[:, None, :]) / k2[:, None, None]) \
         / ball_mass[:, None, None]
@@ -255,22 +302,7 @@ def contact_state(inputs: dict, mobility: bool = True) -> dict:
         skew = _skew(lever)
         head_mobility = head_mobility + np.einsum("nji,njk,nkl->nil", skew, inverse_inertia, skew)
     matrix = np.einsum("nia,nij,njb->nab", frame, ball_mobility + head_mobility, frame)
-    matrix = 0.5 * (matrix + np.swapaxes(matrix, 1, 2))
-    off = np.abs(matrix[:, [0, 0, 1], [1, 2, 2]]).max(axis=1)
-    one_dimensional = off <= DIAGONAL_TOLERANCE * matrix[:, 2, 2]
-
-    # Hertz radius of the ball on the curved face: the geometric mean of the principal relative radii
-    # (Johnson, Contact Mechanics, 1985, section 4.2: good to a few per cent of the contact radius for the
-    # mild ellipticity of a bulged face)
-    contact_radius = np.sqrt(1.0 / ((1.0 / radius + 1.0 / bulge) * (1.0 / radius + 1.0 / roll)))
-    return {
-        "slip_direction": slip_direction, "lateral_direction": lateral_direction, "normal": normal,
-        "flat_normal": flat_normal, "club_direction": club_direction, "normal_speed": -initial[:, 2],
-        "slip_speed": initial[:, 0], "initial_velocity": initial, "mobility": matrix,
-        "contact_radius": contact_radius, "lever": lever, "head_inverse_inertia": inverse_inertia,
-        "ball_spin": ball_spin, "head_spin": head_spin, "one_dimensional": one_dimensional, "frame": frame,
-        "club_velocity": club_velocity, "contact_velocity": contact_velocity,
-    }
+    return 0.5 * (matrix + np.swapaxes(matrix, 1, 2)), inverse_inertia
 
 
 def impulse_vector(state, normal_impulse, tangential_impulse, lateral_impulse=None):
@@ -424,29 +456,8 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
                     "nij,nj->ni", rotation, moment)
                 out["energy_loss"] -= np.sum(moment * 0.5 * (rolling + rolling_after), -1)
     if names & _NEEDS_HEAD:
-        club = np.broadcast_to(np.asarray(club_mass, float), (n,))
-        club_velocity = state["club_velocity"] - np.where(
-            np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
-        if state["head_inverse_inertia"] is not None:
-            club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
-                                                       _cross(state["lever"], impulse_ground))
-            if has_moment:
-                club_spin = club_spin - np.einsum("nij,nj->ni", state["head_inverse_inertia"], moment_ground)
-        else:
-            club_spin = np.zeros((n, 3))
-        # the ball centre relative to the head's material point at the contact
-        head_point = club_velocity + _cross(club_spin, state["lever"])
-        centre_relative = ball_velocity - head_point
-        normal_velocity = np.sum(centre_relative * state["normal"], -1)
-        tangential_velocity = np.sum(centre_relative * state["slip_direction"], -1)
-        out.update({
-            "club_velocity": club_velocity, "club_spin": club_spin,
-            "normal_velocity": normal_velocity, "tangential_velocity": tangential_velocity,
-            "rebound_angle": np.arctan2(tangential_velocity, normal_velocity),
-            "club_speed_after": np.linalg.norm(club_velocity, axis=-1) if np.all(np.isfinite(club)) else np.where(
-                np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
-            "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
-        })
+        out.update(_head_after(state, impulse_ground, ball_velocity, club_mass, speed, n,
+                               moment_ground if has_moment else None))
     if names & LAUNCH_PLANE_OUTPUTS:  # angles in the plane of the path and the contact normal (launch_plane)
         plane = launch_plane(state) if plane is None else plane
         direction, across_unit, angle = state["club_direction"], plane["across"], plane["angle"]
@@ -459,6 +470,35 @@ def after_impact(state, impulse, *, ball_mass, ball_radius, ball_inertia_factor,
         if "rebound_angle" in out:
             out["total_angle"] = angle + out["rebound_angle"]
     return out
+
+
+def _head_after(state: dict, impulse_ground, ball_velocity, club_mass, speed, n: int, moment_ground) -> dict:
+    """The head after the impact (its velocity, spin and speed) and the ball's centre relative to the head's
+    material point at the contact (normal and tangential velocity, rebound angle); ``moment_ground`` the couple
+    on the ball in ground axes, or None."""
+    club = np.broadcast_to(np.asarray(club_mass, float), (n,))
+    club_velocity = state["club_velocity"] - np.where(
+        np.isinf(club), 0.0, 1.0 / club)[:, None] * impulse_ground
+    if state["head_inverse_inertia"] is not None:
+        club_spin = state["head_spin"] - np.einsum("nij,nj->ni", state["head_inverse_inertia"],
+                                                   _cross(state["lever"], impulse_ground))
+        if moment_ground is not None:
+            club_spin = club_spin - np.einsum("nij,nj->ni", state["head_inverse_inertia"], moment_ground)
+    else:
+        club_spin = np.zeros((n, 3))
+    # the ball centre relative to the head's material point at the contact
+    head_point = club_velocity + _cross(club_spin, state["lever"])
+    centre_relative = ball_velocity - head_point
+    normal_velocity = np.sum(centre_relative * state["normal"], -1)
+    tangential_velocity = np.sum(centre_relative * state["slip_direction"], -1)
+    return {
+        "club_velocity": club_velocity, "club_spin": club_spin,
+        "normal_velocity": normal_velocity, "tangential_velocity": tangential_velocity,
+        "rebound_angle": np.arctan2(tangential_velocity, normal_velocity),
+        "club_speed_after": np.linalg.norm(club_velocity, axis=-1) if np.all(np.isfinite(club)) else np.where(
+            np.isinf(club), speed, np.linalg.norm(club_velocity, axis=-1)),
+        "club_angular_velocity": np.linalg.norm(club_spin, axis=-1),
+    }
 
 
 def ground_outputs(state, after, *, dynamic_loft=None, attack_angle=None, path=None, face_angle=None,
@@ -497,3 +537,10 @@ def ground_outputs(state, after, *, dynamic_loft=None, attack_angle=None, path=N
         out["vertical_launch_ratio"] = np.where(np.abs(dynamic_loft - attack_angle) > 1e-12, vertical_ratio, np.nan)
         out["horizontal_launch_ratio"] = np.where(np.abs(face_abs - path_abs) > 1e-12, horizontal_ratio, np.nan)
     return out
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["INERTIA_INPUTS", "CENTER_INPUTS", "FACE_SHAPE_INPUTS", "STRIKE_INPUTS", "HEAD_ROTATION_INPUTS",
+           "CLUB_REFERENCES", "GEOMETRY_INPUTS", "CONTACT_STATE_INPUTS", "DIAGONAL_TOLERANCE", "face_axes",
+           "approach_state", "contact_state", "impulse_vector", "AFTER_IMPACT_OUTPUTS", "LAUNCH_PLANE_OUTPUTS",
+           "launch_plane", "couple_mobility", "after_impact", "ground_outputs"]

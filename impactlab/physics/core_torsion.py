@@ -297,3 +297,9 @@ def verlet_step_limit(frequency, damping) -> np.ndarray:
     c = np.asarray(damping, float) + 0.0 * omega
     with np.errstate(divide="ignore"):
         return 4.0 / (c + np.sqrt(c * c + 4.0 * omega * omega))
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["FREE_SPHERE_ROOT", "CUTOFF_FREQUENCY", "DEFAULT_MODES", "frequency_function", "roots",
+           "modal_inverse_inertia", "CoreModes", "core_modes", "modes_below", "shell_response", "verlet_growth",
+           "verlet_step_limit"]

@@ -93,3 +93,7 @@ def coupling_estimate(beta: ArrayLike, kappa: ArrayLike, friction: ArrayLike) ->
     """
     ratio = coupling_ratio(beta, kappa, friction)
     return np.minimum(0.5 * ratio**2, 1.0)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["dundurs_beta", "coupling_ratio", "coupling_estimate"]

@@ -172,3 +172,8 @@ def loft_for_spin_loft(spin_loft_angle, path, face_angle, attack_angle):
 
 
 DELIVERY_INPUTS = ("path", "face_angle", "attack_angle", "dynamic_loft", "handedness")
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["club_directions", "spin_loft", "contact_face", "centre_face", "cg_projection", "loft_for_spin_loft",
+           "DELIVERY_INPUTS"]

@@ -244,3 +244,7 @@ def steps_for(tolerance: float) -> tuple[int, bool]:
     """
     wanted = int(np.ceil((100.0 / tolerance) ** (2.0 / 3.0)))
     return min(MAX_STEPS, max(200, wanted)), wanted > MAX_STEPS
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["SLIP_GAIN", "LAWS", "HISTORIES", "stiffness_shape", "solve_scaled", "MAX_STEPS", "steps_for"]

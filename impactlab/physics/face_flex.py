@@ -172,3 +172,8 @@ def modal_inputs(stiffness, modal_mass, loss=0.0):
         omega = np.where(rigid, 0.0, np.sqrt(k / np.where(rigid, 1.0, m)))
         inverse = np.where(rigid, 0.0, 1.0 / np.where(rigid, 1.0, m))
     return inverse, omega, np.asarray(loss, float) * omega
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["CLAMPED_ROOT", "clamped_modal_mass_ratio", "clamped_plate_mode", "hertz_constant",
+           "pendulum_contact_time", "stiffness_for_contact_time", "modal_inputs"]

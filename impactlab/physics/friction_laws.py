@@ -379,3 +379,9 @@ def shear_strength_from_sled(friction, cover_modulus, cover_poisson, roughness_s
     stiffness = cover_modulus / (1.0 - cover_poisson**2)
     ploughing = float(ploughing_friction(roughness_slope, restitution))
     return max(friction - ploughing, 0.0) * stiffness * roughness_slope / np.sqrt(8.0 / np.pi)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["FRICTION_LAWS", "WATER_VISCOSITY", "HISTORY_POINTS", "LAW_INPUTS", "SURFACE_DEFAULTS", "area_fraction",
+           "hertz_means", "adhesion_friction", "dry_area_integral", "ploughing_friction", "thermal_factor",
+           "flash_temperature", "effective_friction", "shear_strength_from_sled"]

@@ -335,3 +335,10 @@ class CaseNormals:
         part = object.__new__(CaseNormals)
         part.restitution, part.damping, part.tau_end = self.restitution[rows], self.damping[rows], self.tau_end[rows]
         return part
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["TAU_MAX_COMPRESSION", "TAU_CONTACT", "effective_modulus", "tangential_modulus", "max_approach",
+           "contact_time", "peak_force", "scaled_approach", "time_to_reach", "NormalLaw", "ElasticNormal", "ELASTIC",
+           "cached_grid", "DampedNormal", "damping_for_restitution", "damping_table", "damping_for_restitutions",
+           "CaseNormals"]

@@ -348,3 +348,10 @@ def _stick_radius(u, cap, h, springs):
     slipping = (np.abs(u) >= cap * (1.0 - 1e-12)) & (cap > 0.0)
     first_slip = np.where(slipping.any(axis=1), slipping.argmax(axis=1), springs)
     return np.minimum(first_slip / springs, np.sqrt(max(h, 0.0)))
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["TANGENTIAL_GAIN", "TangentialSolution", "event_grid", "KERNEL_BYTES", "CHECK_BYTES", "solve_scaled",
+           "STEPS_PER_SPRING", "ERROR_CONSTANT", "TIME_ERROR_CONSTANT", "PREVIOUS_CONSTANT", "SMALLEST_SCALE",
+           "MAX_SPRINGS", "resolution", "CHECKS", "EXCESS", "transform_kernel", "traction_3d", "coulomb_excess",
+           "slip_inside_stick"]

@@ -38,3 +38,7 @@ def approach_velocities(speed: Values, angle: Values, spin: Values, radius: Valu
 
 #: what :func:`impactlab.physics.contact.after_impact` needs besides the impulses (model input names)
 AFTER_IMPACT_INPUTS = ("ball_mass", "ball_radius", "ball_inertia_factor", "speed", "angle", "spin")
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["effective_mass", "tangential_mass", "approach_velocities", "AFTER_IMPACT_INPUTS"]

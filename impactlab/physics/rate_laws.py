@@ -295,3 +295,9 @@ def arm_factor_of_lever(lever, radius, approach):
 
     reach = np.sqrt(np.asarray(radius, float) * approach)
     return np.asarray(lever, float) * compression_ratio() * approach / (mean_radius_ratio() * reach)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["HEAD_COR_LIMIT", "REFERENCE_PRESSURE", "REFERENCE_SPEED", "SLS_STEPS", "THETA_GRID", "check_head_cor",
+           "sls_scaled", "sls_table", "sls_restitution", "restitution_shape", "mean_pressure", "pressure_friction",
+           "tangential_loss_of_time", "compression_ratio", "compression_arm", "arm_factor_of_lever"]

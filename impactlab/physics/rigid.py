@@ -145,3 +145,7 @@ def energy_cap(initial, mobility, impulse):
         impulse[elastic] = 0.0
         impulse[elastic, 2] = -2.0 * initial[elastic, 2] / mobility[elastic, 2, 2]
     return impulse
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["STRONGE_STEPS", "coulomb_impulses_1d", "stronge_impulses", "restitution_impulses", "energy_cap"]

@@ -219,3 +219,7 @@ def rolling_line_impulses(initial, mobility, coupling, rotation, rolling, fricti
     moment = np.stack([np.zeros(n), couple], -1)
     flags = (~done).astype(np.int64)
     return (impulse, moment, flags, visited) if regimes else (impulse, moment, flags)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["MAX_EVENTS", "on_line", "planar_couple", "rolling_line_impulses"]

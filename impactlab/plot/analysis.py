@@ -31,15 +31,23 @@ def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[
 
     ``path`` names the first PNG; the second gets ``_indices`` added to its stem.
     """
+    path = Path(path)
+    cases = _case_labels(dataset)
+    analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
+    write_figure(_error_sources_figure(dataset, cases, analysed), path, dpi=110)
+    second = path.with_name(f"{path.stem}_indices.png")
+    write_figure(_indices_figure(dataset, cases, analysed), second, dpi=110, bbox_inches="tight")
+    return [path, second]
+
+
+def _error_sources_figure(dataset: xr.Dataset, cases: list, analysed: list):
+    """The numerical error, parameter uncertainty and model form of each output and case, side by side."""
     # matplotlib is imported where a figure is drawn (it is heavy: a run that draws nothing never loads it)
     import matplotlib.ticker
     # a bare Figure, no pyplot: drawing never changes the caller's backend or open figures
     from matplotlib.figure import Figure
 
-    path = Path(path)
     outputs = list(dataset.output.values)
-    cases = _case_labels(dataset)
-    analysed = [m for m in dataset.model.values if np.any(np.isfinite(dataset["spread"].sel(model=m).values))]
     figure = Figure(figsize=(max(4.6 * len(cases), 9.0), 2.9 * len(outputs)))
     axes = figure.subplots(len(outputs), len(cases), squeeze=False)
     colours = {"numerical": "tab:grey", "parameter": "tab:blue", "form": "tab:red"}
@@ -89,9 +97,14 @@ def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[
     figure.suptitle(f"{dataset.attrs.get('study_name', '')}: numerical error, parameter uncertainty and model form "
                     "(log scale)", fontsize=10)
     figure.tight_layout(rect=(0, 0.03 if len(cases) > 2 else 0.08, 1, 0.97))
-    write_figure(figure, path, dpi=110)
-    pictures = [path]
+    return figure
 
+
+def _indices_figure(dataset: xr.Dataset, cases: list, analysed: list):
+    """Each model's sensitivity indices (Sobol ST, or Morris mu*) of each parameter and output, per case."""
+    from matplotlib.figure import Figure
+
+    outputs = list(dataset.output.values)
     total = "ST" if "ST" in dataset else "mu_star"
     parameters = list(dataset.parameter.values)
     figure = Figure(figsize=(4.2 * len(cases), 0.5 + 0.45 * len(parameters) * len(analysed) + 0.6 * len(analysed)))
@@ -122,10 +135,7 @@ def plot_sensitivity(dataset: xr.Dataset, path: str | os.PathLike[str]) -> list[
                     + ("Sobol total indices (share of each output's variance involving each input)" if total == "ST"
                        else "Morris mu* (output units; shading relative per output)")
                     + "; n/a: the output does not move over the sample", fontsize=10)
-    second = path.with_name(f"{path.stem}_indices.png")
-    write_figure(figure, second, dpi=110, bbox_inches="tight")
-    pictures.append(second)
-    return pictures
+    return figure
 
 
 def plot_work_precision(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:

@@ -230,60 +230,13 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
     # pyplot, which would change the caller's backend and open figures
     axes = figure.subplots(rows, columns, squeeze=False)
     colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
-    single_model = dataset.sizes[MODEL_DIM] == 1
     # lines that lie on an earlier line, per label: the panels where they do (named in the legend)
     coincide: dict[str, dict[str, list[str]]] = {}
     for panel, (axis, name) in enumerate(zip(axes.flat, names)):
-        variable = dataset[name]
-        units, scale = _display(OUTPUTS[name].units, name)
-        drawn: list[tuple] = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
-        span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
-        line_index = 0
-        for m_index, model in enumerate(dataset[MODEL_DIM].values):
-            per_model = variable.sel({MODEL_DIM: model})
-            stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
-            for l_index in range(stacked.sizes["_line"]):
-                line = stacked.isel(_line=l_index)
-                label = str(model)
-                if others:
-                    label += " " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
-                if along_output:
-                    horizontal = dataset[x].sel({MODEL_DIM: model})
-                    horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
-                    xs = horizontal.isel(_line=l_index).values
-                else:
-                    xs = dataset[x].values if x else np.zeros(1)
-                # one model: a colour per line; several: a colour per model, a line style per other value
-                colour = colours[(l_index if single_model else m_index) % len(colours)]
-                style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
-                ys = np.atleast_1d(line.values) * scale
-                hidden, part = _lies_on(drawn, xs, ys, 2e-3 * span + 1e-300)
-                drawn.append((xs, ys, label))
-                if hidden is not None:
-                    key = hidden if part == 1.0 else f"partly {hidden}"
-                    coincide.setdefault(label, {}).setdefault(key, []).append(f"({chr(97 + panel)})")
-                # every line its own marker, spread along the line and offset from the others' so that a curve
-                # lying on another still shows; a line drawn later and thinner keeps the one below visible
-                every = max(1, len(xs) // 7)
-                look = dict(color=colour, marker=_MARKERS[line_index % len(_MARKERS)],
-                            markersize=5 if hidden is None else 8,
-                            markerfacecolor="none" if hidden is not None else colour,
-                            markevery=(line_index % every, every) if len(xs) > 1 else None)
-                axis.plot(xs, ys, linestyle=style, label=label, linewidth=1.6 if hidden is None else 1.0, **look)
-                # the markers again above every line, so that a curve covered by a later one still shows
-                axis.plot(xs, ys, linestyle="none", label="_markers", zorder=3, **look)
-                line_index += 1
+        _draw_panel(axis, panel, dataset, name, x, along_output, others, colours, coincide)
         if len(names) > 1:
             axis.set_title(f"({chr(97 + panel)})", fontsize=9, loc="left")
-        axis.set_ylabel(_axis_label(OUTPUTS[name].long_name, units), fontsize=8)
-        if x:
-            if along_output:
-                x_units, _ = OUTPUTS[x].units, 1.0
-                axis.set_xlabel(_axis_label(OUTPUTS[x].long_name, x_units, 60), fontsize=8)
-            else:
-                attrs_x = dataset[x].attrs
-                axis.set_xlabel(_axis_label(attrs_x.get("long_name", x), attrs_x.get("units", ""), 60), fontsize=8)
-        axis.grid(True, alpha=0.3)
+        _label_axes(axis, dataset, name, x, along_output)
         if measured and x and not along_output:
             _draw_measured(axis, name, measured, np.asarray(dataset[x].values, float),
                            INPUT_BY_PATH.get(dataset[x].attrs.get("study_path", "")))
@@ -291,7 +244,82 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
             _zoom(axis, xlim)
     for axis in list(axes.flat)[len(names):]:
         axis.set_visible(False)
-    # the legend names the lines that lie on others, and where
+    _name_coincidences(axes, names, coincide)
+    heading = title or dataset.attrs.get("title", "")
+    # a dimension whose every value draws the same curve (of each model, in each panel) is said in the title, not
+    # only in the legend: a reader must not take three coinciding curves for one (Fig. 5's club speeds)
+    note = coincidence_note(dataset, names, others)
+    if note:
+        heading += "\n" + note
+    context = conditions(dataset)
+    figure.suptitle(heading + (f"\n{context}" if context else ""), fontsize=10)
+    _legend(figure, axes, names, size)
+    path = _save(figure, path)
+    return path
+
+
+def _draw_panel(axis, panel: int, dataset: xr.Dataset, name: str, x, along_output: bool, others: list, colours,
+                coincide: dict) -> None:
+    """The lines of one output's panel: one per model and value of the other sweep dimensions; a line lying on an
+    earlier one is noted in ``coincide`` (label -> the line it lies on -> panels)."""
+    single_model = dataset.sizes[MODEL_DIM] == 1
+    variable = dataset[name]
+    units, scale = _display(OUTPUTS[name].units, name)
+    drawn: list[tuple] = []  # (xs, ys, label) of the lines on this axis, to name the ones a later line hides
+    span = float(np.nanmax(variable.values) - np.nanmin(variable.values)) * scale if variable.size else 0.0
+    line_index = 0
+    for m_index, model in enumerate(dataset[MODEL_DIM].values):
+        per_model = variable.sel({MODEL_DIM: model})
+        stacked = per_model.stack(_line=others) if others else per_model.expand_dims(_line=[0])
+        for l_index in range(stacked.sizes["_line"]):
+            line = stacked.isel(_line=l_index)
+            label = str(model)
+            if others:
+                label += " " + ", ".join(f"{dim}={_text(line[dim])}" for dim in others)
+            if along_output:
+                horizontal = dataset[x].sel({MODEL_DIM: model})
+                horizontal = horizontal.stack(_line=others) if others else horizontal.expand_dims(_line=[0])
+                xs = horizontal.isel(_line=l_index).values
+            else:
+                xs = dataset[x].values if x else np.zeros(1)
+            # one model: a colour per line; several: a colour per model, a line style per other value
+            colour = colours[(l_index if single_model else m_index) % len(colours)]
+            style = "-" if single_model else _STYLES[l_index % len(_STYLES)]
+            ys = np.atleast_1d(line.values) * scale
+            hidden, part = _lies_on(drawn, xs, ys, 2e-3 * span + 1e-300)
+            drawn.append((xs, ys, label))
+            if hidden is not None:
+                key = hidden if part == 1.0 else f"partly {hidden}"
+                coincide.setdefault(label, {}).setdefault(key, []).append(f"({chr(97 + panel)})")
+            # every line its own marker, spread along the line and offset from the others' so that a curve
+            # lying on another still shows; a line drawn later and thinner keeps the one below visible
+            every = max(1, len(xs) // 7)
+            look = dict(color=colour, marker=_MARKERS[line_index % len(_MARKERS)],
+                        markersize=5 if hidden is None else 8,
+                        markerfacecolor="none" if hidden is not None else colour,
+                        markevery=(line_index % every, every) if len(xs) > 1 else None)
+            axis.plot(xs, ys, linestyle=style, label=label, linewidth=1.6 if hidden is None else 1.0, **look)
+            # the markers again above every line, so that a curve covered by a later one still shows
+            axis.plot(xs, ys, linestyle="none", label="_markers", zorder=3, **look)
+            line_index += 1
+
+
+def _label_axes(axis, dataset: xr.Dataset, name: str, x, along_output: bool) -> None:
+    """A panel's axis labels (long names and units) and grid."""
+    units, _ = _display(OUTPUTS[name].units, name)
+    axis.set_ylabel(_axis_label(OUTPUTS[name].long_name, units), fontsize=8)
+    if x:
+        if along_output:
+            x_units, _ = OUTPUTS[x].units, 1.0
+            axis.set_xlabel(_axis_label(OUTPUTS[x].long_name, x_units, 60), fontsize=8)
+        else:
+            attrs_x = dataset[x].attrs
+            axis.set_xlabel(_axis_label(attrs_x.get("long_name", x), attrs_x.get("units", ""), 60), fontsize=8)
+    axis.grid(True, alpha=0.3)
+
+
+def _name_coincidences(axes, names: list, coincide: dict) -> None:
+    """The legend names the lines that lie on others, and where."""
     for axis in axes.flat[:len(names)]:
         for line in axis.get_lines():
             notes = coincide.get(line.get_label()) if not line.get_label().startswith("_") else None
@@ -301,14 +329,10 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
                 where = "; ".join(_relation(other) + (f" in {' '.join(panels)}" if len(names) > 1 else "")
                                   for other, panels in ordered[:2]) + ("; ..." if len(ordered) > 2 else "")
                 line.set_label(f"{line.get_label()} ({where})")
-    heading = title or dataset.attrs.get("title", "")
-    # a dimension whose every value draws the same curve (of each model, in each panel) is said in the title, not
-    # only in the legend: a reader must not take three coinciding curves for one (Fig. 5's club speeds)
-    note = coincidence_note(dataset, names, others)
-    if note:
-        heading += "\n" + note
-    context = conditions(dataset)
-    figure.suptitle(heading + (f"\n{context}" if context else ""), fontsize=10)
+
+
+def _legend(figure, axes, names: list, size: tuple) -> None:
+    """One panel with few lines: its own legend; otherwise one legend below the panels, where it hides no data."""
     if len(names) == 1 and len(axes.flat[0].lines) <= 4:
         axes.flat[0].legend(fontsize=7)
         figure.tight_layout(rect=(0, 0, 1, 0.95))
@@ -323,8 +347,6 @@ def plot_results(dataset: xr.Dataset, path: str | os.PathLike, outputs: Sequence
         figure.set_figheight(size[1] + legend_height)
         figure.legend(handles, labels, loc="lower center", ncol=columns_of_legend, fontsize=8, frameon=False)
         figure.tight_layout(rect=(0, (legend_height + 0.1) / (size[1] + legend_height), 1, 0.95))
-    path = _save(figure, path)
-    return path
 
 
 def plot_histories(dataset: xr.Dataset, path: str | os.PathLike, output: str = "tangential_force",

@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.io.safe_output import write_figure
-from impactlab.units import MPH
+from impactlab.units import MPH, YARD
 
 _STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
 #: one marker per line, so that a curve lying on another stays visible by its markers
@@ -28,8 +28,8 @@ class FigureWarning(UserWarning):
 
 
 #: outputs shown in other units than their unit's default: the ball flight's distances in yards, as golfers read them
-_DISPLAY_BY_NAME = {"carry_distance": ("yd", 1 / 0.9144), "offline_distance": ("yd", 1 / 0.9144),
-                    "apex_height": ("yd", 1 / 0.9144)}
+_DISPLAY_BY_NAME = {"carry_distance": ("yd", 1 / YARD), "offline_distance": ("yd", 1 / YARD),
+                    "apex_height": ("yd", 1 / YARD)}
 
 
 def _display(units: str, name: str | None = None) -> tuple[str, float]:

@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 
 from impactlab.errors import FieldError
+from impactlab.units import YARD
 from impactlab.vocabulary import FLIGHT_OUTPUTS, MODEL_DIM, output_unit_factor
 from impactlab.physics.aerodynamics import (BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, model_fingerprint,
                                            retired_reason)
@@ -156,7 +157,7 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     side.tick_params(labelbottom=True)
     for axis in (side, top):
         axis.grid(True, alpha=0.3)
-        yards = axis.secondary_xaxis("top", functions=(lambda v: v / 0.9144, lambda v: v * 0.9144))
+        yards = axis.secondary_xaxis("top", functions=(lambda v: v / YARD, lambda v: v * YARD))
         yards.set_xlabel("[yd]", fontsize=8)
     figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
                   title_fontsize=7)

@@ -476,3 +476,10 @@ class user_clubs:
         _USER_NAMES.clear()
         _USER_NAMES.update(self.saved)
         return False
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["G_CM2", "MM", "DRIVER_2020", "OZ_IN2", "INCH", "CAMPAU_1983", "CAMPAU_SOURCE", "GOLF_DIGEST_IRON_MOI",
+           "GOLF_DIGEST_SOURCE", "campau_iron", "iron_moments", "CLUB_SOURCES", "FACE_SIZES", "CLUB_PRESETS",
+           "LOFT_SOURCE", "LIE_SOURCE", "MASS_SOURCE", "CATALOGUE_LOFTS", "CLUB_CATALOGUE", "club_preset",
+           "club_key", "SPEC_KEYS", "club_from_spec", "user_clubs"]

@@ -244,3 +244,7 @@ class Strike:
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
     high: float = attrs.field(default=0.0, converter=si_length, validator=in_range(
         -0.1, 0.1, "a strike offset within 100 mm of the face centre", low_open=True, high_open=True))
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["INERTIA_AXES", "INERTIA_COMPONENTS", "ClubHead", "Strike"]

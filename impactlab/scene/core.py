@@ -311,3 +311,8 @@ def ball_restitution(ball: Ball, inputs: dict) -> np.ndarray:
     gain = np.asarray(inputs.get("club_restitution_gain", 0.0), dtype=float)
     # the approach speeds only: the (n, 3, 3) mobility is built once per chunk, where the models need it
     return np.clip(ball.restitution(approach_state(inputs)["normal_speed"]) + gain, 0.0, 1.0)
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["Contact", "Impact", "HANDEDNESS", "LOFT_AT", "SPIN_LOFT_TOLERANCE", "Delivery", "Scene",
+           "complete_inputs", "ball_restitution"]

@@ -26,7 +26,7 @@ from impactlab.physics import flight as physics
 from impactlab.scene.air import (CONDITION_KEYS, PRESSURE_RANGE, STANDARD_RELATIVE_HUMIDITY, STANDARD_TEMPERATURE,
                                  TEMPERATURE_RANGE, Conditions, air_arrays, air_description, flight_air)
 from impactlab.scene.plausibility import GOLF_LIMITS
-from impactlab.units import DIMENSIONS, to_si
+from impactlab.units import DIMENSIONS, MPH, to_si
 from impactlab.vocabulary import OUTPUTS
 
 def is_number_text(text: str) -> bool:
@@ -122,7 +122,7 @@ _LAUNCH_DIMENSIONS = {"ball_speed": "speed", "launch_angle": "angle", "spin_rate
 UNUSUAL_LAUNCH = {
     # the fastest measured club speeds are about 150 mph (scene.plausibility, long drive) and a smash factor
     # above 1.5 is beyond the Rules' COR limit: about 225 mph of ball speed
-    "ball_speed": ("mph", 1.0 / 0.44704, 100.0, "the fastest measured ball speeds are about 225 mph: 150 mph "
+    "ball_speed": ("mph", 1.0 / MPH, 100.0, "the fastest measured ball speeds are about 225 mph: 150 mph "
                    "of long-drive club speed at a smash factor of 1.5"),
     "spin_rate": ("rpm", 30.0 / math.pi, 12000.0 * math.pi / 30.0, "golf balls leave a club with at most about "
                   "12,000 rpm"),
@@ -131,7 +131,7 @@ UNUSUAL_LAUNCH = {
 IMPOSSIBLE_LAUNCH = {
     # the club speed no human swing reaches, 200 mph (scene.plausibility), at the largest smash factor the Rules'
     # COR limit allows, (1 + 0.83) / (1 + 45.93 g / 200 g) = 1.49 (a 200 g head): 298 mph
-    "ball_speed": (300.0 * 0.44704, "a ball speed up to 300 mph (200 mph of club speed, which no swing reaches, at "
+    "ball_speed": (300.0 * MPH, "a ball speed up to 300 mph (200 mph of club speed, which no swing reaches, at "
                    "the largest smash factor the Rules' COR limit allows, 1.49)"),
     # the incoming spin a golf scene refuses (scene.plausibility: balls leave a club with at most about 12,000 rpm)
     "spin_rate": (20000.0 * math.pi / 30.0, "a spin rate up to 20,000 rpm (golf balls leave a club with at most "

@@ -434,3 +434,10 @@ def face_surface(preset: str | None, fields: dict, base: FaceSurface | None = No
         return attrs.evolve(base, **fields, source=f"{base.source} Given over it (SI): {given}.".strip())
     except FieldError as exc:
         raise exc.at(prefix=where) from None
+
+
+#: the names a plugin may use (docs/writing-a-model.md, "Public paths")
+__all__ = ["MAX_INERTIA_FACTOR", "Material", "RESTITUTION_LAWS", "RestitutionLaw", "Ball", "FaceSurface",
+           "FACE_SURFACES", "Face", "MATERIAL_PRESETS", "FITTED_RESTITUTION", "BALL_PRESETS", "FACE_PRESETS",
+           "BALL_ALIASES", "PresetAliasNote", "ball_preset", "face_preset", "SURFACE_FIELDS", "SURFACE_REQUIRED",
+           "face_surface"]

@@ -25,6 +25,7 @@ import warnings
 import attrs
 
 from impactlab.errors import FieldError, PlausibilityWarning
+from impactlab.units import MPH
 
 GOLF, CONTACT = "golf", "contact"
 
@@ -65,7 +66,7 @@ class Limit:
     why: str
 
 
-_MPH = 1.0 / 0.44704
+_MPH = 1.0 / MPH
 _DEG = 180.0 / math.pi
 _RPM = 30.0 / math.pi
 

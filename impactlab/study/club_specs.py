@@ -1,15 +1,46 @@
-"""A user's club from a spec sheet in YAML (loft, lie, mass, moments, centre of mass), read at file:line."""
+"""A user's club from a spec sheet in YAML (loft, lie, mass, moments, centre of mass), read at file:line.
+
+The sheet is structured by the project's one converter (:func:`impactlab.study.structuring.document_converter`),
+as a study's blocks and measured-data documents are: its keys are those of
+:data:`impactlab.scene.catalogue.SPEC_KEYS` (an unknown key is refused with the keys a sheet takes); the values,
+with their units, are read by :func:`impactlab.scene.catalogue.club_from_spec`.
+"""
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
+from typing import NewType
+
+import attrs
+from cattrs.errors import BaseValidationError, ForbiddenExtraKeysError
 
 from impactlab.errors import FieldError
+from impactlab.scene.catalogue import SPEC_KEYS, club_from_spec
 from impactlab.scene.plausibility import club_limits
 from impactlab.scene.clubs import ClubHead
-from impactlab.scene.catalogue import club_from_spec
+from impactlab.study.structuring import document_converter, field_error
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
+
+#: a value as the sheet writes it (its unit and shape are club_from_spec's to read)
+Raw = NewType("Raw", object)
+
+#: a club spec sheet: one field per key of SPEC_KEYS
+ClubSpecSheet = attrs.make_class("ClubSpecSheet", {
+    key: attrs.field(default=None, type=Raw | None,  # type: ignore[arg-type]
+                     metadata={"expected": f"the sheet's {key} ({what})"})
+    for key, what in SPEC_KEYS.items()}, frozen=True)
+ClubSpecSheet.__doc__ = "A club spec sheet as written: one field per key of SPEC_KEYS, its value as the sheet gives it."
+ClubSpecSheet._what = "a club spec"  # type: ignore[attr-defined]
+ClubSpecSheet._key_of = "a club spec"  # type: ignore[attr-defined]
+
+
+@functools.cache
+def _converter():
+    converter = document_converter()
+    converter.register_structure_hook(Raw, lambda value, _: value)
+    return converter
 
 
 def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
@@ -17,6 +48,8 @@ def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
     path = Path(path)
     document, lines = load_yaml(read_text_file(path, "club spec"), str(path))
     try:
+        if isinstance(document, dict):
+            _check_keys(document)
         head, names = club_from_spec(document, "club")
         check_golf_ranges(head)
         return head, names
@@ -32,6 +65,14 @@ def read_club_spec(path) -> tuple[ClubHead, tuple[str, ...]]:
             where = "club." + ".".join(keys)
         line = line_of(lines, keys) if keys else None
         raise FieldError(where, exc.expected, given, exc.choices, file=str(path), line=line) from None
+
+
+def _check_keys(document: dict) -> None:
+    """The sheet structured by the converter: FieldError at ``club.KEY`` for a key no sheet takes."""
+    try:
+        _converter().structure(document, ClubSpecSheet)
+    except (BaseValidationError, ForbiddenExtraKeysError) as exc:
+        raise field_error(exc, document, "club", (), ClubSpecSheet, None) from None
 
 
 #: a club head's attribute -> the spec sheet's key that sets it

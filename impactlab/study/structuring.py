@@ -29,7 +29,7 @@ from cattrs.errors import AttributeValidationNote, BaseValidationError, Forbidde
 from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError
-from impactlab.study.schema import (_DIMENSIONS, BLOCKS, SI, Count, Flag, InertiaBlock, InertiaSpec,
+from impactlab.study.schema import (_DIMENSIONS, SI, Count, Flag, InertiaBlock, InertiaSpec,
                                     Name, Restitution, RestitutionBlock, SurfaceBlock, SurfaceSpec, keys_of)
 from impactlab.study.yaml_lines import format_path, parse_path
 from impactlab.units import to_si
@@ -111,6 +111,11 @@ def _optional_hook(type_, converter: Converter):
     return lambda value, _: None if value is None else inner(value, inner_type)
 
 
+def _is_block(type_) -> bool:
+    """A block: a frozen attrs class that says what it is (``_what``) for the messages."""
+    return isinstance(type_, type) and attrs.has(type_) and hasattr(type_, "_what")
+
+
 def _block_hook(cls, converter: Converter):
     generated = make_dict_structure_fn(cls, converter, _cattrs_forbid_extra_keys=True,
                                        _cattrs_detailed_validation=True)
@@ -124,9 +129,35 @@ def _block_hook(cls, converter: Converter):
 
 
 @functools.cache
+def _base_converter() -> Converter:
+    """What every document of impactlab structures the same way: blocks (unknown keys refused, every field checked,
+    a mapping required) and optional values. Each document's converter is a :meth:`~cattrs.Converter.copy` of it
+    with the hooks of its own kinds of value; the factories take the converter they run in (cattrs >= 24.1), so a
+    copy's blocks find the copy's hooks."""
+    converter = Converter()
+    converter.register_structure_hook_factory(_is_block, _block_hook)
+    converter.register_structure_hook_factory(_is_optional, _optional_hook)
+    return converter
+
+
+def document_converter() -> Converter:
+    """A new converter for one kind of document: blocks and optional values structured as in a study.
+
+    Register the hooks of the document's own value types on it (later registrations win over these). Errors it
+    raises are turned into one :class:`~impactlab.errors.FieldError` by :func:`field_error`.
+
+    Returns
+    -------
+    cattrs.Converter
+        A copy of the shared converter (changing it leaves the shared one and every other copy as they are).
+    """
+    return _base_converter().copy()
+
+
+@functools.cache
 def _converter() -> Converter:
     """The converter of study blocks, made once (it generates one structuring function per block)."""
-    converter = Converter()
+    converter = document_converter()
     for type_, dimension in _DIMENSIONS.items():
         converter.register_structure_hook(type_, _quantity_hook(dimension))
     hooks: tuple[tuple[Any, Any], ...] = ((Flag, _flag), (Count, _count),
@@ -134,10 +165,7 @@ def _converter() -> Converter:
                                           (InertiaSpec, _inertia_spec), (SurfaceSpec, _surface_spec))
     for type_, hook in hooks:
         converter.register_structure_hook(type_, hook)
-    converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list,
-                                              lambda t: _list_hook(t, converter))
-    converter.register_structure_hook_factory(lambda t: t in BLOCKS, lambda t: _block_hook(t, converter))
-    converter.register_structure_hook_factory(_is_optional, lambda t: _optional_hook(t, converter))
+    converter.register_structure_hook_factory(lambda t: getattr(t, "__origin__", None) is list, _list_hook)
     return converter
 
 
@@ -187,7 +215,7 @@ def structure(value: Any, cls: Any, path: str) -> Any:
     try:
         return _hook(cls)(value, cls)
     except (BaseValidationError, FieldError, ForbiddenExtraKeysError) as exc:
-        raise _field_error(exc, value, path, (), cls, None) from None
+        raise field_error(exc, value, path, (), cls, None) from None
 
 
 def _step(exc) -> tuple:
@@ -200,13 +228,35 @@ def _step(exc) -> tuple:
     return ()
 
 
-def _field_error(exc, value, where: str, steps: tuple, cls, name: str | None) -> FieldError:
-    """The FieldError of the first failure in a cattrs error tree, at ``where`` + ``steps``."""
+def field_error(exc, value, where: str, steps: tuple, cls, name: str | None) -> FieldError:
+    """The FieldError of the first failure in a cattrs error tree, at ``where`` + ``steps``.
+
+    Parameters
+    ----------
+    exc : Exception
+        What a converter of :func:`document_converter` raised (a cattrs validation error, a FieldError, a
+        ForbiddenExtraKeysError).
+    value : object
+        The document (or block) that was structured.
+    where : str
+        The dotted path of ``value`` in its document (``""``: the document itself).
+    steps : tuple
+        Path steps below ``where`` already walked.
+    cls : type
+        The block class being structured.
+    name : str or None
+        The field being structured, whose ``expected`` metadata words a failure of cattrs itself.
+
+    Returns
+    -------
+    FieldError
+        At the dotted path of the first bad key (unknown keys first).
+    """
     if isinstance(exc, BaseValidationError):
         # unknown keys first, as before cattrs: a misspelt key also leaves its field missing
         first = min(exc.exceptions, key=lambda e: not isinstance(e, ForbiddenExtraKeysError))
         step = _step(first)
-        return _field_error(first, value, where, steps + step, exc.cl,
+        return field_error(first, value, where, steps + step, exc.cl,
                             step[0] if step and isinstance(step[0], str) else name)
     parts = parse_path(where) + steps
     path = format_path(parts)

@@ -18,6 +18,7 @@ from typing import Any
 
 from impactlab.errors import StudyError
 from impactlab.foreign import check_json_nesting
+from impactlab.io.json_stream import json_values
 
 
 #: file suffixes read as JSON shot records by ``validate --dataset`` and ``fit`` (``shots`` reads any file)
@@ -33,20 +34,10 @@ def looks_like_json(text: str) -> bool:
 def _values(text: str, file: str) -> list[tuple[int, Any]]:
     """(start offset, value) of every top-level JSON value of a stream (objects back to back)."""
     check_json_nesting(text, file)  # json recurses once per level: bounded before it does (impactlab.foreign)
-    decoder = json.JSONDecoder()
-    out: list[tuple[int, Any]] = []
-    position = 0
-    while True:
-        while position < len(text) and text[position] in "\ufeff \t\r\n":
-            position += 1
-        if position >= len(text):
-            return out
-        try:
-            value, end = decoder.raw_decode(text, position)
-        except json.JSONDecodeError as exc:
-            raise StudyError(f"{file}:{exc.lineno}: not readable as JSON: {exc.msg} (column {exc.colno})") from None
-        out.append((position, value))
-        position = end
+    try:
+        return [(start, value) for start, value, _ in json_values(text)]
+    except json.JSONDecodeError as exc:
+        raise StudyError(f"{file}:{exc.lineno}: not readable as JSON: {exc.msg} (column {exc.colno})") from None
 
 
 def _object_starts(text: str, start: int) -> list[tuple[int, int, str]]:

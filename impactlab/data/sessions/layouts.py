@@ -13,8 +13,10 @@ import re
 from importlib import resources
 
 import attrs
+from cattrs.gen import make_dict_structure_fn
 
 from impactlab.errors import FieldError, StudyError
+from impactlab.study.structuring import document_converter
 from impactlab.units import DIMENSIONS, ZERO_DEPENDS_ON_UNIT, to_si, unit_affine
 from impactlab.data.sessions.shot_table import DELIVERY_FIELDS, MEASURED_FIELDS
 
@@ -183,17 +185,31 @@ def _norm(text: str) -> str:
     return re.sub(r"\s+", " ", str(text).strip().lower())
 
 
+#: the keys a layout may write: the fields of VendorMap (one list; the converter refuses any other)
+_LAYOUT_KEYS = frozenset(field.name for field in attrs.fields(VendorMap))
+
+
+@functools.cache
+def _layout_converter():
+    """The project's converter (:func:`impactlab.study.structuring.document_converter`) with VendorMap structured
+    from a layout's checked values, unknown keys refused."""
+    converter = document_converter()
+    converter.register_structure_hook(VendorMap, make_dict_structure_fn(VendorMap, converter,
+                                                                        _cattrs_forbid_extra_keys=True))
+    return converter
+
+
 def _vendor_from_document(document: dict, where: str) -> VendorMap:
-    keys = {"id", "name", "source", "recognise", "units", "columns", "implied_units", "loft_at", "club_reference",
-            "club_reference_point", "signs", "missing", "sentinel_at_least", "estimated", "clamped", "floored",
-            "summary_rows", "left_right_suffix",
-            "excluded", "spin_axis_follows_side_spin", "left_right_prefix", "no_data_when_all_zero",
-            "zero_is_no_data", "no_data", "required", "no_data_without", "unit_spellings", "club_words",
-            "units_row_plain", "club_rows", "trailer", "encoding", "merge_repeated_columns", "air_text",
-            "sentinels", "tracked", "unless"}
-    unknown = set(document) - keys
+    unknown = set(document) - _LAYOUT_KEYS
     if unknown:
-        raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(keys)})")
+        raise StudyError(f"{where}: unknown keys {sorted(unknown)} (a vendor map takes {sorted(_LAYOUT_KEYS)})")
+    values = _layout_fields(document, where)
+    values.update(_layout_rules(document, where))
+    return _layout_converter().structure(values, VendorMap)
+
+
+def _layout_fields(document: dict, where: str) -> dict:
+    """A layout's columns and the rules naming fields, checked (StudyError at ``where``) and normalised."""
     columns = {}
     for header, rule in (document.get("columns") or {}).items():
         rule = {"field": rule} if isinstance(rule, str) or rule is None else dict(rule)
@@ -219,6 +235,12 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
     for rule in (*summary, document.get("no_data"), document.get("required"), estimated, document.get("trailer")):
         if rule is not None and not ({"column", "values"} <= set(rule)):
             raise StudyError(f"{where}: {rule!r}: a row rule needs a column and its values")
+    return {"columns": columns, "no_data_when_all_zero": all_zero, "zero_is_no_data": zero,
+            "no_data_without": tuple(without), "summary_rows": summary or None, "estimated": estimated}
+
+
+def _layout_rules(document: dict, where: str) -> dict:
+    """A layout's other keys, checked (StudyError at ``where``) and normalised; limits in SI."""
     if document.get("left_right_suffix") and document.get("left_right_prefix"):
         raise StudyError(f"{where}: left_right_suffix and left_right_prefix: a layout writes L/R one way")
     if document.get("units") not in ("row", "header", "implied"):
@@ -239,29 +261,26 @@ def _vendor_from_document(document: dict, where: str) -> VendorMap:
         if not groups or set(groups) - {"air_temperature", "air_pressure", "relative_humidity", "altitude"}:
             raise StudyError(f"{where}: air_text.pattern: its named groups must be air fields (air_temperature, "
                              f"air_pressure, relative_humidity, altitude), got {sorted(groups)}")
-    sentinels = _sentinels(document.get("sentinels"), where)
-    tracked = _tracked(document.get("tracked"), where)
-    return VendorMap(
-        sentinels=sentinels, tracked=tracked, unless=tuple(_norm(name) for name in document.get("unless") or ()),
-        id=document["id"], name=document["name"], source=document["source"],
-        recognise=tuple(_norm(name) for name in document["recognise"]), units=document["units"], columns=columns,
-        implied_units={_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
-        loft_at=document.get("loft_at", "contact"),
-        club_reference_point=document.get("club_reference_point", "unknown"),
-        club_reference=" ".join(str(document.get("club_reference", "")).split()),
-        signs=" ".join(str(document.get("signs", "")).split()), missing=tuple(document.get("missing", [""])),
-        sentinel_at_least=document.get("sentinel_at_least"), estimated=document.get("estimated"), clamped=clamped,
-        floored=floored,
-        summary_rows=summary or None, left_right_suffix=bool(document.get("left_right_suffix", False)),
-        left_right_prefix=bool(document.get("left_right_prefix", False)), no_data_when_all_zero=all_zero,
-        zero_is_no_data=zero, no_data=document.get("no_data"), required=document.get("required"),
-        excluded=document.get("excluded"), no_data_without=tuple(without),
-        unit_spellings={_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
-        club_words={_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
-        units_row_plain=bool(document.get("units_row_plain", False)), club_rows=bool(document.get("club_rows", False)),
-        trailer=document.get("trailer"), encoding=document.get("encoding", "utf-8"),
-        merge_repeated_columns=bool(document.get("merge_repeated_columns", False)), air_text=air_text,
-        spin_axis_follows_side_spin=bool(document.get("spin_axis_follows_side_spin", False)))
+    flag = {key: bool(document.get(key, False)) for key in (
+        "left_right_suffix", "left_right_prefix", "units_row_plain", "club_rows", "merge_repeated_columns",
+        "spin_axis_follows_side_spin")}
+    return {**flag,
+            "id": document["id"], "name": document["name"], "source": document["source"],
+            "recognise": tuple(_norm(name) for name in document["recognise"]), "units": document["units"],
+            "implied_units": {_norm(k): str(v) for k, v in (document.get("implied_units") or {}).items()},
+            "loft_at": document.get("loft_at", "contact"),
+            "club_reference_point": document.get("club_reference_point", "unknown"),
+            "club_reference": " ".join(str(document.get("club_reference", "")).split()),
+            "signs": " ".join(str(document.get("signs", "")).split()), "missing": tuple(document.get("missing", [""])),
+            "sentinel_at_least": document.get("sentinel_at_least"), "clamped": clamped, "floored": floored,
+            "no_data": document.get("no_data"), "required": document.get("required"),
+            "excluded": document.get("excluded"),
+            "unit_spellings": {_norm(k): str(v) for k, v in (document.get("unit_spellings") or {}).items()},
+            "club_words": {_norm(k): str(v) for k, v in (document.get("club_words") or {}).items()},
+            "trailer": document.get("trailer"), "encoding": document.get("encoding", "utf-8"), "air_text": air_text,
+            "sentinels": _sentinels(document.get("sentinels"), where),
+            "tracked": _tracked(document.get("tracked"), where),
+            "unless": tuple(_norm(name) for name in document.get("unless") or ())}
 
 
 def _without(rules, where: str) -> list:

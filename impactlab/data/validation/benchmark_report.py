@@ -117,15 +117,19 @@ def _save(figure, path: Path, written: list) -> None:
 
 def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = None) -> list[Path]:
     """Write the benchmark figures (PNG) into ``outdir``; returns their paths."""
-    # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
-    from matplotlib.figure import Figure
-
     models = list(models or MODELS)
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
+    for draw in (_tests_1_2, _test_4, _test_5, _test_6):
+        draw(outdir, models, written)
+    return written
 
-    # tests 1 and 2: force against time, beside the published curves
+
+def _tests_1_2(outdir: Path, models: list, written: list) -> None:
+    """Tests 1 and 2: force against time, beside the published curves."""
+    # no pyplot: the caller's backend and figures stay untouched; matplotlib (heavy) is imported only to draw
+    from matplotlib.figure import Figure
 
     fig = Figure(figsize=(12, 4.5), layout="tight")
     axes = fig.subplots(1, 2)
@@ -151,7 +155,12 @@ def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = 
     fig.suptitle("Chung & Ooi tests 1-2: elastic normal impact (the rigid models have no force history)")
     _save(fig, outdir / "benchmark_tests12_force.png", written)
 
-    # test 4: Kharaz
+
+
+def _test_4(outdir: Path, models: list, written: list) -> None:
+    """Test 4: Kharaz, Gorham & Salman's measurements."""
+    from matplotlib.figure import Figure
+
     angles = np.linspace(1.0, 88.0, 88)
     fig = Figure(figsize=(16, 4.8), layout="tight")
     axes = fig.subplots(1, 3)
@@ -169,7 +178,12 @@ def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = 
                  "mu 0.092, e 0.98, rigid plane")
     _save(fig, outdir / "benchmark_test4_kharaz.png", written)
 
-    # test 5: FEM curve
+
+
+def _test_5(outdir: Path, models: list, written: list) -> None:
+    """Test 5: the finite-element curve."""
+    from matplotlib.figure import Figure
+
     incidence = np.linspace(0.02, 19.0, 160)
     fig = Figure(figsize=(12, 4.8), layout="tight")
     axes = fig.subplots(1, 2)
@@ -184,7 +198,12 @@ def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = 
                  "(reference curves are model outputs: FEM and a DEM code)")
     _save(fig, outdir / "benchmark_test5_fem.png", written)
 
-    # test 6: spin only
+
+
+def _test_6(outdir: Path, models: list, written: list) -> None:
+    """Test 6: spin only."""
+    from matplotlib.figure import Figure
+
     fig = Figure(figsize=(12, 4.8), layout="tight")
     axes = fig.subplots(1, 2)
     special = np.geomspace(0.15, 25.0, 120)
@@ -204,4 +223,3 @@ def plot_figures(outdir: str | os.PathLike[str], models: Iterable[str] | None = 
     fig.suptitle("Chung & Ooi test 6: spinning Al-alloy sphere, R 0.1 m, v_n 0.2 m/s, mu 0.4, e 0.5, rigid plane "
                  "(reference: a DEM code's output)")
     _save(fig, outdir / "benchmark_test6_spin.png", written)
-    return written
