@@ -61,7 +61,6 @@ KERNELS = PACKAGE / "physics" / "kernels"
 LONG_FUNCTIONS_ALLOWED = {
     ("impactlab.physics.flight", "fly"),
     ("impactlab.scene.flight", "fly"),
-    ("impactlab.data.sessions.reader", "read_session_text"),
 }
 
 
