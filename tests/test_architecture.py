@@ -56,8 +56,7 @@ MAX_LINES = 800
 MAX_FUNCTION_LINES = 80
 KERNELS = PACKAGE / "physics" / "kernels"
 #: functions over the cap whose split belongs to another piece of work of issue 31; each leaves this list when its
-#: split merges (physics/flight.py fly and scene/flight.py fly: the flight kernel; the session reader: its split
-#: into header, units, rows, flags and air)
+#: split merges (physics/flight.py fly and scene/flight.py fly: the flight kernel)
 LONG_FUNCTIONS_ALLOWED = {
     ("impactlab.physics.flight", "fly"),
     ("impactlab.scene.flight", "fly"),

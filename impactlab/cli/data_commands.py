@@ -47,14 +47,8 @@ def _print_benchmarks(keys) -> list[str]:
     return over_budget(errors)
 
 
-def _cmd_validate(args) -> int:
-    # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
-    from impactlab.data.shot_report import (
-        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, measured_carry,
-        print_observations, print_scorecard, print_shot_errors, shot_table,
-    )
-
-    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+def _refuse_validate_outputs(args) -> None:
+    """Refuse an unknown --model and an output file that would replace an input, before anything runs."""
     known = sorted(available())
     for model in args.model or ():  # said before anything runs (the datasets' tables would ignore it)
         if model not in known:
@@ -69,6 +63,73 @@ def _cmd_validate(args) -> int:
     if args.report:
         check_output(args.report, what="--report file", suffix=".html", reads=[*read, *(args.fit or ())],
                      formats=(".html", ".htm"))
+
+
+def _print_dataset(name: str) -> list[str]:
+    """Print a cited dataset beside every model of its study; return the ``dataset/model`` pairs over budget."""
+    over: list[str] = []
+    data = get_dataset(name)
+    units = OUTPUTS[data.quantity].units
+    print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
+    print(f"  measured  {'  '.join(f'{v:8.3f}' for v in data.values)}"
+          + (f"   (+- {', '.join(f'{s:g}' for s in data.sigma)})" if data.sigma else ""))
+    print(f"  source: {data.source}")
+    print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
+    for model, error in dataset_errors(data).items():
+        budget = data.budgets.get(model)
+        # two different statements: the data's own uncertainty says whether the model agrees with the
+        # measurement; the budget only says the model has not got worse since it was set
+        if data.sigma is not None:
+            agreement = ("within the data's sigma" if error["rms"] <= float(np.sqrt(np.mean(np.square(
+                data.sigma)))) else "outside the data's sigma")
+        else:
+            agreement = "no uncertainty stated"
+        if error["unused"]:
+            over.append(f"{name}/{model}")
+            verdict = f"COULD NOT PREDICT {', '.join(error['unused'])} (not used in rms and max); {agreement}"
+        elif budget is not None and error["rms"] > budget:
+            over.append(f"{name}/{model}")
+            verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
+        else:
+            verdict = f"{agreement} (regression budget kept)" if budget is not None else agreement
+        predicted = " ".join(f"{v:8.3f}" for v in error["predicted"])
+        print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
+              f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")
+    print()
+    return over
+
+
+def _refuse_unused_validate_options(args, drawn: bool, scored: bool) -> None:
+    """Refuse the options for sessions or shot tables when the run validated none (said after the run)."""
+    for option, given in (("--fit", args.fit), ("--report", args.report), ("--holdout", args.holdout is not None)):
+        if given and not scored:
+            raise StudyError(f"{option}: for sessions (a shot table file with --dataset FILE), and no session was "
+                             "scored; give --dataset FILE.csv")
+    if args.model and not drawn and not scored:
+        raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
+                         "validated (a dataset's table shows every model of its study); leave --model out")
+
+
+def _write_validate_csv(path, rows: list[dict]) -> None:
+    """Write the per-shot rows of --csv (measured beside predicted), or refuse when no shot table gave any."""
+    from impactlab.data.shot_report import write_prediction_rows
+
+    if not rows:
+        raise StudyError("--csv: no shot table was validated (the per-shot table holds shot tables' rows: "
+                         "give --dataset FILE.csv, a shot-table .yaml or trackman_tour)")
+    write_prediction_rows(rows, path)
+    print(f"wrote {path} ({len(rows)} shot-model row(s), measured beside predicted)", file=sys.stderr)
+
+
+def _cmd_validate(args) -> int:
+    # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
+    from impactlab.data.shot_report import (
+        HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, measured_carry,
+        print_observations, print_scorecard, print_shot_errors, shot_table,
+    )
+
+    names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
+    _refuse_validate_outputs(args)
     fits = []
     if args.fit:  # a bad fit file is refused before the models run
         for path in args.fit:
@@ -110,43 +171,10 @@ def _cmd_validate(args) -> int:
                 over += print_shot_errors(table, args.model or SHOT_MODELS, args.plot, rows)
                 drawn = True
                 continue
-        data = get_dataset(name)
-        units = OUTPUTS[data.quantity].units
-        print(f"{data.name}: {data.quantity} [{units}] at {', '.join(data.labels)}")
-        print(f"  measured  {'  '.join(f'{v:8.3f}' for v in data.values)}"
-              + (f"   (+- {', '.join(f'{s:g}' for s in data.sigma)})" if data.sigma else ""))
-        print(f"  source: {data.source}")
-        print(f"  {'model':<16}{'predicted':>{9 * len(data.labels) + 1}}{'rms':>9}{'max':>9}{'budget':>9}")
-        for model, error in dataset_errors(data).items():
-            budget = data.budgets.get(model)
-            # two different statements: the data's own uncertainty says whether the model agrees with the
-            # measurement; the budget only says the model has not got worse since it was set
-            if data.sigma is not None:
-                agreement = ("within the data's sigma" if error["rms"] <= float(np.sqrt(np.mean(np.square(
-                    data.sigma)))) else "outside the data's sigma")
-            else:
-                agreement = "no uncertainty stated"
-            if error["unused"]:
-                over.append(f"{name}/{model}")
-                verdict = f"COULD NOT PREDICT {', '.join(error['unused'])} (not used in rms and max); {agreement}"
-            elif budget is not None and error["rms"] > budget:
-                over.append(f"{name}/{model}")
-                verdict = f"OVER ITS REGRESSION BUDGET; {agreement}"
-            else:
-                verdict = f"{agreement} (regression budget kept)" if budget is not None else agreement
-            predicted = " ".join(f"{v:8.3f}" for v in error["predicted"])
-            print(f"  {model:<16} {predicted}{error['rms']:9.4f}{error['max']:9.4f}"
-                  f"{budget if budget is not None else float('nan'):9.3f}  {verdict}")
-        print()
+        over += _print_dataset(name)
     if args.benchmark or not args.dataset:
         over += _print_benchmarks(args.benchmark)
-    for option, given in (("--fit", args.fit), ("--report", args.report), ("--holdout", args.holdout is not None)):
-        if given and not scored:
-            raise StudyError(f"{option}: for sessions (a shot table file with --dataset FILE), and no session was "
-                             "scored; give --dataset FILE.csv")
-    if args.model and not drawn and not scored:
-        raise StudyError(f"--model {' '.join(args.model)}: chooses the models compared on shot tables, and none was "
-                         "validated (a dataset's table shows every model of its study); leave --model out")
+    _refuse_unused_validate_options(args, drawn, scored)
     unused = [path for path in args.club or () if path not in matched]
     if unused:  # said after the run: the tables are read one by one (a sheet may name the clubs of any of them)
         with user_clubs(specs) as clubs:
@@ -157,13 +185,7 @@ def _cmd_validate(args) -> int:
         raise StudyError("--plot: no shot table was validated (the figure draws shot tables' rows: give --dataset "
                          "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
     if args.csv:
-        from impactlab.data.shot_report import write_prediction_rows
-
-        if not rows:
-            raise StudyError("--csv: no shot table was validated (the per-shot table holds shot tables' rows: "
-                             "give --dataset FILE.csv, a shot-table .yaml or trackman_tour)")
-        write_prediction_rows(rows, args.csv)
-        print(f"wrote {args.csv} ({len(rows)} shot-model row(s), measured beside predicted)", file=sys.stderr)
+        _write_validate_csv(args.csv, rows)
     if over:
         print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
         return 1

@@ -59,9 +59,36 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     """
     # imported where a figure is drawn (heavy: a run that draws nothing never loads it); a bare Figure, no
     # pyplot: drawing never changes the caller's backend or open figures
-    from matplotlib import rcParams
     from matplotlib.figure import Figure
 
+    scene = _flyable_scene(dataset)
+    if MODEL_DIM not in dataset.dims:
+        dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
+    air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
+    aerodynamics, changed = _air_model(dataset)
+    mass = float(scene.get("ball_mass", BALL_MASS))
+    radius = float(scene.get("ball_radius", BALL_RADIUS))
+    stacked, computed = _launch_cases(dataset)
+    n_cases = stacked.sizes["case"]
+    shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
+    figure = Figure(figsize=(10.5, 7.5))
+    side, top = figure.subplots(2, 1, sharex=True)
+    drawn = _draw_paths(side, top, stacked, shown, dict(ball_mass=mass, ball_radius=radius, model=aerodynamics,
+                                                        return_trajectories=True, **air))
+    if not drawn:
+        raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
+    _label_axes(side, top)
+    figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
+                  title_fontsize=7)
+    default = _default_title(dataset, air, aerodynamics, changed, len(shown), n_cases, computed)
+    figure.suptitle(title or default, fontsize=9)
+    longest = max(len(text) for text in side.get_legend_handles_labels()[1])
+    figure.tight_layout(rect=(0.0, 0.0, 0.80 if longest <= 28 else 0.72, 1.0))  # room for the legend's words
+    return _save(figure, path)
+
+
+def _flyable_scene(dataset: xr.Dataset) -> dict:
+    """The result's base scene (SI), after refusing a result without the launch or whose air is swept."""
     absent = [name for name in TRAJECTORY_LAUNCH if name not in dataset.data_vars]
     if absent:
         raise FieldError("--trajectories", "a golf result holding the launch (add these to the study's outputs: "
@@ -72,9 +99,11 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     if swept_air:
         raise FieldError("--trajectories", "a result whose air is not swept (the paths are flown in one air); "
                          "select one value first", ", ".join(swept_air))
-    if MODEL_DIM not in dataset.dims:
-        dataset = dataset.expand_dims({MODEL_DIM: [str(dataset.attrs.get("model", "model"))]})
-    air = air_arrays({name: float(scene[name]) for name in FLIGHT_INPUTS if name in scene})
+    return scene
+
+
+def _air_model(dataset: xr.Dataset) -> tuple[str, str]:
+    """The aerodynamic model the paths are flown with, and the title's words when its constants changed since."""
     # the air model the result's flight outputs were computed with (they record it); flight outputs that record
     # none come from a file written before they did, when every flight was Smits & Smith's; a result holding only
     # the launch is flown with today's default. The title says which.
@@ -93,15 +122,18 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
     today = model_fingerprint(aerodynamics)
     changed = (f" (today's constants, {today}; the stored carries were computed with {', '.join(sorted(stored))})"
                if stored - {today} else "")
-    mass = float(scene.get("ball_mass", BALL_MASS))
-    radius = float(scene.get("ball_radius", BALL_RADIUS))
+    return aerodynamics, changed
+
+
+def _launch_cases(dataset: xr.Dataset) -> tuple[xr.Dataset, np.ndarray]:
+    """The launch in the vocabulary's units, stacked along ``case`` (and model), and which model-cases have every
+    launch value computed; refuses a result where none has."""
     case_dims = [dim for dim in dataset["ball_speed"].dims if dim != MODEL_DIM]
     # each launch value in the units its attribute states (a result edited with xarray), turned to the vocabulary's
     launch = dataset[list(TRAJECTORY_LAUNCH)]
     launch = launch.assign({name: launch[name] * output_unit_factor(name, launch[name].attrs.get("units"))
                             for name in TRAJECTORY_LAUNCH})
     stacked = launch.stack(case=case_dims) if case_dims else launch.expand_dims(case=[0])
-    n_cases = stacked.sizes["case"]
     # a case is drawn when every launch value is computed: a NaN spin axis flew a NaN path, and a figure of
     # empty panels was written without a word
     computed = np.logical_and.reduce([np.isfinite(np.asarray(stacked[name].values, dtype=float))
@@ -112,9 +144,14 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         raise FieldError("--trajectories", "a result with at least one case whose launch is computed (the figure "
                          "would be empty)", f"{', '.join(nowhere) or 'a NaN launch value'} NaN in every case"
                          if nowhere else "every case lacking one launch value (NaN)")
-    shown = np.unique(np.linspace(0, n_cases - 1, min(n_cases, MAX_TRAJECTORIES)).round().astype(int))
-    figure = Figure(figsize=(10.5, 7.5))
-    side, top = figure.subplots(2, 1, sharex=True)
+    return stacked, computed
+
+
+def _draw_paths(side, top, stacked: xr.Dataset, shown: np.ndarray, flight: dict) -> list:
+    """Fly and draw the shown cases of every model in both views; return (x, height, offline, label) of each path
+    drawn. ``flight``: the keywords of :func:`impactlab.physics.flight.fly` (ball, air model, air)."""
+    from matplotlib import rcParams
+
     colours = rcParams["axes.prop_cycle"].by_key()["color"]
     drawn: list = []  # (x, height, offline, label) of each path drawn
     for m, model in enumerate(stacked[MODEL_DIM].values):
@@ -125,9 +162,8 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         if not finite.any():
             continue
         result = fly(row["ball_speed"].values[finite], np.radians(row["vertical_launch_angle"].values[finite]),
-                            spin[finite], np.radians(row["spin_axis"].values[finite]),
-                            np.radians(row["horizontal_launch_angle"].values[finite]), ball_mass=mass,
-                            ball_radius=radius, model=aerodynamics, return_trajectories=True, **air)
+                     spin[finite], np.radians(row["spin_axis"].values[finite]),
+                     np.radians(row["horizontal_launch_angle"].values[finite]), **flight)
         labels = [_case_label(row, int(index)) for index in np.nonzero(finite)[0]]
         for k in range(result["x"].shape[0]):
             style = _STYLES[k % len(_STYLES)]
@@ -143,8 +179,11 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
                          markevery=[-1], markersize=5, markerfacecolor="none")
             side.plot(result["x"][k], result["z"][k], label=legend, **marks)
             top.plot(result["x"][k], result["y"][k], label=legend, **marks)
-    if not drawn:
-        raise FieldError("--trajectories", "a result with at least one computed launch", "only NaN launches")
+    return drawn
+
+
+def _label_axes(side, top) -> None:
+    """The side and top views' labels, titles, grids and yard axes."""
     side.set_ylabel("height [m]")
     side.set_ylim(bottom=0.0)
     side.set_title("side view (heights not to scale with distances)")
@@ -159,24 +198,25 @@ def plot_trajectories(dataset: xr.Dataset, path: str | os.PathLike, title: str =
         axis.grid(True, alpha=0.3)
         yards = axis.secondary_xaxis("top", functions=(lambda v: v / YARD, lambda v: v * YARD))
         yards.set_xlabel("[yd]", fontsize=8)
-    figure.legend(*side.get_legend_handles_labels(), fontsize=7, loc="center right", title="model, case",
-                  title_fontsize=7)
+
+
+def _default_title(dataset: xr.Dataset, air: dict, aerodynamics: str, changed: str, n_shown: int, n_cases: int,
+                   computed: np.ndarray) -> str:
+    """The figure's title when the caller gives none: the study, the delivery and contact, the air and its model,
+    and how many cases are drawn."""
     air_words = (f"air {air['temperature'] - 273.15:.0f} degC, {float(air['pressure']) / 100:.0f} hPa, "
                  f"{100 * float(air['relative_humidity']):.0f} % RH")
     wind = np.asarray(air["wind"], dtype=float).reshape(-1)
     if np.any(wind):
         air_words += f", headwind {-wind[0]:g} m/s, crosswind {wind[1]:g} m/s"
-    count = "" if len(shown) == n_cases else f"; {len(shown)} of {n_cases} cases per model"
+    count = "" if n_shown == n_cases else f"; {n_shown} of {n_cases} cases per model"
     if not computed.all():
         count += f"; {int((~computed).sum())} model-case(s) without a computed launch (NaN) not drawn"
     scene = conditions(dataset)  # the delivery and contact the launches come from (what no coordinate carries)
     # conditions() names the air model when the result records one; a launch-only result is flown with the default
     air_model = "" if "aerodynamics" in scene and not changed else f"{aerodynamics} aerodynamics{changed}, "
-    figure.suptitle(title or f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
-                    + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}", fontsize=9)
-    longest = max(len(text) for text in side.get_legend_handles_labels()[1])
-    figure.tight_layout(rect=(0.0, 0.0, 0.80 if longest <= 28 else 0.72, 1.0))  # room for the legend's words
-    return _save(figure, path)
+    return (f"Ball flight after each model's launch ({dataset.attrs.get('study_name', '')})\n"
+            + (f"{scene}\n" if scene else "") + f"{air_model}{air_words}{count}")
 
 
 #: coordinate names a swept air field takes in a result (its last path component)

@@ -171,6 +171,69 @@ def _floor(table: ShotTable, outputs: Sequence[str]) -> tuple[np.ndarray, list[s
     return np.array(values), sources
 
 
+def _predict_held_out(train: ShotTable, test: ShotTable, models: Sequence[str], fit: Sequence | None,
+                      baselines: bool) -> tuple[list[str], list[str], dict[str, dict], list[str], str]:
+    """The held-out rows' launches by every model, every applied fit and the baselines fitted on ``train``: the
+    names, their kinds, the predicted arrays per name, the notes (a baseline that could not be fitted) and the
+    regression's coefficients in words."""
+    names: list[str] = []
+    kinds: list[str] = []
+    predicted: dict[str, dict] = {}
+    notes: list[str] = []
+    inputs = table_inputs(test)
+    for name in models or sorted(available()):
+        predicted[name] = predict(get_model(name)(), inputs)
+        names.append(name)
+        kinds.append("model")
+    for fitted in fit or ():
+        label = fitted.label
+        predicted[label] = fitted.predict(test, inputs)
+        names.append(label)
+        kinds.append("fit")
+    coefficients = ""
+    if baselines:
+        regression = baseline_models.PhysicsRegression.fitted(train)
+        predicted[baseline_models.REGRESSION] = regression.predict(test)
+        names.append(baseline_models.REGRESSION)
+        kinds.append("baseline")
+        coefficients = regression.describe()
+        flexible = baseline_models.flexible_baseline(train)
+        if isinstance(flexible, str):
+            notes.append(flexible)
+        else:
+            predicted[baseline_models.FLEXIBLE] = flexible.predict(test)
+            names.append(baseline_models.FLEXIBLE)
+            kinds.append("baseline")
+    return names, kinds, predicted, notes, coefficients
+
+
+def _error_tables(test: ShotTable, names: Sequence[str], outputs: Sequence[str], predicted: Mapping[str, dict],
+                  bands: np.ndarray, zones: np.ndarray, measured_carry: np.ndarray | None,
+                  tracked: np.ndarray | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The error statistics of each name and output on the held-out rows: overall (name, output, statistic), per
+    club-speed band and per strike zone (a fourth axis each)."""
+    shape = (len(names), len(outputs), len(STATISTICS))
+    overall = np.full(shape, np.nan)
+    by_speed = np.full((*shape, len(SPEED_BANDS)), np.nan)
+    by_strike = np.full((*shape, len(STRIKE_ZONES)), np.nan)
+    for i, name in enumerate(names):
+        errors = shot_errors(predicted[name], test)
+        if measured_carry is not None and tracked is not None:
+            errors[CARRY] = carry_errors(test, predicted[name], measured_carry, tracked)
+            if name == FLOWN:  # the monitor's launch against itself: no launch error, only the flight's
+                errors.update({key: np.full(test.size, np.nan) for key in ERROR_KEYS})
+        for j, key in enumerate(outputs):
+            values = np.asarray(errors[key], dtype=float)
+            if key in ("launch direction [deg]", "spin axis [deg]"):  # angles: the short way round
+                values = (values + 180.0) % 360.0 - 180.0
+            overall[i, j] = error_statistics(values)
+            for b in range(len(SPEED_BANDS)):
+                by_speed[i, j, :, b] = error_statistics(values[bands == b])
+            for z in range(len(STRIKE_ZONES)):
+                by_strike[i, j, :, z] = error_statistics(values[zones == z])
+    return overall, by_speed, by_strike
+
+
 def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None = None,
               holdout: float | Split = HOLDOUT, groups: Sequence | None = None,
               baselines: bool = True, predictions: dict | None = None, carry: Mapping | None = None) -> xr.Dataset:
@@ -207,34 +270,7 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
     """
     split = holdout if isinstance(holdout, Split) else holdout_split(table, holdout, groups)
     train, test = table.subset(split.train), table.subset(split.test)
-    names: list[str] = []
-    kinds: list[str] = []
-    predicted: dict[str, dict] = {}
-    notes: list[str] = []
-    inputs = table_inputs(test)
-    for name in models or sorted(available()):
-        predicted[name] = predict(get_model(name)(), inputs)
-        names.append(name)
-        kinds.append("model")
-    for fitted in fit or ():
-        label = fitted.label
-        predicted[label] = fitted.predict(test, inputs)
-        names.append(label)
-        kinds.append("fit")
-    coefficients = ""
-    if baselines:
-        regression = baseline_models.PhysicsRegression.fitted(train)
-        predicted[baseline_models.REGRESSION] = regression.predict(test)
-        names.append(baseline_models.REGRESSION)
-        kinds.append("baseline")
-        coefficients = regression.describe()
-        flexible = baseline_models.flexible_baseline(train)
-        if isinstance(flexible, str):
-            notes.append(flexible)
-        else:
-            predicted[baseline_models.FLEXIBLE] = flexible.predict(test)
-            names.append(baseline_models.FLEXIBLE)
-            kinds.append("baseline")
+    names, kinds, predicted, notes, coefficients = _predict_held_out(train, test, models, fit, baselines)
     outputs = list(ERROR_KEYS)
     measured_carry = tracked = None
     if carry is not None:
@@ -251,25 +287,8 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
     if test.strike_known is not None:  # a strike the file did not give is the face centre in the table: unknown
         zones[~test.strike_known] = -1
     band_labels = speed_band_labels()
-    shape = (len(names), len(outputs), len(STATISTICS))
-    overall = np.full(shape, np.nan)
-    by_speed = np.full((*shape, len(SPEED_BANDS)), np.nan)
-    by_strike = np.full((*shape, len(STRIKE_ZONES)), np.nan)
-    for i, name in enumerate(names):
-        errors = shot_errors(predicted[name], test)
-        if measured_carry is not None and tracked is not None:
-            errors[CARRY] = carry_errors(test, predicted[name], measured_carry, tracked)
-            if name == FLOWN:  # the monitor's launch against itself: no launch error, only the flight's
-                errors.update({key: np.full(test.size, np.nan) for key in ERROR_KEYS})
-        for j, key in enumerate(outputs):
-            values = np.asarray(errors[key], dtype=float)
-            if key in ("launch direction [deg]", "spin axis [deg]"):  # angles: the short way round
-                values = (values + 180.0) % 360.0 - 180.0
-            overall[i, j] = error_statistics(values)
-            for b in range(len(SPEED_BANDS)):
-                by_speed[i, j, :, b] = error_statistics(values[bands == b])
-            for z in range(len(STRIKE_ZONES)):
-                by_strike[i, j, :, z] = error_statistics(values[zones == z])
+    overall, by_speed, by_strike = _error_tables(test, names, outputs, predicted, bands, zones, measured_carry,
+                                                 tracked)
     floor, sources = _floor(test, outputs)
     statistic_attrs = {"meaning": "; ".join(f"{k}: {v}" for k, v in STATISTIC_MEANING.items())}
     return xr.Dataset(
