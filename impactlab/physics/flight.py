@@ -52,8 +52,8 @@ from impactlab.physics.atmosphere import G0, air_density, air_viscosity, pressur
 __all__ = ["fly", "TOLERANCE", "SAMPLE_INTERVAL"]
 
 #: the compiled integrator's local error tolerance (relative, with an absolute floor of 1 m, 1 m/s, 1 rad/s): the
-#: step it chooses keeps the carry within 1 mm of a converged integration on every launch of golf (measured
-#: 0.02 mm at most over the envelope of docs/flight.md, tests/test_flight.py)
+#: steps it chooses keep the carry within 1 mm of a converged integration (docs/flight.md; measured at most 0.2 um
+#: on the smooth models and 0.2 mm on lyu_2018, whose drag jumps at Re 7.5e4: tests/test_flight_kernel.py)
 TOLERANCE = 1.0e-8
 #: the interval of the sampled paths (``return_trajectories``) and the numpy integrator's fixed step, s
 SAMPLE_INTERVAL = 0.02

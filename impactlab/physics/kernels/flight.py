@@ -248,8 +248,8 @@ def _flight_cases(state0, air, model, c, gravity, rtol, max_step, t_max, every, 
 
     results[i] = landing x, y, z, vx, vy, vz, omega, time, apex height (NaN where the shot is still in the air at
     t_max, or where the steps fall below 1 ns or number more than ``_MAX_STEPS``: a ball stopped in the air, whose
-    lift turns at once). With ``every`` > 0 the paths (x, y, z, vx, vy, vz) are sampled every ``every`` s into ``paths`` (shots,
-    6, samples), each from its landing on at its landing state.
+    lift turns at once). With ``every`` > 0 the paths (x, y, z, vx, vy, vz) are sampled every ``every`` s into
+    ``paths`` (shots, 6, samples), each from its landing on at its landing state.
     """
     stages = np.empty((7, 7))
     y = np.empty(7)
