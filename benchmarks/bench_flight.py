@@ -1,11 +1,12 @@
 """Benchmark: :func:`impactlab.fly` with the compiled flight kernel against the previous implementation (the numpy
 RK4 integrator at a fixed 0.02 s step), measured in one run.
 
-Run:  python benchmarks/bench_flight.py [--baseline REV] [--shots 100000]
+Run:  python benchmarks/bench_flight.py [--baseline REV] [--revision HEAD] [--shots 100000]
 
-The previous implementation is the tree of ``REV`` (default: the commit before the kernel was added), exported with
-``git archive`` to a temporary folder; each tree is measured in its own fresh processes (``--worker``), the new one
-with a cold numba cache (a new ``NUMBA_CACHE_DIR``) and then again with that cache warm. Printed:
+The previous implementation is the tree of ``--baseline`` (default: the commit before the kernel was added), the
+kernel's that of ``--revision`` (default HEAD: commit first), both exported with ``git archive`` to one temporary
+folder; each tree is measured in its own fresh processes (``--worker``), the kernel's with a cold numba cache (a new
+``NUMBA_CACHE_DIR``) and then again with that cache warm. Printed:
 
 - ``impactlab.fly`` for one shot (SI numbers; and the docs' strings with units): CPU time per call after the first,
   and the first call's (numba's import and compilation, or the cache's load) in a cold and in a warm process;
@@ -121,6 +122,8 @@ def _baseline_revision() -> str:
 
 
 def _export(revision: str, folder: Path) -> Path:
+    """The tree of ``revision`` in ``folder`` (both trees measured from one file system, neither with a cache)."""
+    folder.mkdir()
     archive = folder / "tree.tar"
     subprocess.run(["git", "archive", "--format=tar", "-o", str(archive), revision], cwd=ROOT, check=True)
     with tarfile.open(archive) as tar:
@@ -131,6 +134,7 @@ def _export(revision: str, folder: Path) -> Path:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--baseline", default=None, help="git revision of the previous implementation")
+    parser.add_argument("--revision", default="HEAD", help="git revision of the kernel's tree (default HEAD)")
     parser.add_argument("--shots", type=int, default=100_000)
     parser.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
@@ -139,15 +143,17 @@ def main() -> None:
         return
     revision = arguments.baseline or _baseline_revision()
     with tempfile.TemporaryDirectory() as folder:
-        old_tree = _export(revision, Path(folder))
+        old_tree = _export(revision, Path(folder) / "previous")
+        new_tree = _export(arguments.revision, Path(folder) / "kernel")
         cache = str(Path(folder) / "numba_cache")
         old = _run(old_tree, arguments.shots, cache)
-        cold = _run(ROOT, arguments.shots, cache)  # compiles into the empty cache
-        warm = _run(ROOT, arguments.shots, cache)  # a new process loading it
-        trees = {"previous": old_tree, "kernel": ROOT}
+        cold = _run(new_tree, arguments.shots, cache)  # compiles into the empty cache
+        warm = _run(new_tree, arguments.shots, cache)  # a new process loading it
+        trees = {"previous": old_tree, "kernel": new_tree}
         imports = _start_up(trees, ["-c", "import impactlab"], cache)
         helps = _start_up(trees, ["-m", "impactlab", "--help"], cache)
-    print(f"previous implementation: {revision} (numpy RK4, 0.02 s); {arguments.shots} shots; CPU times\n")
+    print(f"previous implementation: {revision} (numpy RK4, 0.02 s); kernel: {arguments.revision}; "
+          f"{arguments.shots} shots; CPU times\n")
     print("| measure | previous | kernel (cold cache) | kernel (warm cache) | goal |")
     print("|---|---:|---:|---:|---|")
     print(f"| first call of impactlab.fly, wall / CPU | {old['first_call_wall_s']:.3f} / "
