@@ -239,7 +239,9 @@ def fly(
         ``model``, or numba off) takes fixed RK4 steps of ``dt`` (0.02 s
         without one).
     t_max : float, optional
-        Flights still airborne at ``t_max`` are reported as NaN.
+        Flights still airborne at ``t_max`` are reported as NaN, as are those
+        whose path the compiled integrator's steps cannot follow (a ball that
+        stops in the air, where the lift turns at once).
     return_trajectories : bool, optional
         Also return the sampled trajectories (public frame).
     tolerance : float, optional
