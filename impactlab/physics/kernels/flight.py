@@ -83,7 +83,7 @@ def _derivative(y, out, air, model, c, gravity):
     """d/dt of the state y = (x, y, z, vx, vy, vz, omega) (internal frame, y LEFT) into ``out``.
 
     ``air`` holds the shot's wind (3), spin axis (3), rho 2R / mu, R, rho A / (2 m) and the spin decay
-    lam rho / 1.225: the arithmetic of :func:`impactlab.physics.flight._derivs`, one shot at a time.
+    lam rho / 1.225: the arithmetic of :func:`impactlab.physics.flight_numpy._derivs`, one shot at a time.
     """
     rx = y[3] - air[0]
     ry = y[4] - air[1]
