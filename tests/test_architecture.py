@@ -324,6 +324,8 @@ def test_import_impactlab_leaves_the_heavy_parts_for_later():
 DEFERRED_ALLOWED = {
     "impactlab": {"impactlab.study.core", "impactlab.run.runner", "impactlab.io.results", "impactlab.model.registry"},
     "impactlab.cli.data_commands": {"impactlab.data.fit.fitting", "impactlab.data.shot_report"},
+    # the compiled flight kernel: numba is imported (0.4 s) on a process's first flight, not with impactlab
+    "impactlab.physics.flight": {"impactlab.physics", "impactlab.physics.kernels"},
 }
 
 

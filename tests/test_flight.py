@@ -332,18 +332,25 @@ def test_broadcasting_and_scalar_consistency():
     np.testing.assert_allclose(tr["x"][:, -1], r["carry_x"].ravel(), rtol=1e-12)
 
 
-@pytest.mark.slow
-def test_ten_thousand_shots_fast():
+def test_ten_thousand_shots_cost_linear_cpu_time():
+    """10 000 random shots all land; their CPU time is about 10x that of 1000 (linear; per-shot Python loops or a
+    quadratic working set would be ~100x). A ratio measured in one run, never a clock against a constant: the
+    per-shot cost is printed by benchmarks/bench_flight.py."""
     rng = np.random.default_rng(1)
-    n = 10_000
-    t0 = time.perf_counter()
-    r = flight.fly(rng.uniform(40, 80, n), np.radians(rng.uniform(8, 30, n)),
-                   rng.uniform(2000, 10000, n) * RPM, np.radians(rng.uniform(-20, 20, n)))
-    elapsed = time.perf_counter() - t0
+
+    def shots(n):
+        return (rng.uniform(40, 80, n), np.radians(rng.uniform(8, 30, n)), rng.uniform(2000, 10000, n) * RPM,
+                np.radians(rng.uniform(-20, 20, n)))
+
+    small, large = shots(1_000), shots(10_000)
+    flight.fly(*shots(3))  # compile the kernel (or load it from numba's cache) outside the measurement
+    start = time.process_time()
+    flight.fly(*small)
+    middle = time.process_time()
+    r = flight.fly(*large)
+    end = time.process_time()
     assert np.all(np.isfinite(r["carry_distance"]))
-    # ~1.3 s on an idle 2-core machine (dt = 0.02 s); the bound only catches
-    # a regression to per-shot Python loops (which take > 60 s).
-    assert elapsed < 10.0, elapsed
+    assert (end - middle) / max(middle - start, 1e-3) < 30.0
 
 
 def test_rejects_bad_input():

@@ -106,6 +106,12 @@ def spin_ratio(spin, speed, radius=BALL_RADIUS):
     return np.asarray(radius) * np.asarray(spin) / np.asarray(speed)
 
 
+def _select(condition, if_true, if_false):
+    """``np.where`` for the coefficient formulas: the compiled flight kernel (:mod:`impactlab.physics.kernels.flight`)
+    gives this name a scalar branch, so each formula below is written once and flies both in numpy and compiled."""
+    return np.where(condition, if_true, if_false)
+
+
 # --------------------------------------------------------------------------
 # Published aerodynamic models
 # --------------------------------------------------------------------------
@@ -127,7 +133,7 @@ def _cd_cl_lyu(s, re):
     # ranges; the two curves cross near there).
     cd_low = 1.29e-10 * re**2 - 2.59e-5 * re + 1.50
     cd_high = 1.91e-11 * re**2 - 5.40e-6 * re + 0.56
-    cd = np.where(re < 7.5e4, cd_low, cd_high)
+    cd = _select(re < 7.5e4, cd_low, cd_high)
     # Lift fit peaks at S = 0.306 (CL = 0.305); beyond the fitted range we hold
     # the peak value rather than let the parabola go negative (extrapolation).
     s_c = np.minimum(s, 1.99 / (2 * 3.25))
@@ -197,8 +203,28 @@ MEASURED_FIT_OFFSETS = {"modern": 0.191258, "usga_1998": 0.21136, "bh_1976": 0.2
 
 def _crisis_step(s, re):
     # the drag crisis' logistic step 1 / (1 + exp((Re - Re_d exp(-m S)) / w_d)) of measured_fit, no overflow
-    midpoint = MEASURED_FIT["re_d"] * np.exp(-MEASURED_FIT["m"] * s)
-    return 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / MEASURED_FIT["w_d"]))
+    return _crisis_formula(s, re, MEASURED_FIT["re_d"], MEASURED_FIT["w_d"], MEASURED_FIT["m"])
+
+
+def _crisis_formula(s, re, re_d, w_d, m):
+    midpoint = re_d * np.exp(-m * s)
+    return 0.5 * (1.0 - np.tanh(0.5 * (re - midpoint) / w_d))
+
+
+def _measured_fit_constants(c0=None):
+    """The constants of :data:`MEASURED_FIT` in the order of :func:`_measured_fit_formula`'s arguments (``c0``
+    replaced when given): read at each call, so the numpy and the compiled flight fly today's constants."""
+    c = dict(MEASURED_FIT) if c0 is None else {**MEASURED_FIT, "c0": c0}
+    return (c["a"], c["b"], c["c0"], c["c_re"], c["k"], c["re_l"], c["sigma"], c["beta"], c["s_l"], c["re_d"],
+            c["w_d"], c["d"], c["m"])
+
+
+def _measured_fit_formula(s, re, a, b, c0, c_re, k, re_l, sigma, beta, s_l, re_d, w_d, d, m):
+    # measured_fit's formula (aero_coefficients), its constants as arguments: numpy arrays here, scalars compiled
+    lift_sc = a * s / (1.0 + b * s)
+    cd = c0 + c_re * re / 1.0e5 + k * lift_sc**2 + d * _crisis_formula(s, re, re_d, w_d, m)
+    loss = beta * np.exp(-0.5 * (np.log(np.maximum(re, 1.0) / re_l) / sigma) ** 2 - s / s_l)
+    return cd, lift_sc * (1.0 - loss)
 
 
 def _cd_cl_measured_fit(s, re, c0=None):
@@ -206,11 +232,7 @@ def _cd_cl_measured_fit(s, re, c0=None):
     # and Lyu et al. 2018 (modern balls, free flight), Naruo, Mizota & Shimozono 2004 (wind tunnel, S to 1.13),
     # Acushnet's US 6,729,976 and the USGA's US 6,186,002 (indoor test ranges), Bridgestone's patent tables, Bearman &
     # Harvey 1976 (wind tunnel). Never fitted to TrackMan's tables.
-    c = dict(MEASURED_FIT) if c0 is None else {**MEASURED_FIT, "c0": c0}
-    lift_sc = c["a"] * s / (1.0 + c["b"] * s)
-    cd = c["c0"] + c["c_re"] * re / 1.0e5 + c["k"] * lift_sc**2 + c["d"] * _crisis_step(s, re)
-    loss = c["beta"] * np.exp(-0.5 * (np.log(np.maximum(re, 1.0) / c["re_l"]) / c["sigma"]) ** 2 - s / c["s_l"])
-    return cd, lift_sc * (1.0 - loss)
+    return _measured_fit_formula(s, re, *_measured_fit_constants(c0))
 
 
 def _cd_cl_measured_fit_usga_ball(s, re):

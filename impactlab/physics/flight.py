@@ -48,82 +48,16 @@ import numpy as np
 
 from impactlab.physics.aerodynamics import _RHO_REF, BALL_MASS, BALL_RADIUS, DEFAULT_MODEL, MODELS, model_function
 from impactlab.physics.atmosphere import G0, air_density, air_viscosity, pressure_at_altitude
+from impactlab.physics.flight_numpy import integrate_numpy
 
-__all__ = ["fly"]
+__all__ = ["fly", "TOLERANCE", "SAMPLE_INTERVAL"]
 
-# --------------------------------------------------------------------------
-# Trajectory integration
-# --------------------------------------------------------------------------
-def _derivs(state, p):
-    """Time derivative of the state, shape (7, N): x y z vx vy vz omega (y LEFT)."""
-    vx, vy, vz, omega = state[3], state[4], state[5], state[6]
-    wind, axis = p["wind"], p["axis"]
-    rx, ry, rz = vx - wind[0], vy - wind[1], vz - wind[2]
-    speed = np.sqrt(rx * rx + ry * ry + rz * rz)
-    speed = np.maximum(speed, 1e-9)
-    inv = 1.0 / speed
-    # omega_hat x v_hat; its norm is sin(angle between axis and relative
-    # velocity): only the perpendicular spin component makes lift.
-    ax, ay, az = axis[0], axis[1], axis[2]
-    cx = (ay * rz - az * ry) * inv
-    cy = (az * rx - ax * rz) * inv
-    cz = (ax * ry - ay * rx) * inv
-    sin_ax = np.sqrt(cx * cx + cy * cy + cz * cz)
-    rad = p["radius"]
-    s = rad * omega * sin_ax * inv
-    re = p["re_per_speed"] * speed
-    cd, cl = p["coef"](s, re)
-    k = p["k"]  # rho A / (2 m)
-    fd = k * cd * speed
-    fl = k * cl * speed * speed / np.maximum(sin_ax, 1e-12)
-    out = np.empty_like(state)
-    out[0] = vx
-    out[1] = vy
-    out[2] = vz
-    out[3] = -fd * rx + fl * cx
-    out[4] = -fd * ry + fl * cy
-    out[5] = -fd * rz + fl * cz - p["g"]
-    out[6] = -p["lam"] * speed * omega / rad
-    return out
-
-
-def _rk4(state, dt, p, k1=None):
-    if k1 is None:
-        k1 = _derivs(state, p)
-    k2 = _derivs(state + 0.5 * dt * k1, p)
-    k3 = _derivs(state + 0.5 * dt * k2, p)
-    k4 = _derivs(state + dt * k3, p)
-    return state + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-
-
-def _subset(p, idx):
-    q = dict(p)
-    for key in ("wind", "axis"):
-        q[key] = p[key][:, idx]
-    for key in ("re_per_speed", "radius", "k", "lam"):
-        q[key] = p[key][idx]
-    return q
-
-
-def _hermite_root(z0, z1, dz0, dz1, h):
-    """Fraction s in [0, 1] where the cubic Hermite through (z0,dz0),(z1,dz1) is 0."""
-    s = z0 / np.where(z0 - z1 == 0, 1e-300, z0 - z1)  # linear guess
-    s = np.clip(s, 0.0, 1.0)
-    for _ in range(6):  # Newton on the cubic
-        h00 = 2 * s**3 - 3 * s**2 + 1
-        h10 = s**3 - 2 * s**2 + s
-        h01 = -2 * s**3 + 3 * s**2
-        h11 = s**3 - s**2
-        f = h00 * z0 + h10 * h * dz0 + h01 * z1 + h11 * h * dz1
-        d00 = 6 * s**2 - 6 * s
-        d10 = 3 * s**2 - 4 * s + 1
-        d01 = -6 * s**2 + 6 * s
-        d11 = 3 * s**2 - 2 * s
-        df = d00 * z0 + d10 * h * dz0 + d01 * z1 + d11 * h * dz1
-        s = np.clip(s - f / np.where(df == 0, -1e-300, df), 0.0, 1.0)
-    return s
-
-
+#: the compiled integrator's local error tolerance (relative, with an absolute floor of 1 m, 1 m/s, 1 rad/s): the
+#: steps it chooses keep the carry within 1 mm of a converged integration (docs/flight.md; measured at most 0.2 um
+#: on the smooth models and 0.2 mm on lyu_2018, whose drag jumps at Re 7.5e4: tests/test_flight_kernel.py)
+TOLERANCE = 1.0e-8
+#: the interval of the sampled paths (``return_trajectories``) and the numpy integrator's fixed step, s
+SAMPLE_INTERVAL = 0.02
 
 def _checked_coefficients(function):
     """A caller's ``(S, Re) -> (CD, CL)`` with its answer checked at every call: two finite arrays of the shape
@@ -173,9 +107,10 @@ def fly(
     model=DEFAULT_MODEL,
     spin_decay=None,
     gravity=G0,
-    dt=0.02,
+    dt=None,
     t_max=15.0,
     return_trajectories=False,
+    tolerance=TOLERANCE,
 ):
     """Fly golf shots from launch to landing (carry), all shots at once.
 
@@ -214,23 +149,33 @@ def fly(
         ``"measured_fit"`` (:data:`impactlab.physics.aerodynamics.DEFAULT_MODEL`).
         Or a function ``(S, Re) -> (CD, CL)`` of arrays (dimensionless), flown
         with the spin decay of the registered models (``lam`` 2.0e-5, or
-        ``spin_decay``); used to fit a coefficient to measured flights
-        (:mod:`validation.flight.flight_fit`). Its answer must be two finite
-        arrays of the shape of S (or two numbers) with CD >= 0, else
-        ValueError.
+        ``spin_decay``) by the numpy integrator; used to fit a coefficient to
+        measured flights (:mod:`validation.flight.flight_fit`). Its answer must
+        be two finite arrays of the shape of S (or two numbers) with CD >= 0,
+        else ValueError.
     spin_decay : float or None, optional
         Spin-decay constant ``lam`` of :func:`spin_decay_rate`; ``None`` uses
         the model's (2.0e-5, Smits & Smith); 0 disables spin decay.
     gravity : float, optional
         m/s^2.
-    dt : float, optional
-        RK4 step, s.  The landing and apex are located inside the step
-        (cubic Hermite + a partial RK4 step); at the default 0.02 s the
-        carry of a driver differs from a 0.001 s run by < 1e-6 m.
+    dt : float or None, optional
+        None (default): the compiled integrator chooses its steps for
+        ``tolerance`` and the paths are sampled every 0.02 s
+        (:data:`SAMPLE_INTERVAL`). A number: no step longer than ``dt`` (s) and
+        the paths sampled every ``dt``. The numpy integrator (a callable
+        ``model``, or numba off) takes fixed RK4 steps of ``dt`` (0.02 s
+        without one).
     t_max : float, optional
-        Flights still airborne at ``t_max`` are reported as NaN.
+        Flights still airborne at ``t_max`` are reported as NaN, as are those
+        whose path the compiled integrator's steps cannot follow (a ball that
+        stops in the air, where the lift turns at once).
     return_trajectories : bool, optional
         Also return the sampled trajectories (public frame).
+    tolerance : float, optional
+        The compiled integrator's local error tolerance per step (relative,
+        with an absolute floor of 1 in m, m/s and rad/s). The default
+        (:data:`TOLERANCE`) keeps the carry within 1 mm of a converged
+        integration over the launches of golf (docs/flight.md).
 
     Returns
     -------
@@ -252,9 +197,9 @@ def fly(
         With ``return_trajectories=True`` also ``t`` (n_steps,) and ``x``,
         ``y`` (positive right), ``z``, ``vx``, ``vy``, ``vz`` (ground-relative
         velocity, public frame) of shape (n_shots, n_steps), sampled every
-        ``dt``; the sample in which a shot lands is replaced by its exact
-        landing state and later samples repeat it.  Shots are flattened in C
-        order of the broadcast shape.
+        ``dt`` (0.02 s without one); the sample in which a shot lands is its
+        exact landing state and later samples repeat it.  Shots are flattened
+        in C order of the broadcast shape.
 
     Notes
     -----
@@ -270,12 +215,15 @@ def fly(
     (gyroscopic stability), set at launch perpendicular to the launch
     velocity and rotated by ``spin_axis`` about it.
 
-    Integration: classical RK4 with fixed step ``dt`` on all shots at once;
-    shots that have landed are dropped from the working set.  For each shot
-    the zero crossing of z inside the last step is found on the cubic Hermite
-    interpolant and a partial RK4 step is taken to it (twice, Newton-refined),
-    giving the landing state to RK4 accuracy.  The apex uses the Hermite
-    interpolant of z.
+    Integration (docs/flight.md): a registered model is flown by the compiled
+    kernel (:mod:`impactlab.physics.kernels.flight`), one shot at a time, with
+    the Dormand-Prince 5(4) pair and its step chosen for ``tolerance``; the
+    landing (z = 0 going down) and the apex (vz = 0) are roots of the
+    integrator's own partial steps, found by Newton's method. A callable model
+    (or ``IMPACTLAB_KERNELS=numpy``) is flown by the numpy integrator: classical
+    RK4 with fixed step ``dt`` on all shots at once, the landing on the cubic
+    Hermite interpolant refined by partial RK4 steps. The two agree within
+    1e-5 m in carry (tests/test_flight.py).
 
     Examples
     --------
@@ -284,17 +232,41 @@ def fly(
     >>> float(r["carry_distance"]) > 200
     True
     """
-    if callable(model):
-        coef_fn, lam_default = _checked_coefficients(model), 2.0e-5
-    else:  # model_function refuses a name it does not ship (a retired one with why)
-        coef_fn, lam_default = model_function(model), MODELS[model][1]
-    lam = lam_default if spin_decay is None else float(spin_decay)
+    coefficients, lam = _aerodynamics(model, spin_decay)
+    shape, shots = _shots(ball_speed, launch_angle, spin_rate, spin_axis, launch_direction, temperature, pressure,
+                          relative_humidity, altitude, wind, ball_mass, ball_radius)
+    state, params = _launch(shots, lam, gravity)
+    every = SAMPLE_INTERVAL if dt is None else float(dt)
+    kernel = _kernel_model(model)
+    if kernel is not None:
+        results, paths = _integrate_kernel(state, params, kernel, every if return_trajectories else 0.0,
+                                           np.inf if dt is None else float(dt), t_max, tolerance)
+    else:
+        params["coef"] = coefficients
+        results, paths = integrate_numpy(state, params, every, t_max, return_trajectories)
+    return _outputs(results, paths, shape, every, return_trajectories)
 
+
+def _aerodynamics(model, spin_decay):
+    """The coefficient function ``(S, Re) -> (CD, CL)`` of ``model`` (a caller's checked at each call) and the spin
+    decay constant lam (the model's, or ``spin_decay``)."""
+    if callable(model):
+        coefficients, lam_default = _checked_coefficients(model), 2.0e-5
+    else:  # model_function refuses a name it does not ship (a retired one with why)
+        coefficients, lam_default = model_function(model), MODELS[model][1]
+    return coefficients, lam_default if spin_decay is None else float(spin_decay)
+
+
+def _shots(ball_speed, launch_angle, spin_rate, spin_axis, launch_direction, temperature, pressure,
+           relative_humidity, altitude, wind, ball_mass, ball_radius):
+    """The launches and their air broadcast together: the broadcast shape and a dict of flat arrays (``wind``
+    (n, 3) in the internal frame, y LEFT). ValueError for a wind without 3 components, a speed <= 0 or a spin < 0."""
     wind = np.asarray(wind, dtype=float)
     if wind.shape[-1] != 3:
         raise ValueError("wind must have a last axis of length 3")
     if pressure is None:
         pressure = pressure_at_altitude(altitude)
+    names = ("v0", "th", "w0", "alpha", "psi", "temp", "pres", "rh", "mass", "rad")
     b = np.broadcast_arrays(
         *[np.asarray(a, dtype=float) for a in (
             ball_speed, launch_angle, spin_rate, spin_axis, launch_direction,
@@ -303,19 +275,24 @@ def fly(
         wind[..., 0],
     )
     shape = b[0].shape
-    v0, th, w0, alpha, psi, temp, pres, rh, mass, rad = (a.ravel() for a in b[:10])
-    n = v0.size
-    wind_b = np.broadcast_to(wind, shape + (3,)).reshape(n, 3).copy()
-    wind_b[:, 1] *= -1.0  # public y-right -> internal y-left
-    if np.any(v0 <= 0) or np.any(w0 < 0):
+    shots = {name: array.ravel() for name, array in zip(names, b[:10])}
+    n = shots["v0"].size
+    shots["wind"] = np.broadcast_to(wind, shape + (3,)).reshape(n, 3).copy()
+    shots["wind"][:, 1] *= -1.0  # public y-right -> internal y-left
+    if np.any(shots["v0"] <= 0) or np.any(shots["w0"] < 0):
         raise ValueError("ball_speed must be > 0 and spin_rate >= 0")
+    return shape, shots
 
-    rho = air_density(temp, pres, rh)
-    mu = air_viscosity(temp)
+
+def _launch(shots, lam, gravity):
+    """The launch state (7, n) (x y z vx vy vz omega, internal frame) and each shot's air and spin axis."""
+    rho = air_density(shots["temp"], shots["pres"], shots["rh"])
+    mu = air_viscosity(shots["temp"])
+    rad, n = shots["rad"], shots["v0"].size
     area = np.pi * rad**2
 
     # Launch velocity (internal frame, azimuth phi positive to the LEFT).
-    phi = -psi
+    th, phi, alpha = shots["th"], -shots["psi"], shots["alpha"]
     ct, st, cp, sp = np.cos(th), np.sin(th), np.cos(phi), np.sin(phi)
     vhat = np.stack([ct * cp, ct * sp, st], axis=1)
     # Backspin axis: horizontal, pointing to the right of the velocity.
@@ -324,112 +301,49 @@ def fly(
     axis = np.cos(alpha)[:, None] * rhat - np.sin(alpha)[:, None] * uhat
 
     params = {
-        "wind": np.ascontiguousarray(wind_b.T),
+        "wind": np.ascontiguousarray(shots["wind"].T),
         "axis": np.ascontiguousarray(axis.T),
         "re_per_speed": rho * 2.0 * rad / mu,
         "radius": rad,
-        "k": rho * area / (2.0 * mass),
+        "k": rho * area / (2.0 * shots["mass"]),
         "lam": lam * rho / _RHO_REF,
         "g": float(gravity),
-        "coef": coef_fn,
     }
-
     state = np.zeros((7, n))
-    state[3:6] = (v0[:, None] * vhat).T
-    state[6] = w0
+    state[3:6] = (shots["v0"][:, None] * vhat).T
+    state[6] = shots["w0"]
+    return state, params
 
-    carry_x = np.full(n, np.nan)
-    carry_y = np.full(n, np.nan)
-    t_land = np.full(n, np.nan)
-    v_land = np.full((3, n), np.nan)
-    w_land = np.full(n, np.nan)
-    apex = np.where(state[5] <= 0, 0.0, np.nan)  # launched flat/down: apex at tee
 
-    active = np.arange(n)
-    t = 0.0
-    n_steps = int(np.ceil(t_max / dt))
-    if return_trajectories:
-        traj = np.full((6, n, n_steps + 1), np.nan)
-        traj[:, :, 0] = state[0:6]
-    p = params
-    s0 = state
-    last_step = 0
-    for step in range(n_steps):
-        if active.size == 0:
-            break
-        last_step = step
-        k1 = _derivs(s0, p)
-        s1 = _rk4(s0, dt, p, k1)
-        t += dt
+def _kernel_model(model):
+    """The compiled kernel's ``(number, constants)`` for ``model``, or None: numba off, or a model it cannot fly."""
+    if callable(model):
+        return None
+    from impactlab.physics import kernels  # numba is imported on the first flight, not with impactlab
 
-        # Apex: vz changes sign within the step.
-        up = (s0[5] > 0) & (s1[5] <= 0)
-        if np.any(up):
-            iu = np.nonzero(up)[0]
-            pu = _subset(p, iu)
-            d1 = _derivs(s1[:, iu], pu)
-            z0, z1 = s0[2, iu], s1[2, iu]
-            vz0, vz1 = s0[5, iu], s1[5, iu]
-            # root of vz on its Hermite interpolant, then z there.
-            sf = _hermite_root(vz0, vz1, k1[5, iu], d1[5], dt)
-            h00 = 2 * sf**3 - 3 * sf**2 + 1
-            h10 = sf**3 - 2 * sf**2 + sf
-            h01 = -2 * sf**3 + 3 * sf**2
-            h11 = sf**3 - sf**2
-            zap = h00 * z0 + h10 * dt * vz0 + h01 * z1 + h11 * dt * vz1
-            apex[active[iu]] = np.maximum(zap, np.maximum(z0, z1))
+    if not kernels.HAVE_NUMBA:
+        return None
+    from impactlab.physics.kernels import flight as kernel
 
-        # Landing: z crosses 0 going down (after leaving the tee).
-        down = (s1[2] <= 0.0) & (s1[5] < 0.0)
-        if np.any(down):
-            idx = np.nonzero(down)[0]
-            pi_ = _subset(p, idx)
-            sd = s0[:, idx]
-            sf = _hermite_root(sd[2], s1[2, idx], sd[5], s1[5, idx], dt)
-            tau = sf * dt
-            sl = _rk4(sd, tau, pi_)
-            for _ in range(2):  # Newton refine on the exact RK4 sub-step
-                tau = tau - sl[2] / np.where(sl[5] == 0, -1e-12, sl[5])
-                tau = np.clip(tau, 0.0, dt)
-                sl = _rk4(sd, tau, pi_)
-            # a flight shorter than one step starts this step on the tee, rising: the root found at tau = 0 is the
-            # launch, not the landing (it gave carry 0 and the launch's velocity as the landing's). The landing is
-            # the interpolant's other root; bisection on the RK4 sub-step finds it (z > 0 just after launch, <= 0
-            # at the step's end).
-            early = (tau <= 1e-12 * dt) & (sd[5] > 0.0)
-            if np.any(early):
-                ie = np.nonzero(early)[0]
-                pe, se = _subset(pi_, ie), sd[:, ie]
-                lo, hi = np.zeros(ie.size), np.full(ie.size, dt)
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    above = _rk4(se, mid, pe)[2] > 0.0
-                    lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
-                tau[ie] = hi
-                sl[:, ie] = _rk4(se, hi, pe)
-            g_idx = active[idx]
-            carry_x[g_idx] = sl[0]
-            carry_y[g_idx] = sl[1]
-            t_land[g_idx] = t - dt + tau
-            v_land[:, g_idx] = sl[3:6]
-            w_land[g_idx] = sl[6]
-            if return_trajectories:
-                s1[:, idx] = sl
-        if return_trajectories:
-            traj[:, active, step + 1] = s1[0:6]
-        if np.any(down):
-            keep = ~down
-            active = active[keep]
-            s0 = s1[:, keep]
-            p = _subset(p, keep)  # boolean mask works as an index too
-        else:
-            s0 = s1
+    return kernel.kernel_model(model)
 
-    # Shots that land while still rising (not physical for golf, but possible
-    # for wind-blown lobs) would have no apex; use the launch height (0).
-    apex = np.where(np.isnan(apex), 0.0, apex)
-    apex = np.where(np.isnan(t_land), np.nan, apex)
 
+def _integrate_kernel(state, p, kernel, every, max_step, t_max, tolerance):
+    """Fly every shot with the compiled kernel: results (n, 9) (landing x y z vx vy vz omega, time, apex; internal
+    frame) and paths (n, 6, samples) every ``every`` s (none for 0)."""
+    from impactlab.physics.kernels import flight as compiled
+
+    air = np.column_stack([p["wind"].T, p["axis"].T, p["re_per_speed"], p["radius"], p["k"], p["lam"]])
+    samples = int(np.ceil(t_max / every)) + 1 if every > 0.0 else 1
+    number, constants = kernel
+    return compiled.flight_cases(state.T, air, number, constants, p["g"], tolerance, max_step, t_max, every,
+                                 samples)
+
+
+def _outputs(results, paths, shape, every, return_trajectories):
+    """The public dict of :func:`fly` from the integrators' results (internal frame, y LEFT)."""
+    carry_x, carry_y, t_land, apex = results[:, 0], results[:, 1], results[:, 7], results[:, 8]
+    v_land, w_land = results[:, 3:6].T, results[:, 6]
     vh = np.hypot(v_land[0], v_land[1])
     out = {
         "carry_distance": np.hypot(carry_x, carry_y).reshape(shape),
@@ -442,18 +356,10 @@ def fly(
         "landing_spin": w_land.reshape(shape),
     }
     if return_trajectories:
-        traj = traj[:, :, : last_step + 2]
-        # freeze landed shots at their landing point
-        fills = (carry_x, carry_y, np.zeros(n), v_land[0], v_land[1], v_land[2])
-        for c, fill in enumerate(fills):
-            comp = traj[c]
-            bad = np.isnan(comp) & ~np.isnan(carry_x)[:, None]
-            comp[bad] = np.broadcast_to(fill[:, None], comp.shape)[bad]
-        out["t"] = np.arange(traj.shape[2]) * dt
-        out["x"] = traj[0]
-        out["y"] = -traj[1]
-        out["z"] = traj[2]
-        out["vx"] = traj[3]
-        out["vy"] = -traj[4]
-        out["vz"] = traj[5]
+        if np.all(np.isfinite(t_land)) and t_land.size:  # to the sample the last shot lands at
+            used = int(np.max(np.ceil(t_land / every))) + 1
+            paths = paths[:, :, : max(min(used, paths.shape[2]), 2)]
+        out["t"] = np.arange(paths.shape[2]) * every
+        for c, name in enumerate(("x", "y", "z", "vx", "vy", "vz")):
+            out[name] = -paths[:, c] if name in ("y", "vy") else paths[:, c]
     return out

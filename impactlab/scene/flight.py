@@ -14,6 +14,7 @@ against TrackMan's tour averages are in docs/flight.md.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from collections.abc import Mapping
@@ -73,7 +74,7 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
             example = "50 %" if dimension == "dimensionless" else f"{value} {_EXAMPLE[dimension]}"
             raise FieldError(path, f"{_words(dimension)}; a number as text has no unit (write e.g. "
                                    f"'{example}', or a number in SI)", value)
-        return np.asarray(to_si(value, dimension, path), dtype=float)
+        return np.asarray(_text_to_si(value, dimension, path), dtype=float)
     if isinstance(value, (list, tuple)) and value and any(isinstance(item, str) or hasattr(item, "magnitude")
                                                           for item in value):  # strings or pint quantities, each
         return np.array([float(quantity_array(item, dimension, f"{path}[{index}]"))
@@ -89,6 +90,27 @@ def quantity_array(value, dimension: str, path: str) -> np.ndarray:
         if flags:
             raise FieldError(path, f"{_words(dimension)} (not True/False)", value)
     return array
+
+
+@functools.lru_cache(maxsize=512)
+def _text_to_si(text: str, dimension: str, path: str) -> float:
+    """:func:`impactlab.units.to_si` of a text with its unit, remembered: pint parses ``"167 mph"`` in about 1 ms, the
+    flight of the shot it launches takes 0.2 ms. A refusal is raised each time (lru_cache keeps no exception)."""
+    return to_si(text, dimension, path)
+
+
+def _fingerprint(model: str) -> str:
+    """:func:`impactlab.physics.aerodynamics.model_fingerprint`, remembered per model, per its function and per the
+    constants a refit changes (its 775 coefficient evaluations cost half a shot's flight): a changed constant gives
+    the new fingerprint at once."""
+    constants = (tuple(aerodynamics.MEASURED_FIT.items()), tuple(aerodynamics.MEASURED_FIT_OFFSETS.items()),
+                 aerodynamics.INDUCED_DRAG_FACTOR, aerodynamics.LYU_LIFT_PEAK)
+    return _remembered_fingerprint(model, aerodynamics.MODELS[model][0], constants)
+
+
+@functools.lru_cache(maxsize=64)
+def _remembered_fingerprint(model: str, function, constants: tuple) -> str:
+    return aerodynamics.model_fingerprint(model)
 
 
 def _first(name: str, array: np.ndarray, bad: np.ndarray) -> tuple[str, float]:
@@ -303,13 +325,26 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
     >>> [round(float(carry) / 0.9144) for carry in airs.carry_distance]  # warm air is thinner: longer
     [272, 279]
     """
-    import xarray as xr
-
     given = {"ball_speed": ball_speed, "launch_angle": launch_angle, "spin_rate": spin_rate, "spin_axis": spin_axis,
              "launch_direction": launch_direction}
+    values = _launch_values(given)
+    mass, radius = _ball_values(ball_mass, ball_radius)
+    if model not in aerodynamics.MODELS:
+        retired = aerodynamics.retired_reason(model)
+        raise FieldError("model", "an aerodynamic model" + (f" ({retired})" if retired else ""), str(model),
+                         choices=aerodynamics.MODELS)
+    air = _air_for(values, conditions)
+    arguments = flight_air(air)
+    result = physics.fly(values["ball_speed"], values["launch_angle"], values["spin_rate"], values["spin_axis"],
+                         values["launch_direction"], ball_mass=mass, ball_radius=radius, model=model,
+                         return_trajectories=trajectories, **arguments)
+    return _dataset(result, model, air, arguments, mass, radius, trajectories)
+
+
+def _launch_values(given):
+    """The launch of :func:`fly` as SI arrays, each value checked: finite, broadcasting together, inside what golf
+    shots have (refused beyond :data:`IMPOSSIBLE_LAUNCH`, warned about beyond :data:`UNUSUAL_LAUNCH`)."""
     values = {name: quantity_array(value, _LAUNCH_DIMENSIONS[name], name) for name, value in given.items()}
-    mass = quantity_array(ball_mass, "mass", "ball_mass")
-    radius = quantity_array(ball_radius, "length", "ball_radius")
     for name, array in values.items():
         if not np.all(np.isfinite(array)):
             where, value = _first(name, array, ~np.isfinite(array))
@@ -326,6 +361,22 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         where, value = _first("spin_rate", values["spin_rate"], values["spin_rate"] < 0.0)
         raise FieldError(where, "a spin rate >= 0 (the direction of the spin is the spin axis)",
                          _in_unit(value * 30.0 / math.pi, "rpm"))
+    _refuse_angles(values, given)
+    for name, (limit, words) in IMPOSSIBLE_LAUNCH.items():
+        refused = values[name] > limit
+        if np.any(refused):
+            where, value = _first(name, values[name], refused)
+            unit, factor = UNUSUAL_LAUNCH[name][:2]
+            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
+            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
+            raise FieldError(where, words, f"{value * factor:.6g} {unit}{note}")
+    _warn_unusual(values, given)
+    return values
+
+
+def _refuse_angles(values, given):
+    """FieldError for a launch angle, spin axis or launch direction no golf shot has (in degrees, said SI where it
+    was a plain number)."""
     for name, words, refused in (
             ("launch_angle", "a launch angle between -90 and 90 deg", np.abs(values["launch_angle"]) >= math.pi / 2),
             # beyond +-90 deg the axis tilts past the vertical: the ball turns over (topspin), which the spin rate
@@ -338,15 +389,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         if np.any(refused):
             where, value = _first(name, values[name], refused)
             raise FieldError(where, words, _in_unit(np.degrees(value), "deg") + _si_note(given[name], value, "rad"))
-    for name, (limit, words) in IMPOSSIBLE_LAUNCH.items():
-        refused = values[name] > limit
-        if np.any(refused):
-            where, value = _first(name, values[name], refused)
-            unit, factor = UNUSUAL_LAUNCH[name][:2]
-            si_unit = DIMENSIONS[_LAUNCH_DIMENSIONS[name]][0]
-            note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given[name]) else ""
-            raise FieldError(where, words, f"{value * factor:.6g} {unit}{note}")
-    _warn_unusual(values, given)
+
+
+def _ball_values(ball_mass, ball_radius):
+    """The ball's mass and radius in SI, positive and inside the golf scene's ball limits (scene.plausibility)."""
+    mass = quantity_array(ball_mass, "mass", "ball_mass")
+    radius = quantity_array(ball_radius, "length", "ball_radius")
     if np.any(mass <= 0.0) or np.any(radius <= 0.0):
         raise FieldError("ball_mass" if np.any(mass <= 0.0) else "ball_radius", "a positive value",
                          (mass if np.any(mass <= 0.0) else radius).tolist())
@@ -361,10 +409,12 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
             note = f" (a number is SI: {value:.6g} {si_unit})" if _bare(given_value) else ""
             raise FieldError(where, f"{limit.words} between {limit.impossible[0]:g} and {limit.impossible[1]:g} "
                              f"{unit} ({limit.why})", f"{value * factor:.6g} {unit}{note}")
-    if model not in aerodynamics.MODELS:
-        retired = aerodynamics.retired_reason(model)
-        raise FieldError("model", "an aerodynamic model" + (f" ({retired})" if retired else ""), str(model),
-                         choices=aerodynamics.MODELS)
+    return mass, radius
+
+
+def _air_for(values, conditions):
+    """The air of :func:`fly` as a :class:`Conditions`, its arrays broadcasting with the launch's (else one
+    FieldError listing the shapes)."""
     air = conditions_from(conditions)
     launch_shape = np.broadcast_shapes(*(array.shape for array in values.values()))
     try:
@@ -376,22 +426,28 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
             if np.ndim(value)]
         raise FieldError("conditions", "air values that broadcast with the launch: one value for every shot, or one "
                          "per shot (an array of the launch's shape)", ", ".join(shapes)) from None
-    arguments = flight_air(air)
-    result = physics.fly(values["ball_speed"], values["launch_angle"], values["spin_rate"], values["spin_axis"],
-                         values["launch_direction"], ball_mass=mass, ball_radius=radius, model=model,
-                         return_trajectories=trajectories, **arguments)
+    return air
+
+
+def _dataset(result, model, air, arguments, mass, radius, trajectories):
+    """:func:`fly`'s Dataset from the physics' dict: the outputs in the units of :data:`OUTPUTS`, the air and the
+    ball said, the model named with its references and fingerprint."""
+    import xarray as xr
+
     shape = np.shape(result["carry_distance"])
     dims = tuple(f"shot_{index}" for index in range(len(shape)))
     data = {}
     for name in ("carry_distance", "offline_distance", "apex_height", "landing_angle", "flight_time"):
         spec = OUTPUTS[name]
-        data[name] = (dims, np.asarray(result[name]) * spec.factor, {"units": spec.units, "long_name": spec.long_name})
+        # Variables built here, not (dims, values, attrs) tuples: xarray's conversion of those costs about 1 ms
+        data[name] = xr.Variable(dims, np.asarray(result[name]) * spec.factor,
+                                 {"units": spec.units, "long_name": spec.long_name})
     coords = {}
     if trajectories:
         coords["t"] = ("t", result["t"], {"units": "s", "long_name": "time since launch"})
         for axis, words in (("x", "along the target line"), ("y", "right of the target line"), ("z", "height")):
-            data[f"trajectory_{axis}"] = (("shot", "t"), result[axis],
-                                          {"units": "m", "long_name": f"ball position, {words}"})
+            data[f"trajectory_{axis}"] = xr.Variable(("shot", "t"), result[axis],
+                                                     {"units": "m", "long_name": f"ball position, {words}"})
     air_attributes, air_coords = air_description(air, arguments, shape, dims)
     coords.update(air_coords)
     attributes = {
@@ -401,7 +457,7 @@ def fly(ball_speed, launch_angle, spin_rate, spin_axis=0.0, launch_direction=0.0
         "ball_mass_kg": float(mass) if mass.ndim == 0 else str(mass.tolist()),
         "ball_radius_m": float(radius) if radius.ndim == 0 else str(radius.tolist()),
         # the coefficients' fingerprint: a refit keeps the model's name (aerodynamics.model_fingerprint)
-        "aerodynamic_fingerprint": aerodynamics.model_fingerprint(model),
+        "aerodynamic_fingerprint": _fingerprint(model),
     }
     return xr.Dataset(data, coords=coords, attrs=attributes)
 
