@@ -65,6 +65,33 @@ class TerminalGuard:
 _JSON_SPECIAL = re.compile(r'["\\\[\]{}]')
 
 
+def json_value_end(text: str) -> int:
+    """The offset just past the first top-level JSON object or array of ``text`` (which starts with it), found by a
+    flat scan of its brackets outside strings (no recursion, whatever its depth); -1 while it is incomplete."""
+    depth = 0
+    in_string = False
+    skip = -1
+    for match in _JSON_SPECIAL.finditer(text):
+        offset, char = match.start(), match.group()
+        if offset == skip:
+            continue
+        if in_string:
+            if char == "\\":
+                skip = offset + 1
+            elif char == '"':
+                in_string = False
+            continue
+        if char == '"':
+            in_string = True
+        elif char in "[{":
+            depth += 1
+        elif char in "]}":
+            depth -= 1
+            if depth == 0:
+                return offset + 1
+    return -1
+
+
 def json_depth_exceeded(text: str, limit: int = MAX_NESTING) -> int:
     """The 1-based line where the JSON ``text`` first opens more than ``limit`` brackets, or 0 if it never does.
 
@@ -135,5 +162,6 @@ def loads_json(text: str, where: str) -> Any:
         raise StudyError(f"{shown(where)}: not readable as JSON: {exc}") from None
 
 
-__all__ = ["MAX_NESTING", "MAX_INPUT_BYTES", "shown", "terminal_safe", "has_control", "TerminalGuard",
+__all__ = ["json_value_end", "MAX_NESTING", "MAX_INPUT_BYTES", "shown", "terminal_safe", "has_control",
+           "TerminalGuard",
            "json_depth_exceeded", "check_json_nesting", "loads_json", "nesting_message"]

@@ -52,3 +52,27 @@ def test_a_text_of_values_is_split_where_each_ends():
     with pytest.raises(json.JSONDecodeError) as bad:
         list(json_values('{"a": 1}\n{"b": }'))
     assert (bad.value.lineno, bad.value.colno) == (2, 7)
+
+
+def test_an_object_nested_past_the_bound_is_read_to_its_end_and_refused_and_the_stream_stays_in_step():
+    """A reply 30,000 deep arrives in reads of 4 KiB: refused whole once its end has come (no RecursionError, no
+    early refusal that would cut the sender off), and the reply after it is still read."""
+    from impactlab.foreign import MAX_NESTING, json_value_end
+
+    deep = b'{"Code":200,"Player":' + b"[" * 30_000 + b'"]["' + b"]" * 30_000 + b"}"
+    assert json_value_end(deep.decode()) == len(deep)  # brackets inside the string do not count
+    assert json_value_end(deep[:-1].decode()) == -1
+    stream = JsonObjectStream(limit=1 << 20)
+    refused = None
+    chunks = [deep[i:i + 4096] for i in range(0, len(deep), 4096)] + [b'{"Code":200}']
+    for index, chunk in enumerate(chunks):
+        try:
+            items = stream.feed(chunk)
+        except NotJsonError as exc:
+            refused = index
+            assert f"nests more than {MAX_NESTING} levels deep" in str(exc)
+            items = stream.feed(b"")
+        if index < len(chunks) - 2:
+            assert refused is None and items == []
+    assert refused == len(chunks) - 2
+    assert items == [b'{"Code":200}']

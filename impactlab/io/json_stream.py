@@ -14,6 +14,8 @@ import re
 from collections.abc import Iterator
 from typing import Any
 
+from impactlab.foreign import MAX_NESTING, json_depth_exceeded, json_value_end
+
 #: what may stand between values: blanks, and a byte-order mark at the start of a file
 BLANKS = "\ufeff \t\r\n"
 _DECODER = json.JSONDecoder()
@@ -142,6 +144,19 @@ class JsonObjectStream:
             if exc.reason != "unexpected end of data":
                 raise NotJsonError(buffer, "a reply that is not JSON") from None
             text = buffer[:exc.start].decode("utf-8")
+        # json recurses once per level: a reply 30,000 deep (under the size limit) was a RecursionError. The depth is
+        # measured flat; such an object is read to its end (found flat too) and refused whole, so that the stream
+        # stays in step and the sender is not cut off mid-write
+        if json_depth_exceeded(text):
+            end = json_value_end(text)
+            if end < 0:
+                if len(buffer) > self.limit:
+                    raise NotJsonError(buffer, f"an object longer than {self.limit} bytes")
+                return None
+            size = len(text[:end].encode("utf-8"))
+            refused = bytes(buffer[:size])
+            del buffer[:size]
+            raise NotJsonError(refused, f"a reply whose JSON nests more than {MAX_NESTING} levels deep")
         try:
             _, end = _DECODER.raw_decode(text)
         except json.JSONDecodeError as exc:
