@@ -31,6 +31,11 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                              "measured dose-response (raw and launch-adjusted) and altitude venues beside the models, "
                              "as flown and with Re frozen; the density slope over c0 and lift scale within their "
                              "bounds", "python -m validation.flight.plot_flight_altitude"),
+         "rate_laws_spin_per_unit": ("Driver spin per unit of club speed x sin(spin loft) against club speed: the "
+                                     "shared TrackMan file's median and quartiles (8,341 drivers, 5 mph bins) beside "
+                                     "rigid_coulomb and hertz_mindlin as today and with the compression lever, all "
+                                     "fitted on the whole file and predicted on the same shots (in-sample)",
+                                     "python -m validation.impact.plot_spin_per_unit"),
          "flight_candidates": ("The drag crisis' advance with spin: held-out tour-table carry errors against launch "
                                "spin ratio with measured_fit and with the crisis at one Re, carry RMS against the "
                                "spin advance (radar seasons and tables), and both crisis models against the measured "
