@@ -218,10 +218,11 @@ def part1(draws=DRAWS):
 
 #: the flexing face, held at the middle of the plate model's range (docs/models.md, "The face flexing behind the
 #: contact": a clamped plate's first mode 3.5-5.1 kHz, modal mass 9.7-13.9 g; a model output, not a measurement)
-FACE = {"face_frequency": 4300.0, "face_modal_mass": 0.0118}
+#: face_frequency is an angular frequency [rad/s] when bare (models._common.face_frequency_field): 2 pi f
+FACE = {"face_frequency": 2.0 * math.pi * 4300.0, "face_modal_mass": 0.0118}
 #: the face sized by the Rules' COR limit (docs/models.md: 6.88 kHz at 10.9 g, a model output), with the hysteretic
 #: normal law, the one under which a yielding face can return energy (under adjusted_speed it only takes energy)
-FACE_COR = {"face_frequency": 6880.0, "face_modal_mass": 0.0109, "inelastic": "hysteretic"}
+FACE_COR = {"face_frequency": 2.0 * math.pi * 6880.0, "face_modal_mass": 0.0109, "inelastic": "hysteretic"}
 
 
 def part2_forms():
@@ -342,7 +343,7 @@ def gear_and_face(rl):
               f"{out['spin_rate'][0] * rl.RPM:.0f} |")
         for frequency, mass in ((3500.0, 0.0097), (3500.0, 0.0139), (5100.0, 0.0097), (5100.0, 0.0139),
                                 (6880.0, 0.0109), (6470.0, 0.0126)):
-            options = {"face_frequency": frequency, "face_modal_mass": mass, "inelastic": law}
+            options = {"face_frequency": 2.0 * math.pi * frequency, "face_modal_mass": mass, "inelastic": law}
             out = rl.run(rl.Form("flex", "hertz_mindlin", options, ()), values, inputs)
             print(f"| {frequency / 1000:.2f} kHz, {mass * 1000:.1f} g, {law} law | {out['ball_speed'][0]:.2f} | "
                   f"{out['spin_rate'][0] * rl.RPM:.0f} |")
