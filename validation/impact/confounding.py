@@ -23,10 +23,11 @@ driver head, ball setting: what no ball law should reproduce).
    replacement, 400 draws, seeded). B in {10, 25, 50, 100}: a block straddling two sessions mixes across-session
    variation into the within estimate, so a shorter block is the cleaner within estimate (and the noisier).
 2. The package's mechanisms with a time or length scale, each alone, fitted on one speed band and tested on the other
-   (validation/impact/rate_laws.py's protocol and fit): the flexing face (face_frequency, face_modal_mass), the
-   3-D head with the measured strike height (vertical gear effect) and the round-1 compression lever, beside the
-   regression spin = k V sin(spin loft) fitted on the same training rows; each form's spin-speed exponent at a fixed
-   delivery (the TrackMan tour drivers' deliveries, 96 -> 115 mph).
+   (validation/impact/rate_laws.py's protocol and fit): the flexing face (face_frequency, face_modal_mass; the plate
+   model's face under the default law, and the face sized at the COR limit under the hysteretic law beside its rigid
+   face), the 3-D head with the measured strike height (vertical gear effect) and the round-1 compression lever,
+   beside the regression spin = k V sin(spin loft) and gradient boosting fitted on the same training rows; each
+   form's spin-speed exponent at a fixed delivery (the TrackMan tour drivers' deliveries, 96 -> 115 mph).
 """
 
 from __future__ import annotations
