@@ -3,6 +3,9 @@
     .venv/bin/python -u -m validation.impact.confounding           (section 1 in seconds; section 2 a few minutes)
     .venv/bin/python -u -m validation.impact.confounding --quick   (section 2 on training subsamples of 200 rows)
     .venv/bin/python -u -m validation.impact.confounding --part 1  (section 1 only)
+    .venv/bin/python -u -m validation.impact.confounding --part 3  (the face at the COR limit on every kept row)
+    .venv/bin/python -u -m validation.impact.confounding --part 4  (the same, fitted on the whole file, predicting
+                                                                    the tour tables and the wedge test)
 
 The shared TrackMan file (validation/impact/shots.py; no player column) gives spin ~ V^0.34 sin(spin loft)^0.70 when
 all its shots are pooled (issue 33). Pooling mixes two things: how one player's spin changes when he swings faster
