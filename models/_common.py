@@ -250,17 +250,18 @@ def core_inputs(options, inputs, friction) -> tuple | None:
 
 # -- the face flexing behind the contact (impactlab.physics.face_flex) ---------------------------------------------
 
-def face_frequency_field():
+def face_frequency_field(default: float = 0.0):
     """Option ``face_frequency`` [rad/s; '4 kHz' reads as 2 pi 4000 rad/s]: 0 (default) is the rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_angular_speed, "face_frequency"), metadata=FREQUENCY,
+    return attrs.field(default=default, converter=_named(si_angular_speed, "face_frequency"), metadata=FREQUENCY,
                        validator=in_range(0.0, 2.0 * np.pi * 1e6, "the face's first-mode frequency with its unit "
                                           "between 0 (a rigid face) and 1 MHz (e.g. '4 kHz')"))
 
 
-def face_modal_mass_field():
+def face_modal_mass_field(default: float = 0.0):
     """Option ``face_modal_mass`` [kg]: the face mode's modal mass at the strike; 0 (default) with a rigid face."""
-    return attrs.field(default=0.0, converter=_named(si_mass, "face_modal_mass"), metadata=MASS, validator=[in_range(
-        0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) and 200 g (e.g. '8 g')"), _whole_face])
+    return attrs.field(default=default, converter=_named(si_mass, "face_modal_mass"), metadata=MASS,
+                       validator=[in_range(0.0, 0.2, "the face's modal mass with its unit between 0 (a rigid face) "
+                                           "and 200 g (e.g. '8 g')"), _whole_face])
 
 
 def _whole_face(options, attribute, mass) -> None:

@@ -3,6 +3,9 @@
     .venv/bin/python -u -m validation.impact.confounding           (section 1 in seconds; section 2 a few minutes)
     .venv/bin/python -u -m validation.impact.confounding --quick   (section 2 on training subsamples of 200 rows)
     .venv/bin/python -u -m validation.impact.confounding --part 1  (section 1 only)
+    .venv/bin/python -u -m validation.impact.confounding --part 3  (the face at the COR limit on every kept row)
+    .venv/bin/python -u -m validation.impact.confounding --part 4  (the same, fitted on the whole file, predicting
+                                                                    the tour tables and the wedge test)
 
 The shared TrackMan file (validation/impact/shots.py; no player column) gives spin ~ V^0.34 sin(spin loft)^0.70 when
 all its shots are pooled (issue 33). Pooling mixes two things: how one player's spin changes when he swings faster
@@ -23,10 +26,11 @@ driver head, ball setting: what no ball law should reproduce).
    replacement, 400 draws, seeded). B in {10, 25, 50, 100}: a block straddling two sessions mixes across-session
    variation into the within estimate, so a shorter block is the cleaner within estimate (and the noisier).
 2. The package's mechanisms with a time or length scale, each alone, fitted on one speed band and tested on the other
-   (validation/impact/rate_laws.py's protocol and fit): the flexing face (face_frequency, face_modal_mass), the
-   3-D head with the measured strike height (vertical gear effect) and the round-1 compression lever, beside the
-   regression spin = k V sin(spin loft) fitted on the same training rows; each form's spin-speed exponent at a fixed
-   delivery (the TrackMan tour drivers' deliveries, 96 -> 115 mph).
+   (validation/impact/rate_laws.py's protocol and fit): the flexing face (face_frequency, face_modal_mass; the plate
+   model's face under the default law, and the face sized at the COR limit under the hysteretic law beside its rigid
+   face), the 3-D head with the measured strike height (vertical gear effect) and the round-1 compression lever,
+   beside the regression spin = k V sin(spin loft) and gradient boosting fitted on the same training rows; each
+   form's spin-speed exponent at a fixed delivery (the TrackMan tour drivers' deliveries, 96 -> 115 mph).
 """
 
 from __future__ import annotations
@@ -218,7 +222,11 @@ def part1(draws=DRAWS):
 
 #: the flexing face, held at the middle of the plate model's range (docs/models.md, "The face flexing behind the
 #: contact": a clamped plate's first mode 3.5-5.1 kHz, modal mass 9.7-13.9 g; a model output, not a measurement)
-FACE = {"face_frequency": 4300.0, "face_modal_mass": 0.0118}
+#: face_frequency is an angular frequency [rad/s] when bare (models._common.face_frequency_field): 2 pi f
+FACE = {"face_frequency": 2.0 * math.pi * 4300.0, "face_modal_mass": 0.0118}
+#: the face sized by the Rules' COR limit (docs/models.md: 6.88 kHz at 10.9 g, a model output), with the hysteretic
+#: normal law, the one under which a yielding face can return energy (under adjusted_speed it only takes energy)
+FACE_COR = {"face_frequency": 2.0 * math.pi * 6880.0, "face_modal_mass": 0.0109, "inelastic": "hysteretic"}
 
 
 def part2_forms():
@@ -228,7 +236,12 @@ def part2_forms():
     return [
         (Form("hertz_mindlin, strike at the face centre", "hertz_mindlin", {}, fitted), False),
         (Form("hertz_mindlin, 3-D head, measured strike (gear effect)", "hertz_mindlin", {}, fitted), True),
-        (Form("hertz_mindlin + flexing face 4.3 kHz, 11.8 g, measured strike", "hertz_mindlin", FACE, fitted), True),
+        (Form("hertz_mindlin + flexing face 4.3 kHz, 11.8 g (adjusted_speed law), measured strike", "hertz_mindlin",
+              FACE, fitted), True),
+        (Form("hertz_mindlin, hysteretic law, rigid face, measured strike", "hertz_mindlin",
+              {"inelastic": "hysteretic"}, fitted), True),
+        (Form("hertz_mindlin, hysteretic law + flexing face at the COR limit 6.88 kHz, 10.9 g, measured strike",
+              "hertz_mindlin", FACE_COR, fitted), True),
         (Form("hertz_mindlin_lever (compression lever), measured strike", "hertz_mindlin", {},
               fitted + ("compression_lever",)), True),
     ]
@@ -323,20 +336,100 @@ def gear_and_face(rl):
           f"dynamic loft held at the contact point): spin {spins[0] * rl.RPM:.0f} / {spins[1] * rl.RPM:.0f} / "
           f"{spins[2] * rl.RPM:.0f} rpm at strike height -10 / 0 / +10 mm, d log spin / dh = {slope:+.4f} per mm; "
           "the file's within-block slope c at fixed measured loft is -0.0001 to -0.0024 per mm (section 1).")
-    print("\n| flexing face (hertz_mindlin, e_ball 0.742, PGA driver delivery) | ball speed [m/s] | spin [rpm] |")
+    print("\n| flexing face (hertz_mindlin, e_ball 0.742, PGA driver delivery; 3.5-5.1 kHz the plate model, "
+          "6.88 / 6.47 kHz the faces at the COR limit: model outputs, docs/models.md) | ball speed [m/s] | "
+          "spin [rpm] |")
     print("|---|---|---|")
     inputs = table_inputs(table)
-    out = rl.run(plain, values, inputs)
-    print(f"| rigid face with the preset's gain 0.083 (today's) | {out['ball_speed'][0]:.2f} | "
-          f"{out['spin_rate'][0] * rl.RPM:.0f} |")
-    for frequency in (3500.0, 4300.0, 5100.0):
-        for mass in (0.0097, 0.0139):
-            form = rl.Form("flex", "hertz_mindlin", {"face_frequency": frequency, "face_modal_mass": mass}, ())
-            out = rl.run(form, values, inputs)
-            print(f"| {frequency / 1000:.1f} kHz, {mass * 1000:.1f} g | {out['ball_speed'][0]:.2f} | "
+    for law in ("adjusted_speed", "hysteretic"):
+        out = rl.run(rl.Form("rigid", "hertz_mindlin", {"inelastic": law}, ()), values, inputs)
+        print(f"| rigid face, gain 0.083, {law} law | {out['ball_speed'][0]:.2f} | "
+              f"{out['spin_rate'][0] * rl.RPM:.0f} |")
+        for frequency, mass in ((3500.0, 0.0097), (3500.0, 0.0139), (5100.0, 0.0097), (5100.0, 0.0139),
+                                (6880.0, 0.0109), (6470.0, 0.0126)):
+            options = {"face_frequency": 2.0 * math.pi * frequency, "face_modal_mass": mass, "inelastic": law}
+            out = rl.run(rl.Form("flex", "hertz_mindlin", options, ()), values, inputs)
+            print(f"| {frequency / 1000:.2f} kHz, {mass * 1000:.1f} g, {law} law | {out['ball_speed'][0]:.2f} | "
                   f"{out['spin_rate'][0] * rl.RPM:.0f} |")
     print(f"| measured (TrackMan PGA driver row) | {table.measured['ball_speed'][0]:.2f} | "
           f"{table.measured['spin_rate'][0] * rl.RPM:.0f} |")
+
+
+def part3(sample):
+    """Section 3: the face at the COR limit on every kept row (round 1's protocol; strike at the centre where the row
+    has no location), beside its rigid face, the plain model and the regression fitted on the same rows."""
+    from impactlab.data.sessions.shots import table_inputs
+    from validation.impact import rate_laws as rl
+    from validation.impact.shots import bands, load
+
+    table, _ = load()
+    slow, fast = bands(table)
+    inputs = table_inputs(table)
+    fitted = ("e_ball", "friction")
+    forms = [rl.Form("hertz_mindlin (today's)", "hertz_mindlin", {}, fitted),
+             rl.Form("hertz_mindlin, hysteretic law, rigid face", "hertz_mindlin", {"inelastic": "hysteretic"}, fitted),
+             rl.Form("hertz_mindlin, hysteretic law + face at the COR limit", "hertz_mindlin", FACE_COR, fitted)]
+    rng = np.random.default_rng(33)
+    print("\n### 3. The face at the COR limit on every kept row (round 1's protocol, training subsample "
+          f"{sample})\n")
+    print("| form | fitted on -> tested on | fitted parameters (at bound) | spin median abs err % | spin median err % "
+          "| "
+          "ball speed median abs err % | regression, same rows: spin median abs err % |")
+    print("|---|---|---|---|---|---|---|")
+    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
+        index = np.flatnonzero(train_mask)
+        train_rows = np.sort(rng.choice(index, size=min(sample, index.size), replace=False))
+        test_rows = np.flatnonzero(test_mask)
+        train, test = table.subset(train_rows), table.subset(test_rows)
+        predicted, _ = rl.regression(train, test)
+        base = 100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0))
+        for form in forms:
+            values, at_bound = rl.fit(form, _take(inputs, train_rows, table.size), train.measured, rl_bounds(rl))
+            e = rl.errors(rl.run(form, values, _take(inputs, test_rows, table.size)), test.measured)
+            cells = ", ".join(f"{n} {v:.4g}" for n, v in values.items())
+            flag = f" (at bound: {', '.join(at_bound)})" if at_bound else ""
+            print(f"| {form.name} | {label} | {cells}{flag} | {100 * np.nanmedian(np.abs(e['spin'])):.1f} | "
+                  f"{100 * np.nanmedian(e['spin']):+.1f} | {100 * np.nanmedian(np.abs(e['speed'])):.2f} | "
+                  f"{base:.1f} |")
+
+
+def part4(sample):
+    """Section 4: the face at the COR limit fitted on the whole file, predicting TrackMan's tour tables and the wedge
+    ball-type test without refitting (validation.impact.rate_laws, section 5's protocol), beside hertz_mindlin."""
+    from impactlab.data.sessions.shots import table_inputs
+    from impactlab.data.validation.observations import cover_effect, load_observations
+    from validation.impact import rate_laws as rl
+    from validation.impact.shots import load
+
+    table, _ = load()
+    inputs = table_inputs(table)
+    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    table_t = rl.tour()
+    inputs_t = table_inputs(table_t)
+    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    print(f"\n### 4. Fitted on {sample} rows of the whole file, predicting the tour tables and the wedge test (not "
+          "refitted)\n")
+    print("| form | fitted | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in table_t.labels)
+          + " | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 (measured +48 %) |")
+    print("|---|---|" + "---|" * table_t.size + "---|---|")
+    fitted = ("e_ball", "friction")
+    for form in (rl.Form("hertz_mindlin", "hertz_mindlin", {}, fitted),
+                 rl.Form("hertz_mindlin_face (hysteretic, face at the COR limit)", "hertz_mindlin", FACE_COR, fitted)):
+        values, at_bound = rl.fit(form, _take(inputs, rows, table.size), table.subset(rows).measured, rl_bounds(rl))
+        e = rl.errors(rl.run(form, values, inputs_t), table_t.measured)
+        cells = [f"{100 * e['spin'][i]:+.1f}, {100 * e['speed'][i]:+.2f}, {e['launch'][i]:+.2f}"
+                 for i in range(table_t.size)]
+        ks = rl.exponent(form, values)
+        cover = cover_effect(rl.model_of(form, values), wedge,
+                             inputs_hook=lambda i, v=values, f=form: rl.apply(i, v, f))
+        fit_cells = ", ".join(f"{n} {v:.4g}" for n, v in values.items())
+        flag = f" (at bound: {', '.join(at_bound)})" if at_bound else ""
+        print(f"| {form.name} | {fit_cells}{flag} | " + " | ".join(cells) + f" | {ks[0]:.3f} / {ks[1]:.3f} | "
+              f"{100 * cover['predicted']:+.1f} % |")
+
+
+def rl_bounds(rl):
+    return dict(rl.BOUNDS)
 
 
 def attrs_evolve_strike(table):
@@ -354,7 +447,8 @@ def _take(inputs, rows, size):
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="section 2 on training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(1, 2), help="one section only")
+    parser.add_argument("--part", type=int, choices=(1, 2, 3, 4),
+                        help="one section only (3 and 4: only when asked)")
     args = parser.parse_args(argv)
     started = time.time()
     # the file's rows hold strikes and speeds beyond a study's plausible range: measured data, computed as given
@@ -364,6 +458,10 @@ def main(argv=None) -> None:
         part1()
     if args.part in (None, 2):
         part2(200 if args.quick else 400)
+    if args.part == 3:
+        part3(200 if args.quick else 400)
+    if args.part == 4:
+        part4(200 if args.quick else 400)
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 
