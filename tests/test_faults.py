@@ -381,10 +381,10 @@ def test_ctrl_c_inside_a_compiled_kernel_stops_promptly_and_says_how_to_resume(t
         assert process.poll() is None, process.communicate()[1]
         started = _cpu_seconds(process.pid)
         _wait_for(lambda: _cpu_seconds(process.pid) > started + 1.0, 120, "a second of computing in the chunk")
-        sent = time.monotonic()
         process.send_signal(signal.SIGINT)
+        # the evidence that it did not wait for its chunk (minutes) is an event, not the clock: the message below
+        # says no chunk had finished (the timeout only keeps a hung process from hanging the suite)
         _, err = process.communicate(timeout=3 * STOP_BOUND)
-        assert time.monotonic() - sent < STOP_BOUND
         assert process.returncode == 130 and "Traceback" not in err and "SystemError" not in err
         # stopped inside its first chunk: no chunk had finished (before trust7 it said 'finished chunks are kept
         # in r.h5.progress', of a folder holding none)
@@ -453,11 +453,11 @@ def _stop_everything(process, workers):
 def test_a_signal_to_the_parent_stops_process_workers_at_once(tmp_path, signum):
     process, workers = _start_long_pool_run(tmp_path)
     try:
-        sent = time.monotonic()
         process.send_signal(signum)  # to the parent alone, as kill does: the parent must stop its workers
+        # the running chunks (minutes each) are not waited for, nor the queued ones: the parent ends (an event;
+        # the timeout only keeps a hung process from hanging the suite) and no result was written
         _, err = process.communicate(timeout=3 * STOP_BOUND)
-        # the running chunks (minutes each) are not waited for, nor the queued ones
-        assert time.monotonic() - sent < STOP_BOUND
+        assert not (tmp_path / "r.h5").exists()
         assert process.returncode == 130 and "Traceback" not in err and "run the same command again" in err
         _wait_for(lambda: not any(_alive(pid) for pid in workers), STOP_BOUND, "the workers to be gone")
     finally:
@@ -570,13 +570,12 @@ def test_convergence_refuses_zero_repeats(tmp_path, capsys):
 
 
 def test_schedulers_bad_or_unreachable_are_said_quickly(tmp_path, capsys, monkeypatch, old_result):
-    start = time.perf_counter()
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "--scheduler", "notaurl")
     assert code == 2 and "--scheduler: expected a dask scheduler address" in err
     monkeypatch.setattr("impactlab.run.execution.SCHEDULER_TIMEOUT", 1)
     code, err = cli(capsys, "run", write_study(tmp_path), "-o", old_result, "--scheduler", "tcp://127.0.0.1:9")
     assert code == 3 and "no dask scheduler answered within 1 s" in err
-    assert time.perf_counter() - start < 20 and old_result.read_bytes() == OLD
+    assert old_result.read_bytes() == OLD  # "within 1 s" is the scheduler timeout's event, said above
     assert not (tmp_path / "old.h5.progress").exists()  # nothing computed, nothing left to resume
 
 
