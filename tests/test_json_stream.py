@@ -76,3 +76,12 @@ def test_an_object_nested_past_the_bound_is_read_to_its_end_and_refused_and_the_
             assert refused is None and items == []
     assert refused == len(chunks) - 2
     assert items == [b'{"Code":200}']
+
+
+def test_a_good_object_before_a_deep_one_is_taken_and_the_deep_one_refused():
+    """Both in one read: the good reply comes out, the refusal names the deep one (review: the good one was refused)."""
+    stream = JsonObjectStream(limit=1 << 20)
+    deep = b'{"Code":201,"Player":' + b"[" * 150 + b"]" * 150 + b"}"
+    with pytest.raises(NotJsonError) as refused:
+        stream.feed(b'{"Code":200,"Message":"ok"}' + deep)
+    assert "nests more than" in str(refused.value) and '"Code":200' not in str(refused.value)

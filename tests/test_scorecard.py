@@ -306,3 +306,26 @@ def test_validate_scores_the_carry_a_session_gives(tmp_path, capsys):
     block = out[out.index("  carry [m]"):]
     flight = next(line for line in block.splitlines() if line.strip().startswith("launch flown")).split()
     assert flight[2:5] == ["9", "3.00", "3.00"]  # n, median |e|, p90 |e|: every held-out carry 3 m beyond
+
+
+def test_the_report_is_written_once_after_every_refusal(tmp_path, capsys):
+    """--report names one page: two sessions are refused before anything runs, and a refusal after the run (a
+    --club sheet that matches no row) leaves no report behind (review: it was written first, then refused)."""
+    from impactlab.cli import main
+
+    path, other, page = tmp_path / "session.csv", tmp_path / "other.csv", tmp_path / "report.html"
+    write_csv(session(30), path)
+    write_csv(session(30), other)
+    assert main(["validate", "--dataset", str(path), "--dataset", str(other), "--report", str(page)]) == 2
+    assert "exactly one --dataset" in capsys.readouterr().err and not page.exists()
+    sheet = tmp_path / "club.yaml"
+    sheet.write_text("name: my driver\nnames: [Nobody's club]\nloft: 10.5 deg\nlie: 58 deg\nmass: 200 g\n"
+                     "moi: {toe: 3000 g cm^2, up: 4500 g cm^2, target: 2500 g cm^2}\n"
+                     "cg: {toe: 0 mm, high: 0 mm, depth: 35 mm}\n")
+    status = main(["validate", "--dataset", str(path), "--model", "restitution", "--report", str(page),
+                   "--club", str(sheet)])
+    err = capsys.readouterr().err
+    # the sheet matches no row (the session's rows name 'driver'): refused after the run, and no page was written
+    assert status == 2 and "matches no row" in err and not page.exists(), err
+    assert main(["validate", "--dataset", str(path), "--model", "restitution", "--report", str(page)]) == 0
+    assert page.exists()

@@ -63,6 +63,11 @@ def _refuse_validate_outputs(args) -> None:
     if args.report:
         check_output(args.report, what="--report file", suffix=".html", reads=[*read, *(args.fit or ())],
                      formats=(".html", ".htm"))
+        if len(args.dataset or ()) != 1:  # one page per run: a second session would replace the first's
+            raise StudyError("--report writes the scorecard of one session: give exactly one --dataset FILE "
+                             f"(given {len(args.dataset or ())})")
+    if args.holdout is not None and not 0.0 < args.holdout < 1.0:  # said before any dataset runs
+        raise FieldError("--holdout", "a share of the rows held out, between 0 and 1 (e.g. 0.3)", str(args.holdout))
 
 
 def _print_dataset(name: str) -> list[str]:
@@ -142,6 +147,7 @@ def _cmd_validate(args) -> int:
     rows: list[dict] = []  # per shot and model: measured beside predicted (--csv)
     drawn = False  # a shot table validated, whose figure --plot draws
     scored = False  # a session scored (a scorecard on held-out rows)
+    report_parts: list = []  # what --report draws, written once every refusal has passed
 
     for name in names:
         if name == OBSERVATIONS:  # published differences between shots (gear effect, cover): ratios
@@ -158,9 +164,10 @@ def _cmd_validate(args) -> int:
                                                                      table.clubs)))
                 tables.append(name)
                 seen.extend(table.clubs)
+                # the report is written after the run's last refusal (below), never before it
                 print_scorecard(table, args.model or SHOT_MODELS, fits,
-                                HOLDOUT if args.holdout is None else args.holdout, args.report, rows,
-                                in_sample(fits, name), measured_carry(name, table))
+                                HOLDOUT if args.holdout is None else args.holdout, None, rows,
+                                in_sample(fits, name), measured_carry(name, table), keep=report_parts)
                 scored = True
                 continue
             if table is not None:
@@ -186,6 +193,10 @@ def _cmd_validate(args) -> int:
                          "FILE.csv, a shot-table .yaml or trackman_tour); nothing was drawn")
     if args.csv:
         _write_validate_csv(args.csv, rows)
+    if args.report and report_parts:
+        from impactlab.data.validation.report import write_report
+
+        print(f"wrote {write_report(args.report, *report_parts[0])}", file=sys.stderr)
     if over:
         print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)
         return 1
@@ -218,7 +229,8 @@ def _cmd_fit(args) -> int:
             return fit_shots(table, args.model, args.parameter, args.cross_validate, args.json, args.by,
                              5 if args.folds is None else args.folds, args.dataset)
     ignored = [option for option, given in (("--cross-validate", args.cross_validate), ("--club", args.club),
-                                            ("--include-flagged", args.include_flagged)) if given]
+                                            ("--include-flagged", args.include_flagged), ("--strict", args.strict),
+                                            ("--show-rows", getattr(args, "show_rows", False))) if given]
     if ignored:
         them = "it" if len(ignored) == 1 else "them"
         raise StudyError(f"{', '.join(ignored)}: for shot tables, and {args.dataset} is a validation dataset of "

@@ -404,12 +404,14 @@ def print_observations(models: Sequence[str], options: dict | None = None) -> No
 
 def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence | None = None,
                     holdout: float = HOLDOUT, report: str | None = None, rows: list | None = None,
-                    in_sample: Sequence[str] = (), carry: dict | None = None) -> xr.Dataset:
+                    in_sample: Sequence[str] = (), carry: dict | None = None, keep: list | None = None) -> xr.Dataset:
     """Print :func:`scorecard` of ``table`` (and write the HTML report ``report``); return the Dataset.
 
     ``rows``, when given a list, receives the per-shot table of the held-out rows
     (:func:`impactlab.data.shot_report.prediction_rows`); ``in_sample`` names fits made on this very file;
-    ``carry`` is the monitor's carry of each row (:func:`measured_carry`)."""
+    ``carry`` is the monitor's carry of each row (:func:`measured_carry`); ``keep``, when given a list, receives
+    the arguments of :func:`impactlab.data.validation.report.write_report` after ``path`` (table, split, card,
+    predictions), for a caller that writes the report later (the command line, after its last refusal)."""
     print(f"{table.name}: {table.size} row(s) ({labels_text(table.labels)})")
     print(f"  source: {table.source}")
     for line in skipped_text(table):
@@ -429,6 +431,8 @@ def print_scorecard(table: ShotTable, models: Sequence[str] = (), fits: Sequence
     print()
     if rows is not None:
         rows.extend(prediction_rows(table.subset(split.test), predicted))
+    if keep is not None:
+        keep.append((table, split, card, predicted))
     if report:
         print(f"wrote {write_report(report, table, split, card, predicted)}", file=sys.stderr)
     return card
@@ -453,6 +457,6 @@ def measured_carry(path: str, table: ShotTable) -> dict | None:
     if any(i is None for i in index):
         return None
     rows = np.array(index)
-    # not tracked: flagged estimated or clamped, or the monitor's model output (a flight it tracked too briefly)
-    modelled = session.flags.get(("carry_distance", "modelled"), np.zeros(session.size, bool))
-    return {"measured": values[rows], "tracked": ~(session.flagged("carry_distance") | modelled)[rows]}
+    # tracked: a carry the monitor measured (not flagged, not its model output of a flight tracked too briefly or
+    # of unknown tracking): one rule with fly's (Session.carry_measured)
+    return {"measured": values[rows], "tracked": session.carry_measured()[rows]}

@@ -147,16 +147,17 @@ class JsonObjectStream:
         # json recurses once per level: a reply 30,000 deep (under the size limit) was a RecursionError. The depth is
         # measured flat; such an object is read to its end (found flat too) and refused whole, so that the stream
         # stays in step and the sender is not cut off mid-write
-        if json_depth_exceeded(text):
+        if json_depth_exceeded(text):  # the buffer may hold a good object and, after it, the deep one
             end = json_value_end(text)
             if end < 0:
                 if len(buffer) > self.limit:
                     raise NotJsonError(buffer, f"an object longer than {self.limit} bytes")
                 return None
-            size = len(text[:end].encode("utf-8"))
-            refused = bytes(buffer[:size])
-            del buffer[:size]
-            raise NotJsonError(refused, f"a reply whose JSON nests more than {MAX_NESTING} levels deep")
+            if json_depth_exceeded(text[:end]):  # the first object itself is the deep one
+                size = len(text[:end].encode("utf-8"))
+                refused = bytes(buffer[:size])
+                del buffer[:size]
+                raise NotJsonError(refused, f"a reply whose JSON nests more than {MAX_NESTING} levels deep")
         try:
             _, end = _DECODER.raw_decode(text)
         except json.JSONDecodeError as exc:

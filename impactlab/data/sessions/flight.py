@@ -153,10 +153,7 @@ def _predictions_and_monitor(session: Session, rows: np.ndarray, flown: xr.Datas
                                                        "long_name": f"{name.replace('_', ' ')} the monitor reports"})
     if session.vendor.tracked and MONITOR + "carry_distance" in data:
         # per value: whether the monitor measured the flight (tracked it long enough) or flew it with its own model
-        modelled = session.flags.get(("carry_distance", "modelled"), np.zeros(session.size, bool))[rows]
-        rule = session.vendor.tracked
-        known = np.isfinite(v[rule["time"]][rows]) & np.isfinite(v[rule["of"]][rows])
-        data[MONITOR + "measured"] = ("shot", known & ~modelled, {
+        data[MONITOR + "measured"] = ("shot", session.carry_measured()[rows], {
             "long_name": "the monitor's carry is measured (its flight tracked for at least "
                          f"{100 * session.vendor.tracked['at_least']:g} % of the hang time), not its model output"})
 

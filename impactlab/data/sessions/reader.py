@@ -110,6 +110,20 @@ class Session:
                 mask |= rows
         return mask
 
+    def carry_measured(self) -> np.ndarray:
+        """Rows whose carry the monitor measured: a carry given, not flagged estimated or clamped, and, where the
+        layout says which flights its monitor tracked (``tracked``: TrackMan's tracked time against the hang time),
+        tracked long enough, both times known (a flight of unknown tracking is not counted as measured)."""
+        carry = self.values.get("carry_distance")
+        if carry is None:
+            return np.zeros(self.size, bool)
+        measured = np.isfinite(carry) & ~self.flagged("carry_distance")
+        rule = self.vendor.tracked
+        if rule:
+            known = np.isfinite(self.values[rule["time"]]) & np.isfinite(self.values[rule["of"]])
+            measured &= known & ~self.flags.get(("carry_distance", "modelled"), np.zeros(self.size, bool))
+        return measured
+
     def verdict(self):
         """The row rules' :class:`~impactlab.data.sessions.rows.RowVerdict` of this session (one set of rules for
         every command)."""
