@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterator
 from typing import Any
 
 from impactlab.errors import _TERMINAL, StudyError, has_control, shown, terminal_safe
@@ -65,13 +66,16 @@ class TerminalGuard:
 _JSON_SPECIAL = re.compile(r'["\\\[\]{}]')
 
 
-def json_value_end(text: str) -> int:
-    """The offset just past the first top-level JSON object or array of ``text`` (which starts with it), found by a
-    flat scan of its brackets outside strings (no recursion, whatever its depth); -1 while it is incomplete."""
-    depth = 0
+def json_brackets(text: str, start: int = 0) -> Iterator[tuple[int, str]]:
+    """(offset, bracket) of every JSON bracket of ``text`` from ``start`` outside string literals, in order.
+
+    The one flat scan behind the bounds on foreign JSON: a backslash escapes the next character inside a string,
+    only quotes, backslashes and brackets are looked at (a regular expression finds them at C speed), and nothing
+    recurses, so a document of any depth is scanned in one pass.
+    """
     in_string = False
-    skip = -1
-    for match in _JSON_SPECIAL.finditer(text):
+    skip = -1  # the offset of a character escaped by a backslash
+    for match in _JSON_SPECIAL.finditer(text, start):
         offset, char = match.start(), match.group()
         if offset == skip:
             continue
@@ -80,47 +84,39 @@ def json_value_end(text: str) -> int:
                 skip = offset + 1
             elif char == '"':
                 in_string = False
-            continue
-        if char == '"':
+        elif char == '"':
             in_string = True
-        elif char in "[{":
-            depth += 1
-        elif char in "]}":
-            depth -= 1
-            if depth == 0:
-                return offset + 1
+        else:
+            yield offset, char
+
+
+def json_value_end(text: str) -> int:
+    """The offset just past the first top-level JSON object or array of ``text`` (which starts with it), found by
+    :func:`json_brackets` (no recursion, whatever its depth); -1 while it is incomplete."""
+    depth = 0
+    for offset, char in json_brackets(text):
+        depth += 1 if char in "[{" else -1
+        if depth == 0:
+            return offset + 1
     return -1
 
 
 def json_depth_exceeded(text: str, limit: int = MAX_NESTING) -> int:
     """The 1-based line where the JSON ``text`` first opens more than ``limit`` brackets, or 0 if it never does.
 
-    Brackets inside strings do not count (a backslash escapes the next character); the scan is flat, so a
-    document of any depth is measured without recursion. Text holding fewer than ``limit`` opening brackets
-    needs no scan (counted at C speed).
+    Brackets inside strings do not count (:func:`json_brackets`); the scan is flat, so a document of any depth is
+    measured without recursion. Text holding fewer than ``limit`` opening brackets needs no scan (counted at C
+    speed).
     """
     if text.count("[") + text.count("{") <= limit:
         return 0
     depth = 0
-    in_string = False
-    skip = -1
-    for match in _JSON_SPECIAL.finditer(text):
-        offset, char = match.start(), match.group()
-        if offset == skip:
-            continue
-        if in_string:
-            if char == "\\":
-                skip = offset + 1
-            elif char == '"':
-                in_string = False
-            continue
-        if char == '"':
-            in_string = True
-        elif char in "[{":
+    for offset, char in json_brackets(text):
+        if char in "[{":
             depth += 1
             if depth > limit:
                 return text.count("\n", 0, offset) + 1
-        elif char in "]}":
+        else:
             depth = max(depth - 1, 0)
     return 0
 
@@ -162,6 +158,6 @@ def loads_json(text: str, where: str) -> Any:
         raise StudyError(f"{shown(where)}: not readable as JSON: {exc}") from None
 
 
-__all__ = ["json_value_end", "MAX_NESTING", "MAX_INPUT_BYTES", "shown", "terminal_safe", "has_control",
+__all__ = ["json_brackets", "json_value_end", "MAX_NESTING", "MAX_INPUT_BYTES", "shown", "terminal_safe", "has_control",
            "TerminalGuard",
            "json_depth_exceeded", "check_json_nesting", "loads_json", "nesting_message"]

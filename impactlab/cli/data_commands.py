@@ -130,7 +130,7 @@ def _cmd_validate(args) -> int:
     # the shot tables' calibration imports scipy.optimize (about 0.2 s): only validate and fit pay for it
     from impactlab.data.shot_report import (
         HOLDOUT, MIN_ROWS, OBSERVATIONS, SHOT_MODELS, SHOT_TABLES, in_sample, load_fits, measured_carry,
-        print_observations, print_scorecard, print_shot_errors, shot_table,
+        print_observations, print_scorecard, print_shot_errors, shot_table, write_report,
     )
 
     names = args.dataset or ([] if args.benchmark else sorted(DATASETS) + list(SHOT_TABLES) + [OBSERVATIONS])
@@ -194,8 +194,6 @@ def _cmd_validate(args) -> int:
     if args.csv:
         _write_validate_csv(args.csv, rows)
     if args.report and report_parts:
-        from impactlab.data.validation.report import write_report
-
         print(f"wrote {write_report(args.report, *report_parts[0])}", file=sys.stderr)
     if over:
         print(f"impactlab: over budget: {', '.join(over)}", file=sys.stderr)

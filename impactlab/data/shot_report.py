@@ -38,7 +38,7 @@ from impactlab.data.sessions.reader import read_session
 from impactlab.data.fit.calibration import cross_validate as leave_one_out
 from impactlab.data.fit.calibration import leave_one_row_out
 from impactlab.data.validation.fits import bounds_of, in_sample as in_sample, load_fits as load_fits, provenance
-from impactlab.data.validation.report import write_report
+from impactlab.data.validation.report import write_report as write_report
 from impactlab.data.validation.scorecard import format_scorecard, losers, scorecard
 from impactlab.data.validation.splits import HOLDOUT, MIN_ROWS as MIN_ROWS, holdout_split
 from impactlab.data.validation.splits import folds as make_folds

@@ -17,13 +17,12 @@ import re
 from typing import Any
 
 from impactlab.errors import StudyError
-from impactlab.foreign import check_json_nesting
+from impactlab.foreign import check_json_nesting, json_brackets
 from impactlab.io.json_stream import json_values
 
 
 #: file suffixes read as JSON shot records by ``validate --dataset`` and ``fit`` (``shots`` reads any file)
 JSON_SESSIONS = (".json", ".jsonl", ".session")
-_SPECIAL = re.compile(r'["\\{}\[\]]')
 
 
 def looks_like_json(text: str) -> bool:
@@ -44,25 +43,12 @@ def _object_starts(text: str, start: int) -> list[tuple[int, int, str]]:
     """(offset, depth, parent bracket) of every ``{`` of the JSON value at ``start`` (string-aware)."""
     out = []
     stack: list[str] = []
-    in_string = False
-    skip = -1  # the offset of a character escaped by a backslash
-    for match in _SPECIAL.finditer(text, start):  # only quotes, backslashes and brackets matter
-        offset, char = match.start(), match.group()
-        if offset == skip:
-            continue
-        if in_string:
-            if char == "\\":
-                skip = offset + 1
-            elif char == '"':
-                in_string = False
-            continue
-        if char == '"':
-            in_string = True
-        elif char in "{[":
+    for offset, char in json_brackets(text, start):  # outside strings (impactlab.foreign: one flat scan)
+        if char in "{[":
             if char == "{":
                 out.append((offset, len(stack) + 1, stack[-1] if stack else ""))
             stack.append(char)
-        elif char in "}]":
+        else:
             stack.pop()
             if not stack:
                 return out
