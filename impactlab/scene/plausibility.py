@@ -122,7 +122,15 @@ def _warn_once(text: str) -> None:
         warnings.warn(text, PlausibilityWarning, stacklevel=4)
 
 
-def _judge(limit: Limit, value: float | None) -> None:
+def refuse_impossible(limit: Limit, value: float | None) -> None:
+    """Refuse ``value`` [SI] beyond ``limit``'s impossible range with a FieldError naming the range and why (a
+    missing or non-finite value is not judged here).
+
+    Raises
+    ------
+    FieldError
+        At ``limit.path``: the range in the limit's display unit, its reason, and the value given.
+    """
     if value is None or not math.isfinite(value):
         return
     shown = value * limit.factor
@@ -130,6 +138,13 @@ def _judge(limit: Limit, value: float | None) -> None:
     if not low <= shown <= high:
         span = f"at least {low:g}" if high == math.inf else f"between {low:g} and {high:g}"
         raise FieldError(limit.path, f"{limit.words} {span} {limit.unit} ({limit.why})", f"{shown:.6g} {limit.unit}")
+
+
+def _judge(limit: Limit, value: float | None) -> None:
+    refuse_impossible(limit, value)
+    if value is None or not math.isfinite(value):
+        return
+    shown = value * limit.factor
     low, high = limit.unusual
     if not low <= shown <= high:
         _warn_once(f"{limit.path}: {shown:.6g} {limit.unit} is unusual for golf (measured shots lie within "
@@ -242,5 +257,5 @@ def check_scene(scene) -> None:
         _judge(high_limit, scene.strike.high)
 
 
-__all__ = ["GOLF", "CONTACT", "GOLF_LIMITS", "Limit", "MAGNITUDES", "wrong_sign", "scene_kind", "check_scene",
-           "club_limits", "strike_limits", "HEAD_LENGTH_LIMIT", "HEAD_HEIGHT_LIMIT"]
+__all__ = ["refuse_impossible", "GOLF", "CONTACT", "GOLF_LIMITS", "Limit", "MAGNITUDES", "wrong_sign", "scene_kind",
+           "check_scene", "club_limits", "strike_limits", "HEAD_LENGTH_LIMIT", "HEAD_HEIGHT_LIMIT"]

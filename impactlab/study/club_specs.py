@@ -9,7 +9,6 @@ with their units, are read by :func:`impactlab.scene.catalogue.club_from_spec`.
 from __future__ import annotations
 
 import functools
-import math
 from pathlib import Path
 from typing import NewType
 
@@ -18,7 +17,7 @@ from cattrs.errors import BaseValidationError, ForbiddenExtraKeysError
 
 from impactlab.errors import FieldError
 from impactlab.scene.catalogue import SPEC_KEYS, club_from_spec
-from impactlab.scene.plausibility import club_limits
+from impactlab.scene.plausibility import club_limits, refuse_impossible
 from impactlab.scene.clubs import ClubHead
 from impactlab.study.structuring import document_converter, field_error
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
@@ -101,14 +100,7 @@ def check_golf_ranges(head) -> None:
     if head.is_sphere:
         return
     for limit, value in club_limits(head):
-        if value is None or not math.isfinite(value):
-            continue
-        shown = value * limit.factor
-        low, high = limit.impossible
-        if not low <= shown <= high:
-            span = f"at least {low:g}" if high == math.inf else f"between {low:g} and {high:g}"
-            raise FieldError(limit.path, f"{limit.words} {span} {limit.unit} ({limit.why})",
-                             f"{shown:.6g} {limit.unit}")
+        refuse_impossible(limit, value)  # the scene's one rule and wording
     g_cm2 = 1e7  # g cm^2 per kg m^2
     low = head.mass * MIN_GYRATION_RADIUS ** 2 * g_cm2
     high = head.mass * MAX_GYRATION_RADIUS ** 2 * g_cm2
