@@ -7,8 +7,8 @@ whose load average is printed: the machine is shared), and the peak memory of th
 
     .venv/bin/python benchmarks/bench_scorecard.py [FILE] [--maw-rows N]
 
-FILE: the shared export (default ../shared/data/trackman-driver-sessions/data.csv, or the copy in
-``--file``); rows a model cannot take are skipped by the reader. ``--maw-rows`` fits maw on fewer rows and
+FILE: the shared export (default: the copy shipped as the dataset ``trackman_driver_sessions``, as published); rows a
+model cannot take are skipped by the reader. ``--maw-rows`` fits maw on fewer rows and
 extrapolates to 8,000 (cost linear in rows: every fold evaluation predicts every row once), saying so.
 """
 
@@ -19,7 +19,6 @@ import os
 import resource
 import time
 import warnings
-from pathlib import Path
 
 from impactlab.data.fit.calibration import DEFAULT_PARAMETERS, calibrate, cross_validate
 from impactlab.data.sessions.reader import read_session
@@ -28,7 +27,8 @@ from impactlab.data.validation.scorecard import format_scorecard, scorecard
 from impactlab.data.validation.splits import folds
 from impactlab.model.registry import get_model
 
-SHARED = Path(__file__).resolve().parents[2] / "shared/data/trackman-driver-sessions/data.csv"
+#: the shared export as published, shipped with impactlab (impactlab.data.sessions.reader.DATASETS)
+SHARED = "trackman_driver_sessions"
 GOALS = {"read": 5.0, "scorecard": 60.0, "rigid_coulomb": 60.0, "maw": 600.0}
 
 
