@@ -2,6 +2,7 @@
 
     .venv/bin/python -u -m validation.impact.face_bounds            (training subsamples of 400 rows; ~3 minutes)
     .venv/bin/python -u -m validation.impact.face_bounds --quick    (subsamples of 200 rows)
+    .venv/bin/python -u -m validation.impact.face_bounds --penner   (e_ball bounded by Penner's line: a sensitivity)
 
 Round 2 fitted ``hertz_mindlin_face`` (the face at the Rules' COR limit, 6.88 kHz, 10.9 g, hysteretic law) with the
 ball's own restitution e_ball bounded as the rigid-face form was: e_ball <= 0.830 - 0.083 = 0.747 (the head COR
@@ -81,13 +82,16 @@ def normal_speeds(table):
     return np.asarray(table.delivery["club_speed"], float) * np.cos(rl.spin_loft(table))
 
 
-def e_ball_bounds(table, start=None):
-    """(low, high, start, source) of e_ball from the barrier COR at the rows' 95th / 5th percentile normal speed."""
+def e_ball_bounds(table, start=None, law="chou"):
+    """(low, high, start, source) of e_ball from the barrier COR at the rows' 95th / 5th percentile normal speed
+    (``law``: ``chou``, the measured line, or ``penner``, the model fit: a sensitivity, not the bound)."""
     v = normal_speeds(table)
     v = v[np.isfinite(v)]
     v_low, v_high = np.percentile(v, [5.0, 95.0])
-    low, high = float(barrier_cor(v_high)), float(barrier_cor(v_low))
-    source = (f"Chou & Yang 1994 barrier COR (MEAS) at the rows' normal speeds {v_low:.1f}-{v_high:.1f} m/s "
+    line = barrier_cor if law == "chou" else penner
+    low, high = float(line(v_high)), float(line(v_low))
+    name = "Chou & Yang 1994 barrier COR (MEAS)" if law == "chou" else "Penner 2001's line (MODEL fit)"
+    source = (f"{name} at the rows' normal speeds {v_low:.1f}-{v_high:.1f} m/s "
               f"(5th-95th percentile{'; beyond 45 m/s extrapolated' if v_high > 45.0 else ''})")
     return low, high, float(np.clip(start if start is not None else 0.5 * (low + high), low, high)), source
 
@@ -158,10 +162,14 @@ def _fit(rl, form, inputs, measured, bounds):
     return values, at_bound
 
 
-def _bounds(rl, table, cap=None):
-    """The fit's bounds: friction as round 1; e_ball from the barrier COR of these rows, capped at ``cap`` if given."""
+def _bounds(rl, table, cap=None, law="chou"):
+    """The fit's bounds: friction as round 1; e_ball from the barrier COR of these rows, capped at ``cap`` if given
+    (``law`` "round2": round 2's rigid-face bound, e_ball in [0.60, 0.747], the reference on the same rows)."""
     bounds = dict(rl.BOUNDS)
-    low, high, start, source = e_ball_bounds(table)
+    if law == "round2":
+        low, high = bounds["e_ball"][:2]
+        return bounds, f"e_ball in [{low:.3f}, {high:.3f}] (round 2: head COR 0.830 - the rigid face's gain 0.083)"
+    low, high, start, source = e_ball_bounds(table, law=law)
     if cap is not None:
         high = min(high, cap)
         if high <= low:
@@ -175,7 +183,14 @@ def _forms(rl):
     fitted = ("e_ball", "friction")
     return (rl.Form("hertz_mindlin_face, e_ball: barrier COR only", "hertz_mindlin", FACE_COR, fitted),
             rl.Form("hertz_mindlin_face, e_ball: barrier COR and head COR <= 0.830", "hertz_mindlin", FACE_COR,
+                    fitted),
+            rl.Form("hertz_mindlin_face, e_ball: round 2's bound <= 0.747 (same rows)", "hertz_mindlin", FACE_COR,
                     fitted))
+
+
+def _plan(rl, cap, law):
+    """(form, cap, law) of each fit: the barrier bound, the same capped by the head COR, round 2's bound."""
+    return list(zip(_forms(rl), (None, cap, None), (law, law, "round2")))
 
 
 def _cells(values, at_bound, cor):
@@ -185,7 +200,7 @@ def _cells(values, at_bound, cor):
     return f"{cells}{flag}", f"{cor:.4f} {verdict}"
 
 
-def bands_section(sample, cap):
+def bands_section(sample, cap, law="chou"):
     """Section 2: fitted on one band, tested on the other, both directions, beside the baselines."""
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
@@ -213,8 +228,8 @@ def bands_section(sample, cap):
         if boosted is not None:
             summary.setdefault("boosting", []).append(
                 100 * np.nanmedian(np.abs(boosted / test.measured["spin_rate"] - 1.0)))
-        for form, capped in zip(_forms(rl), (None, cap)):
-            bounds, bound_text = _bounds(rl, train, capped)
+        for form, capped, kind in _plan(rl, cap, law):
+            bounds, bound_text = _bounds(rl, train, capped, kind)
             if bounds is None:
                 print(f"| {form.name} | {label} | {bound_text} | no admissible e_ball | - | - | - | - | - |")
                 summary.setdefault(form.name, []).append(None)
@@ -241,8 +256,8 @@ def bands_section(sample, cap):
         ks = rl.exponent(form, summary[(form.name, "values")][0][0])
         both = "yes" if all(m < b for m, b in zip(med, base)) else "no"
         print(f"| {form.name} | {med[0]:.1f} / {med[1]:.1f} | {both} | {ks[0]:.3f} / {ks[1]:.3f} |")
-    print("| round 2's hertz_mindlin_face (e_ball <= 0.747, the rigid-face bound; confounding_output.md section 3) | "
-          "15.5 / 18.3 | yes | 0.896 / 0.895 |")
+    print("| (round 2's run, confounding_output.md section 3, on the file as then filtered) | 15.5 / 18.3 | yes | "
+          "0.896 / 0.895 |")
     print(f"| regression k V sin(spin loft) | {base[0]:.1f} / {base[1]:.1f} | - | 1.000 / 1.000 |")
     if "boosting" in summary:
         boost = summary["boosting"]
@@ -250,7 +265,7 @@ def bands_section(sample, cap):
     return summary
 
 
-def tour_section(sample, cap):
+def tour_section(sample, cap, law="chou"):
     """Section 3: fitted on a subsample of the whole file, predicting the tour tables and the wedge test."""
     from impactlab.data.sessions.shots import table_inputs
     from impactlab.data.validation.observations import cover_effect, load_observations
@@ -273,8 +288,8 @@ def tour_section(sample, cap):
           "(measured +48 %) |")
     print("|---|---|---|---|" + "---|" * table_t.size + "---|---|---|")
     results = {}
-    for form, capped in zip(_forms(rl), (None, cap)):
-        bounds, bound_text = _bounds(rl, train, capped)
+    for form, capped, kind in _plan(rl, cap, law):
+        bounds, bound_text = _bounds(rl, train, capped, kind)
         if bounds is None:
             print(f"| {form.name} | {bound_text} | no admissible e_ball |" + " - |" * (table_t.size + 4))
             continue
@@ -302,6 +317,8 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
     parser.add_argument("--part", type=int, choices=(1, 2, 3), help="one section only")
+    parser.add_argument("--penner", action="store_true",
+                        help="bound e_ball by Penner's line (a model fit) instead: a sensitivity, not the bound")
     args = parser.parse_args(argv)
     started = time.time()
     warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
@@ -316,9 +333,9 @@ def main(argv=None) -> None:
           f"{head_cor(0.747):.4f} at e_ball 0.747 (round 2's bound), {head_cor(0.787):.4f} at 0.787 (the ball the face "
           f"was sized with); 0.830 at e_ball {cap:.4f}: the cap of the admissible fit")
     if args.part in (None, 2):
-        bands_section(sample, cap)
+        bands_section(sample, cap, "penner" if args.penner else "chou")
     if args.part in (None, 3):
-        tour_section(sample, cap)
+        tour_section(sample, cap, "penner" if args.penner else "chou")
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 
