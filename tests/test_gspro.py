@@ -47,11 +47,17 @@ ANSWERS = {
 
 
 class FakeGSPro:
-    """A GSPro Connect on 127.0.0.1 (a free port) that records each message and answers as ``mode`` says."""
+    """A GSPro Connect on 127.0.0.1 (a free port) that records each message and answers as ``mode`` says.
 
-    def __init__(self, mode="ok", greeting=b""):
-        self.answer = ANSWERS[mode]
+    ``mode`` names an entry of :data:`ANSWERS` or is itself such a function of the message's number; ``greeting``
+    is sent on connect; ``close_after`` closes the connection after that many messages (the client's wait for late
+    replies then ends on the close, not on a clock). It splits the client's stream with
+    ``json.JSONDecoder.raw_decode``, not the code under test's splitter. tests/test_trust_outside.py uses it too."""
+
+    def __init__(self, mode="ok", greeting=b"", close_after=None):
+        self.answer = ANSWERS[mode] if isinstance(mode, str) else mode
         self.greeting = greeting
+        self.close_after = close_after
         self.messages = []          # each message as parsed JSON
         self.raw = bytearray()      # every byte received
         self.done = threading.Event()
@@ -100,6 +106,8 @@ class FakeGSPro:
                             return
                         if answer is not None:
                             connection.sendall(answer)
+                        if self.close_after is not None and len(self.messages) == self.close_after:
+                            return
         except Exception as exc:  # noqa: BLE001 - re-raised in the test thread
             self.error = exc
         finally:

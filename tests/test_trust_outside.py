@@ -9,12 +9,12 @@ local TCP server on a thread; its timing is driven by events and by what it read
 import json
 import math
 import re
-import socket
-import threading
 
 import numpy as np
 import pytest
 import xarray as xr
+
+from test_gspro import FakeGSPro  # the one fake GSPro Connect of the suite
 
 from impactlab._version import __version__
 from impactlab.cli import main
@@ -96,62 +96,6 @@ OK = b'{"Code":200,"Message":"Shot received successfully"}'
 PLAYER = b'{"Code":201,"Message":"GSPro Player Information","Player":{"Handed":"RH","Club":"DR"}}'
 
 
-class LocalGSPro:
-    """GSPro Connect on 127.0.0.1: ``on_connect`` bytes first, then for message i it sends ``answer(i)``.
-
-    It splits the client's stream with ``json.JSONDecoder.raw_decode`` (not the code under test's splitter)."""
-
-    def __init__(self, answer, on_connect=b"", close_after=None):
-        self.answer, self.on_connect, self.close_after = answer, on_connect, close_after
-        self.messages = []
-        self.error = None
-        self.listener = socket.create_server(("127.0.0.1", 0))
-        self.listener.settimeout(WAIT)
-        self.address = f"127.0.0.1:{self.listener.getsockname()[1]}"
-        self.thread = threading.Thread(target=self._serve, daemon=True)
-
-    def __enter__(self):
-        self.thread.start()
-        return self
-
-    def __exit__(self, *exc_info):
-        self.thread.join(WAIT)
-        self.listener.close()
-        assert not self.thread.is_alive()
-        if self.error is not None:
-            raise self.error
-
-    def _serve(self):
-        try:
-            connection, _ = self.listener.accept()
-            with connection:
-                connection.settimeout(WAIT)
-                if self.on_connect:
-                    connection.sendall(self.on_connect)
-                decoder, text = json.JSONDecoder(), ""
-                while True:
-                    data = connection.recv(4096)
-                    if not data:
-                        return
-                    text += data.decode()
-                    while True:
-                        text = text.lstrip()
-                        try:
-                            message, end = decoder.raw_decode(text)
-                        except ValueError:
-                            break
-                        text = text[end:]
-                        answer = self.answer(len(self.messages))
-                        self.messages.append(message)
-                        if answer is None:
-                            return
-                        connection.sendall(answer)
-                        if self.close_after is not None and len(self.messages) == self.close_after:
-                            return  # closed: the client's wait for late replies ends here, not on a clock
-        except (OSError, ValueError) as exc:
-            self.error = exc
-
-
 # ---- stored results: a delivery result written by hand ----------------------------------------------------------
 
 def hand_result(path, changes=None, scene_changes=None, attrs_changes=None):
@@ -216,7 +160,7 @@ def test_the_hand_result_is_sound_and_exports(result_file, tmp_path, capsys):
 def test_a_gspro_reply_nested_30000_deep_is_refused_not_crashed(result_file, capsys):
     deep = b'{"Code":200,"Message":"ok","Player":' + b"[" * 30_000 + b"]" * 30_000 + b"}"
     assert len(deep) < 64 * 1024  # under the reply size limit: the depth bound is what refuses it
-    with LocalGSPro(lambda i: deep) as server:
+    with FakeGSPro(lambda i: deep) as server:
         status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
     captured = capsys.readouterr()
     assert_clean(captured, status, 3)
@@ -225,7 +169,7 @@ def test_a_gspro_reply_nested_30000_deep_is_refused_not_crashed(result_file, cap
 
 def test_a_servers_escape_sequences_never_reach_the_terminal(result_file, capsys):
     hostile = json.dumps({"Code": 501, "Message": HOSTILE}).encode()
-    with LocalGSPro(lambda i: hostile) as server:
+    with FakeGSPro(lambda i: hostile) as server:
         status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
     captured = capsys.readouterr()
     assert_clean(captured, status, 3)
@@ -236,7 +180,7 @@ def test_a_servers_escape_sequences_never_reach_the_terminal(result_file, capsys
 
 def test_a_notices_player_names_are_escaped_too(result_file, capsys):
     notice = json.dumps({"Code": 201, "Message": "Player", "Player": {"Club": HOSTILE}}).encode()
-    with LocalGSPro(lambda i: notice + OK) as server:
+    with FakeGSPro(lambda i: notice + OK) as server:
         status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
     assert_clean(capsys.readouterr(), status, 0)
 
@@ -256,7 +200,7 @@ def _send(result_file, server, lines, settle=WAIT):
 def test_a_stray_200_on_connect_is_set_aside_and_said(result_file):
     lines = []
     # the server closes after its second answer, so the client's wait for a late reply ends without a clock
-    with LocalGSPro(lambda i: OK, on_connect=b'{"Code":200}', close_after=2) as server:
+    with FakeGSPro(lambda i: OK, greeting=b'{"Code":200}', close_after=2) as server:
         replies = _send(result_file, server, lines)
     assert len(server.messages) == 2 and len(replies) == 2
     # whether the stray came before shot 1 went out or was read as its answer (then shot 1's own 200 is the one
@@ -266,7 +210,7 @@ def test_a_stray_200_on_connect_is_set_aside_and_said(result_file):
 
 
 def test_the_closing_line_says_replies_that_answered_no_shot(result_file, capsys):
-    with LocalGSPro(lambda i: OK + b'{"Code":200}') as server:
+    with FakeGSPro(lambda i: OK + b'{"Code":200}') as server:
         status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
     captured = capsys.readouterr()
     assert_clean(captured, status, 0)
@@ -276,7 +220,7 @@ def test_the_closing_line_says_replies_that_answered_no_shot(result_file, capsys
 
 def test_a_second_200_after_each_shot_is_never_the_next_shots_answer(result_file):
     lines = []
-    with LocalGSPro(lambda i: OK + b'{"Code":200}', close_after=2) as server:
+    with FakeGSPro(lambda i: OK + b'{"Code":200}', close_after=2) as server:
         replies = _send(result_file, server, lines)
     # each shot is sent after its own answer came (the server saw both), the extra 200s set aside, one per shot
     assert len(server.messages) == 2 and len(replies) == 2
@@ -287,7 +231,7 @@ def test_a_second_200_after_each_shot_is_never_the_next_shots_answer(result_file
 
 def test_a_flood_of_notices_is_counted_not_printed_line_by_line(result_file, capsys):
     flood = PLAYER * 5_000
-    with LocalGSPro(lambda i: flood + OK) as server:
+    with FakeGSPro(lambda i: flood + OK) as server:
         status = main(["export", str(result_file), "--gspro", server.address, "--timeout", "5"])
     captured = capsys.readouterr()
     assert_clean(captured, status, 0)
