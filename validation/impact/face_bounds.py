@@ -144,22 +144,7 @@ def e_ball_at_limit(options=None):
 
 def _fit(rl, form, inputs, measured, bounds):
     """rate_laws.fit without its rigid-face head check (e_ball + 0.083 is not the head COR on a flexing face)."""
-    names = form.fitted
-    low = np.array([bounds[n][0] for n in names])
-    high = np.array([bounds[n][1] for n in names])
-    start = np.clip(np.array([bounds[n][2] for n in names]), low, high)
-
-    def residual(x):
-        out = rl.run(form, dict(zip(names, x)), inputs)
-        spin = np.log(out["spin_rate"] / measured["spin_rate"])
-        speed = 3.0 * np.log(out["ball_speed"] / measured["ball_speed"])
-        return np.nan_to_num(np.concatenate([spin, speed]), nan=1.0)
-
-    solved = optimize.least_squares(residual, start, bounds=(low, high), loss="soft_l1", f_scale=0.1,
-                                    x_scale=np.maximum(high - low, 1e-3) / 4, diff_step=1e-3, max_nfev=60)
-    values = dict(zip(names, solved.x))
-    at_bound = [n for n, x, lo, hi in zip(names, solved.x, low, high) if min(x - lo, hi - x) < 1e-3 * (hi - lo)]
-    return values, at_bound
+    return rl.fit(form, inputs, measured, bounds, rigid_face_head=False)
 
 
 def _bounds(rl, table, cap=None, law="chou"):

@@ -211,8 +211,11 @@ def run(form, values, inputs):
     return predict(model_of(form, values), apply(inputs, values, form))
 
 
-def fit(form, inputs, measured, bounds):
-    """Bounded robust least squares of the form's parameters on these rows: (values, flags at bound)."""
+def fit(form, inputs, measured, bounds, rigid_face_head: bool = True):
+    """Bounded robust least squares of the form's parameters on these rows: (values, flags at bound).
+
+    ``rigid_face_head``: check the head COR as the rigid face's e_ball + the preset's gain (check_head_cor); a
+    flexing face makes its own gain, so its caller checks the head COR its own way (face_bounds)."""
     names = form.fitted
     low = np.array([bounds[n][0] for n in names])
     high = np.array([bounds[n][1] for n in names])
@@ -229,7 +232,8 @@ def fit(form, inputs, measured, bounds):
                                     x_scale=np.maximum(high - low, 1e-3) / 4, diff_step=1e-3, max_nfev=60)
     values = dict(zip(names, solved.x))
     at_bound = [n for n, x, lo, hi in zip(names, solved.x, low, high) if min(x - lo, hi - x) < 1e-3 * (hi - lo)]
-    check_head_cor(values)
+    if rigid_face_head:
+        check_head_cor(values)
     return values, at_bound
 
 
