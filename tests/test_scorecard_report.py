@@ -63,3 +63,17 @@ def test_every_figure_renders_in_headless_chromium(report, tmp_path):
     decoded = re.search(r'data-decoded="(\d+)/(\d+)"', done.stdout)
     assert decoded is not None, done.stdout[:2000]
     assert decoded.group(1) == decoded.group(2) == "8"
+
+
+def test_a_curve_lying_on_another_is_named_in_the_legend():
+    """restitution and rigid_coulomb give the same launches: the later curve must say it lies on the earlier one."""
+    from impactlab.data.validation.report import _lies_on
+
+    xs, ys = np.linspace(0.0, 1.0, 9), np.linspace(2.0, 3.0, 9)
+    drawn = [("rigid_coulomb", xs, ys)]
+    assert _lies_on(drawn, xs, ys + 1e-4, 1e-3) == "rigid_coulomb"
+    assert _lies_on(drawn, xs, ys + 1e-2, 1e-3) is None
+    assert _lies_on(drawn, xs[:-1], ys[:-1], 1e-3) is None  # another set of points is another curve
+    nan = ys.copy()
+    nan[3] = np.nan
+    assert _lies_on(drawn, xs, nan, 1e-3) is None  # a gap where the other has a value: not the same curve

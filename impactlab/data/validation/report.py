@@ -110,29 +110,56 @@ def _binned(x: np.ndarray, y: np.ndarray, edges: np.ndarray, least: int | None =
     return np.array(centre), np.array(median), np.array(lower), np.array(upper)
 
 
+def _lies_on(drawn: list, xs: np.ndarray, ys: np.ndarray, tolerance: float) -> str | None:
+    """The name of an earlier curve of ``drawn`` [(name, xs, ys)] that (xs, ys) lies on within ``tolerance`` (same
+    points, finite values), or None: a curve hidden under another is said in the legend, never left unsaid."""
+    for name, x0, y0 in drawn:
+        if x0.shape == xs.shape and np.all(np.isfinite(ys) == np.isfinite(y0)):
+            both = np.isfinite(ys) & np.isfinite(y0)
+            if both.any() and np.all(np.abs(x0[both] - xs[both]) <= tolerance) \
+                    and np.all(np.abs(y0[both] - ys[both]) <= tolerance):
+                return name
+    return None
+
+
 def residual_vs_speed(test: ShotTable, predicted: dict):
     """Per output: each model's median residual (predicted - measured) against club speed, with its IQR band."""
     speed = test.delivery["club_speed"] / MPH
     edges = np.arange(math.floor(np.nanmin(speed) / 5) * 5, np.nanmax(speed) + 5.0, 5.0)
     keys = ("ball_speed [%]", "launch angle [deg]", "launch direction [deg]", "spin [%]", "spin axis [deg]")
-    figure = _figure(16, 3.6)
+    figure = _figure(16, 4.4)
     axes = figure.subplots(1, len(keys))
     colours = [f"C{i}" for i in range(10)]
+    hidden: dict[str, dict[str, list[str]]] = {}  # name -> the curve it lies on -> the panels where it does
     for axis, key in zip(axes, keys):
+        drawn: list = []
         for index, (name, values) in enumerate(predicted.items()):
             error = np.asarray(shot_errors(values, test)[key], dtype=float)
             centre, median, lower, upper = _binned(speed, error, edges)
             if centre.size:
                 colour = colours[index % len(colours)]
-                axis.plot(centre, median, "-o", ms=3, color=colour, label=name)
+                # within 1 % of the curve's span: at this figure's size the two lines are drawn on the same pixels
+                under = _lies_on(drawn, centre, median, 0.01 * (np.nanmax(median) - np.nanmin(median)) + 1e-12)
+                drawn.append((name, centre, median))
+                if under:
+                    hidden.setdefault(name, {}).setdefault(under, []).append(key.split(" [")[0])
+                axis.plot(centre, median, "--o" if under else "-o", ms=5 if under else 3, mfc="none" if under else
+                          colour, color=colour, label=name)
                 axis.fill_between(centre, lower, upper, color=colour, alpha=0.08)
         axis.axhline(0.0, color="k", lw=0.6)
         axis.set_xlabel("club speed [mph]")
         axis.set_ylabel(key)
         axis.set_title(f"predicted - measured: {key}", fontsize=9)
         axis.grid(alpha=0.3)
-    if axes[0].get_legend_handles_labels()[0]:
-        axes[0].legend(fontsize=7)
+    # the one legend (first panel) says every panel where a curve lies on another's (drawn dashed, open markers)
+    for line in axes[0].get_lines():
+        notes = hidden.get(str(line.get_label()))
+        if notes:
+            where = "; ".join(f"{other} in {', '.join(panels)}" for other, panels in notes.items())
+            line.set_label(f"{line.get_label()} (on {where})")
+    if axes[0].get_legend_handles_labels()[0]:  # below the panels, where it hides no curve
+        figure.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncol=4, fontsize=7,
+                      frameon=False)
     figure.suptitle(f"{test.name}: residual against club speed on the held-out shots (lines: median per 5 mph; "
                     f"bands: 25-75 %; bins of {_least(test.size)} shots or more)", fontsize=10)
     return figure
@@ -194,6 +221,7 @@ def dispersion(test: ShotTable, predicted: dict):
     for axis, club in zip(axes, clubs):
         rows = np.flatnonzero(np.array(test.clubs) == club)
         rows = rows[np.linspace(0, rows.size - 1, min(FLOWN, rows.size)).round().astype(int)]
+        rings: list = []  # (name, side, carry) of each ellipse drawn, to say which lies on which
         for index, (name, values) in enumerate(launches.items()):
             speed, launch, spin = (values[k][rows] for k in ("ball_speed", "vertical_launch_angle", "spin_rate"))
             tilt = np.nan_to_num(values["spin_axis"][rows])
@@ -214,8 +242,11 @@ def dispersion(test: ShotTable, predicted: dict):
                 axis.scatter(side, carry, s=3, color="0.6", alpha=0.4)
             ring = _ellipse(side, carry)
             if ring is not None:
-                axis.plot(ring[0], ring[1], "--" if measured else "-", color=colour, lw=2 if measured else 1.2,
-                          label=f"{name} ({int(ok.sum())} shots)")
+                under = _lies_on(rings, ring[0], ring[1], 0.5)  # within half a metre: the same ellipse drawn
+                rings.append((name, ring[0], ring[1]))
+                axis.plot(ring[0], ring[1], "--" if measured or under else "-", color=colour,
+                          lw=2 if measured else 1.2, label=f"{name} ({int(ok.sum())} shots)"
+                          + (f", on {under}'s ellipse" if under else ""))
         axis.set_xlabel("side (offline) [m], right positive")
         axis.set_ylabel("carry [m]")
         axis.grid(alpha=0.3)
