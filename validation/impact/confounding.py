@@ -275,21 +275,17 @@ def part2(sample):
           " form minus regression [points] |")
     print("|---|---|---|---|---|---|---|---|")
     summary = {}
-    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
-        index = np.flatnonzero(train_mask)
-        train_rows = np.sort(rng.choice(index, size=min(sample, index.size), replace=False))
-        test_rows = np.flatnonzero(test_mask)
-        train, test = table.subset(train_rows), table.subset(test_rows)
+    for label, train_rows, test_rows, train, test in rl.band_folds(table, slow, fast, sample, rng):
         predicted, k = rl.regression(train, test)
-        base = 100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0))
+        base = rl.spin_error(predicted, test)
         summary.setdefault("regression", []).append(base)
         boosted = rl.boosting(train, test)
         if boosted is not None:
-            boost = 100 * np.nanmedian(np.abs(boosted / test.measured["spin_rate"] - 1.0))
+            boost = rl.spin_error(boosted, test)
             summary.setdefault("boosting", []).append(boost)
         for form, strike in part2_forms():
             source = inputs if strike else centred
-            train_in, test_in = _take(source, train_rows, table.size), _take(source, test_rows, table.size)
+            train_in, test_in = rl.take(source, train_rows, table.size), rl.take(source, test_rows, table.size)
             values, at_bound = rl.fit(form, train_in, train.measured, bounds)
             e = rl.errors(rl.run(form, values, test_in), test.measured)
             med = 100 * np.nanmedian(np.abs(e["spin"]))
@@ -376,16 +372,12 @@ def part3(sample):
           "| "
           "ball speed median abs err % | regression, same rows: spin median abs err % |")
     print("|---|---|---|---|---|---|---|")
-    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
-        index = np.flatnonzero(train_mask)
-        train_rows = np.sort(rng.choice(index, size=min(sample, index.size), replace=False))
-        test_rows = np.flatnonzero(test_mask)
-        train, test = table.subset(train_rows), table.subset(test_rows)
+    for label, train_rows, test_rows, train, test in rl.band_folds(table, slow, fast, sample, rng):
         predicted, _ = rl.regression(train, test)
-        base = 100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0))
+        base = rl.spin_error(predicted, test)
         for form in forms:
-            values, at_bound = rl.fit(form, _take(inputs, train_rows, table.size), train.measured, rl_bounds(rl))
-            e = rl.errors(rl.run(form, values, _take(inputs, test_rows, table.size)), test.measured)
+            values, at_bound = rl.fit(form, rl.take(inputs, train_rows, table.size), train.measured, rl_bounds(rl))
+            e = rl.errors(rl.run(form, values, rl.take(inputs, test_rows, table.size)), test.measured)
             cells = ", ".join(f"{n} {v:.4g}" for n, v in values.items())
             flag = f" (at bound: {', '.join(at_bound)})" if at_bound else ""
             print(f"| {form.name} | {label} | {cells}{flag} | {100 * np.nanmedian(np.abs(e['spin'])):.1f} | "
@@ -415,7 +407,7 @@ def part4(sample):
     fitted = ("e_ball", "friction")
     for form in (rl.Form("hertz_mindlin", "hertz_mindlin", {}, fitted),
                  rl.Form("hertz_mindlin_face (hysteretic, face at the COR limit)", "hertz_mindlin", FACE_COR, fitted)):
-        values, at_bound = rl.fit(form, _take(inputs, rows, table.size), table.subset(rows).measured, rl_bounds(rl))
+        values, at_bound = rl.fit(form, rl.take(inputs, rows, table.size), table.subset(rows).measured, rl_bounds(rl))
         e = rl.errors(rl.run(form, values, inputs_t), table_t.measured)
         cells = [f"{100 * e['spin'][i]:+.1f}, {100 * e['speed'][i]:+.2f}, {e['launch'][i]:+.2f}"
                  for i in range(table_t.size)]
@@ -438,10 +430,6 @@ def attrs_evolve_strike(table):
 
     delivery = dict(table.delivery, strike_toe=np.zeros(table.size), strike_high=np.zeros(table.size))
     return attrs.evolve(table, delivery=delivery)
-
-
-def _take(inputs, rows, size):
-    return {k: (np.asarray(v)[rows] if np.ndim(v) and np.shape(v)[0] == size else v) for k, v in inputs.items()}
 
 
 def main(argv=None) -> None:

@@ -192,7 +192,6 @@ def bands_section(sample, cap, law="chou"):
     """Section 2: fitted on one band, tested on the other, both directions, beside the baselines."""
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
-    from validation.impact.confounding import _take
     from validation.impact.shots import bands, load
 
     table, _ = load()
@@ -204,27 +203,23 @@ def bands_section(sample, cap, law="chou"):
           "spin median abs err % | spin median err % | ball speed median abs err % | launch median abs err deg |")
     print("|---|---|---|---|---|---|---|---|---|")
     summary = {}
-    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
-        index = np.flatnonzero(train_mask)
-        train_rows = np.sort(rng.choice(index, size=min(sample, index.size), replace=False))
-        test_rows = np.flatnonzero(test_mask)
-        train, test = table.subset(train_rows), table.subset(test_rows)
+    for label, train_rows, test_rows, train, test in rl.band_folds(table, slow, fast, sample, rng):
         predicted, k = rl.regression(train, test)
         summary.setdefault("regression", []).append(
-            100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0)))
+            rl.spin_error(predicted, test))
         boosted = rl.boosting(train, test)
         if boosted is not None:
             summary.setdefault("boosting", []).append(
-                100 * np.nanmedian(np.abs(boosted / test.measured["spin_rate"] - 1.0)))
+                rl.spin_error(boosted, test))
         for form, capped, kind in _plan(rl, cap, law):
             bounds, bound_text = _bounds(rl, train, capped, kind)
             if bounds is None:
                 print(f"| {form.name} | {label} | {bound_text} | no admissible e_ball | - | - | - | - | - |")
                 summary.setdefault(form.name, []).append(None)
                 continue
-            values, at_bound = _fit(rl, form, _take(inputs, train_rows, table.size), train.measured, bounds)
+            values, at_bound = _fit(rl, form, rl.take(inputs, train_rows, table.size), train.measured, bounds)
             cor = head_cor(values["e_ball"])
-            e = rl.errors(rl.run(form, values, _take(inputs, test_rows, table.size)), test.measured)
+            e = rl.errors(rl.run(form, values, rl.take(inputs, test_rows, table.size)), test.measured)
             med = 100 * np.nanmedian(np.abs(e["spin"]))
             summary.setdefault(form.name, []).append(med)
             summary.setdefault((form.name, "values"), []).append((values, cor))
@@ -258,7 +253,6 @@ def tour_section(sample, cap, law="chou"):
     from impactlab.data.sessions.shots import table_inputs
     from impactlab.data.validation.observations import cover_effect, load_observations
     from validation.impact import rate_laws as rl
-    from validation.impact.confounding import _take
     from validation.impact.shots import load
 
     table, _ = load()
@@ -281,7 +275,7 @@ def tour_section(sample, cap, law="chou"):
         if bounds is None:
             print(f"| {form.name} | {bound_text} | no admissible e_ball |" + " - |" * (table_t.size + 4))
             continue
-        values, at_bound = _fit(rl, form, _take(inputs, rows, table.size), train.measured, bounds)
+        values, at_bound = _fit(rl, form, rl.take(inputs, rows, table.size), train.measured, bounds)
         cor = head_cor(values["e_ball"])
         e = rl.errors(rl.run(form, values, inputs_t), table_t.measured)
         met = int(np.sum(np.abs(e["spin"]) <= 0.07) + np.sum(np.abs(e["speed"]) <= 0.01)
@@ -317,7 +311,6 @@ def line_section(sample):
     from impactlab.data.sessions.shots import predict, table_inputs
     from impactlab.data.validation.observations import cover_effect, load_observations
     from validation.impact import rate_laws as rl
-    from validation.impact.confounding import _take
     from validation.impact.shots import MPH, bands, load
 
     form = rl.Form("hertz_mindlin_face, e_ball(v_n) on the measured barrier line (not fitted)", "hertz_mindlin",
@@ -349,16 +342,12 @@ def line_section(sample):
           "% | launch median abs err deg | regression, same rows |")
     print("|---|---|---|---|---|---|---|")
     slow_values = None
-    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
-        index = np.flatnonzero(train_mask)
-        train_rows = np.sort(rng.choice(index, size=min(sample, index.size), replace=False))
-        test_rows = np.flatnonzero(test_mask)
-        train, test = table.subset(train_rows), table.subset(test_rows)
+    for label, train_rows, test_rows, train, test in rl.band_folds(table, slow, fast, sample, rng):
         predicted, _ = rl.regression(train, test)
-        base = 100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0))
-        values = fit(_take(inputs, train_rows, table.size), train.measured)
+        base = rl.spin_error(predicted, test)
+        values = fit(rl.take(inputs, train_rows, table.size), train.measured)
         slow_values = slow_values or values
-        e = rl.errors(run(values, _take(inputs, test_rows, table.size)), test.measured)
+        e = rl.errors(run(values, rl.take(inputs, test_rows, table.size)), test.measured)
         print(f"| {label} | {values['friction']:.4g} | {100 * np.nanmedian(np.abs(e['spin'])):.1f} | "
               f"{100 * np.nanmedian(e['spin']):+.1f} | {100 * np.nanmedian(np.abs(e['speed'])):.2f} | "
               f"{np.nanmedian(np.abs(e['launch'])):.2f} | {base:.1f} |")
@@ -370,7 +359,7 @@ def line_section(sample):
         spins[mph] = run(slow_values, table_inputs(attrs.evolve(drivers, delivery=delivery)))["spin_rate"]
     ks = np.log(spins[115.0] / spins[96.0]) / math.log(115.0 / 96.0)
     rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
-    values = fit(_take(inputs, rows, table.size), table.subset(rows).measured)
+    values = fit(rl.take(inputs, rows, table.size), table.subset(rows).measured)
     e = rl.errors(run(values, table_inputs(tour)), tour.measured)
     met = int(np.sum(np.abs(e["spin"]) <= 0.07) + np.sum(np.abs(e["speed"]) <= 0.01)
               + np.sum(np.abs(e["launch"]) <= 0.7))

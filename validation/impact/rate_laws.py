@@ -211,6 +211,31 @@ def run(form, values, inputs):
     return predict(model_of(form, values), apply(inputs, values, form))
 
 
+def subsample(mask, count: int, rng):
+    """A seeded subsample of ``count`` of the rows where ``mask`` holds (all of them if fewer), in file order."""
+    index = np.flatnonzero(mask)
+    return np.sort(rng.choice(index, size=min(count, index.size), replace=False))
+
+
+def band_folds(table, slow, fast, sample: int, rng):
+    """The two extrapolations of the protocol: (label, training rows, held-out rows, training table, held-out
+    table), fitted on a seeded subsample of ``sample`` rows of one club-speed band and tested on every row of the
+    other (slow -> fast, then fast -> slow; ``rng`` draws the subsample, in that order)."""
+    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
+        train_rows, test_rows = subsample(train_mask, sample, rng), np.flatnonzero(test_mask)
+        yield label, train_rows, test_rows, table.subset(train_rows), table.subset(test_rows)
+
+
+def take(inputs, rows, size: int):
+    """The model inputs of ``rows`` of a table of ``size`` rows (per-row arrays cut, scalars kept)."""
+    return {k: (np.asarray(v)[rows] if np.ndim(v) and np.shape(v)[0] == size else v) for k, v in inputs.items()}
+
+
+def spin_error(predicted, test) -> float:
+    """Median |predicted / measured - 1| of the spin rate over the held-out table ``test`` [%]."""
+    return float(100 * np.nanmedian(np.abs(predicted / test.measured["spin_rate"] - 1.0)))
+
+
 def fit(form, inputs, measured, bounds, rigid_face_head: bool = True):
     """Bounded robust least squares of the form's parameters on these rows: (values, flags at bound).
 
@@ -348,14 +373,6 @@ def main(argv=None) -> None:
     rng = np.random.default_rng(33)
     all_forms = forms(g, tau)
 
-    def rows_of(mask, count):
-        index = np.flatnonzero(mask)
-        return np.sort(rng.choice(index, size=min(count, index.size), replace=False))
-
-    def take(inputs, rows):
-        return {k: (np.asarray(v)[rows] if np.ndim(v) and np.shape(v)[0] == table.size else v)
-                for k, v in inputs.items()}
-
     print("\n### 3. Extrapolation by club speed: fitted on one band, tested on the other (held-out medians)\n")
     print(f"Training: a seeded random subsample of {sample} rows of the training band; testing: every row of the "
           "other band. Spin |err| and bias are relative; ball speed |err| relative; launch |err| in deg.\n")
@@ -364,11 +381,8 @@ def main(argv=None) -> None:
     print("|---|---|---|---|---|---|---|")
     fitted_by = {}
     summary = {}
-    for train_mask, test_mask, label in ((slow, fast, "< 95 -> > 100 mph"), (fast, slow, "> 100 -> < 95 mph")):
-        train_rows = rows_of(train_mask, sample)
-        test_rows = np.flatnonzero(test_mask)
-        train, test = table.subset(train_rows), table.subset(test_rows)
-        train_in, test_in = take(inputs_all, train_rows), take(inputs_all, test_rows)
+    for label, train_rows, test_rows, train, test in band_folds(table, slow, fast, sample, rng):
+        train_in, test_in = take(inputs_all, train_rows, table.size), take(inputs_all, test_rows, table.size)
         for form in all_forms:
             values, at_bound = fit(form, train_in, train.measured, bounds) if form.fit else ({}, [])
             e = errors(run(form, values, test_in), test.measured)
@@ -397,8 +411,8 @@ def main(argv=None) -> None:
     print("| form | fitted on the whole file (at bound) | k at the PGA driver delivery | k at the LPGA driver "
           "delivery | held-out spin median abs err %, mean of the two directions |")
     print("|---|---|---|---|---|")
-    whole_rows = rows_of(np.ones(table.size, bool), sample)
-    whole, whole_in = table.subset(whole_rows), take(inputs_all, whole_rows)
+    whole_rows = subsample(np.ones(table.size, bool), sample, rng)
+    whole, whole_in = table.subset(whole_rows), take(inputs_all, whole_rows, table.size)
     whole_fit = {}
     for form in all_forms:
         values, at_bound = fit(form, whole_in, whole.measured, bounds) if form.fit else ({}, [])
