@@ -11,8 +11,9 @@ import pytest
 
 from impactlab.model.registry import get_model
 from impactlab.physics import hertz, rate_laws
-from impactlab.physics.contact import after_impact, contact_state, impulse_vector
 from impactlab.testing import _complete, _with, reference_inputs, reference_inputs_3d
+
+from test_ball_laws import kinetic_energy  # the energy of ball and head from their velocities, couple included
 
 M, R, K2 = 0.04593, 0.021335, 0.4
 E_STAR = 150e6
@@ -162,31 +163,6 @@ def test_lever_spin_grows_slower_than_speed():
                                                                              ["spin_rate"])["spin_rate"][0] / v
              for v in (30.0, 45.0)]
     assert spins[1] < spins[0]
-
-
-def kinetic_energy(inputs, result=None):
-    """Kinetic energy of ball and head [J], before impact (result None) or after, from the velocities themselves
-    (as tests/test_ball_laws.py sums them; the rolling couple's angular impulse included)."""
-    state = contact_state(inputs)
-    m, r, k2 = inputs["ball_mass"], inputs["ball_radius"], inputs["ball_inertia_factor"]
-    inertia = k2 * m * r**2
-    club = inputs["club_mass"]
-    inverse = state["head_inverse_inertia"]
-    if result is None:
-        head_v = inputs["speed"][:, None] * state["club_direction"]
-        head_w = state["head_spin"]
-        ball = 0.5 * inertia * inputs.get("spin", 0.0) ** 2
-    else:
-        moment = np.stack([result["rolling_moment_slip"].values, result["rolling_moment"].values], -1) \
-            if "rolling_moment" in result else None
-        impulse = impulse_vector(state, result["normal_impulse"].values, result["tangential_impulse"].values,
-                                 result["lateral_impulse"].values)
-        after = after_impact(state, impulse, moment=moment, **inputs)
-        head_v, head_w = after["club_velocity"], after["club_spin"]
-        ball = 0.5 * m * np.sum(after["ball_velocity"] ** 2, -1) + 0.5 * inertia * np.sum(
-            after["ball_spin_vector"] ** 2, -1)
-    head = 0.5 * club * np.sum(head_v**2, -1) + 0.5 * np.einsum("ni,nij,nj->n", head_w, np.linalg.inv(inverse), head_w)
-    return ball + head
 
 
 @pytest.mark.parametrize("options", [{"compression_lever": 0.3}, {"relaxation_time": 3e-5, "relaxed_fraction": 0.6},
