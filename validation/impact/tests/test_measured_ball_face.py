@@ -1,4 +1,4 @@
-"""validation.impact.measured_ball_face and face_lever: the face sizing, the ball's e per row, the bounds.
+"""validation.impact.measured_ball_face and face_mechanisms: the face sizing, the ball's e per row, the bounds.
 
 Oracles: the registered face at the COR limit (6.88 kHz, 10.9 g) was sized by benchmarks/measure_face_flex.py with
 the tour ball's e 0.787 (docs/models.md), so solving for the frequency with that e must land on it; Chou & Yang's line
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from validation.impact import face_bounds as fb
-from validation.impact import face_lever as fl
+from validation.impact import face_mechanisms as fl
 from validation.impact import measured_ball_face as mbf
 
 
