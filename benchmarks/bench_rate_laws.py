@@ -25,6 +25,7 @@ from impactlab.testing import _complete, reference_inputs, reference_inputs_3d
 LAWS = [
     ("SLS normal (a)", {"relaxation_time": 43e-6, "relaxed_fraction": 0.376}),
     ("pressure friction (b)", {"friction_pressure_exponent": 0.3}),
+    ("slip-speed friction (b)", {"friction_slip_exponent": 0.9}),
     ("tangential dashpot time (b)", {"tangential_relaxation_time": 20e-6}),
     ("compression lever (c)", {"compression_lever": 0.05}),
     ("all of them", {"relaxation_time": 43e-6, "relaxed_fraction": 0.376, "friction_pressure_exponent": 0.3,

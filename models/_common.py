@@ -333,6 +333,12 @@ def pressure_exponent_field():
                                                                                "(1: constant shear strength)"))
 
 
+def slip_exponent_field(default: float = 0.0):
+    """Option ``friction_slip_exponent`` m of mu = mu_0 (u / 10 m/s)^m [1] (0: Coulomb)."""
+    return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 1.0, "an exponent 0 <= m <= 1 "
+                                                                                "(1: friction stress ~ slip speed)"))
+
+
 def lever_field(default: float = 0.0):
     """Option ``compression_lever`` lambda = d / delta of the normal force's offset [1] (0: none)."""
     return attrs.field(default=default, converter=to_float, validator=in_range(0.0, 0.5, "a lever 0 <= lambda <= 0.5 "
@@ -340,12 +346,13 @@ def lever_field(default: float = 0.0):
 
 
 RATE_LAWS_DOC = """relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent,
-    compression_lever
+    friction_slip_exponent, compression_lever
         Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`, issue 33), each off by default.
         ``relaxation_time`` tau [s] (with its unit, '30 us') and ``relaxed_fraction`` g: the ball's normal contact a
         standard linear solid under Hertz (Lee & Radok), whose restitution falls or rises with the normal speed;
         the restitution input is e at ``relaxation_reference_speed`` (40 m/s) and e(v) = e_in e_sls(v) /
-        e_sls(v_ref). ``friction_pressure_exponent`` n: mu = mu_0 (p_mean / 10 MPa)^(-n). ``compression_lever``
+        e_sls(v_ref). ``friction_pressure_exponent`` n: mu = mu_0 (p_mean / 10 MPa)^(-n). ``friction_slip_exponent``
+        m: mu = mu_0 (u / 10 m/s)^m, u the contact's initial slip speed (Arakawa: m = 1). ``compression_lever``
         lambda: the normal force's line offset d = lambda delta by the ball's deformation, a couple opposing the
         relative rolling (the rolling couple of impactlab.physics.ball_laws with this arm)."""
 
@@ -361,6 +368,9 @@ def rate_law_state(options, inputs, state, restitution, friction):
     tau = float(getattr(options, "relaxation_time", 0.0) or 0.0)
     exponent = float(getattr(options, "friction_pressure_exponent", 0.0) or 0.0)
     lever = float(getattr(options, "compression_lever", 0.0) or 0.0)
+    slip_exponent = float(getattr(options, "friction_slip_exponent", 0.0) or 0.0)
+    if slip_exponent:  # the slip's scale needs no elastic constant
+        friction = rate_laws.slip_friction(friction, slip_exponent, state["slip_speed"])
     if not (tau or exponent or lever):
         return restitution, friction, None
     missing = sorted(MATERIAL_OPTIONAL - set(inputs))
@@ -386,7 +396,8 @@ def rate_law_state(options, inputs, state, restitution, friction):
 #: the option of each ball and face law of BallLawOptions with the value that switches the law off (the plain ball:
 #: ImpactModel.ball_law_options); a law's other options (a core's modulus, the face's loss...) act only when it is on
 PLAIN_BALL = {"rolling_hysteresis": 0.0, "friction_law": "coulomb", "core_radius": 0.0, "face_frequency": 0.0,
-              "relaxation_time": 0.0, "friction_pressure_exponent": 0.0, "compression_lever": 0.0}
+              "relaxation_time": 0.0, "friction_pressure_exponent": 0.0, "friction_slip_exponent": 0.0,
+              "compression_lever": 0.0}
 
 
 @attrs.frozen(kw_only=True)
@@ -409,6 +420,7 @@ class BallLawOptions:
     relaxed_fraction: float = relaxed_fraction_field()
     relaxation_reference_speed: float = reference_speed_field()
     friction_pressure_exponent: float = pressure_exponent_field()
+    friction_slip_exponent: float = slip_exponent_field()
     compression_lever: float = lever_field()
     tangential_relaxation_time: float = relaxation_time_field("tangential_relaxation_time", 0.001)
     #: the face flexing behind the contact (FACE_FLEX_DOC); 0: a rigid face

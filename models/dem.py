@@ -9,7 +9,7 @@ from impactlab.model import HISTORY_LENGTH
 from impactlab.validators import check, in_range
 from impactlab.physics import compliant3d, dem
 
-from .shared import BallLawOptions, face_frequency_field, face_modal_mass_field, lever_field
+from .shared import BallLawOptions, face_frequency_field, face_modal_mass_field, lever_field, slip_exponent_field
 from .shared import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
 
 CUNDALL_STRACK = ("P. A. Cundall, O. D. L. Strack, A discrete numerical model for granular assemblies, "
@@ -326,3 +326,52 @@ class HertzMindlinFaceModel(HertzMindlinModel):
     label = "Hertz + Mindlin spring, Coulomb cap, hysteretic, the face flexing at the COR limit"
     references = (MINDLIN, THORNTON, "A. W. Leissa, Vibration of Plates, NASA SP-160 (1969)")
     Options = HertzMindlinFaceOptions
+
+
+# -- the same face with friction rising with the sliding speed: the form that meets the exponent goal ---------------
+
+#: the slip exponent m fitted with e_ball and friction on 400 rows of the shared TrackMan driver file
+#: (validation/impact/slip_friction_output.md, section 2; a model fit): the speed bands alone give 0.667 (< 95 mph)
+#: and 1.0 (> 100 mph, at its bound), Arakawa's measured law 1
+FITTED_SLIP_EXPONENT = 0.91
+
+
+@attrs.frozen
+class HertzMindlinSlipOptions(HertzMindlinFaceOptions):
+    """Options of ``hertz_mindlin_slip``: those of ``hertz_mindlin_face`` with ``friction_slip_exponent``
+    defaulting to :data:`FITTED_SLIP_EXPONENT` (0: ``hertz_mindlin_face`` exactly)."""
+
+    friction_slip_exponent: float = slip_exponent_field(FITTED_SLIP_EXPONENT)
+
+
+class HertzMindlinSlipModel(HertzMindlinFaceModel):
+    """``hertz_mindlin_face`` with a friction that rises with the contact's sliding speed, mu = mu_0 (u / 10 m/s)^m
+    (issue 33, round 4; :func:`impactlab.physics.rate_laws.slip_friction`).
+
+    Why it lowers the spin's growth with speed: with Mindlin's tangential compliance a driver's spin falls as the
+    friction rises beyond about 0.1 (the contact grips earlier and its spring gives spin back before separation;
+    Maw, Barber & Fawcett 1981), and the file's fits sit on that side; a friction that grows with the slip speed
+    u ~ V sin(loft) then makes the spin grow more slowly than V. Arakawa (2014, 2017) measured such a friction on golf
+    balls (F = lambda A u: m = 1 with a pressure term). The ball's preset friction is mu_0, the friction at a slip of
+    10 m/s (about a driver's).
+
+    Measured (validation/impact/slip_friction.py; docs/validation.md, "Round 4"): m fitted on the shared TrackMan
+    file is 0.67 on the slow band, 1.0 on the fast band, 0.91 on the whole file; the spin-speed exponent at a fixed
+    driver delivery is 0.64-0.70 (``hertz_mindlin_face``: 0.89; the issue's goal 0.5-0.8), and regressed like the
+    data on the file's own rows its exponents (0.50 / 0.59 / 0.36 on V by band) lie within 0.11 of the measured
+    ones. Held out by club-speed band: spin median |error| 17.4 / 17.7 % (``hertz_mindlin_face`` 16.0 / 18.3 %,
+    the regression 19.3 / 20.2 %, gradient boosting 16.1 / 19.5 %): it beats the regression on both bands and
+    gradient boosting on the fast-to-slow one only. Tour tables not refitted: PGA driver spin +23 % (the face's
+    +19 %), LPGA driver +3.8 %, 6-irons -3.6 and -3.0 %; wedge ball types -3 % (measured +48 %): not met.
+
+    References
+    ----------
+    R. D. Mindlin, J. Appl. Mech. 16 (1949) 259-268.
+    K. Arakawa, Appl. Phys. Lett. 104 (2014) 241603 (dynamic friction of golf-ball oblique impacts, measured).
+    """
+
+    name = "hertz_mindlin_slip"
+    label = "Hertz + Mindlin spring, hysteretic, the face at the COR limit, friction rising with the slip speed"
+    references = (MINDLIN, THORNTON, "A. W. Leissa, Vibration of Plates, NASA SP-160 (1969)",
+                  "K. Arakawa, Appl. Phys. Lett. 104 (2014) 241603")
+    Options = HertzMindlinSlipOptions

@@ -12,7 +12,8 @@ from impactlab.physics.rigid import restitution_impulses
 
 from .shared import (CLOSED_FORM_DIAGNOSTICS, FRICTION_INPUTS, FRICTION_LAW, IMPULSES_3D, MATERIAL_OPTIONAL,
                       PLAIN_BALL, RIGID_BODY_INPUTS, RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, STRONGE,
-                      closed_form_diagnostics, impulse_outputs, law_friction, pressure_exponent_field, rate_law_state,
+                      closed_form_diagnostics, impulse_outputs, law_friction, pressure_exponent_field,
+                      slip_exponent_field, rate_law_state,
                       reference_speed_field, relaxation_time_field, relaxed_fraction_field)
 
 
@@ -29,8 +30,8 @@ class RestitutionOptions:
     friction_law : str
         The Coulomb cap's coefficient: ``"coulomb"`` (default), the ``friction`` input (none given: no cap);
         ``"adhesion"``: :mod:`impactlab.physics.friction_laws` (shared.FRICTION_LAW_DOC).
-    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent
-        The SLS normal law and the pressure-dependent friction cap of :mod:`impactlab.physics.rate_laws`
+    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent, friction_slip_exponent
+        The SLS normal law and the pressure- and slip-speed-dependent friction cap of :mod:`impactlab.physics.rate_laws`
         (shared.RATE_LAWS_DOC), each off by default; they read the ball's and face's elastic constants. (The
         lever has no place here: this model has no rolling couple, beta sets the tangential exit.)
     """
@@ -43,6 +44,7 @@ class RestitutionOptions:
     relaxed_fraction: float = relaxed_fraction_field()
     relaxation_reference_speed: float = reference_speed_field()
     friction_pressure_exponent: float = pressure_exponent_field()
+    friction_slip_exponent: float = slip_exponent_field()
 
 
 class RestitutionModel(ImpactModel):
@@ -84,7 +86,7 @@ class RestitutionModel(ImpactModel):
     not_provided = RIGID_NOT_PROVIDED
     Options = RestitutionOptions
     ball_law_options = {name: PLAIN_BALL[name] for name in ("friction_law", "relaxation_time",
-                                                            "friction_pressure_exponent")}
+                                                            "friction_pressure_exponent", "friction_slip_exponent")}
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()

@@ -15,7 +15,8 @@ from impactlab.physics.rigid import STRONGE_STEPS, coulomb_impulses_1d, stronge_
 from .shared import (CLOSED_FORM_DIAGNOSTICS, IMPULSES_3D, MATERIAL_OPTIONAL, PLAIN_BALL, RIGID_BODY_INPUTS,
                       RIGID_BODY_OPTIONAL, RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE,
                       FRICTION_INPUTS, FRICTION_LAW, closed_form_diagnostics, impulse_outputs,
-                      law_friction, lever_field, pressure_exponent_field, rate_law_state, reference_speed_field,
+                      law_friction, lever_field, pressure_exponent_field,
+                      slip_exponent_field, rate_law_state, reference_speed_field,
                       relaxation_time_field, relaxed_fraction_field, rolling_on)
 
 
@@ -40,7 +41,8 @@ class RigidCoulombOptions:
     friction_law : str
         ``"coulomb"`` (default): the ``friction`` input; ``"adhesion"``: the coefficient of the ball-face pair's
         friction law (:mod:`impactlab.physics.friction_laws`; shared.FRICTION_LAW_DOC).
-    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent, compression_lever
+    relaxation_time, relaxed_fraction, relaxation_reference_speed, friction_pressure_exponent,
+    friction_slip_exponent, compression_lever
         Laws with a scale of their own (:mod:`impactlab.physics.rate_laws`; shared.RATE_LAWS_DOC), each off
         by default; they read the ball's and face's elastic constants. The lever's couple is the rolling couple's,
         with the impulse-weighted mean arm of the elastic Hertz history.
@@ -54,6 +56,7 @@ class RigidCoulombOptions:
     relaxed_fraction: float = relaxed_fraction_field()
     relaxation_reference_speed: float = reference_speed_field()
     friction_pressure_exponent: float = pressure_exponent_field()
+    friction_slip_exponent: float = slip_exponent_field()
     compression_lever: float = lever_field()
 
 
@@ -88,7 +91,8 @@ class RigidCoulombModel(ImpactModel):
     not_provided = RIGID_NOT_PROVIDED
     Options = RigidCoulombOptions
     ball_law_options = {name: PLAIN_BALL[name] for name in ("rolling_hysteresis", "friction_law", "relaxation_time",
-                                                            "friction_pressure_exponent", "compression_lever")}
+                                                            "friction_pressure_exponent", "friction_slip_exponent",
+                                                            "compression_lever")}
 
     def _compute(self, inputs, outputs):
         state = inputs.contact_state()

@@ -36,11 +36,10 @@ def test_the_split_of_outputs_is_decided_once():
 
 def test_capabilities_are_declared_on_the_builtin_models():
     models = available()
-    assert {name for name, cls in models.items() if cls.has_tolerance} == {"maw", "hertz_mindlin", "dem_linear",
-                                                                          "hertz_mindlin_lever", "hertz_mindlin_face"}
-    assert {name for name, cls in models.items() if cls.provides_histories} == {"maw", "hertz_mindlin", "dem_linear",
-                                                                                "hertz_mindlin_lever",
-                                                                                "hertz_mindlin_face"}
+    compliant = {"maw", "hertz_mindlin", "dem_linear", "hertz_mindlin_lever", "hertz_mindlin_face",
+                 "hertz_mindlin_slip"}
+    assert {name for name, cls in models.items() if cls.has_tolerance} == compliant
+    assert {name for name, cls in models.items() if cls.provides_histories} == compliant
     for cls in models.values():
         assert cls.has_tolerance == ("tolerance" in {field.name for field in attrs.fields(cls.Options)})
 

@@ -85,6 +85,31 @@ def test_pressure_friction_by_hand():
     assert rate_laws.pressure_friction(0.4, 0.0, pressure) == 0.4
 
 
+def test_slip_friction_by_hand():
+    """mu_0 (|u| / 10 m/s)^m; the slip's direction does not matter; m = 0 is Coulomb."""
+    u = np.array([-20.0, 5.0, 10.0, 40.0])
+    np.testing.assert_allclose(rate_laws.slip_friction(0.4, 0.7, u), 0.4 * (np.abs(u) / 10.0) ** 0.7, rtol=1e-12)
+    np.testing.assert_array_equal(rate_laws.slip_friction(0.4, 0.0, u), np.full(4, 0.4))
+    assert rate_laws.slip_friction(0.3, 1.0, 10.0) == pytest.approx(0.3)
+
+
+def test_slip_friction_in_a_sliding_impact_by_hand():
+    """A rigid ball sliding throughout on a fixed face: |J_t| = mu J_n with mu = mu_0 (V sin a / 10 m/s)^m, and
+    J_n = (1 + e) m V cos a (Coulomb's sliding impact, Stronge 2000)."""
+    angles = np.radians([40.0, 55.0, 70.0])
+    mu0, m, speed, e = 0.05, 1.0, 40.0, 0.8
+    cases = fixed_face_cases(angles, speed=speed, restitution=e, friction=mu0)
+    out = get_model("rigid_coulomb")(friction_slip_exponent=m).compute_arrays(cases, OUT)
+    mu = mu0 * (speed * np.sin(angles) / 10.0) ** m
+    mass = cases["ball_mass"]
+    np.testing.assert_allclose(out["normal_impulse"], (1 + e) * mass * speed * np.cos(angles), rtol=1e-6)
+    np.testing.assert_allclose(np.abs(out["tangential_impulse"]), mu * out["normal_impulse"], rtol=1e-6)
+    # the same impact at half the speed slides at half the slip: half the friction coefficient
+    slow = get_model("rigid_coulomb")(friction_slip_exponent=m).compute_arrays(
+        fixed_face_cases(angles, speed=speed / 2, restitution=e, friction=mu0), OUT)
+    np.testing.assert_allclose(np.abs(slow["tangential_impulse"]) / slow["normal_impulse"], mu / 2, rtol=1e-6)
+
+
 def test_compression_ratio_of_the_hertz_history():
     """int h^(5/2) / int h^(3/2) over the elastic history, computed here by the energy integral dtau = dh / h'."""
     h = np.linspace(0.0, 1.0, 200001)[1:-1]
@@ -107,7 +132,8 @@ OUT = ["normal_impulse", "tangential_impulse", "lateral_impulse", "ball_speed", 
 CASES_1D = _complete(reference_inputs(4))
 CASES_3D = _complete(reference_inputs_3d())
 OFF = [{"relaxation_time": 0.0}, {"relaxed_fraction": 0.0, "relaxation_time": 3e-5},
-       {"friction_pressure_exponent": 0.0}, {"compression_lever": 0.0}, {"tangential_relaxation_time": 0.0}]
+       {"friction_pressure_exponent": 0.0}, {"compression_lever": 0.0}, {"tangential_relaxation_time": 0.0},
+       {"friction_slip_exponent": 0.0}]
 
 
 def accepts(name, options):
@@ -166,7 +192,8 @@ def test_lever_spin_grows_slower_than_speed():
 
 
 @pytest.mark.parametrize("options", [{"compression_lever": 0.3}, {"relaxation_time": 3e-5, "relaxed_fraction": 0.6},
-                                     {"friction_pressure_exponent": 0.8}, {"tangential_relaxation_time": 2e-5}])
+                                     {"friction_pressure_exponent": 0.8}, {"tangential_relaxation_time": 2e-5},
+                                     {"friction_slip_exponent": 1.0}])
 def test_no_law_creates_energy(options):
     """Ball plus free head on the 3-D batch (heel to toe, sole to crown, e 1 and 0.8), at 20 and 60 m/s."""
     wanted = ["normal_impulse", "tangential_impulse", "lateral_impulse", "rolling_moment", "rolling_moment_slip"]
@@ -191,7 +218,8 @@ def test_laws_keep_left_right_mirror_symmetry(name):
     rows = ((cases["club_cg_toe"] == 0.0) & (cases["club_inertia_toe_up"] == 0.0)
             & (cases["club_inertia_toe_target"] == 0.0))
     assert rows.sum() >= 8
-    model = get_model(name)(compression_lever=0.1, relaxation_time=3e-5, friction_pressure_exponent=0.3)
+    model = get_model(name)(compression_lever=0.1, relaxation_time=3e-5, friction_pressure_exponent=0.3,
+                            friction_slip_exponent=0.5)
     out = model.compute_arrays(cases, ["spin_rate", "lateral_impulse", "horizontal_launch_angle", "normal_impulse"])
     mirror = dict(cases)
     for key in ("path", "face_angle", "strike_toe"):

@@ -48,8 +48,8 @@ def test_unknown_model_lists_choices_and_closest_match():
     with pytest.raises(ModelNotFoundError) as info:
         registry.get_model("rigid_colomb")
     message = str(info.value)
-    assert ("Choices: dem_linear, hertz_mindlin, hertz_mindlin_face, hertz_mindlin_lever, maw, restitution, "
-            "rigid_coulomb") in message
+    assert ("Choices: dem_linear, hertz_mindlin, hertz_mindlin_face, hertz_mindlin_lever, hertz_mindlin_slip, maw, "
+            "restitution, rigid_coulomb") in message
     assert "did you mean 'rigid_coulomb'" in message
 
 

@@ -32,6 +32,13 @@ bounded by the Rules) and relaxation_time 0 is the plain model exactly.
   elastic Hertz impact, p_ref = 10 MPa: the adhesive (constant-shear-strength) regime of elastomer friction gives
   n = 1 (friction force = tau A), Hertzian multi-asperity contact about 1/3; elastomers on rough surfaces fall with
   load as a power law (Popov et al. 2018, measurement). n = 0: Coulomb, the plain model.
+- Friction rising with the sliding speed, mu = mu_0 (u / u_ref)^m, u the contact point's initial slip speed and
+  u_ref = 10 m/s (about a driver's, 50 m/s x sin 12 deg): a friction stress proportional to the sliding speed,
+  tau = lambda u, as Arakawa (2014, 2017) found for golf balls in oblique impact from measured spin, force and contact
+  area (F = lambda A u: m = 1). With Mindlin's tangential compliance a driver's spin falls as mu rises beyond about
+  0.1 (the contact grips earlier and its spring gives spin back before separation: Maw, Barber & Fawcett 1981), so a
+  friction that grows with the impact's speed makes the spin grow more slowly than the speed. m = 0: Coulomb, the
+  plain model. One mu per impact, at its own initial slip (as the pressure law, not through the slip's history).
 - Tangential compliance with viscous loss of a physical time: a dashpot beside each tangential spring with a fixed
   relaxation time tau_t [s] (Kelvin-Voigt), whose loss factor at the contact's pulse frequency omega = pi / t_c is
   eta = omega tau_t = pi tau_t / t_c: as the contact shortens at higher speed, the cover's shear spring returns
@@ -75,6 +82,8 @@ from . import hertz
 HEAD_COR_LIMIT = 0.830
 #: the pressure at which a pressure-dependent friction coefficient equals its input mu_0 [Pa]
 REFERENCE_PRESSURE = 10e6
+#: the slip-speed friction law's reference slip speed [m/s] (module docstring, (b)): mu = mu_0 there
+REFERENCE_SLIP_SPEED = 10.0
 #: default reference normal speed of the viscoelastic restitution's shape [m/s] (a driver's normal speed)
 REFERENCE_SPEED = 40.0
 #: steps of the scaled SLS impact (velocity Verlet; error below 1e-5 in e, tests/test_rate_laws.py)
@@ -255,6 +264,38 @@ def pressure_friction(friction, exponent, pressure, reference=REFERENCE_PRESSURE
     return mu * (np.asarray(pressure, float) / reference) ** (-n)
 
 
+def slip_friction(friction, exponent, slip_speed, reference=REFERENCE_SLIP_SPEED):
+    """Friction rising with the sliding speed, mu = mu_0 (|u| / u_ref)^m [1] (module docstring, (b)).
+
+    Parameters
+    ----------
+    friction : array_like
+        mu_0, the friction coefficient at the reference slip speed [1].
+    exponent : float
+        m [1]; 0 returns mu_0 (Coulomb), 1 is a friction stress proportional to the sliding speed (Arakawa 2017).
+    slip_speed : array_like
+        The contact point's initial tangential slip speed u [m/s] (its sign, the slip's direction, is ignored).
+    reference : float
+        u_ref [m/s], 10 m/s by default.
+
+    Returns
+    -------
+    ndarray
+        mu per case [1].
+
+    References
+    ----------
+    K. Arakawa, Effect of time derivative of contact area on dynamic friction, Appl. Phys. Lett. 104 (2014) 241603
+    (measured golf-ball oblique impacts); K. Arakawa (2017): dynamic friction F = lambda A u, an empirical law fitted
+    to measured golf-ball spin histories (abstract).
+    """
+    mu = np.asarray(friction, float)
+    m = float(exponent)
+    if m == 0.0:
+        return np.broadcast_to(mu, np.broadcast(mu, slip_speed).shape).copy()
+    return mu * (np.abs(np.asarray(slip_speed, float)) / reference) ** m
+
+
 def tangential_loss_of_time(relaxation_time, contact_time):
     """Loss factor eta = pi tau_t / t_c of a tangential dashpot of relaxation time tau_t [s] at the contact's pulse
     frequency pi / t_c [1] (module docstring, (b)); the compliant kernel's ``tangential_loss``."""
@@ -298,6 +339,7 @@ def arm_factor_of_lever(lever, radius, approach):
 
 
 #: the names a plugin may use (docs/writing-a-model.md, "Public paths")
-__all__ = ["HEAD_COR_LIMIT", "REFERENCE_PRESSURE", "REFERENCE_SPEED", "SLS_STEPS", "THETA_GRID", "check_head_cor",
-           "sls_scaled", "sls_table", "sls_restitution", "restitution_shape", "mean_pressure", "pressure_friction",
-           "tangential_loss_of_time", "compression_ratio", "compression_arm", "arm_factor_of_lever"]
+__all__ = ["HEAD_COR_LIMIT", "REFERENCE_PRESSURE", "REFERENCE_SLIP_SPEED", "REFERENCE_SPEED", "SLS_STEPS",
+           "THETA_GRID", "check_head_cor", "sls_scaled", "sls_table", "sls_restitution", "restitution_shape",
+           "mean_pressure", "pressure_friction", "slip_friction", "tangential_loss_of_time", "compression_ratio",
+           "compression_arm", "arm_factor_of_lever"]

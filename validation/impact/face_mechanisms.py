@@ -81,7 +81,7 @@ def describe(values, at_bound, cor):
     return f"{text}; head COR {cor:.3f}{'' if cor <= HEAD_COR_LIMIT + 1e-9 else ' BEYOND THE RULES'}"
 
 
-def bands_section(sample):
+def bands_section(sample, chosen=None):
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
     from validation.impact.face_bounds import head_cor
@@ -102,7 +102,7 @@ def bands_section(sample):
         regression = rl.spin_error(rl.regression(train, test)[0], test)
         boosted = rl.boosting(train, test)
         boosting = rl.spin_error(boosted, test) if boosted is not None else float("nan")
-        for form in forms():
+        for form in chosen or forms():
             values, at_bound = rl.fit(form, rl.take(inputs, train_rows, table.size), train.measured, limits,
                                       rigid_face_head=False)
             slow_fits.setdefault(form.name, values)
@@ -113,12 +113,12 @@ def bands_section(sample):
                   f"({np.nanmedian(e['launch']):+.2f}) | {regression:.1f} / {boosting:.1f} |")
     print("\n| form | exponent k at the PGA / LPGA driver delivery (the < 95 mph fit) |")
     print("|---|---|")
-    for form in forms():
+    for form in chosen or forms():
         ks = rl.exponent(form, slow_fits[form.name])
         print(f"| {form.name} | {ks[0]:.3f} / {ks[1]:.3f} |")
 
 
-def tour_section(sample):
+def tour_section(sample, chosen=None):
     from impactlab.data.sessions.shots import table_inputs
     from impactlab.data.validation.observations import cover_effect, load_observations
     from validation.impact import rate_laws as rl
@@ -137,7 +137,7 @@ def tour_section(sample):
           + " | cells within the goals (of 12) | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 "
           "(measured +48 %) |")
     print("|---|---|" + "---|" * tour.size + "---|---|---|")
-    for form in forms():
+    for form in chosen or forms():
         values, at_bound = rl.fit(form, rl.take(inputs, rows, table.size), table.subset(rows).measured, bounds(),
                                   rigid_face_head=False)
         e = rl.errors(rl.run(form, values, table_inputs(tour)), tour.measured)

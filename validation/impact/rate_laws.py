@@ -76,6 +76,8 @@ BOUNDS = {
     "tangential_relaxation_time": (0.0, 72e-6, 20e-6, "the cover's loss factor 0.2-0.45 in a split-Hopkinson "
                                    "test (SRI US 6,695,719, a measured range): eta <= 0.45 at pi / t_c, t_c ~ 500 us"),
     "added_mass": (0.0, 0.003, 0.001, "< 3 g of shaft mass added to the head (McNally et al. 2020, a model fit)"),
+    "friction_slip_exponent": (0.0, 1.0, 0.5, "0: Coulomb; 1: friction stress proportional to the sliding speed "
+                               "(Arakawa 2017, an empirical law fitted to measured golf-ball spin)"),
 }
 
 
@@ -88,6 +90,8 @@ class Form:
     options: dict
     fitted: tuple
     fit: bool = True
+    #: the form's own bounds of fitted parameters, where they differ from BOUNDS (same layout)
+    bounds: dict = attrs.field(factory=dict)
 
 
 def sls_fit():
@@ -201,7 +205,8 @@ def apply(inputs, values, form):
 
 def model_of(form, values):
     options = dict(form.options)
-    for name in ("compression_lever", "friction_pressure_exponent", "tangential_relaxation_time"):
+    for name in ("compression_lever", "friction_pressure_exponent", "friction_slip_exponent",
+                 "tangential_relaxation_time"):
         if name in values:
             options[name] = float(values[name])
     return get_model(form.model)(**options)
@@ -242,6 +247,7 @@ def fit(form, inputs, measured, bounds, rigid_face_head: bool = True):
     ``rigid_face_head``: check the head COR as the rigid face's e_ball + the preset's gain (check_head_cor); a
     flexing face makes its own gain, so its caller checks the head COR its own way (face_bounds)."""
     names = form.fitted
+    bounds = {**bounds, **form.bounds}
     low = np.array([bounds[n][0] for n in names])
     high = np.array([bounds[n][1] for n in names])
     start = np.clip(np.array([bounds[n][2] for n in names]), low, high)
