@@ -117,9 +117,21 @@ def repeatability(table, mask, speed_tolerance=0.02, loft_tolerance=np.radians(1
 
 
 #: the models of section 2 at their whole-file fits (rate_laws_output.md section 4: hertz_mindlin e_ball 0.742,
-#: friction 0.6; face_bounds_output.md section 3: hertz_mindlin_face e_ball 0.786, friction 0.50)
-APPARENT_FORMS = (("hertz_mindlin (today's law)", {}, {"e_ball": 0.742, "friction": 0.6}),
-                  ("hertz_mindlin_face (face at the COR limit)", "face", {"e_ball": 0.786, "friction": 0.50}))
+#: friction 0.6; face_bounds_output.md section 3: hertz_mindlin_face e_ball 0.786, friction 0.50;
+#: slip_friction_output.md section 2: hertz_mindlin_slip e_ball 0.787, friction 0.367, m 0.91)
+APPARENT_FORMS = (("hertz_mindlin (today's law)", "plain", {"e_ball": 0.742, "friction": 0.6}),
+                  ("hertz_mindlin_face (face at the COR limit)", "face", {"e_ball": 0.786, "friction": 0.50}),
+                  ("hertz_mindlin_slip (the face, friction rising with the slip speed)", "slip",
+                   {"e_ball": 0.787, "friction": 0.367}))
+
+
+def options_of(kind: str) -> dict:
+    """hertz_mindlin's options of an APPARENT_FORMS entry: plain, the face at the COR limit, or the face with the
+    slip-speed friction at its fitted exponent (hertz_mindlin_slip's defaults)."""
+    from impactlab_models.dem import FITTED_SLIP_EXPONENT
+    from validation.impact.face_bounds import FACE_COR
+
+    return {"plain": {}, "face": FACE_COR, "slip": {**FACE_COR, "friction_slip_exponent": FITTED_SLIP_EXPONENT}}[kind]
 
 
 def apparent_exponents(table, masks):
@@ -128,14 +140,13 @@ def apparent_exponents(table, masks):
 
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
-    from validation.impact.face_bounds import FACE_COR
 
     inputs = table_inputs(table)
     rows_of = {label: np.flatnonzero(mask) for label, mask in masks}
     out = {"measured": {label: power_law(table.subset(rows), table.subset(rows))[1:]
                         for label, rows in rows_of.items()}}
     for name, options, values in APPARENT_FORMS:
-        form = rl.Form(name, "hertz_mindlin", FACE_COR if options == "face" else options, ())
+        form = rl.Form(name, "hertz_mindlin", options_of(options), ())
         spin = rl.run(form, values, inputs)["spin_rate"]
         out[name] = {}
         for label, rows in rows_of.items():
@@ -151,22 +162,21 @@ def apparent_exponents(table, masks):
 READING_ERRORS = (0.5, 1.0, 1.5)
 
 
-def reading_error_shift(table, mask, draws: int = 20, seed: int = 33):
-    """(sigma, b, c) of the face model's predictions regressed on the spin loft read with an error: the model's spin
-    is computed from the rows' deliveries as if they were exact, then regressed on those deliveries with Gaussian
-    noise of sigma added to the dynamic loft and to the attack angle (the spin loft's reading); b and c are the means
-    over ``draws`` seeded draws. sigma 0 is section 2's value; the shift is what reading errors alone do to the
-    regression the issue's exponents come from."""
+def reading_error_shift(table, mask, form_index: int = 1, draws: int = 20, seed: int = 33):
+    """(sigma, b, c) of a model's predictions (APPARENT_FORMS[form_index], the face model by default) regressed on
+    the spin loft read with an error: the model's spin is computed from the rows' deliveries as if they were exact,
+    then regressed on those deliveries with Gaussian noise of sigma added to the dynamic loft and to the attack angle
+    (the spin loft's reading); b and c are the means over ``draws`` seeded draws. sigma 0 is section 2's value; the
+    shift is what reading errors alone do to the regression the issue's exponents come from."""
     import types
 
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
-    from validation.impact.face_bounds import FACE_COR
 
     rows = np.flatnonzero(mask)
     sub = table.subset(rows)
-    name, _, values = APPARENT_FORMS[1]
-    spin = rl.run(rl.Form(name, "hertz_mindlin", FACE_COR, ()), values, table_inputs(sub))["spin_rate"]
+    name, options, values = APPARENT_FORMS[form_index]
+    spin = rl.run(rl.Form(name, "hertz_mindlin", options_of(options), ()), values, table_inputs(sub))["spin_rate"]
     rng = np.random.default_rng(seed)
     out = []
     for sigma in (0.0, *READING_ERRORS):
@@ -204,14 +214,16 @@ def main(argv=None) -> None:
     print("|---|" + "---|" * len(masks))
     for name, fitted in apparent_exponents(table, masks).items():
         print(f"| {name} | " + " | ".join(f"{b:.2f}, {c:.2f}" for b, c in fitted.values()) + " |")
-    print("\n### The face model's predictions regressed on a spin loft read with an error (the deliveries taken as "
-          "exact for the model; Gaussian reading error sigma on the dynamic loft and on the attack angle; means of 20 "
+    print("\n### The models' predictions regressed on a spin loft read with an error (the deliveries taken as exact "
+          "for the model; Gaussian reading error sigma on the dynamic loft and on the attack angle; means of 20 "
           "draws)\n")
-    print("| sigma [deg] | " + " | ".join(f"{label}: b, c" for label, _ in masks) + " |")
-    print("|---|" + "---|" * len(masks))
-    shifts = [reading_error_shift(table, mask) for _, mask in masks]
-    for index, sigma in enumerate((0.0, *READING_ERRORS)):
-        print(f"| {sigma:g} | " + " | ".join(f"{s[index][1]:.2f}, {s[index][2]:.2f}" for s in shifts) + " |")
+    print("| model | sigma [deg] | " + " | ".join(f"{label}: b, c" for label, _ in masks) + " |")
+    print("|---|---|" + "---|" * len(masks))
+    for index in (1, 2):
+        shifts = [reading_error_shift(table, mask, index) for _, mask in masks]
+        for row, sigma in enumerate((0.0, *READING_ERRORS)):
+            print(f"| {APPARENT_FORMS[index][0]} | {sigma:g} | "
+                  + " | ".join(f"{s[row][1]:.2f}, {s[row][2]:.2f}" for s in shifts) + " |")
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 
