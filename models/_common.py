@@ -369,8 +369,10 @@ def rate_law_state(options, inputs, state, restitution, friction):
     exponent = float(getattr(options, "friction_pressure_exponent", 0.0) or 0.0)
     lever = float(getattr(options, "compression_lever", 0.0) or 0.0)
     slip_exponent = float(getattr(options, "friction_slip_exponent", 0.0) or 0.0)
-    if slip_exponent:  # the slip's scale needs no elastic constant
-        friction = rate_laws.slip_friction(friction, slip_exponent, state["slip_speed"])
+    if slip_exponent:  # the slip's scale needs no elastic constant; the whole tangential slip (an incoming spin can
+        # leave a part across the slip direction)
+        slip = np.hypot(state["initial_velocity"][:, 0], state["initial_velocity"][:, 1])
+        friction = rate_laws.slip_friction(friction, slip_exponent, slip)
     if not (tau or exponent or lever):
         return restitution, friction, None
     missing = sorted(MATERIAL_OPTIONAL - set(inputs))

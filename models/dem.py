@@ -358,7 +358,7 @@ class HertzMindlinSlipModel(HertzMindlinFaceModel):
     Measured (validation/impact/slip_friction.py; docs/validation.md, "Round 4"): m fitted on the shared TrackMan
     file is 0.67 on the slow band, 1.0 on the fast band, 0.91 on the whole file; the spin-speed exponent at a fixed
     driver delivery is 0.64-0.70 (``hertz_mindlin_face``: 0.89; the issue's goal 0.5-0.8), and regressed like the
-    data on the file's own rows its exponents (0.50 / 0.59 / 0.36 on V by band) lie within 0.11 of the measured
+    data on the file's own rows its exponents (0.50 / 0.58 / 0.36 on V by band) lie within 0.11 of the measured
     ones. Held out by club-speed band: spin median |error| 17.4 / 17.7 % (``hertz_mindlin_face`` 16.0 / 18.3 %,
     the regression 19.3 / 20.2 %, gradient boosting 16.1 / 19.5 %): it beats the regression on both bands and
     gradient boosting on the fast-to-slow one only. Tour tables not refitted: PGA driver spin +23 % (the face's

@@ -81,6 +81,30 @@ def describe(values, at_bound, cor):
     return f"{text}; head COR {cor:.3f}{'' if cor <= HEAD_COR_LIMIT + 1e-9 else ' BEYOND THE RULES'}"
 
 
+def lever_section():
+    """Section 0: the lever forced on the face (not fitted): the exponent and the tour rows' spin against lambda, at
+    the face's whole-file fit (e_ball 0.786, friction 0.50; face_bounds_output.md section 3)."""
+    from impactlab.data.sessions.shots import table_inputs
+    from validation.impact import rate_laws as rl
+    from validation.impact.face_bounds import FACE_COR
+
+    tour = rl.tour()
+    values = {"e_ball": 0.786, "friction": 0.50}
+    print("### 0. The lever forced on the face (not fitted): what it would do\n")
+    print("| lambda | mean offset at the PGA driver delivery [mm] | exponent k (PGA / LPGA driver) | tour rows' spin "
+          "% (" + ", ".join(tour.labels) + ") | launch deg |")
+    print("|---|---|---|---|---|")
+    bound = rl.lever_bound()
+    for lever in (0.0, 0.05, 0.1, bound):
+        form = rl.Form("face + lever", "hertz_mindlin", dict(FACE_COR, compression_lever=lever), ())
+        e = rl.errors(rl.run(form, values, table_inputs(tour)), tour.measured)
+        ks = rl.exponent(form, values)
+        print(f"| {lever:.3f} | {1.0 * lever / bound:.2f} | {ks[0]:.3f} / {ks[1]:.3f} | "
+              + ", ".join(f"{100 * x:+.1f}" for x in e["spin"]) + " | "
+              + ", ".join(f"{x:+.2f}" for x in e["launch"]) + " |")
+    print()
+
+
 def bands_section(sample, chosen=None):
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
@@ -155,12 +179,14 @@ def tour_section(sample, chosen=None):
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(1, 2), help="one section only")
+    parser.add_argument("--part", type=int, choices=(0, 1, 2), help="one section only")
     args = parser.parse_args(argv)
     warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
     warnings.filterwarnings("ignore", category=RuntimeWarning)
     started = time.time()
     sample = 200 if args.quick else 400
+    if args.part in (None, 0):
+        lever_section()
     if args.part in (None, 1):
         bands_section(sample)
     if args.part in (None, 2):
