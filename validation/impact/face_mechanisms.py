@@ -176,8 +176,10 @@ def tour_section(sample, chosen=None):
               f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def run(argv, description: str, first, chosen=None) -> None:
+    """The command line of this protocol: section 0 (``first``), then the bands and the tour tables of ``chosen``
+    (default: this module's forms); slip_friction runs its own forms through it."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
     parser.add_argument("--part", type=int, choices=(0, 1, 2), help="one section only")
     args = parser.parse_args(argv)
@@ -186,12 +188,16 @@ def main(argv=None) -> None:
     started = time.time()
     sample = 200 if args.quick else 400
     if args.part in (None, 0):
-        lever_section()
+        first()
     if args.part in (None, 1):
-        bands_section(sample)
+        bands_section(sample, chosen)
     if args.part in (None, 2):
-        tour_section(sample)
+        tour_section(sample, chosen)
     print(f"\n(elapsed {time.time() - started:.0f} s)")
+
+
+def main(argv=None) -> None:
+    run(argv, __doc__.splitlines()[0], lever_section)
 
 
 if __name__ == "__main__":

@@ -30,9 +30,6 @@ delivery, none refitted.
 
 from __future__ import annotations
 
-import argparse
-import time
-import warnings
 
 import numpy as np
 
@@ -72,27 +69,13 @@ def sweep_section():
         for mu in (0.05, 0.1, 0.2, 0.4, 0.6, 0.8):
             spin = rl.run(form, {"e_ball": 0.786, "friction": mu}, inputs)["spin_rate"] * 60 / (2 * np.pi)
             print(f"| {name} | {mu:g} | " + " | ".join(f"{x:.0f}" for x in spin) + " |")
+    print()
 
 
 def main(argv=None) -> None:
     from validation.impact import face_mechanisms
 
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(0, 1, 2), help="one section only")
-    args = parser.parse_args(argv)
-    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-    started = time.time()
-    sample = 200 if args.quick else 400
-    if args.part in (None, 0):
-        sweep_section()
-        print()
-    if args.part in (None, 1):
-        face_mechanisms.bands_section(sample, forms())
-    if args.part in (None, 2):
-        face_mechanisms.tour_section(sample, forms())
-    print(f"\n(elapsed {time.time() - started:.0f} s)")
+    face_mechanisms.run(argv, __doc__.splitlines()[0], sweep_section, forms())
 
 
 if __name__ == "__main__":
