@@ -357,6 +357,22 @@ RATE_LAWS_DOC = """relaxation_time, relaxed_fraction, relaxation_reference_speed
         relative rolling (the rolling couple of impactlab.physics.ball_laws with this arm)."""
 
 
+def characteristic_slip(state, restitution) -> np.ndarray:
+    """The slip speed of each impact that the slip-speed friction law reads [m/s]: the larger of the contact's
+    initial tangential slip and the slip a frictionless impact would leave it with.
+
+    On a central strike the two are equal (the normal impulse moves no tangential velocity: the mobility is diagonal)
+    and the law reads the initial slip u = V sin(angle). An off-centre strike on a free head couples the normal impulse
+    into the tangential directions (the gear effect), so a strike with no initial slip still slides during the
+    contact: its slip scale is that coupled slip, not 0 (which would take the friction, and the gear effect, away).
+    """
+    initial = state["initial_velocity"]
+    mobility = state["mobility"]
+    normal_impulse = (1.0 + np.asarray(restitution, float)) * state["normal_speed"] / mobility[:, 2, 2]
+    after = initial[:, :2] + mobility[:, :2, 2] * normal_impulse[:, None]
+    return np.maximum(np.hypot(initial[:, 0], initial[:, 1]), np.hypot(after[:, 0], after[:, 1]))
+
+
 def rate_law_state(options, inputs, state, restitution, friction):
     """(restitution, friction, lever arm [m] or None, modulus E*) of each case under the rate-law options.
 
@@ -369,10 +385,12 @@ def rate_law_state(options, inputs, state, restitution, friction):
     exponent = float(getattr(options, "friction_pressure_exponent", 0.0) or 0.0)
     lever = float(getattr(options, "compression_lever", 0.0) or 0.0)
     slip_exponent = float(getattr(options, "friction_slip_exponent", 0.0) or 0.0)
-    if slip_exponent:  # the slip's scale needs no elastic constant; the whole tangential slip (an incoming spin can
-        # leave a part across the slip direction)
-        slip = np.hypot(state["initial_velocity"][:, 0], state["initial_velocity"][:, 1])
-        friction = rate_laws.slip_friction(friction, slip_exponent, slip)
+    if slip_exponent:  # the slip's scale needs no elastic constant
+        if getattr(options, "friction_law", "coulomb") != "coulomb":
+            raise ModelInputError("friction_slip_exponent scales the Coulomb friction input; friction_law "
+                                  f"'{options.friction_law}' has its own dependence on the sliding (its flash "
+                                  "heating): use one of them")
+        friction = rate_laws.slip_friction(friction, slip_exponent, characteristic_slip(state, restitution))
     if not (tau or exponent or lever):
         return restitution, friction, None
     missing = sorted(MATERIAL_OPTIONAL - set(inputs))

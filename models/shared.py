@@ -12,7 +12,7 @@ from ._common import (CLOSED_FORM_DIAGNOSTICS, CORE_TORSION_DOC, FACE_FLEX_DOC, 
                       RIGID_NOT_PROVIDED, ROLLING_HYSTERESIS, ROLLING_OUTPUTS, STRONGE, BallLawOptions,
                       closed_form_diagnostics, cover_modulus_field, cover_thickness_field, impulse_outputs,
                       law_friction, rolling_on, PLAIN_BALL, RATE_LAWS_DOC, lever_field, pressure_exponent_field,
-                      slip_exponent_field,
+                      slip_exponent_field, characteristic_slip,
                       rate_law_state, reference_speed_field, relaxation_time_field, relaxed_fraction_field,
                       face_frequency_field, face_modal_mass_field)
 from ._compliant import INELASTIC, CompliantOptions, HertzTangentialModel, int_at_least, optional_int
@@ -29,7 +29,7 @@ __all__ = [
     "RIGID_NOT_PROVIDED", "STRONGE",
     # the laws with a scale of their own (impactlab.physics.rate_laws): their options and the state they set
     "PLAIN_BALL", "RATE_LAWS_DOC", "lever_field", "pressure_exponent_field",
-    "slip_exponent_field", "rate_law_state", "reference_speed_field",
+    "slip_exponent_field", "characteristic_slip", "rate_law_state", "reference_speed_field",
     "relaxation_time_field", "relaxed_fraction_field",
     # the flexing face's options (a registered model may default them on: hertz_mindlin_face)
     "face_frequency_field", "face_modal_mass_field",

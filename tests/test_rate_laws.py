@@ -110,6 +110,58 @@ def test_slip_friction_in_a_sliding_impact_by_hand():
     np.testing.assert_allclose(np.abs(slow["tangential_impulse"]) / slow["normal_impulse"], mu / 2, rtol=1e-6)
 
 
+def test_slip_friction_reads_the_whole_slip_with_an_incoming_spin():
+    """Backspin or topspin of R w moves the contact's slip to V sin a -+ R w: the two spins' friction coefficients
+    (sliding throughout, |J_t| / J_n) are mu_0 (|V sin a + R w| / 10)^m and mu_0 (|V sin a - R w| / 10)^m."""
+    angle, speed, mu0, m, omega = np.radians(50.0), 40.0, 0.05, 0.8, 300.0
+    measured = []
+    for spin in (omega, -omega):
+        cases = _with(fixed_face_cases([angle], speed=speed, friction=mu0), spin=spin)
+        out = get_model("rigid_coulomb")(friction_slip_exponent=m).compute_arrays(cases, OUT)
+        measured.append(float(np.abs(out["tangential_impulse"][0]) / out["normal_impulse"][0]))
+    radius = float(fixed_face_cases([angle])["ball_radius"][0])
+    expected = [mu0 * (abs(speed * math.sin(angle) + sign * radius * omega) / 10.0) ** m for sign in (1, -1)]
+    assert sorted(measured) == pytest.approx(sorted(expected), rel=1e-6)
+
+
+def test_slip_and_pressure_friction_multiply():
+    """Both laws on: mu = mu_0 (u / 10 m/s)^m (p_mean / 10 MPa)^(-n), sliding throughout on a fixed face."""
+    angles = np.radians([45.0, 60.0])
+    speed, mu0, m, n = 40.0, 0.05, 0.7, 0.4
+    cases = fixed_face_cases(angles, speed=speed, friction=mu0)
+    out = get_model("rigid_coulomb")(friction_slip_exponent=m, friction_pressure_exponent=n).compute_arrays(
+        cases, OUT)
+    modulus = hertz.effective_modulus(cases["ball_youngs_modulus"], cases["ball_poisson_ratio"],
+                                      cases["face_youngs_modulus"], cases["face_poisson_ratio"])
+    pressure = rate_laws.mean_pressure(cases["ball_mass"], cases["ball_radius"], modulus, speed * np.cos(angles))
+    mu = mu0 * (speed * np.sin(angles) / 10.0) ** m * (pressure / 10e6) ** (-n)
+    np.testing.assert_allclose(np.abs(out["tangential_impulse"]) / out["normal_impulse"], mu, rtol=1e-6)
+
+
+def test_slip_friction_keeps_the_gear_effect_of_a_strike_without_initial_slip():
+    """Head-on (no loft, path or face angle) off-centre strikes on a free head: no initial slip, but the normal
+    impulse couples into the tangential directions, so the contact slides and friction acts (the gear effect). The
+    law reads that coupled slip: it must not take the friction away."""
+    head_on = _with(CASES_3D, angle=0.0, path=0.0, face_angle=0.0, dynamic_loft=0.0, attack_angle=0.0)
+    wanted = ["tangential_impulse", "lateral_impulse"]
+    for name in ("rigid_coulomb", "hertz_mindlin"):
+        plain = get_model(name)().compute_arrays(head_on, wanted)
+        with_law = get_model(name)(friction_slip_exponent=0.9).compute_arrays(head_on, wanted)
+        size = np.hypot(plain["tangential_impulse"], plain["lateral_impulse"])
+        law = np.hypot(with_law["tangential_impulse"], with_law["lateral_impulse"])
+        struck = size > 1e-3
+        assert struck.sum() >= 4, name
+        assert np.all(law[struck] > 0.2 * size[struck]), (name, law[struck] / size[struck])
+
+
+def test_slip_friction_refuses_a_friction_law_with_its_own_sliding_dependence():
+    from impactlab.errors import ModelInputError
+
+    with pytest.raises(ModelInputError, match="friction_slip_exponent.*friction_law 'adhesion'"):
+        get_model("rigid_coulomb")(friction_slip_exponent=0.5, friction_law="adhesion").compute_arrays(
+            CASES_3D, OUT)
+
+
 def test_compression_ratio_of_the_hertz_history():
     """int h^(5/2) / int h^(3/2) over the elastic history, computed here by the energy integral dtau = dh / h'."""
     h = np.linspace(0.0, 1.0, 200001)[1:-1]

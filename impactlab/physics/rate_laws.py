@@ -32,13 +32,18 @@ bounded by the Rules) and relaxation_time 0 is the plain model exactly.
   elastic Hertz impact, p_ref = 10 MPa: the adhesive (constant-shear-strength) regime of elastomer friction gives
   n = 1 (friction force = tau A), Hertzian multi-asperity contact about 1/3; elastomers on rough surfaces fall with
   load as a power law (Popov et al. 2018, measurement). n = 0: Coulomb, the plain model.
-- Friction rising with the sliding speed, mu = mu_0 (u / u_ref)^m, u the contact point's initial slip speed and
-  u_ref = 10 m/s (about a driver's, 50 m/s x sin 12 deg): a friction stress proportional to the sliding speed,
-  tau = lambda u, as Arakawa (2014, 2017) found for golf balls in oblique impact from measured spin, force and contact
-  area (F = lambda A u: m = 1). With Mindlin's tangential compliance a driver's spin falls as mu rises beyond about
-  0.1 (the contact grips earlier and its spring gives spin back before separation: Maw, Barber & Fawcett 1981), so a
-  friction that grows with the impact's speed makes the spin grow more slowly than the speed. m = 0: Coulomb, the
-  plain model. One mu per impact, at its own initial slip (as the pressure law, not through the slip's history).
+- Friction rising with the sliding speed, mu = mu_0 (u / u_ref)^m, u the impact's slip speed and u_ref = 10 m/s
+  (about a driver's, 50 m/s x sin 12 deg). Arakawa measured golf balls' oblique impacts (angular velocity, contact
+  force and area; 2014: F = mu N + mu eta dA/dt) and described them in 2017 by a friction stress proportional to the
+  sliding speed, F = lambda A u; read as a coefficient, mu = lambda u / p_mean, that is m = 1 together with the
+  pressure law above at n = 1. Here m is a parameter of its own, fitted (validation/impact/slip_friction.py). With
+  Mindlin's tangential compliance a driver's spin falls as mu rises beyond about 0.1 (the contact grips earlier and its
+  spring gives spin back before separation: Maw, Barber & Fawcett 1981), so a friction that grows with the impact's
+  speed makes the spin grow more slowly than the speed. m = 0: Coulomb, the plain model. One mu per impact, at its
+  own slip scale (as the pressure law; not through the slip's history, as Arakawa's instantaneous u would be): the
+  models read the larger of the initial slip and the slip a frictionless impact would leave (the gear effect's slip
+  on an off-centre strike with none to begin with). No cap: validated on drivers (u about 6-14 m/s) only; at a
+  wedge's 20-30 m/s mu is 2-3 mu_0.
 - Tangential compliance with viscous loss of a physical time: a dashpot beside each tangential spring with a fixed
   relaxation time tau_t [s] (Kelvin-Voigt), whose loss factor at the contact's pulse frequency omega = pi / t_c is
   eta = omega tau_t = pi tau_t / t_c: as the contact shortens at higher speed, the cover's shear spring returns
@@ -272,9 +277,11 @@ def slip_friction(friction, exponent, slip_speed, reference=REFERENCE_SLIP_SPEED
     friction : array_like
         mu_0, the friction coefficient at the reference slip speed [1].
     exponent : float
-        m [1]; 0 returns mu_0 (Coulomb), 1 is a friction stress proportional to the sliding speed (Arakawa 2017).
+        m [1]; 0 returns mu_0 (Coulomb); 1 with the pressure law at n = 1 is a friction stress proportional to the
+        sliding speed (Arakawa 2017).
     slip_speed : array_like
-        The contact point's initial tangential slip speed u [m/s] (its sign, the slip's direction, is ignored).
+        The impact's slip speed u [m/s] (its sign, the slip's direction, is ignored; the models pass
+        ``impactlab_models.shared.characteristic_slip``).
     reference : float
         u_ref [m/s], 10 m/s by default.
 
@@ -286,8 +293,9 @@ def slip_friction(friction, exponent, slip_speed, reference=REFERENCE_SLIP_SPEED
     References
     ----------
     K. Arakawa, Effect of time derivative of contact area on dynamic friction, Appl. Phys. Lett. 104 (2014) 241603
-    (measured golf-ball oblique impacts); K. Arakawa (2017): dynamic friction F = lambda A u, an empirical law fitted
-    to measured golf-ball spin histories (abstract).
+    (measured golf-ball oblique impacts; F = mu N + mu eta dA/dt).
+    K. Arakawa, An analytical model of dynamic sliding friction during impact, Sci. Rep. 7 (2017), published
+    5 January 2017 (F = lambda A u, compared with the measured angular velocities; abstract read).
     """
     mu = np.asarray(friction, float)
     m = float(exponent)

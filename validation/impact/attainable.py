@@ -118,11 +118,11 @@ def repeatability(table, mask, speed_tolerance=0.02, loft_tolerance=np.radians(1
 
 #: the models of section 2 at their whole-file fits (rate_laws_output.md section 4: hertz_mindlin e_ball 0.742,
 #: friction 0.6; face_bounds_output.md section 3: hertz_mindlin_face e_ball 0.786, friction 0.50;
-#: slip_friction_output.md section 2: hertz_mindlin_slip e_ball 0.787, friction 0.367, m 0.91)
+#: slip_friction_output.md section 2: hertz_mindlin_slip e_ball 0.787, friction 0.339, m 1.0 at its bound)
 APPARENT_FORMS = (("hertz_mindlin (today's law)", "plain", {"e_ball": 0.742, "friction": 0.6}),
                   ("hertz_mindlin_face (face at the COR limit)", "face", {"e_ball": 0.786, "friction": 0.50}),
                   ("hertz_mindlin_slip (the face, friction rising with the slip speed)", "slip",
-                   {"e_ball": 0.787, "friction": 0.367}))
+                   {"e_ball": 0.787, "friction": 0.339}))
 
 
 def options_of(kind: str) -> dict:

@@ -176,12 +176,13 @@ def tour_section(sample, chosen=None):
               f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
 
 
-def run(argv, description: str, first, chosen=None) -> None:
+def run(argv, description: str, first, chosen=None, last=None) -> None:
     """The command line of this protocol: section 0 (``first``), then the bands and the tour tables of ``chosen``
-    (default: this module's forms); slip_friction runs its own forms through it."""
+    (default: this module's forms), then section 3 (``last``) if given; slip_friction runs its own forms through
+    it."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(0, 1, 2), help="one section only")
+    parser.add_argument("--part", type=int, choices=(0, 1, 2, 3), help="one section only")
     args = parser.parse_args(argv)
     warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
     warnings.filterwarnings("ignore", category=RuntimeWarning)
@@ -193,6 +194,8 @@ def run(argv, description: str, first, chosen=None) -> None:
         bands_section(sample, chosen)
     if args.part in (None, 2):
         tour_section(sample, chosen)
+    if last is not None and args.part in (None, 3):
+        last()
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 

@@ -11,14 +11,16 @@ over-rolling) and falls as mu rises beyond (it grips early and its tangential sp
 separation): Maw, Barber & Fawcett's (1981) tangential restitution against psi ~ tan(angle) / mu. The file's fits sit
 on that falling side (friction 0.42-0.60). There, a friction that *rises* with the impact's speed lowers the spin's
 growth with speed, which is what the file's exponent asks for. Such a law is measured for golf balls: Arakawa
-(2014, 2017) found the dynamic friction of a ball's oblique impact to follow F = lambda A u (a friction stress
-proportional to the sliding speed u; A the contact area), not Coulomb, from measured spin, force and contact area.
+(2014) measured the dynamic friction of golf balls' oblique impacts (spin, force and contact area) and fitted
+F = mu N + mu eta dA/dt; his analytical model of 2017 describes the same measurements by F = lambda A u (a friction
+stress proportional to the sliding speed u; A the contact area), "qualitatively equivalent" to the 2014 law.
 As a friction coefficient, mu = F / N = lambda u / p_mean: rising with the slip speed u ~ V sin(angle), falling with
 the mean pressure p_mean ~ V_n^(2/5). Forms (the package's ``friction_slip_exponent`` and
 ``friction_pressure_exponent`` options, impactlab.physics.rate_laws; one mu per impact at its own scales):
 
-- Arakawa's law, mu = mu_0 (u / 10 m/s) (p_mean / 10 MPa)^(-1): one parameter, its level mu_0 (bounded so that a
-  driver's mu, at about 40 MPa, lies in round 1's 0.20-0.60), exponents fixed by the measured law, not fitted;
+- Arakawa's 2017 model read as a coefficient, mu = mu_0 (u / 10 m/s) (p_mean / 10 MPa)^(-1) (m = 1 needs the
+  pressure term with it): one parameter, its level mu_0 (bounded so that a driver's mu, at about 40 MPa, lies in
+  round 1's 0.20-0.60), the exponents his, not fitted;
 - the slip exponent fitted, mu = mu_0 (u / 10 m/s)^m, m in [0, 1] (0: Coulomb; 1: linear in u);
 - the same forms on today's hertz_mindlin (rigid face), to see what the face contributes.
 
@@ -31,6 +33,7 @@ delivery, none refitted.
 from __future__ import annotations
 
 
+import attrs
 import numpy as np
 
 
@@ -72,10 +75,38 @@ def sweep_section():
     print()
 
 
+def shipped_section():
+    """Section 3: the registered ``hertz_mindlin_slip`` as shipped (the presets' friction and e, nothing fitted): the
+    tour tables, the exponent and the wedge, beside ``hertz_mindlin_face`` as shipped."""
+    from impactlab.data.sessions.shots import predict, table_inputs
+    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.model.registry import get_model
+    from validation.impact import rate_laws as rl
+    from validation.impact.shots import MPH
+
+    tour = rl.tour()
+    drivers = tour.subset([i for i, label in enumerate(tour.labels) if "driver" in label])
+    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    print("\n### 3. The registered models as shipped (the presets' friction 0.40 / 0.35 and e 0.787; nothing fitted)\n")
+    print("| model | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in tour.labels)
+          + " | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 |")
+    print("|---|" + "---|" * tour.size + "---|---|")
+    for name in ("hertz_mindlin_face", "hertz_mindlin_slip"):
+        model = get_model(name)()
+        e = rl.errors(predict(model, table_inputs(tour)), tour.measured)
+        spins = [predict(model, table_inputs(attrs.evolve(drivers, delivery=dict(
+            drivers.delivery, club_speed=np.full(drivers.size, mph * MPH)))))["spin_rate"] for mph in (96.0, 115.0)]
+        ks = np.log(spins[1] / spins[0]) / np.log(115.0 / 96.0)
+        cells = " | ".join(f"{100 * e['spin'][i]:+.1f}, {100 * e['speed'][i]:+.2f}, {e['launch'][i]:+.2f}"
+                           for i in range(tour.size))
+        wedge_ratio = cover_effect(model, wedge)["predicted"]
+        print(f"| {name} | {cells} | {ks[0]:.3f} / {ks[1]:.3f} | {100 * wedge_ratio:+.1f} % |")
+
+
 def main(argv=None) -> None:
     from validation.impact import face_mechanisms
 
-    face_mechanisms.run(argv, __doc__.splitlines()[0], sweep_section, forms())
+    face_mechanisms.run(argv, __doc__.splitlines()[0], sweep_section, forms(), last=shipped_section)
 
 
 if __name__ == "__main__":
