@@ -165,13 +165,10 @@ def tour_section(sample, chosen=None):
         values, at_bound = rl.fit(form, rl.take(inputs, rows, table.size), table.subset(rows).measured, bounds(),
                                   rigid_face_head=False)
         e = rl.errors(rl.run(form, values, table_inputs(tour)), tour.measured)
-        met = int(np.sum(np.abs(e["spin"]) <= 0.07) + np.sum(np.abs(e["speed"]) <= 0.01)
-                  + np.sum(np.abs(e["launch"]) <= 0.7))
+        met, cells = rl.tour_cells(e)
         ks = rl.exponent(form, values)
         cover = cover_effect(rl.model_of(form, values), wedge,
                              inputs_hook=lambda i, v=values, f=form: rl.apply(i, v, f))
-        cells = " | ".join(f"{100 * e['spin'][i]:+.1f}, {100 * e['speed'][i]:+.2f}, {e['launch'][i]:+.2f}"
-                           for i in range(tour.size))
         print(f"| {form.name} | {describe(values, at_bound, head_cor(values['e_ball']))} | {cells} | {met} | "
               f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
 

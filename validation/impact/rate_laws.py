@@ -281,6 +281,16 @@ def errors(out, measured):
     return {"spin": spin, "speed": speed, "launch": launch}
 
 
+def tour_cells(e) -> tuple[int, str]:
+    """(cells within the issue's goals, the table's cells) of the tour rows' errors ``e`` (:func:`errors`): spin
+    within 7 %, ball speed within 1 %, launch within 0.7 deg; each row "spin %, ball speed %, launch deg"."""
+    met = int(np.sum(np.abs(e["spin"]) <= 0.07) + np.sum(np.abs(e["speed"]) <= 0.01)
+              + np.sum(np.abs(e["launch"]) <= 0.7))
+    cells = " | ".join(f"{100 * s:+.1f}, {100 * v:+.2f}, {a:+.2f}" for s, v, a in zip(e["spin"], e["speed"],
+                                                                                      e["launch"]))
+    return met, cells
+
+
 def spin_loft(table):
     d = table.delivery
     loft = np.asarray(d["spin_loft"], float)

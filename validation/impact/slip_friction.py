@@ -97,8 +97,7 @@ def shipped_section():
         spins = [predict(model, table_inputs(attrs.evolve(drivers, delivery=dict(
             drivers.delivery, club_speed=np.full(drivers.size, mph * MPH)))))["spin_rate"] for mph in (96.0, 115.0)]
         ks = np.log(spins[1] / spins[0]) / np.log(115.0 / 96.0)
-        cells = " | ".join(f"{100 * e['spin'][i]:+.1f}, {100 * e['speed'][i]:+.2f}, {e['launch'][i]:+.2f}"
-                           for i in range(tour.size))
+        _, cells = rl.tour_cells(e)
         wedge_ratio = cover_effect(model, wedge)["predicted"]
         print(f"| {name} | {cells} | {ks[0]:.3f} / {ks[1]:.3f} | {100 * wedge_ratio:+.1f} % |")
 
