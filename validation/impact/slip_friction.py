@@ -22,6 +22,8 @@ the mean pressure p_mean ~ V_n^(2/5). Forms (the package's ``friction_slip_expon
   pressure term with it): one parameter, its level mu_0 (bounded so that a driver's mu, at about 40 MPa, lies in
   round 1's 0.20-0.60), the exponents his, not fitted;
 - the slip exponent fitted, mu = mu_0 (u / 10 m/s)^m, m in [0, 1] (0: Coulomb; 1: linear in u);
+- the registered form, m = 1 held (the whole-file fit's value, at its bound; Arakawa's linear dependence on u):
+  e_ball and friction fitted on each training band, so its held-out rows judge the registered configuration;
 - the same forms on today's hertz_mindlin (rigid face), to see what the face contributes.
 
 The face at the COR limit and e_ball's bounds are validation.impact.face_mechanisms' (every fit within the Rules);
@@ -51,6 +53,8 @@ def forms():
                     fitted, bounds=wide),
             rl.Form("hertz_mindlin_face + slip friction, m fitted", "hertz_mindlin", FACE_COR,
                     (*fitted, "friction_slip_exponent")),
+            rl.Form("hertz_mindlin_slip as registered (m = 1, not fitted)", "hertz_mindlin",
+                    {**FACE_COR, "friction_slip_exponent": 1.0}, fitted),
             rl.Form("hertz_mindlin + Arakawa friction (rigid face)", "hertz_mindlin", arakawa, fitted, bounds=wide))
 
 
