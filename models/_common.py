@@ -352,7 +352,8 @@ RATE_LAWS_DOC = """relaxation_time, relaxed_fraction, relaxation_reference_speed
         standard linear solid under Hertz (Lee & Radok), whose restitution falls or rises with the normal speed;
         the restitution input is e at ``relaxation_reference_speed`` (40 m/s) and e(v) = e_in e_sls(v) /
         e_sls(v_ref). ``friction_pressure_exponent`` n: mu = mu_0 (p_mean / 10 MPa)^(-n). ``friction_slip_exponent``
-        m: mu = mu_0 (u / 10 m/s)^m, u the contact's initial slip speed (Arakawa: m = 1). ``compression_lever``
+        m: mu = mu_0 (u / 10 m/s)^m, u the impact's slip speed (:func:`characteristic_slip`; Arakawa's 2017 model:
+        m = 1 with n = 1). ``compression_lever``
         lambda: the normal force's line offset d = lambda delta by the ball's deformation, a couple opposing the
         relative rolling (the rolling couple of impactlab.physics.ball_laws with this arm)."""
 
