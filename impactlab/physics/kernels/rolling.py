@@ -72,7 +72,7 @@ def _rolling_cases(initial, mobility, coupling, rotation, rolling, friction, res
                     scale = limit / size if size > 0.0 else 0.0
                     c0 *= scale
                     c1 *= scale
-                if _sweep > 0 and abs(x0 - last0) + abs(x1 - last1) <= 1e-13 * (mu * dp + 1e-300):
+                if _sweep > 0 and abs(x0 - last0) + abs(x1 - last1) <= 1e-10 * (mu * dp + 1e-300):
                     break  # the split between friction and couple no longer changes
             new_n = vn + w[2, 0] * x0 + w[2, 1] * x1 + w[2, 2] * dp + b[2, 0] * c0 + b[2, 1] * c1
             fraction = 1.0
