@@ -132,6 +132,27 @@ def wedge_section():
 
             cells.append(f"{100 * cover_effect(model, wedge, inputs_hook=hook)['predicted']:+.1f} %")
         print(f"| {name} | " + " | ".join(cells) + " |")
+    adhesion_rows(wedge)
+
+
+def adhesion_rows(wedge):
+    """The package's adhesion friction law (``friction_law: adhesion``: each cover's shear strength fitted to the
+    sled, softened by flash heating; docs/models.md) on the wedge and on the tour rows, as shipped."""
+    from impactlab.data.sessions.shots import predict, table_inputs
+    from impactlab.data.validation.observations import cover_effect
+    from impactlab.model.registry import get_model
+    from validation.impact import rate_laws as rl
+
+    tour = rl.tour()
+    print("\nThe package's adhesion friction law (each cover's shear strength from the sled, flash heating), as "
+          "shipped:\n")
+    print("| model | wedge urethane/ionomer - 1 | " + " | ".join(f"{label}: spin %, ball speed %, launch deg"
+                                                          for label in tour.labels) + " |")
+    print("|---|---|" + "---|" * tour.size)
+    for name in ("rigid_coulomb", "hertz_mindlin", "hertz_mindlin_face"):
+        model = get_model(name)(friction_law="adhesion")
+        _, cells = rl.tour_cells(rl.errors(predict(model, table_inputs(tour)), tour.measured))
+        print(f"| {name} | {100 * cover_effect(model, wedge)['predicted']:+.1f} % | {cells} |")
 
 
 def main(argv=None) -> None:
