@@ -91,6 +91,18 @@ def test_slip_friction_by_hand():
     np.testing.assert_allclose(rate_laws.slip_friction(0.4, 0.7, u), 0.4 * (np.abs(u) / 10.0) ** 0.7, rtol=1e-12)
     np.testing.assert_array_equal(rate_laws.slip_friction(0.4, 0.0, u), np.full(4, 0.4))
     assert rate_laws.slip_friction(0.3, 1.0, 10.0) == pytest.approx(0.3)
+    # no friction cap (the restitution model without a friction input) stays none, even at zero slip
+    np.testing.assert_array_equal(rate_laws.slip_friction(np.inf, 0.7, np.array([0.0, 5.0])), [np.inf, np.inf])
+    assert rate_laws.slip_friction(0.4, 0.7, 0.0) == 0.0
+
+
+def test_restitution_model_without_friction_and_no_slip_gives_numbers():
+    """Head-on central impacts, no friction input (no cap): the slip law must not turn the missing cap into NaN."""
+    cases = {k: v for k, v in fixed_face_cases(np.radians([0.0, 20.0])).items() if k != "friction"}
+    out = get_model("restitution")(tangential_restitution=0.2, friction_slip_exponent=0.8).compute_arrays(cases, OUT)
+    plain = get_model("restitution")(tangential_restitution=0.2).compute_arrays(cases, OUT)
+    for key in OUT:
+        np.testing.assert_allclose(out[key], plain[key], rtol=1e-12, atol=1e-15, err_msg=key)
 
 
 def test_slip_friction_in_a_sliding_impact_by_hand():

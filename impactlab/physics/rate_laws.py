@@ -301,7 +301,10 @@ def slip_friction(friction, exponent, slip_speed, reference=REFERENCE_SLIP_SPEED
     m = float(exponent)
     if m == 0.0:
         return np.broadcast_to(mu, np.broadcast(mu, slip_speed).shape).copy()
-    return mu * (np.abs(np.asarray(slip_speed, float)) / reference) ** m
+    factor = (np.abs(np.asarray(slip_speed, float)) / reference) ** m
+    finite = np.isfinite(mu)
+    # no cap stays no cap: inf x 0 at zero slip would be NaN
+    return np.where(finite, np.where(finite, mu, 0.0) * factor, mu)
 
 
 def tangential_loss_of_time(relaxation_time, contact_time):
