@@ -29,7 +29,7 @@ LAWS = [
     ("tangential dashpot time (b)", {"tangential_relaxation_time": 20e-6}),
     ("compression lever (c)", {"compression_lever": 0.05}),
     ("all of them", {"relaxation_time": 43e-6, "relaxed_fraction": 0.376, "friction_pressure_exponent": 0.3,
-                     "compression_lever": 0.05}),
+                     "friction_slip_exponent": 0.9, "compression_lever": 0.05}),
 ]
 MODELS = ("rigid_coulomb", "hertz_mindlin", "maw")
 OUTPUTS = ["spin_rate", "ball_speed"]

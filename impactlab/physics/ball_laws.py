@@ -212,6 +212,9 @@ def rolling_impulses_numpy(initial, mobility, coupling, rotation, rolling, frict
     restoring = np.zeros(n)     # and while separating (>= 0)
     active = np.ones(n, dtype=bool)
     separating = np.zeros(n, dtype=bool)
+    # each step's sweeps start from the previous step's split (the minimum is unique; the kernel does the same)
+    jt = np.zeros((n, 2))
+    couple = np.zeros((n, 2))
     for _ in range(4 * steps):
         if not np.any(active):
             break
@@ -219,8 +222,6 @@ def rolling_impulses_numpy(initial, mobility, coupling, rotation, rolling, frict
         # the normal increment's own effect, then the tangential impulse and couple that minimise the energy
         base_t = velocity[:, :2] + w_tn * step[:, None]
         base_r = omega + b_n * step[:, None]
-        jt = np.zeros((n, 2))
-        couple = np.zeros((n, 2))
         for _sweep in range(SWEEPS):
             wanted_t = -np.einsum("nij,nj->ni", inverse_tt, base_t + np.einsum("nij,nj->ni", b_t, couple))
             jt = _project(wanted_t, mu * step)
