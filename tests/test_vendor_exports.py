@@ -284,6 +284,36 @@ def test_flightscope_simulator_windows_1252_repeated_columns_and_right_left_suff
         read_session(other)
 
 
+def test_flightscope_fsgolf_real_mevo_export_gives_club_data_and_flags_its_smash_rows():
+    # the whole real file (russosanti/golf-metrics, a Mevo+ range session of 36 8-irons, MIT): before it was found the
+    # layout came from parsers only and mapped no dynamic loft, so every row of this file was refused for the models
+    session = read_session(DATA / "flightscope_fsgolf_mevo.csv")
+    assert session.vendor.id == "flightscope_fsgolf" and session.size == 36
+    assert [line for line, _ in session.skipped] == [38, 39]  # the Avg and Dev rows, with their reason
+    v = session.values
+    # shot 1, typed from the file: AOA -6.5, Dynamic Loft 28.3, Spin Loft 34.9, Club Path 1.3 L, FTP 2.3 L, FTT 3.6 L,
+    # Spin Axis 4.3 L, Launch V 18.3, DescentV 40.4, Spin 6820 rpm, Ball 105.1 mph, Club 84.8 mph
+    assert v["attack_angle"][0] == pytest.approx(-6.5 * DEG) and v["dynamic_loft"][0] == pytest.approx(28.3 * DEG)
+    assert v["spin_loft"][0] == pytest.approx(34.9 * DEG) and v["landing_angle"][0] == pytest.approx(40.4 * DEG)
+    assert v["path"][0] == pytest.approx(-1.3 * DEG) and v["face_to_path"][0] == pytest.approx(-2.3 * DEG)
+    assert v["face_angle"][0] == pytest.approx(-3.6 * DEG) and v["spin_axis"][0] == pytest.approx(-4.3 * DEG)
+    assert v["spin_rate"][0] == pytest.approx(6820 * RPM) and v["vertical_launch_angle"][0] == pytest.approx(18.3 * DEG)
+    assert v["ball_speed"][0] == pytest.approx(105.1 * MPH) and v["club_speed"][0] == pytest.approx(84.8 * MPH)
+    # shot 5 curves right (Fade, Curve Dist +8.1, Lateral 12.1 R): its axis is positive
+    assert v["spin_axis"][4] == pytest.approx(5.6 * DEG) and v["offline_distance"][4] == pytest.approx(12.1 * YD)
+    # the 3-D spin loft: shot 31, face 17.9 deg closed to the path, spin loft 51.6 where loft - attack is 48.8
+    assert v["spin_loft"][30] - (v["dynamic_loft"][30] - v["attack_angle"][30]) == pytest.approx(2.8 * DEG)
+    # seven rows whose Smash is not Ball / Club within 2 % (shot 12: 1.29 stated, 106.4 / 84.6 = 1.258): their speeds
+    # are flagged and the rows left out of the models, each with its line; the other 29 are used
+    flagged = session.flagged("club_speed")
+    assert session.lines[flagged].tolist() == [13, 15, 16, 17, 18, 26, 36]
+    keep, skipped = session.usable()
+    assert int(keep.sum()) == 29
+    assert all("smash factor" in why for _, why in skipped)
+    # impact location (inches, sign not stated, stops at +-1.38 and -1.18 in) and the air (unit in each value) unread
+    assert np.isnan(v["strike_high"]).all() and "Vertical Impact (in)" in session.unused
+
+
 def test_two_app_versions_joined_in_one_file_are_refused_at_the_second_header():
     # the 42-column export of 2026-04-19 and the 32-column one of 2026-05-23 (jgamblin/golf, the fixtures' real
     # lines) pasted into one file: the second header has other columns, so its rows cannot be read by the first's
