@@ -177,12 +177,36 @@ def test_validate_prints_the_scorecard_of_a_session(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "scorecard of session: held out 9 of 30 rows by contiguous blocks of the usable rows" in out
     for name in ("restitution", "rigid_coulomb", "regression (baseline)", "instrument floor", "spin axis [deg]",
-                 "median |error| by club-speed band", "VENDOR CLAIM"):
+                 "median |error| by club-speed band", "not known for a monitor not stated"):
         assert name in out, name
+    assert "VENDOR CLAIM" not in out  # TrackMan's claims are not put beside rows whose monitor is not stated
     # the fixture's launches follow the regressions' laws exactly: the models lose to the regression, and it says so
     assert "restitution: regression beats it on ball_speed, launch angle" in out
     assert main(["validate", "--dataset", str(path), "--holdout", "1.5"]) == 2
     assert "--holdout" in capsys.readouterr().err
+
+
+def test_the_instrument_floor_is_trackmans_claim_beside_trackmans_rows_only():
+    import attrs
+
+    # a real TrackMan export and a real FlightScope one, as the reader labels them
+    from pathlib import Path
+
+    from impactlab.data.sessions.reader import read_session
+
+    vendors = Path(__file__).parent / "data" / "vendors"
+    assert read_session(vendors / "trackman_tps_drivers.csv").shot_table().instrument == "trackman"
+    assert read_session(vendors / "flightscope_fsgolf_mevo.csv").shot_table().instrument == "flightscope"
+    table = session(30)
+    floors = {}
+    for maker in ("trackman", "flightscope", ""):
+        card = scorecard(attrs.evolve(table, instrument=maker), models=[])
+        floors[maker] = (card["floor"].sel(output="spin [%]").item(),
+                         str(card["floor_source"].sel(output="ball_speed [%]").values))
+    assert floors["trackman"][0] > 0 and "TrackMan" in floors["trackman"][1] and "0.5 %" in floors["trackman"][1]
+    for maker in ("flightscope", ""):
+        assert math.isnan(floors[maker][0]) and floors[maker][1].startswith("not known for")
+    assert "(flightscope)" in floors["flightscope"][1] and "not stated" in floors[""][1]
 
 
 def test_closed_form_leave_one_out_matches_explicit_refits():

@@ -29,7 +29,9 @@ PROBE = ("<script>window.addEventListener('load', function () {var images = Arra
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
-    table = session(80)
+    import attrs
+
+    table = attrs.evolve(session(80), instrument="trackman")  # TrackMan's rows: the report carries its floor claims
     table.delivery["strike_toe"][:] = np.linspace(-0.02, 0.02, table.size)  # some strikes off the centre
     split = holdout_split(table, 0.3)
     predicted: dict = {}

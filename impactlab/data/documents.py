@@ -55,6 +55,7 @@ class ShotTableBlock:
     units: dict[str, Text] | None = _field("a mapping of field to its unit (e.g. club_speed: mph)")
     sigma: dict[str, Scalar] | None = _field("a mapping of measured field to its one-sigma uncertainty with unit")
     loft_at: Text | None = _field("contact or centre")
+    instrument: Text | None = _field("the maker of the monitor that measured the rows (trackman, flightscope...)")
     budgets: dict[str, dict[str, Positive]] | None = _field(
         "a mapping of model id to a mapping of error to its largest allowed RMS")
 

@@ -298,7 +298,15 @@ class Session:
                          handedness=tuple(self.text["handedness"][i] or "right" for i in index),
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
                          skipped=skipped, unusual=unusual, strike_known=strike_known,
-                         row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else ())
+                         row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else (),
+                         instrument=self._instrument())
+
+    def _instrument(self) -> str:
+        """The monitor's maker, the first word of the layout's id (``trackman_tps_legacy``: trackman); '' for
+        impactlab's own tables and for GSPro Open Connect, which relays any monitor."""
+        if self.vendor is GENERIC or self.vendor.id in ("impactlab_yaml", "gspro_open_connect"):
+            return ""
+        return self.vendor.id.split("_")[0]
 
 
 #: session datasets shipped with impactlab: name -> file in impactlab/data/sessions/datasets (README.md there)

@@ -96,6 +96,10 @@ class ShotTable:
     #: per row, whether the file gave the strike location (where it did not, the strike fields hold the face
     #: centre, 0); None: not recorded, every strike taken as given (the scorecard's strike zones use it)
     strike_known: np.ndarray | None = attrs.field(default=None, eq=False)
+    #: the maker of the monitor that measured the rows, as the layout's id begins ('trackman', 'flightscope', ...);
+    #: '' where not stated. The scorecard's instrument floor is a claim about one maker's monitor, so it is printed
+    #: only beside rows of that maker.
+    instrument: str = attrs.field(default="", eq=False)
 
     @property
     def sources(self) -> tuple[str, ...]:

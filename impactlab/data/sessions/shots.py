@@ -195,7 +195,8 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     name = block.name if block.name is not None else Path(file).stem
     # a table written by hand is refused whole for a row the models cannot use (an export skips that row)
     table = _session_of_rows(rows, file, name, units, loft_at, sigma_defaults).shot_table(every_row=True)
-    return attrs.evolve(table, name=name, source=block.source or "", ball=dict(block.ball or {}), budgets=budgets)
+    return attrs.evolve(table, name=name, source=block.source or "", ball=dict(block.ball or {}), budgets=budgets,
+                        instrument=(block.instrument or "").strip().lower())
 
 
 def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:

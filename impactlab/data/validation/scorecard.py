@@ -159,8 +159,19 @@ def carry_errors(test: ShotTable, predicted: dict, measured: np.ndarray, tracked
     return out
 
 
+#: the monitor whose claims :data:`INSTRUMENT_FLOOR` holds (``ShotTable.instrument``)
+FLOOR_INSTRUMENT = "trackman"
+
+
 def _floor(table: ShotTable, outputs: Sequence[str]) -> tuple[np.ndarray, list[str]]:
+    """The instrument's floor beside each output: TrackMan's claims for TrackMan's rows only; for another monitor's
+    rows (or rows whose monitor is not stated) no floor, and the line says so, rather than another maker's claim."""
     values, sources = [], []
+    if table.instrument != FLOOR_INSTRUMENT:
+        which = f"this table's monitor ({table.instrument})" if table.instrument else "a monitor not stated"
+        note = (f"not known for {which}: the floors this project found are TrackMan's claims, which say nothing "
+                "of another monitor")
+        return np.full(len(outputs), math.nan), [note] * len(outputs)
     for key in outputs:
         value, source = INSTRUMENT_FLOOR[key]
         if key == "spin [%]":
