@@ -331,6 +331,31 @@ def test_conformance_with_the_rolling_law(model, check):
     check(model)
 
 
+def test_rolling_kernel_reaches_the_converged_split_on_off_centre_cases(monkeypatch):
+    """The kernel's six warm-started sweeps per step against the numpy reference run to convergence (200 sweeps per
+    step), over rolling arms up to 1.9 mm: the split between friction and couple is each step's unique energy
+    minimum, so the kernel must land on it, whatever its sweeps start from (an independent check: the reference
+    with six sweeps shares the kernel's cap)."""
+    from impactlab.physics import kernels as _kernels
+    from impactlab.physics.contact import contact_state, couple_mobility
+
+    if not _kernels.HAVE_NUMBA:
+        pytest.skip("numba is off: the numpy path is the only one")
+    state = contact_state(DRIVER_CASES)
+    b, d, rates = couple_mobility(state, DRIVER_CASES["ball_mass"], DRIVER_CASES["ball_radius"],
+                                  DRIVER_CASES["ball_inertia_factor"])
+    n = DRIVER_CASES["speed"].size
+    for arm in (0.2e-3, 1.0e-3, 1.9e-3):
+        args = (state["initial_velocity"], state["mobility"], b, d, rates, DRIVER_CASES["friction"],
+                DRIVER_CASES["restitution"], np.full(n, arm))
+        compiled = ball_laws.rolling_impulses(*args, steps=100, extrapolate=False)
+        monkeypatch.setattr(ball_laws, "SWEEPS", 200)
+        converged = ball_laws.rolling_impulses_numpy(*args, steps=100)
+        monkeypatch.undo()
+        np.testing.assert_allclose(compiled[0], converged[0], rtol=1e-7, atol=1e-12)
+        np.testing.assert_allclose(compiled[1], converged[1], rtol=1e-7, atol=1e-14)
+
+
 def test_rolling_kernel_equals_its_numpy_reference():
     from impactlab.physics import kernels as _kernels
     from impactlab.physics.contact import contact_state, couple_mobility

@@ -312,6 +312,11 @@ def test_flightscope_fsgolf_real_mevo_export_gives_club_data_and_flags_its_smash
     assert all("smash factor" in why for _, why in skipped)
     # impact location (inches, sign not stated, stops at +-1.38 and -1.18 in) and the air (unit in each value) unread
     assert np.isnan(v["strike_high"]).all() and "Vertical Impact (in)" in session.unused
+    # the parsers' metric layout has Spin Loft but no Club Path or FTP: no dynamic loft is made of it on a face
+    # assumed square, so its rows serve ball data only
+    metric = read_session(DATA / "flightscope_fsgolf_metric.csv")
+    keep, skipped = metric.usable()
+    assert not keep.any() and all(why == "no dynamic loft" for _, why in skipped)
 
 
 def test_two_app_versions_joined_in_one_file_are_refused_at_the_second_header():

@@ -15,9 +15,11 @@ registered constants) or is fitted on a seeded 400-row subsample of the driver f
 face as ``validation.impact.face_mechanisms`` section 2, so the head COR stays within the Rules); then it predicts
 each iron shot from its delivery (club speed, attack angle, dynamic loft, path, face angle; strike at the centre,
 the export's impact location being unread). Baselines fitted on the same driver rows: the one-parameter regression
-spin = k V sin(spin loft) and gradient boosting on the delivery (``validation.impact.rate_laws``). For scale, the
-session's own floor: the same regression with k fitted on the iron rows themselves (leave-one-out), which no model
-fitted elsewhere can be expected to beat.
+spin = k V sin(spin loft) and gradient boosting on the delivery (``validation.impact.rate_laws``). For scale, two
+in-session baselines fitted on the iron rows themselves by leave-one-out: the other rows' median spin, and the same
+regression with k from the other rows. Gradient boosting's score on these rows moves with the driver subsample and
+its seed (19-39 % on 100-600 rows, an adversarial review's measurement): trees do not extrapolate beyond the drivers'
+spin lofts, so its one number here is not a ranking.
 """
 
 from __future__ import annotations
@@ -80,7 +82,7 @@ def leave_one_out_constant(test) -> np.ndarray:
 
 
 def leave_one_out_regression(test) -> np.ndarray:
-    """spin = k V sin(spin loft) with k the median ratio of the *other* iron rows (the session's own floor)."""
+    """spin = k V sin(spin loft) with k the median ratio of the *other* iron rows (an in-session baseline)."""
     from validation.impact import rate_laws as rl
 
     x = np.asarray(test.delivery["club_speed"]) * np.sin(rl.spin_loft(test))
@@ -149,12 +151,12 @@ def main(argv=None) -> None:
         print(f"| gradient boosting on the delivery | {sample} driver rows | {rl.spin_error(boosted, test):.1f} "
               f"({100 * np.median(boosted / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
     constant = leave_one_out_constant(test)
-    print(f"| the session's own floor: each row's spin as the median of the other iron rows (no delivery) | the iron "
+    print(f"| in-session baseline: each row's spin as the median of the other iron rows (no delivery) | the iron "
           f"rows | {rl.spin_error(constant, test):.1f} "
           f"({100 * np.median(constant / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
     own = leave_one_out_regression(test)
-    print(f"| the session's own floor: the regression with k from the other iron rows (leave-one-out) | the iron rows | "
-          f"{rl.spin_error(own, test):.1f} ({100 * np.median(own / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
+    print(f"| in-session baseline: the regression with k from the other iron rows (leave-one-out) | the iron rows "
+          f"| {rl.spin_error(own, test):.1f} ({100 * np.median(own / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 
