@@ -197,6 +197,11 @@ def test_the_instrument_floor_is_trackmans_claim_beside_trackmans_rows_only():
     vendors = Path(__file__).parent / "data" / "vendors"
     assert read_session(vendors / "trackman_tps_drivers.csv").shot_table().instrument == "trackman"
     assert read_session(vendors / "flightscope_fsgolf_mevo.csv").shot_table().instrument == "flightscope"
+    from impactlab.data.shot_report import shot_table
+
+    # TrackMan's tour table says so by its YAML key; the shipped driver sessions by their TrackMan layout
+    assert shot_table("trackman_tour").instrument == "trackman"
+    assert shot_table("trackman_driver_sessions").instrument == "trackman"
     table = session(30)
     floors = {}
     for maker in ("trackman", "flightscope", ""):
