@@ -17,9 +17,9 @@ each iron shot from its delivery (club speed, attack angle, dynamic loft, path, 
 the export's impact location being unread). Baselines fitted on the same driver rows: the one-parameter regression
 spin = k V sin(spin loft) and gradient boosting on the delivery (``validation.impact.rate_laws``). For scale, two
 in-session baselines fitted on the iron rows themselves by leave-one-out: the other rows' median spin, and the same
-regression with k from the other rows. Gradient boosting's score on these rows moves with the driver subsample and
-its seed (19-39 % on 100-600 rows, an adversarial review's measurement): trees do not extrapolate beyond the drivers'
-spin lofts, so its one number here is not a ranking.
+regression with k from the other rows. Section 2 refits the driver baselines on 20 training samples and on the whole
+file: gradient boosting's score moves with its sample (trees do not extrapolate beyond the drivers' spin lofts), so
+its one number in section 1 is not a ranking; section 1's square brackets give each median's bootstrap interval.
 """
 
 from __future__ import annotations
@@ -65,14 +65,51 @@ def fitted_forms():
     return [chosen[0], chosen[3]]  # hertz_mindlin_face (Coulomb) and hertz_mindlin_slip as registered (m = 1)
 
 
+def interval(predicted, test, draws: int = 2000, seed: int = 33) -> tuple[float, float]:
+    """95 % bootstrap interval of the median |spin error| [%] over the iron rows (rows resampled with replacement)."""
+    error = np.abs(np.asarray(predicted) / test.measured["spin_rate"] - 1.0)
+    rng = np.random.default_rng(seed)
+    medians = np.median(error[rng.integers(0, error.size, size=(draws, error.size))], axis=1)
+    return tuple(100 * np.percentile(medians, [2.5, 97.5]))
+
+
+def spin_cells(predicted, test) -> str:
+    """'median |error| % [95 % interval] (bias %)' of the spin over the iron rows."""
+    from validation.impact import rate_laws as rl
+
+    low, high = interval(predicted, test)
+    bias = 100 * np.median(np.asarray(predicted) / test.measured["spin_rate"] - 1)
+    return f"{rl.spin_error(predicted, test):.1f} [{low:.0f}-{high:.0f}] ({bias:+.1f})"
+
+
 def row(name, fitted, out, test) -> str:
-    """One table row: spin median |error| % (bias), ball speed and launch errors on the iron rows."""
+    """One table row: spin median |error| % [interval] (bias), ball speed and launch errors on the iron rows."""
     from validation.impact import rate_laws as rl
 
     e = rl.errors(out, test.measured)
-    return (f"| {name} | {fitted} | {rl.spin_error(out['spin_rate'], test):.1f} ({100 * np.median(e['spin']):+.1f}) "
+    return (f"| {name} | {fitted} | {spin_cells(out['spin_rate'], test)} "
             f"| {100 * np.median(np.abs(e['speed'])):.2f} ({100 * np.median(e['speed']):+.2f}) "
             f"| {np.median(np.abs(e['launch'])):.2f} ({np.median(e['launch']):+.2f}) |")
+
+
+def baseline_spread(table, test, sizes=(100, 200, 400, 600), seeds=(1, 2, 3, 4, 5)):
+    """The driver-fitted baselines' spin error on the iron rows over training subsamples and seeds, and on the whole
+    file: {name: (errors over the subsamples, error on the whole file)}."""
+    from validation.impact import rate_laws as rl
+
+    out = {"regression": ([], None), "gradient boosting": ([], None)}
+    for size in sizes:
+        for seed in seeds:
+            train = table.subset(np.sort(np.random.default_rng(seed).choice(table.size, size=size, replace=False)))
+            out["regression"][0].append(rl.spin_error(rl.regression(train, test)[0], test))
+            boosted = rl.boosting(train, test)
+            if boosted is not None:
+                out["gradient boosting"][0].append(rl.spin_error(boosted, test))
+    whole = {"regression": rl.spin_error(rl.regression(table, test)[0], test)}
+    boosted = rl.boosting(table, test)
+    if boosted is not None:
+        whole["gradient boosting"] = rl.spin_error(boosted, test)
+    return {name: (errors, whole.get(name)) for name, (errors, _) in out.items() if errors}
 
 
 def leave_one_out_constant(test) -> np.ndarray:
@@ -132,8 +169,9 @@ def main(argv=None) -> None:
     train = table.subset(rows)
     train_inputs = rl.take(table_inputs(table), rows, table.size)
 
-    print(f"### 1. Predicted, not fitted on these rows ({test.size} iron shots; median |error|, bias in brackets)\n")
-    print("| form | fitted on | spin % (bias) | ball speed % (bias) | launch deg (bias) |")
+    print(f"### 1. Predicted, not fitted on these rows ({test.size} iron shots; median |error|, its 95 % bootstrap "
+          "interval over the rows in square brackets, bias in round brackets)\n")
+    print("| form | fitted on | spin % [interval] (bias) | ball speed % (bias) | launch deg (bias) |")
     print("|---|---|---|---|---|")
     for name, model in registered_forms():
         print(row(f"`{name}` as registered", "nothing here (presets, registered constants)",
@@ -144,19 +182,22 @@ def main(argv=None) -> None:
                   rl.run(form, values, inputs), test), flush=True)
     predicted, k = rl.regression(train, test)
     print(f"| regression spin = k V sin(spin loft) | {sample} driver rows: k {k * RPM / (1 / MPH):.1f} rpm/mph | "
-          f"{rl.spin_error(predicted, test):.1f} ({100 * np.median(predicted / test.measured['spin_rate'] - 1):+.1f})"
-          " | - | - |")
+          f"{spin_cells(predicted, test)} | - | - |")
     boosted = rl.boosting(train, test)
     if boosted is not None:
-        print(f"| gradient boosting on the delivery | {sample} driver rows | {rl.spin_error(boosted, test):.1f} "
-              f"({100 * np.median(boosted / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
-    constant = leave_one_out_constant(test)
+        print(f"| gradient boosting on the delivery | {sample} driver rows | {spin_cells(boosted, test)} | - | - |")
     print(f"| in-session baseline: each row's spin as the median of the other iron rows (no delivery) | the iron "
-          f"rows | {rl.spin_error(constant, test):.1f} "
-          f"({100 * np.median(constant / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
-    own = leave_one_out_regression(test)
+          f"rows | {spin_cells(leave_one_out_constant(test), test)} | - | - |")
     print(f"| in-session baseline: the regression with k from the other iron rows (leave-one-out) | the iron rows "
-          f"| {rl.spin_error(own, test):.1f} ({100 * np.median(own / test.measured['spin_rate'] - 1):+.1f}) | - | - |")
+          f"| {spin_cells(leave_one_out_regression(test), test)} | - | - |")
+
+    print("\n### 2. The driver-fitted baselines over training samples (100, 200, 400, 600 rows x seeds 1-5) and on the "
+          f"whole file ({table.size} rows): spin median |error| on the iron rows\n")
+    print("| baseline | over the 20 subsamples: min / median / max % | whole file % |")
+    print("|---|---|---|")
+    for name, (spread, whole) in baseline_spread(table, test).items():
+        print(f"| {name} | {min(spread):.1f} / {np.median(spread):.1f} / {max(spread):.1f} | "
+              f"{'-' if whole is None else f'{whole:.1f}'} |", flush=True)
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 
