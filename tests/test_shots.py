@@ -295,6 +295,17 @@ def _assert_same_shots(one, other):
             np.testing.assert_array_equal(mine[key], theirs[key], err_msg=f"{part}.{key}")
 
 
+def test_a_yaml_tables_instrument_is_a_known_maker_or_refused_at_its_line():
+    # the scorecard prints TrackMan's accuracy claims beside 'trackman' rows only: a maker spelled otherwise would
+    # silently lose them, so an unknown word is refused at its line, with the makers a table may name
+    text = SAME_YAML.replace("name: session\n", "name: session\ninstrument: TrackMan\n")
+    assert read_yaml(text, "session.yaml").instrument == "trackman"
+    assert read_yaml(SAME_YAML, "session.yaml").instrument == ""
+    with pytest.raises(StudyError, match=r"session.yaml:2: instrument: expected the maker of the monitor, one of "
+                                         r"flightscope, .*trackman.*, got 'TrackMan 4'"):
+        read_yaml(SAME_YAML.replace("name: session\n", "name: session\ninstrument: TrackMan 4\n"), "session.yaml")
+
+
 def test_the_same_shots_as_a_yaml_table_and_as_an_export_give_the_same_table():
     yaml_table = read_yaml(SAME_YAML, "session.yaml")
     _assert_same_shots(yaml_table, read_csv(SAME_TRACKMAN, "session.csv"))

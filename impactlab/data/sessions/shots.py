@@ -141,6 +141,11 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     problems += [f"{file}:{line_of(lines, ('units', key))}: units.{key}: expected a delivery or measured field "
                  f"({', '.join((*DELIVERY_FIELDS, *MEASURED_FIELDS))})"
                  for key in units if key not in DELIVERY_FIELDS and key not in MEASURED_FIELDS]
+    instrument = (block.instrument or "").strip().lower()
+    makers = instrument_makers()
+    if instrument and instrument not in makers:
+        problems.append(f"{file}:{line_of(lines, ('instrument',))}: instrument: expected the maker of the monitor, "
+                        f"one of {', '.join(makers)}, got {block.instrument!r}")
     loft_at = block.loft_at or "contact"
     if loft_at not in ("contact", "centre"):
         problems.append(f"{file}:{line_of(lines, ('loft_at',))}: loft_at: expected contact (the launch monitor's "
@@ -196,7 +201,15 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
     # a table written by hand is refused whole for a row the models cannot use (an export skips that row)
     table = _session_of_rows(rows, file, name, units, loft_at, sigma_defaults).shot_table(every_row=True)
     return attrs.evolve(table, name=name, source=block.source or "", ball=dict(block.ball or {}), budgets=budgets,
-                        instrument=(block.instrument or "").strip().lower())
+                        instrument=instrument)
+
+
+def instrument_makers() -> list[str]:
+    """The monitor makers a shot table may name (``instrument:``): the first word of every shipped layout's id,
+    except GSPro's relay, which carries any monitor."""
+    from impactlab.data.sessions.layouts import vendor_maps
+
+    return sorted({key.split("_")[0] for key in vendor_maps() if not key.startswith("gspro")})
 
 
 def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:
