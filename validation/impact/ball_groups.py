@@ -11,9 +11,9 @@ loft) than the Premium rows (163 against 128 rpm, section 0) with a slightly low
 one file: if a fit on the range-ball rows alone asks for other ball parameters than a fit on the Premium rows, those
 parameters are the data's own estimate of how the two balls differ at impact.
 
-Caveats, stated once: the setting is what the monitor was set to, not a measurement of the ball; the range-ball rows come
-from some sessions only (file lines 2477-8383), so they differ in golfers too; what the range ball's cover is, the
-file does not say (range balls are commonly two-piece balls with ionomer covers: an assumption, not a source).
+Caveats, stated once: the setting is what the monitor was set to, not a measurement of the ball; the range-ball rows
+come from some sessions only (file lines 2477-8383), so they differ in golfers too; what the range ball's cover is,
+the file does not say (range balls are commonly two-piece balls with ionomer covers: an assumption, not a source).
 
 Sections: 0, the groups; 1, fitted on 400 Premium rows, held out on the other groups and on other Premium rows,
 beside the regression and gradient boosting fitted on the same rows; 2, each group's own fit (e_ball and the
