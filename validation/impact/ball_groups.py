@@ -23,10 +23,8 @@ ball at the range-ball fit (a hypothesis test on a row neither fit saw, not a fi
 
 from __future__ import annotations
 
-import argparse
 import csv
 import time
-import warnings
 
 import numpy as np
 
@@ -91,16 +89,11 @@ def main(argv=None) -> None:
     from impactlab.data.sessions.shots import table_inputs
     from validation.impact import rate_laws as rl
     from validation.impact.face_bounds import head_cor
-    from validation.impact.face_mechanisms import bounds, describe
+    from validation.impact.face_mechanisms import bounds, command_line, describe
     from validation.impact.shots import load
 
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    args = parser.parse_args(argv)
-    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-    started = time.time()
-    sample = 200 if args.quick else 400
+    args = command_line(argv, __doc__.splitlines()[0])
+    started, sample = args.started, args.sample
 
     table, _ = load()
     inputs = table_inputs(table)

@@ -173,18 +173,28 @@ def tour_section(sample, chosen=None):
               f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
 
 
+def command_line(argv, description: str, parts: bool = False) -> argparse.Namespace:
+    """The research scripts' shared command line: ``--quick`` (training subsamples of 200 rows, else 400) and, with
+    ``parts``, ``--part`` (one section only). Silences the warnings the file's mishits raise by the thousand (unusual
+    deliveries, flown as given). Returns the arguments with ``sample`` and ``started`` (time.time()) added."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
+    if parts:
+        parser.add_argument("--part", type=int, choices=(0, 1, 2, 3), help="one section only")
+    args = parser.parse_args(argv)
+    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
+    warnings.filterwarnings("ignore", category=RuntimeWarning)
+    args.sample = 200 if args.quick else 400
+    args.started = time.time()
+    return args
+
+
 def run(argv, description: str, first, chosen=None, last=None) -> None:
     """The command line of this protocol: section 0 (``first``), then the bands and the tour tables of ``chosen``
     (default: this module's forms), then section 3 (``last``) if given; slip_friction runs its own forms through
     it."""
-    parser = argparse.ArgumentParser(description=description)
-    parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(0, 1, 2, 3), help="one section only")
-    args = parser.parse_args(argv)
-    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-    started = time.time()
-    sample = 200 if args.quick else 400
+    args = command_line(argv, description, parts=True)
+    started, sample = args.started, args.sample
     if args.part in (None, 0):
         first()
     if args.part in (None, 1):

@@ -24,9 +24,7 @@ its one number in section 1 is not a ranking; section 1's square brackets give e
 
 from __future__ import annotations
 
-import argparse
 import time
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -132,16 +130,11 @@ def main(argv=None) -> None:
     from impactlab.data.sessions.shots import predict, table_inputs
     from validation.impact import rate_laws as rl
     from validation.impact.face_bounds import head_cor
-    from validation.impact.face_mechanisms import bounds, describe
+    from validation.impact.face_mechanisms import bounds, command_line, describe
     from validation.impact.shots import load
 
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="training subsample of 200 driver rows")
-    args = parser.parse_args(argv)
-    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-    started = time.time()
-    sample = 200 if args.quick else 400
+    args = command_line(argv, __doc__.splitlines()[0])
+    started, sample = args.started, args.sample
 
     test, report = session_table()
     inputs = table_inputs(test)
