@@ -17,8 +17,9 @@ the file does not say (range balls are commonly two-piece balls with ionomer cov
 
 Sections: 0, the groups; 1, fitted on 400 Premium rows, held out on the other groups and on other Premium rows,
 beside the regression and gradient boosting fitted on the same rows; 2, each group's own fit (e_ball and the
-friction's level, two seeds); 3, the wedge ball-type test with the urethane ball at the Premium fit and the ionomer
-ball at the range-ball fit (a hypothesis test on a row neither fit saw, not a fit to it).
+friction's level) on two disjoint halves of its rows; 3, the wedge ball-type test with the urethane ball at the
+Premium fit and the ionomer ball at each group's fit (a hypothesis test on a row no fit saw, not a fit to it); 4, the
+ionomer's wedge spin against its friction, to read where it slides and where its spin peaks.
 """
 
 from __future__ import annotations
@@ -69,20 +70,34 @@ def spin_cell(predicted, test) -> str:
 
 
 def wedge_ratio(form, urethane: dict, ionomer: dict) -> tuple[float, dict]:
-    """The wedge test's urethane/ionomer - 1 with each ball at its own fitted values (e_ball, friction as mu_0)."""
+    """The wedge test's urethane/ionomer - 1 with each ball at its own fitted values (e_ball, friction as mu_0).
+
+    The ionomer ball's inputs are told from the urethane's by the presets' sled friction (0.35 against 0.40); exactly
+    one of the two balls must match, or the comparison would silently be of one ball with itself."""
     from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.scene.materials import BALL_PRESETS
     from validation.impact import rate_laws as rl
 
     wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
-    ionomer_preset_friction = 0.35  # the two_piece_ionomer preset's (sled) friction, which identifies its inputs
+    ionomer_friction = BALL_PRESETS[wedge.balls["ionomer"]].friction
+    assert BALL_PRESETS[wedge.balls["urethane"]].friction != ionomer_friction, "the two presets are not told apart"
+    matched = []
 
     def hook(inputs):
-        values = ionomer if np.allclose(inputs["friction"], ionomer_preset_friction) else urethane
+        is_ionomer = bool(np.allclose(inputs["friction"], ionomer_friction))
+        matched.append(is_ionomer)
         out = dict(inputs, friction=np.full_like(np.asarray(inputs["friction"], float), rl.URETHANE_FRICTION))
-        return rl.apply(out, values, form)
+        return rl.apply(out, ionomer if is_ionomer else urethane, form)
 
     result = cover_effect(rl.model_of(form, urethane), wedge, inputs_hook=hook)
+    if sorted(matched) != [False, True]:
+        raise RuntimeError(f"the wedge test's balls were not told apart (ionomer matched: {matched})")
     return result["predicted"], result["spin"]
+
+
+def friction_sweep(form, values, frictions=(0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)) -> list[float]:
+    """The ionomer ball's wedge spin [rpm] against its friction mu_0, e_ball and everything else at ``values``."""
+    return [wedge_ratio(form, values, {**values, "friction": mu})[1]["ionomer"] for mu in frictions]
 
 
 def main(argv=None) -> None:
@@ -138,24 +153,23 @@ def main(argv=None) -> None:
         cells = [spin_cell(b, table.subset(rows)) for b, rows in zip(boosted, tests.values())]
         print(f"| gradient boosting | the same rows | {' | '.join(cells)} |")
 
-    print("\n### 2. Each group's own fit (e_ball and friction mu_0; two seeded subsamples; in-sample spin error)\n")
-    print("| form | group | seed | rows | fitted | in-sample spin % (bias) |")
+    print("\n### 2. Each group's own fit (e_ball and friction mu_0) on two disjoint halves of its rows (at most "
+          f"{sample} each; in-sample spin error)\n")
+    print("| form | group | half | rows | fitted | in-sample spin % (bias) |")
     print("|---|---|---|---|---|---|")
     group_fits: dict = {}
     for form in forms():
         for group in GROUPS:
-            index = np.flatnonzero(setting == group)
-            for seed in (33, 34):
-                rows = np.sort(np.random.default_rng(seed).choice(index, size=min(sample, index.size), replace=False))
+            index = np.random.default_rng(33).permutation(np.flatnonzero(setting == group))
+            for half, part in enumerate((index[: index.size // 2], index[index.size // 2:]), start=1):
+                rows = np.sort(part[:sample])
                 values, at_bound = rl.fit(form, rl.take(inputs, rows, table.size), table.subset(rows).measured,
                                           bounds(), rigid_face_head=False)
                 group_fits.setdefault((form.name, group), []).append(values)
                 out = rl.run(form, values, rl.take(inputs, rows, table.size))
-                print(f"| {form.name} | {group} | {seed} | {rows.size} | "
+                print(f"| {form.name} | {group} | {half} | {rows.size} | "
                       f"{describe(values, at_bound, head_cor(values['e_ball']))} | "
                       f"{spin_cell(out['spin_rate'], table.subset(rows))} |", flush=True)
-                if rows.size == index.size:
-                    break  # every row of the group: a second seed draws the same rows
 
     print("\n### 3. The wedge ball-type test with each ball at a group's fit (measured +48 %, goal +16 to +50 %; "
           "not fitted to it)\n")
@@ -167,8 +181,19 @@ def main(argv=None) -> None:
             for values in group_fits[(form.name, group)]:
                 predicted, spin = wedge_ratio(form, premium_values, values)
                 fitted = ", ".join(f"{k} {v:.3f}" for k, v in values.items())
-                print(f"| {form.name} | Premium fit (seed 33) | {group} fit ({fitted}) | {spin['urethane']:.0f} / "
+                print(f"| {form.name} | Premium fit (half 1) | {group} fit ({fitted}) | {spin['urethane']:.0f} / "
                       f"{spin['ionomer']:.0f} | {100 * predicted:+.1f} % |", flush=True)
+    frictions = (0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)
+    print("\n### 4. The ionomer ball's wedge spin against its friction mu_0 (e_ball and the rest at the Premium fit, "
+          "half 1; rpm): where it slides and where its spin peaks\n")
+    print("| form | urethane ball (Premium fit) | " + " | ".join(f"ionomer mu_0 {mu:g}" for mu in frictions) + " |")
+    print("|---|---|" + "---|" * len(frictions))
+    for form in forms():
+        values = group_fits[(form.name, "Premium")][0]
+        urethane = wedge_ratio(form, values, values)[1]["urethane"]
+        print(f"| {form.name} | {urethane:.0f} | " + " | ".join(f"{x:.0f}" for x in friction_sweep(form, values,
+                                                                                                  frictions)) + " |",
+              flush=True)
     print(f"\n(elapsed {time.time() - started:.0f} s)")
 
 

@@ -71,6 +71,18 @@ def interval(predicted, test, draws: int = 2000, seed: int = 33) -> tuple[float,
     return tuple(100 * np.percentile(medians, [2.5, 97.5]))
 
 
+def paired_difference(one, other, test, draws: int = 2000, seed: int = 33) -> tuple[float, float, float]:
+    """(difference of the median |spin error| of ``one`` and ``other`` [points], its 95 % bootstrap interval), both
+    predictors scored on the same resamples of the rows."""
+    measured = test.measured["spin_rate"]
+    first = np.abs(np.asarray(one) / measured - 1.0)
+    second = np.abs(np.asarray(other) / measured - 1.0)
+    draw = np.random.default_rng(seed).integers(0, first.size, size=(draws, first.size))
+    differences = 100 * (np.median(first[draw], axis=1) - np.median(second[draw], axis=1))
+    low, high = np.percentile(differences, [2.5, 97.5])
+    return 100 * (np.median(first) - np.median(second)), float(low), float(high)
+
+
 def spin_cells(predicted, test) -> str:
     """'median |error| % [95 % interval] (bias %)' of the spin over the iron rows."""
     from validation.impact import rate_laws as rl
@@ -166,23 +178,41 @@ def main(argv=None) -> None:
           "interval over the rows in square brackets, bias in round brackets)\n")
     print("| form | fitted on | spin % [interval] (bias) | ball speed % (bias) | launch deg (bias) |")
     print("|---|---|---|---|---|")
+    spins = {}
     for name, model in registered_forms():
-        print(row(f"`{name}` as registered", "nothing here (presets, registered constants)",
-                  predict(model, inputs), test), flush=True)
+        out = predict(model, inputs)
+        spins[f"`{name}` as registered"] = out["spin_rate"]
+        print(row(f"`{name}` as registered", "nothing here (presets, registered constants)", out, test), flush=True)
     for form in fitted_forms():
         values, at_bound = rl.fit(form, train_inputs, train.measured, bounds(), rigid_face_head=False)
+        out = rl.run(form, values, inputs)
+        spins[f"{form.name}, fitted on drivers"] = out["spin_rate"]
         print(row(form.name, f"{sample} driver rows: {describe(values, at_bound, head_cor(values['e_ball']))}",
-                  rl.run(form, values, inputs), test), flush=True)
+                  out, test), flush=True)
     predicted, k = rl.regression(train, test)
     print(f"| regression spin = k V sin(spin loft) | {sample} driver rows: k {k * RPM / (1 / MPH):.1f} rpm/mph | "
           f"{spin_cells(predicted, test)} | - | - |")
+    spins["regression, fitted on drivers"] = predicted
     boosted = rl.boosting(train, test)
     if boosted is not None:
+        spins["gradient boosting, fitted on drivers"] = boosted
         print(f"| gradient boosting on the delivery | {sample} driver rows | {spin_cells(boosted, test)} | - | - |")
+    spins["in-session median (leave-one-out)"] = leave_one_out_constant(test)
+    spins["in-session regression (leave-one-out)"] = leave_one_out_regression(test)
     print(f"| in-session baseline: each row's spin as the median of the other iron rows (no delivery) | the iron "
-          f"rows | {spin_cells(leave_one_out_constant(test), test)} | - | - |")
+          f"rows | {spin_cells(spins['in-session median (leave-one-out)'], test)} | - | - |")
     print(f"| in-session baseline: the regression with k from the other iron rows (leave-one-out) | the iron rows "
-          f"| {spin_cells(leave_one_out_regression(test), test)} | - | - |")
+          f"| {spin_cells(spins['in-session regression (leave-one-out)'], test)} | - | - |")
+
+    reference = next(name for name in spins if name.startswith("hertz_mindlin_slip"))
+    print(f"\nPaired on the same bootstrap resamples of the 29 shots: the median |spin error| of {reference} minus "
+          "each other predictor's [points; 95 % interval]\n")
+    print("| predictor | difference | interval |")
+    print("|---|---|---|")
+    for name, other in spins.items():
+        if name != reference:
+            difference, low, high = paired_difference(spins[reference], other, test)
+            print(f"| {name} | {difference:+.1f} | {low:+.1f} to {high:+.1f} |")
 
     print("\n### 2. The driver-fitted baselines over training samples (100, 200, 400, 600 rows x seeds 1-5) and on the "
           f"whole file ({table.size} rows): spin median |error| on the iron rows\n")
