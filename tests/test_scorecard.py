@@ -149,6 +149,38 @@ def test_bands_and_zones():
     np.testing.assert_array_equal(zones, [0, 1, 2, 3, 4, -1])
 
 
+def test_errors_by_ball_setting_are_the_statistics_of_each_settings_rows():
+    """The breakdown by the monitor's ball setting: each column is error_statistics of that setting's held-out rows
+    alone (oracle: the regression's spin errors computed here from its own predictions, split by hand)."""
+    import attrs
+
+    from impactlab.data.validation.scorecard import format_scorecard
+
+    table = session(60)
+    table = attrs.evolve(table, ball_settings=tuple("Limited Distance Soft" if i % 3 == 0 else "Premium"
+                                                    for i in range(table.size)))
+    table.measured["spin_rate"][::3] *= 4.0 / 3.0  # a range ball spinning a third more: only its rows' errors grow
+    split = holdout_split(table, 0.3)
+    predicted: dict = {}
+    card = scorecard(table, models=[], holdout=split, predictions=predicted)
+    assert list(card["ball_setting"].values) == ["Limited Distance Soft", "Premium"]
+    test = table.subset(split.test)
+    errors = 100 * (predicted["regression"]["spin_rate"] / test.measured["spin_rate"] - 1)
+    for setting, count in zip(card["ball_setting"].values, card["rows_in_ball_setting"].values):
+        mine = errors[np.array(test.ball_settings) == setting]
+        assert mine.size == count > 0
+        np.testing.assert_allclose(card["error_by_ball"].sel(model="regression", output="spin [%]",
+                                                             ball_setting=setting).values, error_statistics(mine))
+    # one k for both balls: the range ball's rows come out low, the Premium rows high
+    bias = card["error_by_ball"].sel(model="regression", output="spin [%]", statistic="bias")
+    assert float(bias.sel(ball_setting="Limited Distance Soft")) < 0 < float(bias.sel(ball_setting="Premium"))
+    text = format_scorecard(card)
+    assert "median |error| by the monitor's ball setting" in text and "Limited Distance Soft (" in text
+    # one setting only: no breakdown printed (the overall table is it)
+    single = scorecard(attrs.evolve(session(60), ball_settings=("Premium",) * 60), models=[])
+    assert "by the monitor's ball setting" not in format_scorecard(single)
+
+
 def write_csv(table: ShotTable, path) -> None:
     """The table as a CSV in impactlab's vocabulary (units in the header)."""
     deg = np.degrees
@@ -201,7 +233,11 @@ def test_the_instrument_floor_is_trackmans_claim_beside_trackmans_rows_only():
 
     # TrackMan's tour table says so by its YAML key; the shipped driver sessions by their TrackMan layout
     assert shot_table("trackman_tour").instrument == "trackman"
-    assert shot_table("trackman_driver_sessions").instrument == "trackman"
+    sessions = shot_table("trackman_driver_sessions")
+    assert sessions.instrument == "trackman"
+    # its Ball column is read as each row's ball setting (the file's README: 9,347 Premium, 557 Limited Distance Soft)
+    assert {"Premium", "Limited Distance Soft", "Medium"} <= set(sessions.ball_settings)
+    assert len(sessions.ball_settings) == sessions.size
     table = session(30)
     floors = {}
     for maker in ("trackman", "flightscope", ""):

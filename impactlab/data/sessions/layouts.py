@@ -36,7 +36,9 @@ FIELDS = {
     "air_temperature": "temperature", "air_pressure": "pressure", "relative_humidity": "dimensionless",
     "air_density": "density", "altitude": "length",
 }
-TEXT_FIELDS = ("label", "club", "handedness")
+#: text columns a layout may map; ``ball_setting`` is the ball the monitor was set to (TrackMan's Ball column),
+#: not the models' ball: it groups the scorecard's rows, it changes no prediction
+TEXT_FIELDS = ("label", "club", "handedness", "ball_setting")
 #: per-row one-sigma uncertainties of the predicted quantities (impactlab's own layout: ``ball_speed_sigma [mph]``)
 SIGMA_FIELDS = {f"{key}_sigma": dimension for key, dimension in MEASURED_FIELDS.items()}
 FIELDS.update(SIGMA_FIELDS)
@@ -58,6 +60,7 @@ DESCRIPTIONS = {
     "altitude": "altitude of the air (the ISA pressure there, where no pressure is given)",
     **{key: f"uncertainty of the {key[:-6].replace('_', ' ')}" for key in SIGMA_FIELDS},
     "label": "shot label", "club": "club name", "handedness": "handedness",
+    "ball_setting": "the ball the monitor was set to (text: groups the scorecard's rows, not the models' ball)",
 }
 #: units written by the normalised table (--csv): the vocabulary's display units
 DISPLAY_UNITS = {"speed": "m/s", "angle": "deg", "angular_speed": "rpm", "length": "m", "time": "s",

@@ -299,7 +299,9 @@ class Session:
                          delivery=delivery, measured=measured, sigma=sigma, loft_at=self.vendor.loft_at,
                          skipped=skipped, unusual=unusual, strike_known=strike_known,
                          row_sources=tuple(self.text["source"][i] for i in index) if "source" in self.text else (),
-                         instrument=self._instrument())
+                         instrument=self._instrument(),
+                         ball_settings=tuple(self.text["ball_setting"][i] for i in index)
+                         if any(self.text.get("ball_setting", ())) else ())
 
     def _instrument(self) -> str:
         """The monitor's maker, the first word of the layout's id (``trackman_tps_legacy``: trackman); '' for

@@ -31,7 +31,7 @@ NEEDS = {
 def write_normalised(session: Session, path) -> Path:
     """Write the session in the vocabulary (display units in the header, flags in a ``flags`` column) as CSV."""
     present = [field for field in FIELDS if np.isfinite(session.values[field]).any()]
-    texts = [field for field in TEXT_FIELDS if any(session.text[field])]
+    texts = [field for field in TEXT_FIELDS if any(session.text.get(field, ()))]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     units = {field: DISPLAY_UNITS[FIELDS[field]] for field in present}

@@ -100,6 +100,9 @@ class ShotTable:
     #: '' where not stated. The scorecard's instrument floor is a claim about one maker's monitor, so it is printed
     #: only beside rows of that maker.
     instrument: str = attrs.field(default="", eq=False)
+    #: each row's ball setting on the monitor (TrackMan's Ball column: Premium, Limited Distance Soft...); () where
+    #: the export names none. Text that groups the scorecard's rows; the models' ball is the table's ``ball``.
+    ball_settings: tuple = attrs.field(default=(), eq=False)
 
     @property
     def sources(self) -> tuple[str, ...]:
@@ -122,7 +125,8 @@ class ShotTable:
                             measured={k: v[index] for k, v in self.measured.items()},
                             sigma={k: v[index] for k, v in self.sigma.items()}, skipped=(),
                             strike_known=None if self.strike_known is None else self.strike_known[index],
-                            row_sources=tuple(self.sources[i] for i in index))
+                            row_sources=tuple(self.sources[i] for i in index),
+                            ball_settings=tuple(self.ball_settings[i] for i in index) if self.ball_settings else ())
 
 
 def _field_of(header: str) -> tuple[str | None, str | None]:

@@ -278,8 +278,14 @@ def _table_html(card: xr.Dataset) -> str:
                    f"<p class='source'>Instrument floor: {html.escape(source)}</p>")
     for variable, dimension, counts, title in (
             ("error_by_speed", "speed_band", "rows_in_speed_band", "median |error| by club-speed band"),
-            ("error_by_strike", "strike_zone", "rows_in_strike_zone", "median |error| by strike zone")):
+            ("error_by_strike", "strike_zone", "rows_in_strike_zone", "median |error| by strike zone"),
+            ("error_by_ball", "ball_setting", "rows_in_ball_setting",
+             "median |error| by the monitor's ball setting (every model runs the same ball)")):
+        if variable not in card:
+            continue
         present = [(str(b), int(c)) for b, c in zip(card[dimension].values, card[counts].values) if c > 0]
+        if dimension == "ball_setting" and len(present) < 2:
+            continue  # one ball setting or none: the overall table is its breakdown
         if not present:
             out.append(f"<h3>{title}</h3><p>No held-out row has one.</p>")
             continue

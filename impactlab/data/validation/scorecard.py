@@ -219,14 +219,14 @@ def _predict_held_out(train: ShotTable, test: ShotTable, models: Sequence[str], 
 
 
 def _error_tables(test: ShotTable, names: Sequence[str], outputs: Sequence[str], predicted: Mapping[str, dict],
-                  bands: np.ndarray, zones: np.ndarray, measured_carry: np.ndarray | None,
-                  tracked: np.ndarray | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The error statistics of each name and output on the held-out rows: overall (name, output, statistic), per
-    club-speed band and per strike zone (a fourth axis each)."""
+                  groupings: Sequence[tuple[np.ndarray, int]], measured_carry: np.ndarray | None,
+                  tracked: np.ndarray | None) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The error statistics of each name and output on the held-out rows: overall (name, output, statistic), and per
+    group of each grouping (codes per row, -1 for none, and the number of groups: club-speed band, strike zone, ball
+    setting), a fourth axis each."""
     shape = (len(names), len(outputs), len(STATISTICS))
     overall = np.full(shape, np.nan)
-    by_speed = np.full((*shape, len(SPEED_BANDS)), np.nan)
-    by_strike = np.full((*shape, len(STRIKE_ZONES)), np.nan)
+    grouped = [np.full((*shape, count), np.nan) for _, count in groupings]
     for i, name in enumerate(names):
         errors = shot_errors(predicted[name], test)
         if measured_carry is not None and tracked is not None:
@@ -238,11 +238,10 @@ def _error_tables(test: ShotTable, names: Sequence[str], outputs: Sequence[str],
             if key in ("launch direction [deg]", "spin axis [deg]"):  # angles: the short way round
                 values = (values + 180.0) % 360.0 - 180.0
             overall[i, j] = error_statistics(values)
-            for b in range(len(SPEED_BANDS)):
-                by_speed[i, j, :, b] = error_statistics(values[bands == b])
-            for z in range(len(STRIKE_ZONES)):
-                by_strike[i, j, :, z] = error_statistics(values[zones == z])
-    return overall, by_speed, by_strike
+            for table, (codes, count) in zip(grouped, groupings):
+                for g in range(count):
+                    table[i, j, :, g] = error_statistics(values[codes == g])
+    return overall, grouped
 
 
 def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None = None,
@@ -276,8 +275,9 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
     -------
     xarray.Dataset
         ``error`` (model, output, statistic), ``error_by_speed`` (..., speed_band), ``error_by_strike`` (...,
-        strike_zone), ``floor`` and ``floor_source`` (output), ``kind`` (model: model, fit or baseline); attrs say
-        the split, the bias's definition, the baselines' coefficients and what could not be computed.
+        strike_zone), ``error_by_ball`` (..., ball_setting: the export's ball settings, none if it names none),
+        ``floor`` and ``floor_source`` (output), ``kind`` (model: model, fit or baseline); attrs say the split, the
+        bias's definition, the baselines' coefficients and what could not be computed.
     """
     split = holdout if isinstance(holdout, Split) else holdout_split(table, holdout, groups)
     train, test = table.subset(split.train), table.subset(split.test)
@@ -298,23 +298,29 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
     if test.strike_known is not None:  # a strike the file did not give is the face centre in the table: unknown
         zones[~test.strike_known] = -1
     band_labels = speed_band_labels()
-    overall, by_speed, by_strike = _error_tables(test, names, outputs, predicted, bands, zones, measured_carry,
-                                                 tracked)
+    settings = sorted({s for s in test.ball_settings if s})
+    balls = np.array([settings.index(s) if s else -1 for s in test.ball_settings] if test.ball_settings
+                     else np.full(test.size, -1), dtype=int)
+    overall, (by_speed, by_strike, by_ball) = _error_tables(
+        test, names, outputs, predicted, [(bands, len(SPEED_BANDS)), (zones, len(STRIKE_ZONES)),
+                                          (balls, len(settings))], measured_carry, tracked)
     floor, sources = _floor(test, outputs)
     statistic_attrs = {"meaning": "; ".join(f"{k}: {v}" for k, v in STATISTIC_MEANING.items())}
     return xr.Dataset(
         {"error": (("model", "output", "statistic"), overall),
          "error_by_speed": (("model", "output", "statistic", "speed_band"), by_speed),
          "error_by_strike": (("model", "output", "statistic", "strike_zone"), by_strike),
+         "error_by_ball": (("model", "output", "statistic", "ball_setting"), by_ball),
          "floor": (("output",), floor, {"meaning": "the instrument's stated or measured accuracy, in the units of "
                                                    "the output's error (NaN: none found)"}),
          "floor_source": (("output",), np.array(sources, dtype=object)),
          "kind": (("model",), np.array(kinds, dtype=object)),
          "rows_in_speed_band": (("speed_band",), np.bincount(bands[bands >= 0], minlength=len(SPEED_BANDS))),
-         "rows_in_strike_zone": (("strike_zone",), np.bincount(zones[zones >= 0], minlength=len(STRIKE_ZONES)))},
+         "rows_in_strike_zone": (("strike_zone",), np.bincount(zones[zones >= 0], minlength=len(STRIKE_ZONES))),
+         "rows_in_ball_setting": (("ball_setting",), np.bincount(balls[balls >= 0], minlength=len(settings)))},
         coords={"model": names, "output": outputs, "statistic": (("statistic",), list(STATISTICS),
                                                                           statistic_attrs),
-                "speed_band": band_labels, "strike_zone": list(STRIKE_ZONES)},
+                "speed_band": band_labels, "strike_zone": list(STRIKE_ZONES), "ball_setting": settings},
         attrs={"table": table.name, "source": table.source, "split": split.describe(), "split_by": split.by,
                "held_out_rows": int(split.test.size), "training_rows": int(split.train.size),
                "bias": "median of the signed error (predicted - measured)",
@@ -362,19 +368,27 @@ def format_scorecard(card: xr.Dataset, breakdowns: bool = True) -> str:
                 ("error_by_speed", "speed_band", "rows_in_speed_band", "median |error| by club-speed band"),
                 ("error_by_strike", "strike_zone", "rows_in_strike_zone",
                  f"median |error| by strike zone (centre: within {STRIKE_CENTRE * 1e3:g} mm of the face centre; "
-                 "held-out rows with a known strike only)")):
+                 "held-out rows with a known strike only)"),
+                ("error_by_ball", "ball_setting", "rows_in_ball_setting",
+                 "median |error| by the monitor's ball setting (the export's; every model runs the same ball)")):
+            if variable not in card:  # a scorecard written before the breakdown existed
+                continue
             present = [str(b) for b, c in zip(card[dimension].values, card[counts].values) if c > 0]
+            if dimension == "ball_setting" and len(present) < 2:
+                continue  # one ball setting or none: the overall table is its breakdown
             if not present:
                 lines += ["", f"  {title}: no held-out row has one"]
                 continue
             rows = {str(b): int(c) for b, c in zip(card[dimension].values, card[counts].values)}
             lines += ["", f"  {title}:"]
+            columns = [max(18, len(f"{b} ({rows[b]})") + 2) for b in present]  # long ball settings widen theirs
             for output in card["output"].values:
-                lines.append(f"  {output:<{width}}" + "".join(f"{b + f' ({rows[b]})':>18}" for b in present))
+                lines.append(f"  {output:<{width}}" + "".join(f"{b + f' ({rows[b]})':>{w}}"
+                                                               for b, w in zip(present, columns)))
                 for model in models:
                     cells = card[variable].sel(model=model, output=output, statistic="median_abs")
-                    lines.append(f"    {model:<{width - 2}}" + "".join(_cell(float(cells.sel({dimension: b})), 18)
-                                                                for b in present))
+                    lines.append(f"    {model:<{width - 2}}" + "".join(_cell(float(cells.sel({dimension: b})), w)
+                                                                for b, w in zip(present, columns)))
     return "\n".join(lines)
 
 
