@@ -166,8 +166,9 @@ def test_errors_by_ball_setting_are_the_statistics_of_each_settings_rows():
     assert list(card["ball_setting"].values) == ["Limited Distance Soft", "Premium"]
     test = table.subset(split.test)
     errors = 100 * (predicted["regression"]["spin_rate"] / test.measured["spin_rate"] - 1)
+    settings = np.array(table.ball_settings)[split.test]  # the held-out rows' settings, taken from the table itself
     for setting, count in zip(card["ball_setting"].values, card["rows_in_ball_setting"].values):
-        mine = errors[np.array(test.ball_settings) == setting]
+        mine = errors[settings == setting]
         assert mine.size == count > 0
         np.testing.assert_allclose(card["error_by_ball"].sel(model="regression", output="spin [%]",
                                                              ball_setting=setting).values, error_statistics(mine))
@@ -238,6 +239,8 @@ def test_the_instrument_floor_is_trackmans_claim_beside_trackmans_rows_only():
     # its Ball column is read as each row's ball setting (the file's README: 9,347 Premium, 557 Limited Distance Soft)
     assert {"Premium", "Limited Distance Soft", "Medium"} <= set(sessions.ball_settings)
     assert len(sessions.ball_settings) == sessions.size
+    with pytest.raises(ValueError, match="one per row, or none"):  # a setting list that does not match the rows
+        attrs.evolve(sessions, ball_settings=("Premium",))
     table = session(30)
     floors = {}
     for maker in ("trackman", "flightscope", ""):

@@ -9,6 +9,7 @@ local TCP server on a thread; its timing is driven by events and by what it read
 import json
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -452,6 +453,24 @@ def test_impactlabs_own_tables_carry_the_marker_and_exports_do_not(tmp_path):
                         ("line,label,Ball Speed [mph],flags", False)):
         path.write_text(header + "\n")
         assert written_by_impactlab(path) is own, header
+
+
+def test_every_session_text_column_marks_impactlabs_own_table(tmp_path, capsys):
+    # a text column added to the sessions (ball_setting, from TrackMan's Ball) once made 'shots --csv' refuse to
+    # replace its own table from a TrackMan export: each text field must be a marker cell
+    from impactlab.cli import main
+    from impactlab.data.sessions.layouts import TEXT_FIELDS
+    from impactlab.io.safe_output import written_by_impactlab
+
+    path = tmp_path / "x.csv"
+    path.write_text("line," + ",".join(TEXT_FIELDS) + ",ball_speed [m/s],flags\n")
+    assert written_by_impactlab(path)
+    out = tmp_path / "out.csv"
+    export = Path(__file__).parent / "data" / "vendors" / "trackman_tps.csv"
+    for _ in range(2):  # the second run replaces the table the first wrote
+        assert main(["shots", str(export), "--csv", str(out)]) == 0
+    assert "ball_setting" in out.read_text().splitlines()[0]
+    capsys.readouterr()
 
 
 def test_an_input_beyond_the_one_size_limit_is_refused_before_it_is_read(tmp_path, capsys):

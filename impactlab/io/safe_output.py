@@ -177,7 +177,9 @@ TABLE_MARKERS = {"shots": (("line",), ("flags",)), "validate": (("table", "shot"
                  "fly": (("line", "club"), ()), "fly launch": (("shot",), ())}
 #: every other header cell of an impactlab table: a lower-case name with its unit in brackets, or a text column
 _TABLE_CELL = re.compile(r"^[a-z][a-z0-9_]*( measured| predicted)? \[[^\]]*\]$")
-_TEXT_CELLS = {"line", "label", "club", "handedness", "source", "flags", "flagged", "table", "shot", "model"}
+#: (the session text fields, impactlab.data.sessions.layouts.TEXT_FIELDS, are among them: tests/test_trust_outside.py)
+_TEXT_CELLS = {"line", "label", "club", "handedness", "ball_setting", "source", "flags", "flagged", "table", "shot",
+               "model"}
 #: how much of an existing file is read to find its header (a header longer than this is no table of impactlab's)
 _HEADER_BYTES = 64 * 1024
 

@@ -104,6 +104,11 @@ class ShotTable:
     #: the export names none. Text that groups the scorecard's rows; the models' ball is the table's ``ball``.
     ball_settings: tuple = attrs.field(default=(), eq=False)
 
+    @ball_settings.validator
+    def _one_setting_per_row(self, attribute, value):
+        if value and len(value) != len(self.labels):
+            raise ValueError(f"ball_settings: {len(value)} settings for {len(self.labels)} rows (one per row, or none)")
+
     @property
     def sources(self) -> tuple[str, ...]:
         """The source of every row (the table's name where the rows name none)."""
