@@ -74,11 +74,11 @@ def wedge_ratio(form, urethane: dict, ionomer: dict) -> tuple[float, dict]:
 
     The ionomer ball's inputs are told from the urethane's by the presets' sled friction (0.35 against 0.40); exactly
     one of the two balls must match, or the comparison would silently be of one ball with itself."""
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from impactlab.scene.materials import BALL_PRESETS
     from validation.impact import rate_laws as rl
 
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     ionomer_friction = BALL_PRESETS[wedge.balls["ionomer"]].friction
     assert BALL_PRESETS[wedge.balls["urethane"]].friction != ionomer_friction, "the two presets are not told apart"
     matched = []

@@ -389,16 +389,16 @@ def part4(sample):
     """Section 4: the face at the COR limit fitted on the whole file, predicting TrackMan's tour tables and the wedge
     ball-type test without refitting (validation.impact.rate_laws, section 5's protocol), beside hertz_mindlin."""
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.shots import load
 
     table, _ = load()
     inputs = table_inputs(table)
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    rows = rl.whole_file_rows(table.size, sample)
     table_t = rl.tour()
     inputs_t = table_inputs(table_t)
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     print(f"\n### 4. Fitted on {sample} rows of the whole file, predicting the tour tables and the wedge test (not "
           "refitted)\n")
     print("| form | fitted | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in table_t.labels)

@@ -251,17 +251,17 @@ def bands_section(sample, cap, law="chou"):
 def tour_section(sample, cap, law="chou"):
     """Section 3: fitted on a subsample of the whole file, predicting the tour tables and the wedge test."""
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.shots import load
 
     table, _ = load()
     inputs = table_inputs(table)
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    rows = rl.whole_file_rows(table.size, sample)
     train = table.subset(rows)
     table_t = rl.tour()
     inputs_t = table_inputs(table_t)
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     print(f"\n### 3. Fitted on {sample} rows of the whole file, predicting the tour tables and the wedge test (not "
           "refitted; goals: spin within 7 %, ball speed within 1 %, launch within 0.7 deg)\n")
     print("| form | e_ball bound | fitted (at bound) | head COR (<= 0.830?) | "
@@ -309,7 +309,7 @@ def with_line(inputs):
 def line_section(sample):
     """Section 4: the ball's e on the measured line per row (speed-dependent, not fitted), friction fitted."""
     from impactlab.data.sessions.shots import predict, table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.shots import MPH, bands, load
 
@@ -358,12 +358,12 @@ def line_section(sample):
         delivery = dict(drivers.delivery, club_speed=np.full(drivers.size, mph * MPH))
         spins[mph] = run(slow_values, table_inputs(attrs.evolve(drivers, delivery=delivery)))["spin_rate"]
     ks = np.log(spins[115.0] / spins[96.0]) / math.log(115.0 / 96.0)
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    rows = rl.whole_file_rows(table.size, sample)
     values = fit(rl.take(inputs, rows, table.size), table.subset(rows).measured)
     e = rl.errors(run(values, table_inputs(tour)), tour.measured)
     met = int(np.sum(np.abs(e["spin"]) <= 0.07) + np.sum(np.abs(e["speed"]) <= 0.01)
               + np.sum(np.abs(e["launch"]) <= 0.7))
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     cover = cover_effect(rl.model_of(form, values), wedge,
                          inputs_hook=lambda i: with_line(rl.apply(i, values, form)))
     print(f"\n- exponent k at the PGA / LPGA driver delivery (the < 95 mph fit): {ks[0]:.3f} / {ks[1]:.3f}")

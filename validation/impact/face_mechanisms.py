@@ -144,16 +144,16 @@ def bands_section(sample, chosen=None):
 
 def tour_section(sample, chosen=None):
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.face_bounds import head_cor
     from validation.impact.shots import load
 
     table, _ = load()
     inputs = table_inputs(table)
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    rows = rl.whole_file_rows(table.size, sample)
     tour = rl.tour()
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     print(f"\n### 2. Fitted on {sample} rows of the whole file; the tour tables and the wedge test, not refitted "
           "(goals: spin within 7 %, ball speed within 1 %, launch within 0.7 deg; exponent 0.5-0.8; wedge +16 to "
           "+50 %)\n")

@@ -163,15 +163,15 @@ def bands_section(forms, sample):
 def tour_section(forms, sample):
     """Section 3: fitted on the whole file, the exponent, the tour tables and the wedge test, not refitted."""
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.shots import load
 
     table, _ = load()
     inputs = table_inputs(table)
     tour = rl.tour()
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    wedge = rl.wedge_test()
+    rows = rl.whole_file_rows(table.size, sample)
     print(f"\n### 3. Fitted on {sample} rows of the whole file; the exponent at a fixed delivery, the tour tables and "
           "the wedge test, not refitted (goals: spin within 7 %, ball speed within 1 %, launch within 0.7 deg; "
           "exponent 0.5-0.8; wedge +16 to +50 %)\n")

@@ -222,6 +222,16 @@ def subsample(mask, count: int, rng):
     return np.sort(rng.choice(index, size=min(count, index.size), replace=False))
 
 
+def whole_file_rows(size: int, count: int, seed: int = 33):
+    """The protocol's whole-file training rows: a seeded subsample of ``count`` of ``size`` rows, in file order."""
+    return subsample(np.ones(size, dtype=bool), count, np.random.default_rng(seed))
+
+
+def wedge_test():
+    """The wedge ball-type observation every section tests against (observations.yaml, titleist_wedgecraft_58)."""
+    return next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+
+
 def band_folds(table, slow, fast, sample: int, rng):
     """The two extrapolations of the protocol: (label, training rows, held-out rows, training table, held-out
     table), fitted on a seeded subsample of ``sample`` rows of one club-speed band and tested on every row of the
@@ -343,7 +353,7 @@ def wedge_sensitivity():
     n in {0, 0.5, 1}; and what n = 1 does to the tour tables' spin (drivers and 6-irons leave rolling either way).
     A sensitivity, not a validation: n was not fitted, and choosing it from this table would tune to the test.
     """
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = wedge_test()
     table_t = tour()
     inputs_t = table_inputs(table_t)
     values = {"e_ball": 0.742}
@@ -446,7 +456,7 @@ def main(argv=None) -> None:
           "(not refitted)\n")
     table_t = tour()
     inputs_t = table_inputs(table_t)
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = wedge_test()
     print("| form | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in table_t.labels)
           + " | driver pair e (head COR) at 40 m/s | wedge urethane/ionomer - 1 (measured +48 %, goal 16-50 %) |")
     print("|---|" + "---|" * table_t.size + "---|---|")

@@ -170,7 +170,7 @@ def main(argv=None) -> None:
           f"rise with it); of launch with dynamic loft: {rho_launch:+.2f}\n")
 
     table, _ = load()
-    rows = np.sort(np.random.default_rng(33).choice(table.size, size=min(sample, table.size), replace=False))
+    rows = rl.whole_file_rows(table.size, sample)
     train = table.subset(rows)
     train_inputs = rl.take(table_inputs(table), rows, table.size)
 

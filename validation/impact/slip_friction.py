@@ -83,14 +83,14 @@ def shipped_section():
     """Section 3: the registered ``hertz_mindlin_slip`` as shipped (the presets' friction and e, nothing fitted): the
     tour tables, the exponent and the wedge, beside ``hertz_mindlin_face`` as shipped."""
     from impactlab.data.sessions.shots import predict, table_inputs
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from impactlab.model.registry import get_model
     from validation.impact import rate_laws as rl
     from validation.impact.shots import MPH
 
     tour = rl.tour()
     drivers = tour.subset([i for i, label in enumerate(tour.labels) if "driver" in label])
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     print("\n### 3. The registered models as shipped (the presets' friction 0.40 / 0.35 and e 0.787; nothing fitted)\n")
     print("| model | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in tour.labels)
           + " | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 |")
@@ -113,10 +113,11 @@ def wedge_section():
     sled at loads far below an impact's, is scaled down until the predicted urethane/ionomer spin ratio reaches the
     measured +48 % (goal +16 to +50 %). The answer is the impact friction the test implies, for a measurement to
     confirm or refute; it is not adopted."""
-    from impactlab.data.validation.observations import cover_effect, load_observations
+    from impactlab.data.validation.observations import cover_effect
     from impactlab.model.registry import get_model
+    from validation.impact import rate_laws as rl
 
-    wedge = next(o for o in load_observations()["cover"] if o.name == "titleist_wedgecraft_58")
+    wedge = rl.wedge_test()
     scales = (1.0, 0.8, 0.6, 0.5, 0.4, 0.3, 0.2)
     print("\n### 4. What the wedge test asks of the ionomer cover's friction (urethane at its preset 0.40; a "
           "sensitivity)\n")
