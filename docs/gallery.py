@@ -32,7 +32,7 @@ OTHER = {"work_precision": ("Work-precision diagram: error against run time per 
                              "as flown and with Re frozen; the density slope over c0 and lift scale within their "
                              "bounds", "python -m validation.flight.plot_flight_altitude"),
          "rate_laws_spin_per_unit": ("Driver spin per unit of club speed x sin(spin loft) against club speed: the "
-                                     "shared TrackMan file's median and quartiles (8,341 drivers, 5 mph bins) beside "
+                                     "shared TrackMan file's median and quartiles (8,324 drivers, 5 mph bins) beside "
                                      "rigid_coulomb and hertz_mindlin as today and with the compression lever, all "
                                      "fitted on the whole file and predicted on the same shots (in-sample)",
                                      "python -m validation.impact.plot_spin_per_unit"),

@@ -52,10 +52,27 @@ def main() -> None:
     keep, median, quartiles = binned(table.measured["spin_rate"] * RPM / unit)
     ax.fill_between(centre[keep], quartiles[keep, 0], quartiles[keep, 1], color="0.85", label="measured, quartiles")
     ax.plot(centre[keep], median[keep], "ko-", label=f"measured (TrackMan file, {table.size} drivers), median")
+    curves = {}
     for label, name, options in FORMS:
         out = predict(get_model(name)(**options), inputs)
         _, model_median, _ = binned(out["spin_rate"] * RPM / unit)
+        curves[label] = model_median[keep]
         ax.plot(centre[keep], model_median[keep], "--" if "today" in label else "-", marker=".", label=label)
+    # say where one curve lies under another (within 1 rpm/mph over three bins or more), so none is hidden unsaid
+    notes = []
+    labels = list(curves)
+    for i, first in enumerate(labels):
+        for second in labels[i + 1:]:
+            close = np.abs(curves[first] - curves[second]) <= 1.0
+            if close.sum() >= 3:
+                speeds = centre[keep][close]
+                notes.append(f"{first} and {second} within 1 rpm/mph at {speeds.min():.1f}-{speeds.max():.1f} mph "
+                             f"({close.sum()} bins): one lies under the other there")
+    if notes:
+        import textwrap
+
+        ax.text(0.01, 0.01, "\n".join(textwrap.fill(note, 70) for note in notes), transform=ax.transAxes, fontsize=7,
+                va="bottom", bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"})
     ax.set_xlabel("club speed [mph] (5 mph bins, >= 40 shots)")
     ax.set_ylabel("spin / (club speed x sin spin loft) [rpm/mph]")
     ax.set_title("Driver spin per unit of V sin(spin loft): measured beside the models\n"
