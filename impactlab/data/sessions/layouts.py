@@ -365,6 +365,17 @@ def _with_base(document: dict, documents: dict, where: str) -> dict:
     return merged
 
 
+#: first words of layout ids that name no monitor: impactlab's own tables, and GSPro's relay, which carries any monitor
+NO_MAKER = ("impactlab", "gspro")
+
+
+def maker_of(layout_id: str) -> str:
+    """The monitor's maker a layout names: the first word of its id (``trackman_tps_legacy``: trackman); '' for
+    :data:`NO_MAKER`."""
+    first = layout_id.split("_")[0]
+    return "" if first in NO_MAKER else first
+
+
 @functools.cache
 def vendor_maps() -> dict[str, VendorMap]:
     """Every vendor layout shipped with impactlab, by id (a translated layout built on its base, :func:`_with_base`)."""

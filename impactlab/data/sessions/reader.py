@@ -40,7 +40,7 @@ from impactlab.scene.catalogue import club_key
 from impactlab.data.sessions.shot_table import (DEFAULT_SIGMA, DELIVERY_FIELDS, MEASURED_FIELDS, ShotTable,
                                                _resolve_spin_loft)
 from impactlab.data.sessions.columns import _column_plan
-from impactlab.data.sessions.layouts import (DESCRIPTIONS, GENERIC, VendorMap, _header_index,
+from impactlab.data.sessions.layouts import (DESCRIPTIONS, GENERIC, VendorMap, _header_index, maker_of,
                                             _norm, _recognise, split_header)
 from impactlab.data.sessions.air import _air_from_text, _check_air
 from impactlab.data.sessions.consistency import check_consistency
@@ -304,11 +304,8 @@ class Session:
                          if any(self.text.get("ball_setting", ())) else ())
 
     def _instrument(self) -> str:
-        """The monitor's maker, the first word of the layout's id (``trackman_tps_legacy``: trackman); '' for
-        impactlab's own tables and for GSPro Open Connect, which relays any monitor."""
-        if self.vendor is GENERIC or self.vendor.id in ("impactlab_yaml", "gspro_open_connect"):
-            return ""
-        return self.vendor.id.split("_")[0]
+        """The monitor's maker its layout names (layouts.maker_of; '' for impactlab's own tables and GSPro's relay)."""
+        return maker_of(self.vendor.id)
 
 
 #: session datasets shipped with impactlab: name -> file in impactlab/data/sessions/datasets (README.md there)

@@ -34,7 +34,7 @@ from impactlab.scene.core import Contact, Delivery, Scene, ball_restitution, com
 from impactlab.study.scene_blocks import build_ball
 from impactlab.study.yaml_lines import line_of, load_yaml, read_text_file
 from impactlab.data.documents import ShotTableBlock, structure_document
-from impactlab.data.sessions.layouts import vendor_maps
+from impactlab.data.sessions.layouts import maker_of, vendor_maps
 from impactlab.data.sessions.reader import DATASETS, GENERIC, Session, read_session, read_session_text
 from impactlab.data.sessions.json_records import JSON_SESSIONS
 from impactlab.data.sessions.layouts import FIELDS
@@ -206,9 +206,8 @@ def read_yaml(text: str, file: str = "<yaml>") -> ShotTable:
 
 
 def instrument_makers() -> list[str]:
-    """The monitor makers a shot table may name (``instrument:``): the first word of every shipped layout's id,
-    except GSPro's relay, which carries any monitor."""
-    return sorted({key.split("_")[0] for key in vendor_maps() if not key.startswith("gspro")})
+    """The monitor makers a shot table may name (``instrument:``): those the shipped layouts name (layouts.maker_of)."""
+    return sorted({maker_of(key) for key in vendor_maps()} - {""})
 
 
 def read_shots(path: str | os.PathLike[str], include_flagged: bool = False) -> ShotTable:
