@@ -24,7 +24,6 @@ ionomer's wedge spin against its friction, to read where it slides and where its
 
 from __future__ import annotations
 
-import csv
 import time
 
 import numpy as np
@@ -36,13 +35,9 @@ GROUPS = ("Premium", "Limited Distance Soft", "Medium")
 def ball_settings(table, path=None) -> np.ndarray:
     """The file's ``Ball`` setting of each row of ``table`` (rows labelled by their file line; '' for a line the file
     does not hold). ``path``: the file (default: the shared TrackMan file)."""
-    from validation.impact.shots import DATA
+    from validation.impact.shots import file_column
 
-    with open(path or DATA, newline="", encoding="utf-8") as handle:
-        rows = list(csv.reader(handle))
-    column = rows[0].index("Ball")
-    setting = {line: row[column] for line, row in enumerate(rows[2:], start=3) if column < len(row)}
-    return np.array([setting.get(int(label.split()[-1]), "") for label in table.labels])
+    return file_column(table, "Ball", str, path)
 
 
 def forms():

@@ -83,6 +83,25 @@ def load(path: Path = DATA):
     return table, report
 
 
+def file_column(table, name: str, convert=str, path: Path | None = None) -> np.ndarray:
+    """The file's column ``name`` for each row of ``table`` (rows labelled by their file line), through ``convert``;
+    a line the file does not hold, or a cell ``convert`` refuses, gives ``convert``'s empty value ('' for str, NaN
+    for float)."""
+    empty = "" if convert is str else np.nan
+    with open(path or DATA, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    column = rows[0].index(name)
+    cells = {line: row[column] for line, row in enumerate(rows[2:], start=3) if column < len(row)}
+
+    def value(line: int):
+        try:
+            return convert(cells[line])
+        except (KeyError, ValueError):
+            return empty
+
+    return np.array([value(int(label.split()[-1])) for label in table.labels])
+
+
 def bands(table):
     """Boolean masks (slow: club speed < 95 mph, fast: > 100 mph)."""
     speed = np.asarray(table.delivery["club_speed"]) / MPH
