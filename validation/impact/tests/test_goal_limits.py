@@ -104,3 +104,59 @@ def test_the_tracked_fraction_is_each_lines_last_tracked_time_over_its_hang_time
     fraction = gl.tracked_fraction(table, path)
     assert fraction[:2] == pytest.approx([0.05, 1.0])
     assert np.all(np.isnan(fraction[2:]))  # a blank cell, a dash, a line the file does not hold
+
+
+def test_the_allowed_restitution_rises_only_below_the_cor_tests_speed():
+    slope = (0.78 - 0.85) / (45.0 - 20.0)  # Chou & Yang: e falls with speed
+    e = gl.allowed_restitution(np.array([30.0, 48.8, 60.0]), 0.83, slope)
+    assert e[0] == pytest.approx(0.83 + 0.0028 * 18.8)  # slower than the test: more lively
+    assert e[1] == e[2] == pytest.approx(0.83)  # at and above the test's speed: the limit itself
+
+
+def test_head_mass_for_passes_the_balls_inertia_factor_on():
+    loft, k = math.radians(30.0), 0.3  # a large loft, where the tangential share matters
+    ratio = float(gl.free_head_speed_ratio(loft, 0.8, BALL_MASS, 0.25, k))
+    assert gl.head_mass_for(ratio, loft, 0.8, BALL_MASS, k) == pytest.approx(0.25, rel=1e-8)
+
+
+def test_the_spin_loft_of_a_delivery_is_its_dynamic_loft_less_its_attack():
+    assert gl.spin_loft_of({"dynamic_loft": math.radians(34.0), "attack_angle": math.radians(-4.0)}) == \
+        pytest.approx(math.radians(38.0))
+
+
+def test_the_oracle_error_ignores_the_level_and_keeps_the_shape():
+    measured = np.array([100.0, 200.0, 300.0, 400.0, 500.0])
+    shaped = measured * np.array([1.1, 0.9, 1.0, 1.2, 0.8])  # errors of +-10 and +-20 % around the right level
+    assert gl.oracle_error(shaped, measured) == pytest.approx(gl.oracle_error(3.0 * shaped, measured))
+    assert gl.oracle_error(measured * 0.5, measured) == pytest.approx(0.0, abs=1e-12)  # a pure level error vanishes
+    assert gl.median_error(measured * 0.5, measured) == pytest.approx(50.0)
+
+
+def test_session_blocks_start_at_each_jump_of_more_than_the_gap():
+    assert gl.session_blocks([3, 4, 50, 151, 152, 400]).tolist() == [0, 0, 0, 1, 1, 2]  # 50 -> 151: 101 lines
+
+
+def test_the_block_bootstrap_resamples_whole_blocks():
+    values = np.array([1.0, 1.0, 1.0, 5.0, 5.0, 5.0])
+    # two blocks of equal values: every resample is 0, 1 or 2 copies of each block, its median 1, 3 or 5
+    median, low, high = gl.median_interval(values, blocks=[0, 0, 0, 1, 1, 1], draws=400)
+    assert median == 3.0 and low == 1.0 and high == 5.0
+    median, low, high = gl.median_interval(values, blocks=[0] * 6, draws=50)  # one block: no spread at all
+    assert low == high == median == 3.0
+    _, low, high = gl.median_interval(np.arange(1000.0), draws=400)  # independent rows: a narrow 95 % interval
+    assert 440 < low < 499.5 < high < 560
+
+
+def test_neighbours_include_the_edges_of_each_half_width():
+    mph = 0.44704
+    speed = np.array([119.0, 111.0]) * mph  # exactly 4 mph off either way
+    attack = np.radians([2.1, -3.9])  # exactly 3 deg off
+    loft = np.radians([14.3, 11.3])  # spin loft exactly 1.5 deg off
+    table = types.SimpleNamespace(delivery={"club_speed": speed, "dynamic_loft": loft + attack,
+                                            "attack_angle": attack, "spin_loft": np.full(2, np.nan)})
+    mask = gl.neighbours(table, {"club_speed": 115.0, "spin_loft": 12.8, "attack_angle": -0.9})
+    assert mask.tolist() == [True, True]
+
+
+def test_the_balls_cor_slope_is_chou_and_yangs_fall_with_speed():
+    assert gl.ball_cor_slope() == pytest.approx((0.78 - 0.85) / 25.0)
