@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import math
 
 import numpy as np
@@ -397,3 +398,20 @@ def test_the_report_is_written_once_after_every_refusal(tmp_path, capsys):
     assert status == 2 and "matches no row" in err and not page.exists(), err
     assert main(["validate", "--dataset", str(path), "--model", "restitution", "--report", str(page)]) == 0
     assert page.exists()
+
+
+def test_the_scorecard_says_which_models_run_the_driver_beyond_the_rules_cor():
+    from impactlab.data.validation.report import report_html
+    from impactlab.data.validation.scorecard import format_scorecard
+
+    table = session(20)
+    split = Split(train=np.arange(15), test=np.arange(15, 20), by="block", held_out=("rows 16-20",))
+    predicted: dict = {}
+    card = scorecard(table, models=["rigid_coulomb", "hertz_mindlin_face"], holdout=split, baselines=False,
+                     predictions=predicted)
+    note = card.attrs["head_cor"]
+    assert "rigid_coulomb 0.870" in note and "Beyond the Rules' 0.830: rigid_coulomb:" in note
+    assert "NOTE: " + note in format_scorecard(card)
+    assert html.escape(note) in report_html(table, split, card, predicted)
+    conforming = scorecard(table, models=["hertz_mindlin_face"], holdout=split, baselines=False)
+    assert conforming.attrs["head_cor"] == ""

@@ -26,6 +26,7 @@ from impactlab.data.sessions.shots import (
     ERROR_KEYS, MEASURED_FIELDS, ShotTable, errors_by_source, predict, read_shots, read_yaml, shot_errors, summary,
     table_inputs,
 )
+from impactlab.data.validation.head_cor import head_cor_note
 from impactlab.data.validation.observations import (cover_effect, describe, gear_effect, load_observations,
                                                     vertical_gear_effect)
 from impactlab.io.safe_output import write_atomically
@@ -198,6 +199,9 @@ def print_shot_errors(table: ShotTable, models: Iterable[str], plot: str | None 
             print(f"  {'':<16}rows not used (the model cannot predict them; OVER): {', '.join(unused)}")
     print("  (* within the data's uncertainty; OVER: beyond its regression budget, which only keeps a model from "
           "getting worse)")
+    note = head_cor_note(predictions, table.clubs, table.ball)
+    if note:
+        print(f"  NOTE: {note}")
     print_source_table(table, predictions)
     print()
     if rows is not None:

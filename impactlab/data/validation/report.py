@@ -328,8 +328,9 @@ def report_html(table: ShotTable, split, card: xr.Dataset, predicted: dict) -> s
     if card.attrs.get("baseline_coefficients"):
         parts.append(f"<p>Baselines fitted on the training rows: {html.escape(card.attrs['baseline_coefficients'])}"
                      "</p>")
-    if card.attrs.get("notes"):
-        parts.append(f"<p><strong>Note:</strong> {html.escape(card.attrs['notes'])}</p>")
+    for key in ("notes", "head_cor"):
+        if card.attrs.get(key):
+            parts.append(f"<p><strong>Note:</strong> {html.escape(card.attrs[key])}</p>")
     parts.append("<h2>Scorecard (held-out rows)</h2>")
     parts.append(_table_html(card))
     parts.append("<h2>Figures (held-out rows)</h2>")

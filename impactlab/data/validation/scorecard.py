@@ -29,6 +29,7 @@ import xarray as xr
 
 from impactlab.data.sessions.shots import ERROR_KEYS, ShotTable, predict, shot_errors, table_inputs
 from impactlab.data.validation import baselines as baseline_models
+from impactlab.data.validation.head_cor import head_cor_note
 from impactlab.data.validation.splits import (  # noqa: F401 (the splits are the scorecard's: importable from here)
     BLOCKS, HOLDOUT, MIN_ROWS, Split, folds, holdout_split,
 )
@@ -327,6 +328,7 @@ def scorecard(table: ShotTable, models: Sequence[str] = (), fit: Sequence | None
                "errors": "ball speed and spin: 100 (predicted / measured - 1) [%]; angles: predicted - measured "
                          "[deg], launch direction and spin axis the short way round",
                "baseline_coefficients": coefficients, "notes": "; ".join(notes),
+               "head_cor": head_cor_note([n for n, k in zip(names, kinds) if k == "model"], test.clubs, table.ball),
                "carry": "" if carry is None else (
                    "each launch flown by impactlab's flight model in standard air (15 degC, 1013.25 hPa, 50 %, no "
                    "wind) against the monitor's carry on the held-out shots it tracked; the monitor flew in its own "
@@ -347,6 +349,8 @@ def format_scorecard(card: xr.Dataset, breakdowns: bool = True) -> str:
         lines.append(f"  baselines fitted on the training rows: {card.attrs['baseline_coefficients']}")
     if card.attrs.get("notes"):
         lines.append(f"  NOTE: {card.attrs['notes']}")
+    if card.attrs.get("head_cor"):
+        lines.append(f"  NOTE: {card.attrs['head_cor']}")
     if card.attrs.get("carry"):
         lines.append(f"  carry: {card.attrs['carry']}")
     models = [str(m) for m in card["model"].values]
