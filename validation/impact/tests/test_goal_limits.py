@@ -160,3 +160,22 @@ def test_neighbours_include_the_edges_of_each_half_width():
 
 def test_the_balls_cor_slope_is_chou_and_yangs_fall_with_speed():
     assert gl.ball_cor_slope() == pytest.approx((0.78 - 0.85) / 25.0)
+
+
+def test_the_instantaneous_slip_law_matches_a_step_by_step_integration():
+    # an oracle written independently: march the normal impulse in small steps, friction mu_0 u / u_ref each step,
+    # the slip reduced by dJ_t / m_t (a sphere on a translating face), against the closed form's exponential
+    angle, e, head, speed, k = math.radians(38.0), 0.787, 0.303, 29.0, 0.4
+    m_n = 1.0 / (1.0 / BALL_MASS + 1.0 / head)
+    m_t = 1.0 / (1.0 / BALL_MASS + 1.0 / head + 1.0 / (k * BALL_MASS))
+    total = (1.0 + e) * m_n * speed * math.cos(angle)
+    for mu in (0.02, 0.1, 0.35):
+        slip, tangential, steps = speed * math.sin(angle), 0.0, 200_000
+        for _ in range(steps):
+            d = mu * slip / 10.0 * total / steps
+            tangential += d
+            slip -= d / m_t
+        rolling = m_t * speed * math.sin(angle)
+        assert gl.instantaneous_slip_fraction(mu, angle, e, BALL_MASS, head, speed, k) == pytest.approx(
+            tangential / rolling, rel=1e-4)
+    assert gl.instantaneous_slip_fraction(50.0, angle, e, BALL_MASS, head, speed) == pytest.approx(1.0)  # rolls
