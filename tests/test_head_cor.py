@@ -24,17 +24,17 @@ def test_a_rigid_model_runs_the_driver_at_the_balls_e_plus_the_clubs_gain():
     assert expected == pytest.approx(0.870)  # the preset's fitted pair e, above the Rules' limit
     for model in ("rigid_coulomb", "restitution"):
         # the head's centre of mass lies 2.9 mm off the test's normal line: its turning moves e by about 1e-4
-        assert hc.simulated_cor(model, "driver") == pytest.approx(expected, abs=3e-4)
+        assert hc.model_cor(model, "driver") == pytest.approx(expected, abs=3e-4)
 
 
 def test_a_lighter_ball_law_moves_the_simulated_cor_with_it():
     ball = {"preset": "urethane_tour", "restitution": 0.70}
-    assert hc.simulated_cor("rigid_coulomb", "driver", ball) == pytest.approx(0.70 + 0.083, abs=3e-4)
+    assert hc.model_cor("rigid_coulomb", "driver", ball) == pytest.approx(0.70 + 0.083, abs=3e-4)
 
 
 def test_the_flexing_face_models_are_sized_at_the_rules_limit():
     for model in ("hertz_mindlin_face", "hertz_mindlin_slip"):
-        assert hc.simulated_cor(model, "driver") == pytest.approx(0.830, abs=hc.MARGIN)
+        assert hc.model_cor(model, "driver") == pytest.approx(0.830, abs=hc.MARGIN)
 
 
 def test_only_spring_faced_clubs_are_tested_once_each():
@@ -59,3 +59,31 @@ def test_validate_prints_the_note_beside_the_errors_it_qualifies():
     assert "Beyond the Rules' 0.830: hertz_mindlin:" in note
     # printed after the error table, before the per-source table
     assert text.index("RMS error") < text.index(note) < text.index("per source")
+
+
+DRIVER_STUDY = {"name": "head_cor", "ball": {"preset": "urethane_tour"}, "club": {"preset": "driver"},
+                "contact": {"friction": 0.4},  # no restitution given: the ball's law plus the club's gain
+                "delivery": {"club_speed": "100 mph", "attack_angle": "0 deg", "dynamic_loft": "12 deg"},
+                "models": ["rigid_coulomb", "hertz_mindlin_face"], "outputs": ["ball_speed"]}
+
+
+def test_a_study_result_says_which_models_ran_its_club_beyond_the_rules_cor():
+    import warnings
+
+    import impactlab
+    from impactlab.model.diagnostics import ValidityWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = impactlab.run_study(DRIVER_STUDY)
+    note = result.attrs["head_cor"]
+    assert "rigid_coulomb 0.870" in note and "hertz_mindlin_face 0.830" in note
+    assert note.split("Beyond the Rules' 0.830: ")[1].startswith("rigid_coulomb:")
+    assert any(issubclass(w.category, ValidityWarning) and str(w.message) == note for w in caught)
+    # a pair e given in the contact block is the head COR the models run: 0.80 conforms, no note
+    conforming = impactlab.run_study({**DRIVER_STUDY, "contact": {"friction": 0.4, "restitution": 0.8}})
+    assert conforming.attrs["head_cor"] == ""
+    # a face preset without a club head: no spring-faced club, no note
+    face_only = {key: value for key, value in DRIVER_STUDY.items() if key != "club"}
+    result = impactlab.run_study({**face_only, "face": {"preset": "steel"}, "models": ["rigid_coulomb"]})
+    assert result.attrs["head_cor"] == ""

@@ -238,7 +238,7 @@ def _cmd_show(args) -> int:
 
 
 def _print_validity_notes(dataset) -> None:
-    notes = messages(dataset)
+    notes = messages(dataset) + ([str(dataset.attrs["head_cor"])] if dataset.attrs.get("head_cor") else [])
     if notes:
         print("validity notes (cases outside a model's assumptions; the `validity` variable flags each case):")
         for text in notes:

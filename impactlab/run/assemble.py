@@ -21,6 +21,7 @@ from impactlab._version import __version__
 from impactlab.io.results import CF_CONVENTIONS, RESULT_FORMAT
 from impactlab.physics.aerodynamics import DEFAULT_MODEL, MODEL_REFERENCES, model_fingerprint
 from impactlab.model.diagnostics import flag_attributes
+from impactlab.run.rules_test import head_cor_note
 from impactlab.study.core import Study
 from impactlab.vocabulary import FLIGHT_OUTPUTS, INPUTS, MODEL_DIM, OUTPUTS, TIME_DIM, is_history
 
@@ -209,6 +210,18 @@ def git_commit() -> str:
     return f"{commit}-dirty" if dirty else commit
 
 
+def study_head_cor(study: Study) -> str:
+    """The head COR each of the study's models (with its options) gives its base scene's club at the Rules' test,
+    when some model goes beyond the limit ('' otherwise, and for a scene without a spring-faced club):
+    :func:`impactlab.run.rules_test.head_cor_note`. A sweep over clubs or balls is judged at its base scene only."""
+    scene = study.scene
+    if scene.club is None or scene.club.restitution_gain <= 0.0:
+        return ""
+    name = scene.club.name or "the study's club"
+    return head_cor_note({entry.id: entry.model for entry in study.models}, scene.ball, {name: scene.club},
+                         scene.contact, whose="the study's ball and contact, at its base scene")
+
+
 def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:
     """What made this result: the study, its models with resolved options, versions, the plan."""
     models = [{"id": entry.id, "name": entry.name, "label": entry.model.label, "options": entry.model.options_dict(),
@@ -224,6 +237,7 @@ def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:
         "study_source": study.source,
         "base_scene_si": json.dumps(scene, sort_keys=True),
         "models": json.dumps(models),
+        "head_cor": study_head_cor(study),
         "plan": plan.describe(),
         "plots": json.dumps([plot.as_dict() for plot in study.plots]),
         **versions(),

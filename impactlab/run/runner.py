@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import warnings
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
@@ -18,7 +19,7 @@ import xarray as xr
 
 from impactlab.run.assemble import assemble
 from impactlab.run.options import run_option_sweep
-from impactlab.model.diagnostics import warn as warn_validity
+from impactlab.model.diagnostics import ValidityWarning, warn as warn_validity
 from impactlab.model.planning import OutputPlan, require_inputs
 from impactlab.run.sensitivity import run_sensitivity
 from impactlab.study.arrays import ball_law_applies, case_inputs
@@ -183,4 +184,6 @@ def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
             if store is not None:
                 store.clear()
     warn_validity(dataset)
+    if dataset.attrs.get("head_cor"):  # a result from a head beyond the Rules' COR limit says so (rules_test)
+        warnings.warn(str(dataset.attrs["head_cor"]), ValidityWarning, stacklevel=2)
     return dataset
