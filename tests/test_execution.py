@@ -133,6 +133,7 @@ def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_
     from impactlab.model import case_inputs as batch_module
     from impactlab.model.base import ImpactModel
     from impactlab.physics import contact
+    from impactlab.run import rules_test
     from impactlab.run import runner as runner_module
     from impactlab.run.runner import case_input_names, case_inputs
     from impactlab.study import limits
@@ -149,24 +150,40 @@ def test_a_run_checks_limits_plans_models_and_builds_the_contact_state_once(tmp_
         counts["check"] += 1
         return real_check(*args, **kwargs)
 
+    # the Rules' COR test each model runs once on the study's driver (impactlab.run.rules_test) is a computation of
+    # its own, outside the run's chunks: its plans and contact states are counted apart
+    inside_cor_test: list[int] = []
+    real_cor = rules_test.simulated_cor
+
+    def cor(*args, **kwargs):
+        inside_cor_test.append(1)
+        try:
+            return real_cor(*args, **kwargs)
+        finally:
+            inside_cor_test.pop()
+
     def plan(self, *args, **kwargs):
-        counts["plan"] += 1
+        key = "cor_test_plan" if inside_cor_test else "plan"
+        counts[key] = counts.get(key, 0) + 1
         return real_plan(self, *args, **kwargs)
 
     def state(inputs, mobility=True):
-        counts["mobility"] += bool(mobility)
+        key = "cor_test_mobility" if inside_cor_test else "mobility"
+        counts[key] = counts.get(key, 0) + bool(mobility)
         return real_state(inputs, mobility)
 
     monkeypatch.setattr(limits, "check", check)
     monkeypatch.setattr(runner_module, "check", check)  # the runner's own name for it (imported at its top)
     monkeypatch.setattr(ImpactModel, "plan", plan)
+    monkeypatch.setattr(rules_test, "simulated_cor", cor)
     monkeypatch.setattr(contact, "contact_state", state)
     monkeypatch.setattr(batch_module, "contact_state", state)
     path = tmp_path / "once.yaml"
     path.write_text(yaml.safe_dump(GOLF, sort_keys=False))
     out = tmp_path / "once.h5"
     assert main(["run", str(path), "-o", str(out), "-q", "--executor", "serial", "--chunk-size", "4"]) == 0
-    assert counts == {"check": 1, "plan": 3, "mobility": 2}  # 6 cases in chunks of 4: two chunks
+    # 6 cases in chunks of 4: two chunks; and one COR test per model
+    assert counts == {"check": 1, "plan": 3, "mobility": 2, "cor_test_plan": 3, "cor_test_mobility": 3}
     result = impactlab.open_results(out)
     for entry in study.models:
         for name in GOLF["outputs"]:

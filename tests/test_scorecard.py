@@ -5,6 +5,7 @@ from __future__ import annotations
 import html
 import math
 
+import attrs
 import numpy as np
 import pytest
 
@@ -415,3 +416,9 @@ def test_the_scorecard_says_which_models_run_the_driver_beyond_the_rules_cor():
     assert html.escape(note) in report_html(table, split, card, predicted)
     conforming = scorecard(table, models=["hertz_mindlin_face"], holdout=split, baselines=False)
     assert conforming.attrs["head_cor"] == ""
+    # the table's own ball decides (e 0.70: the driver at 0.783, within the limit)
+    lively = attrs.evolve(table, ball={"preset": "urethane_tour", "restitution": 0.70})
+    assert scorecard(lively, models=["rigid_coulomb"], holdout=split, baselines=False).attrs["head_cor"] == ""
+    # and the held-out rows' clubs: irons held out, the training rows' driver is not judged
+    irons = attrs.evolve(table, clubs=("driver",) * 15 + ("6_iron",) * 5)
+    assert scorecard(irons, models=["rigid_coulomb"], holdout=split, baselines=False).attrs["head_cor"] == ""

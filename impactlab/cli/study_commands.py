@@ -238,7 +238,9 @@ def _cmd_show(args) -> int:
 
 
 def _print_validity_notes(dataset) -> None:
-    notes = messages(dataset) + ([str(dataset.attrs["head_cor"])] if dataset.attrs.get("head_cor") else [])
+    if dataset.attrs.get("head_cor"):  # the club the models ran, not a case outside a model's assumptions
+        print(f"note: {dataset.attrs['head_cor']}")
+    notes = messages(dataset)
     if notes:
         print("validity notes (cases outside a model's assumptions; the `validity` variable flags each case):")
         for text in notes:

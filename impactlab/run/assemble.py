@@ -218,8 +218,13 @@ def study_head_cor(study: Study) -> str:
     if scene.club is None or scene.club.restitution_gain <= 0.0:
         return ""
     name = scene.club.name or "the study's club"
-    return head_cor_note({entry.id: entry.model for entry in study.models}, scene.ball, {name: scene.club},
+    note = head_cor_note({entry.id: entry.model for entry in study.models}, scene.ball, {name: scene.club},
                          scene.contact, whose="the study's ball and contact, at its base scene")
+    swept = sorted({field.path for axis in study.sweep for field in axis.fields
+                    if field.path.split(".")[0] in ("ball", "club", "face") or field.path == "contact.restitution"})
+    if note and swept:  # what the base scene says need not hold where the sweep changes the ball, head or e
+        note += f" (judged at the base scene only: the study sweeps {', '.join(swept)})"
+    return note
 
 
 def provenance(study: Study, plan: StudyPlan) -> dict[str, str | int]:

@@ -17,9 +17,10 @@ import attrs
 import numpy as np
 import xarray as xr
 
+from impactlab.errors import PlausibilityWarning
 from impactlab.run.assemble import assemble
 from impactlab.run.options import run_option_sweep
-from impactlab.model.diagnostics import ValidityWarning, warn as warn_validity
+from impactlab.model.diagnostics import warn as warn_validity
 from impactlab.model.planning import OutputPlan, require_inputs
 from impactlab.run.sensitivity import run_sensitivity
 from impactlab.study.arrays import ball_law_applies, case_inputs
@@ -185,5 +186,5 @@ def run_study(source: str | os.PathLike[str] | Mapping[str, Any] | Study, *,
                 store.clear()
     warn_validity(dataset)
     if dataset.attrs.get("head_cor"):  # a result from a head beyond the Rules' COR limit says so (rules_test)
-        warnings.warn(str(dataset.attrs["head_cor"]), ValidityWarning, stacklevel=2)
+        warnings.warn(str(dataset.attrs["head_cor"]), PlausibilityWarning, stacklevel=2)
     return dataset
