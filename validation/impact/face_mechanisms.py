@@ -144,7 +144,6 @@ def bands_section(sample, chosen=None):
 
 def tour_section(sample, chosen=None):
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.face_bounds import head_cor
     from validation.impact.shots import load
@@ -157,30 +156,25 @@ def tour_section(sample, chosen=None):
     print(f"\n### 2. Fitted on {sample} rows of the whole file; the tour tables and the wedge test, not refitted "
           "(goals: spin within 7 %, ball speed within 1 %, launch within 0.7 deg; exponent 0.5-0.8; wedge +16 to "
           "+50 %)\n")
-    print("| form | fitted | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in tour.labels)
-          + " | cells within the goals (of 12) | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 "
-          "(measured +48 %) |")
-    print("|---|---|" + "---|" * tour.size + "---|---|---|")
+    rl.print_tour_table_head("fitted", tour)
     for form in chosen or forms():
         values, at_bound = rl.fit(form, rl.take(inputs, rows, table.size), table.subset(rows).measured, bounds(),
                                   rigid_face_head=False)
-        e = rl.errors(rl.run(form, values, table_inputs(tour)), tour.measured)
-        met, cells = rl.tour_cells(e)
-        ks = rl.exponent(form, values)
-        cover = cover_effect(rl.model_of(form, values), wedge,
-                             inputs_hook=lambda i, v=values, f=form: rl.apply(i, v, f))
-        print(f"| {form.name} | {describe(values, at_bound, head_cor(values['e_ball']))} | {cells} | {met} | "
-              f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
+        print(f"| {form.name} | {describe(values, at_bound, head_cor(values['e_ball']))} | "
+              f"{rl.tour_row_cells(form, values, tour, wedge)} |")
 
 
-def command_line(argv, description: str, parts: bool = False) -> argparse.Namespace:
+def command_line(argv, description: str, parts: bool | tuple[int, ...] = False,
+                 part_help: str = "one section only") -> argparse.Namespace:
     """The research scripts' shared command line: ``--quick`` (training subsamples of 200 rows, else 400) and, with
-    ``parts``, ``--part`` (one section only). Silences the warnings the file's mishits raise by the thousand (unusual
-    deliveries, flown as given). Returns the arguments with ``sample`` and ``started`` (time.time()) added."""
+    ``parts``, ``--part`` (one section only: sections 0-3, or the numbers ``parts`` gives). Silences the warnings
+    the file's mishits raise by the thousand (unusual deliveries, flown as given). Returns the arguments with
+    ``sample`` and ``started`` (time.time()) added."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
     if parts:
-        parser.add_argument("--part", type=int, choices=(0, 1, 2, 3), help="one section only")
+        choices = (0, 1, 2, 3) if parts is True else tuple(parts)
+        parser.add_argument("--part", type=int, choices=choices, help=part_help)
     args = parser.parse_args(argv)
     warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
     warnings.filterwarnings("ignore", category=RuntimeWarning)

@@ -149,11 +149,11 @@ def oracle_error(predicted, measured) -> float:
 def tracked_fraction(table, path=None) -> np.ndarray:
     """The fraction of each row's hang time the radar tracked: ``Last data Point - Time`` over ``Carry Flat - Time``
     (NaN where either is missing); at least 0.9 is a measured flight, below 0.1 an indoor or netted shot."""
-    from validation.impact.shots import file_column
+    from validation.impact.shots import file_columns
 
+    times = file_columns(table, ("Last data Point - Time", "Carry Flat - Time"), float, path)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return (file_column(table, "Last data Point - Time", float, path)
-                / file_column(table, "Carry Flat - Time", float, path))
+        return times["Last data Point - Time"] / times["Carry Flat - Time"]
 
 
 def neighbours(table, delivery: dict, near: dict = NEAR) -> np.ndarray:

@@ -27,12 +27,9 @@ from it, so that nothing about the ball's restitution is fitted:
 
 from __future__ import annotations
 
-import argparse
 import math
 import time
-import warnings
 
-import attrs
 import numpy as np
 from scipy import optimize
 
@@ -94,21 +91,6 @@ def fit_friction(form, inputs, measured):
     return {"friction": value}, min(value - low, high - value) < 1e-3 * (high - low)
 
 
-def exponent(form, values):
-    """k of spin ~ V^k at the PGA and LPGA driver deliveries, 96 -> 115 mph, the ball's e on the line."""
-    from impactlab.data.sessions.shots import table_inputs
-    from validation.impact import rate_laws as rl
-    from validation.impact.shots import MPH
-
-    table = rl.tour()
-    drivers = table.subset([i for i, label in enumerate(table.labels) if "driver" in label])
-    spins = {}
-    for mph in (96.0, 115.0):
-        delivery = dict(drivers.delivery, club_speed=np.full(drivers.size, mph * MPH))
-        spins[mph] = run(form, values, table_inputs(attrs.evolve(drivers, delivery=delivery)))["spin_rate"]
-    return np.log(spins[115.0] / spins[96.0]) / math.log(115.0 / 96.0)
-
-
 def sizing_section():
     """Section 1: the faces at the COR limit for the ball's measured e at 48.8 m/s."""
     from validation.impact.face_bounds import COR_TEST_SPEED, barrier_cor, head_cor
@@ -163,7 +145,6 @@ def bands_section(forms, sample):
 def tour_section(forms, sample):
     """Section 3: fitted on the whole file, the exponent, the tour tables and the wedge test, not refitted."""
     from impactlab.data.sessions.shots import table_inputs
-    from impactlab.data.validation.observations import cover_effect
     from validation.impact import rate_laws as rl
     from validation.impact.shots import load
 
@@ -175,19 +156,11 @@ def tour_section(forms, sample):
     print(f"\n### 3. Fitted on {sample} rows of the whole file; the exponent at a fixed delivery, the tour tables and "
           "the wedge test, not refitted (goals: spin within 7 %, ball speed within 1 %, launch within 0.7 deg; "
           "exponent 0.5-0.8; wedge +16 to +50 %)\n")
-    print("| form | friction | " + " | ".join(f"{label}: spin %, ball speed %, launch deg" for label in tour.labels)
-          + " | cells within the goals (of 12) | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 "
-          "(measured +48 %) |")
-    print("|---|---|" + "---|" * tour.size + "---|---|---|")
+    rl.print_tour_table_head("friction", tour)
     for form in forms:
         values, at_bound = fit_friction(form, rl.take(inputs, rows, table.size), table.subset(rows).measured)
-        e = rl.errors(run(form, values, table_inputs(tour)), tour.measured)
-        met, cells = rl.tour_cells(e)
-        ks = exponent(form, values)
-        cover = cover_effect(rl.model_of(form, values), wedge,
-                             inputs_hook=lambda i, v=values, f=form: on_line(rl.apply(i, v, f)))
-        print(f"| {form.name} | {values['friction']:.4g}{' (at bound)' if at_bound else ''} | {cells} | {met} | "
-              f"{ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} % |")
+        print(f"| {form.name} | {values['friction']:.4g}{' (at bound)' if at_bound else ''} | "
+              f"{rl.tour_row_cells(form, values, tour, wedge, runner=run, wrap=on_line)} |")
 
 
 def forms_of(faces):
@@ -203,14 +176,11 @@ def forms_of(faces):
 
 
 def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="training subsamples of 200 rows")
-    parser.add_argument("--part", type=int, choices=(1, 2, 3), help="one section only (1 is always run)")
-    args = parser.parse_args(argv)
-    warnings.filterwarnings("ignore", message=".*is unusual for golf.*")
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-    started = time.time()
-    sample = 200 if args.quick else 400
+    from validation.impact.face_mechanisms import command_line
+
+    args = command_line(argv, __doc__.splitlines()[0], parts=(1, 2, 3),
+                        part_help="one section only (1 is always run)")
+    started, sample = args.started, args.sample
     forms = forms_of(sizing_section())
     if args.part in (None, 2):
         bands_section(forms, sample)

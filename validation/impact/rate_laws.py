@@ -331,19 +331,45 @@ def boosting(train, test):
     return np.exp(model.predict(x_test))
 
 
-def exponent(form, values):
-    """k of spin ~ V^k at the PGA and LPGA driver deliveries, club speed 96 -> 115 mph."""
+def exponent(form, values, runner=None):
+    """k of spin ~ V^k at the PGA and LPGA driver deliveries, club speed 96 -> 115 mph; ``runner(form, values,
+    inputs)`` predicts (default :func:`run`; measured_ball_face's puts the ball's e on the measured line)."""
+    runner = runner or run
     table = tour()
     drivers = [i for i, label in enumerate(table.labels) if "driver" in label]
     table = table.subset(drivers)
-    ks = []
     spins = {}
     for mph in (96.0, 115.0):
         delivery = dict(table.delivery, club_speed=np.full(table.size, mph * MPH))
         inputs = table_inputs(attrs.evolve(table, delivery=delivery))
-        spins[mph] = run(form, values, inputs)["spin_rate"]
-    ks = np.log(spins[115.0] / spins[96.0]) / math.log(115.0 / 96.0)
-    return ks
+        spins[mph] = runner(form, values, inputs)["spin_rate"]
+    return np.log(spins[115.0] / spins[96.0]) / math.log(115.0 / 96.0)
+
+
+def print_tour_table_head(fitted_column: str, tour_table) -> None:
+    """The head of the table the research scripts print for forms fitted on the whole file: the form, what was fitted
+    (``fitted_column``), each tour row's errors, the cells within the goals, the exponent and the wedge test."""
+    print(f"| form | {fitted_column} | " + " | ".join(f"{label}: spin %, ball speed %, launch deg"
+                                                  for label in tour_table.labels)
+          + " | cells within the goals (of 12) | exponent k (PGA / LPGA driver delivery) | wedge urethane/ionomer - 1 "
+          "(measured +48 %) |")
+    print("|---|---|" + "---|" * tour_table.size + "---|---|---|")
+
+
+def tour_row_cells(form, values, tour_table, wedge, runner=None, wrap=None) -> str:
+    """The cells after the fitted column of :func:`print_tour_table_head` for ``form`` at ``values``, not refitted:
+    the tour rows' errors, the cells within the goals, the exponent and the wedge test. ``runner`` predicts
+    (default :func:`run`); ``wrap`` changes the inputs after the fitted values are applied (default: none), in the
+    wedge test as in ``runner``."""
+    from impactlab.data.validation.observations import cover_effect
+
+    runner = runner or run
+    errors_of = errors(runner(form, values, table_inputs(tour_table)), tour_table.measured)
+    met, cells = tour_cells(errors_of)
+    ks = exponent(form, values, runner)
+    wrap = wrap or (lambda inputs: inputs)
+    cover = cover_effect(model_of(form, values), wedge, inputs_hook=lambda i: wrap(apply(i, values, form)))
+    return f"{cells} | {met} | {ks[0]:.3f} / {ks[1]:.3f} | {100 * cover['predicted']:+.1f} %"
 
 
 def wedge_sensitivity():

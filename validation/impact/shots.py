@@ -83,23 +83,32 @@ def load(path: Path = DATA):
     return table, report
 
 
-def file_column(table, name: str, convert=str, path: Path | None = None) -> np.ndarray:
-    """The file's column ``name`` for each row of ``table`` (rows labelled by their file line), through ``convert``;
-    a line the file does not hold, or a cell ``convert`` refuses, gives ``convert``'s empty value ('' for str, NaN
-    for float)."""
+def file_columns(table, names, convert=str, path: Path | None = None) -> dict:
+    """The file's columns ``names`` for each row of ``table`` (rows labelled by their file line), through
+    ``convert``, the file read once; a line the file does not hold, or a cell ``convert`` refuses, gives
+    ``convert``'s empty value ('' for str, NaN for float)."""
     empty = "" if convert is str else np.nan
     with open(path or DATA, newline="", encoding="utf-8") as handle:
         rows = list(csv.reader(handle))
-    column = rows[0].index(name)
-    cells = {line: row[column] for line, row in enumerate(rows[2:], start=3) if column < len(row)}
+    lines = [int(label.split()[-1]) for label in table.labels]
+    out = {}
+    for name in names:
+        column = rows[0].index(name)
+        cells = {line: row[column] for line, row in enumerate(rows[2:], start=3) if column < len(row)}
 
-    def value(line: int):
-        try:
-            return convert(cells[line])
-        except (KeyError, ValueError):
-            return empty
+        def value(line: int):
+            try:
+                return convert(cells[line])
+            except (KeyError, ValueError):
+                return empty
 
-    return np.array([value(int(label.split()[-1])) for label in table.labels])
+        out[name] = np.array([value(line) for line in lines])
+    return out
+
+
+def file_column(table, name: str, convert=str, path: Path | None = None) -> np.ndarray:
+    """The file's column ``name`` for each row of ``table``: :func:`file_columns` of one name."""
+    return file_columns(table, (name,), convert, path)[name]
 
 
 def bands(table):
